@@ -1,0 +1,295 @@
+//! The one error type of ldh-core.
+//!
+//! Every variant says what went wrong and where: the file (when there is one), the line and
+//! column (1-based, counted in the file as a text editor shows it), and the offending value.
+//! The CLI prints these messages as they are; the Python binding maps them onto `ValueError`,
+//! `FileNotFoundError`/`OSError` and the `ldh.LdhError` family by [`LdhError::kind`].
+
+use std::path::{Path, PathBuf};
+
+/// Result alias used throughout ldh-core.
+pub type Result<T, E = LdhError> = std::result::Result<T, E>;
+
+/// Where in an input file something was found.
+///
+/// `line` and `column` are 1-based; `column` counts delimited fields, not characters.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Location {
+    /// The file (or a label such as `<memory>` for in-memory input).
+    pub file: PathBuf,
+    /// 1-based line number in the file, if known.
+    pub line: Option<u64>,
+    /// 1-based field (column) number, if known.
+    pub column: Option<usize>,
+}
+
+impl Location {
+    /// A location naming only the file.
+    pub fn file(file: impl AsRef<Path>) -> Self {
+        Location {
+            file: file.as_ref().to_path_buf(),
+            line: None,
+            column: None,
+        }
+    }
+    /// A location naming file and line.
+    pub fn line(file: impl AsRef<Path>, line: u64) -> Self {
+        Location {
+            line: Some(line),
+            ..Location::file(file)
+        }
+    }
+    /// A location naming file, line and column.
+    pub fn cell(file: impl AsRef<Path>, line: u64, column: usize) -> Self {
+        Location {
+            line: Some(line),
+            column: Some(column),
+            ..Location::file(file)
+        }
+    }
+}
+
+impl std::fmt::Display for Location {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}", self.file.display())?;
+        if let Some(l) = self.line {
+            write!(f, ":{l}")?;
+            if let Some(c) = self.column {
+                write!(f, ":{c}")?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Broad class of an error, used by the bindings to choose an exception type.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ErrorKind {
+    /// The file does not exist.
+    NotFound,
+    /// Any other operating-system I/O failure (permissions, a directory, a loop of links…).
+    Io,
+    /// The file's content is not a usable recording (format, values, timing).
+    Data,
+    /// A parameter or argument is invalid.
+    Param,
+}
+
+/// Everything that can go wrong in ldh-core.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum LdhError {
+    /// Opening or reading a file failed.
+    #[error("{}: cannot read: {source}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The file holds no data at all.
+    #[error("{}: the file is empty", path.display())]
+    EmptyFile {
+        /// The file.
+        path: PathBuf,
+    },
+    /// The file looks like binary data, not text.
+    #[error("{}: this is not a text file (byte 0x{byte:02x} at offset {offset}); expected a CSV export", path.display())]
+    Binary {
+        /// The file.
+        path: PathBuf,
+        /// Offset of the first offending byte.
+        offset: u64,
+        /// The offending byte.
+        byte: u8,
+    },
+    /// The text is not valid UTF-8.
+    #[error("{loc}: the text is not valid UTF-8 (offset {offset}); re-export the file as UTF-8")]
+    NotUtf8 {
+        /// Where.
+        loc: Location,
+        /// Byte offset of the first invalid sequence.
+        offset: u64,
+    },
+    /// No header row with the expected columns was found.
+    #[error("{}: no header row with the expected columns; missing {missing:?} (format '{format}'). First row seen: {first_row:?}", path.display())]
+    NoHeader {
+        /// The file.
+        path: PathBuf,
+        /// The format that was tried.
+        format: String,
+        /// The columns that were not found.
+        missing: Vec<String>,
+        /// The first non-comment row of the file, for the message.
+        first_row: String,
+    },
+    /// A required column is missing from the header.
+    #[error(
+        "{loc}: column '{column}' required by format '{format}' is missing; header has {header:?}"
+    )]
+    MissingColumn {
+        /// Where (the header line).
+        loc: Location,
+        /// The column's name.
+        column: String,
+        /// The format in use.
+        format: String,
+        /// The columns the header does have.
+        header: Vec<String>,
+    },
+    /// A row has fewer or more fields than the header.
+    #[error("{loc}: row has {found} fields, the header has {expected}")]
+    FieldCount {
+        /// Where.
+        loc: Location,
+        /// Fields in this row.
+        found: usize,
+        /// Fields in the header.
+        expected: usize,
+    },
+    /// A cell that must hold a number does not.
+    #[error("{loc}: column '{column}': '{value}' is not a number{hint}")]
+    NotANumber {
+        /// Where.
+        loc: Location,
+        /// Column name.
+        column: String,
+        /// The text found.
+        value: String,
+        /// Extra advice (e.g. about decimal commas), empty or starting with "; ".
+        hint: String,
+    },
+    /// A cell holds NaN or an infinity.
+    #[error("{loc}: column '{column}': non-finite value '{value}'")]
+    NonFinite {
+        /// Where.
+        loc: Location,
+        /// Column name.
+        column: String,
+        /// The text found.
+        value: String,
+    },
+    /// Timestamps go backwards or repeat.
+    #[error("{loc}: timestamp {value} s is not after the previous one ({previous} s): timestamps must increase")]
+    NonMonotonicTime {
+        /// Where.
+        loc: Location,
+        /// This row's time.
+        value: f64,
+        /// The previous row's time.
+        previous: f64,
+    },
+    /// A gap longer than the allowed maximum, with the reject policy.
+    #[error("{loc}: gap of {gap_s:.3} s in the timestamps (from {from_s:.3} s) exceeds max_gap_s = {max_gap_s} s; use gap_policy = \"split\" to keep the longest segment")]
+    Gap {
+        /// Where (the row after the gap).
+        loc: Location,
+        /// Length of the gap.
+        gap_s: f64,
+        /// Time before the gap.
+        from_s: f64,
+        /// The allowed maximum.
+        max_gap_s: f64,
+    },
+    /// Too few samples or too short a duration for gait analysis.
+    #[error("{}: recording is too short: {duration_s:.2} s ({samples} samples); at least {min_s:.2} s are needed to hold three strides", path.display())]
+    TooShort {
+        /// The file.
+        path: PathBuf,
+        /// Its duration.
+        duration_s: f64,
+        /// Its number of samples.
+        samples: usize,
+        /// The required minimum.
+        min_s: f64,
+    },
+    /// The sampling rate cannot be determined or is implausible.
+    #[error("{}: sampling rate problem: {reason}", path.display())]
+    SamplingRate {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A value in the data is physically implausible (e.g. a unit mix-up).
+    #[error("{}: implausible data: {reason}", path.display())]
+    Implausible {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong and what to check.
+        reason: String,
+    },
+    /// A format (column map) description is invalid.
+    #[error("format '{name}': {reason}")]
+    Format {
+        /// The format's name or file.
+        name: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A parameter is outside its valid range.
+    #[error("invalid parameter {name} = {value}: {reason}")]
+    Param {
+        /// Parameter name (with unit).
+        name: &'static str,
+        /// The offending value, formatted.
+        value: String,
+        /// The rule it breaks.
+        reason: String,
+    },
+    /// A signal is unusable for an algorithm (too short, wrong length…).
+    #[error("{context}: {reason}")]
+    Signal {
+        /// Which step and signal.
+        context: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A statistical test is undefined for its input (see [`crate::stats`]).
+    #[error(transparent)]
+    Stats(#[from] crate::stats::StatsError),
+    /// Writing output failed.
+    #[error("{}: cannot write: {reason}", path.display())]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// What failed.
+        reason: String,
+    },
+}
+
+impl LdhError {
+    /// Broad class of the error, for choosing an exception type in bindings.
+    pub fn kind(&self) -> ErrorKind {
+        match self {
+            LdhError::Io { source, .. } if source.kind() == std::io::ErrorKind::NotFound => {
+                ErrorKind::NotFound
+            }
+            LdhError::Io { .. } | LdhError::Write { .. } => ErrorKind::Io,
+            LdhError::Param { .. } => ErrorKind::Param,
+            _ => ErrorKind::Data,
+        }
+    }
+
+    /// Shorthand for a parameter error.
+    pub fn param(
+        name: &'static str,
+        value: impl std::fmt::Display,
+        reason: impl Into<String>,
+    ) -> Self {
+        LdhError::Param {
+            name,
+            value: value.to_string(),
+            reason: reason.into(),
+        }
+    }
+
+    /// Shorthand for a signal error.
+    pub fn signal(context: impl Into<String>, reason: impl Into<String>) -> Self {
+        LdhError::Signal {
+            context: context.into(),
+            reason: reason.into(),
+        }
+    }
+}

@@ -1,0 +1,485 @@
+//! Vendor formats: a small TOML column map that says which columns hold time, acceleration and
+//! angular velocity, in which units, and how the sensor's axes map onto ldh's axes
+//! (x along the shank, y anterior-posterior, z medio-lateral; paper §2.2, SPEC §2).
+//!
+//! The maps shipped with ldh live in `data-fixtures/formats/*.toml` and are compiled in
+//! ([`FormatSpec::builtin`]); a user may pass their own file ([`FormatSpec::from_toml_file`]).
+//!
+//! ```toml
+//! name = "xsens-mtmanager"
+//! delimiter = "\t"            # "auto" (default), ",", ";" or "\t"
+//! decimal = "."               # "." (default) or "," (European exports with ";" or tab)
+//! comment_prefixes = ["//"]   # lines starting with these are skipped
+//! skip_rows_after_header = 0  # e.g. 1 for a units row under the column names
+//! [time]
+//! column = "PacketCounter"    # omit for files without time
+//! unit = "counter"            # "s" | "ms" | "us" | "counter" | "iso8601" | "none"
+//! rate_hz = 100.0             # required for "counter" and "none"
+//! counter_wrap = 65536        # counters that wrap around
+//! [acc]
+//! columns = ["Acc_X", "Acc_Y", "Acc_Z"]
+//! unit = "m/s2"               # "g" | "m/s2"
+//! scale = 1.0                 # raw value × scale = value in `unit` (for integer counts)
+//! range = 156.9               # full scale in `unit`, for saturation detection (optional)
+//! [gyro]
+//! columns = ["Gyr_X", "Gyr_Y", "Gyr_Z"]
+//! unit = "rad/s"              # "deg/s" | "rad/s"
+//! [axes]
+//! map = ["+x", "+y", "+z"]    # ldh x, y, z = these signed input axes (a rotation, det = +1)
+//! ```
+
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+use crate::error::{LdhError, Result};
+
+/// Field delimiter of a CSV file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+pub enum Delimiter {
+    /// Detect from the header row (the most frequent of `,` `;` tab).
+    #[default]
+    #[serde(rename = "auto")]
+    Auto,
+    /// `,`
+    #[serde(rename = ",")]
+    Comma,
+    /// `;`
+    #[serde(rename = ";")]
+    Semicolon,
+    /// tab
+    #[serde(rename = "\t")]
+    Tab,
+}
+
+impl Delimiter {
+    /// The byte, or `None` for [`Delimiter::Auto`].
+    pub fn byte(self) -> Option<u8> {
+        match self {
+            Delimiter::Auto => None,
+            Delimiter::Comma => Some(b','),
+            Delimiter::Semicolon => Some(b';'),
+            Delimiter::Tab => Some(b'\t'),
+        }
+    }
+    /// From a byte (`,` `;` tab).
+    pub fn from_byte(b: u8) -> Option<Self> {
+        match b {
+            b',' => Some(Delimiter::Comma),
+            b';' => Some(Delimiter::Semicolon),
+            b'\t' => Some(Delimiter::Tab),
+            _ => None,
+        }
+    }
+    /// A readable name for reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Delimiter::Auto => "auto",
+            Delimiter::Comma => "comma",
+            Delimiter::Semicolon => "semicolon",
+            Delimiter::Tab => "tab",
+        }
+    }
+}
+
+/// Decimal separator of numbers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+pub enum Decimal {
+    /// `1.25`
+    #[default]
+    #[serde(rename = ".")]
+    Point,
+    /// `1,25` (only with `;` or tab as delimiter)
+    #[serde(rename = ",")]
+    Comma,
+}
+
+/// How time is given in the file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+pub enum TimeUnit {
+    /// Seconds.
+    #[default]
+    #[serde(rename = "s")]
+    Seconds,
+    /// Milliseconds.
+    #[serde(rename = "ms")]
+    Milliseconds,
+    /// Microseconds.
+    #[serde(rename = "us")]
+    Microseconds,
+    /// A sample counter (needs `rate_hz`), possibly wrapping at `counter_wrap`.
+    #[serde(rename = "counter")]
+    Counter,
+    /// ISO 8601 timestamps such as `2024-03-01T10:15:02.250` (a trailing `Z` is accepted;
+    /// other time-zone offsets are not).
+    #[serde(rename = "iso8601")]
+    Iso8601,
+    /// No time column: samples are uniform at `rate_hz`.
+    #[serde(rename = "none")]
+    None,
+}
+
+/// Time column description.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct TimeSpec {
+    /// Column name (case-insensitive); `None` when the file has no time column.
+    #[serde(default)]
+    pub column: Option<String>,
+    /// Unit of the column.
+    #[serde(default)]
+    pub unit: TimeUnit,
+    /// The stated sampling rate in Hz, required for `counter` and `none`.
+    #[serde(default)]
+    pub rate_hz: Option<f64>,
+    /// Counter modulus for counters that wrap (e.g. 65536).
+    #[serde(default)]
+    pub counter_wrap: Option<u64>,
+}
+
+/// Acceleration units.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum AccUnit {
+    /// Standard gravity.
+    #[serde(rename = "g")]
+    G,
+    /// m/s².
+    #[serde(rename = "m/s2", alias = "m/s^2", alias = "mps2")]
+    Mps2,
+}
+
+/// Angular velocity units.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum GyroUnit {
+    /// Degrees per second.
+    #[serde(rename = "deg/s", alias = "dps")]
+    Dps,
+    /// Radians per second.
+    #[serde(rename = "rad/s", alias = "rps")]
+    Rps,
+}
+
+/// A three-axis sensor's columns.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ChannelSpec<U> {
+    /// Column names of the x, y, z axes (case-insensitive).
+    pub columns: [String; 3],
+    /// Unit after scaling.
+    pub unit: U,
+    /// Multiplier from the raw value to `unit` (1 unless the file holds integer counts).
+    #[serde(default = "one")]
+    pub scale: f64,
+    /// Full-scale range in `unit` (e.g. 8 for a ±8 g accelerometer); samples at the range are
+    /// counted as saturated. When absent, clipping is detected from flat runs at the extremes.
+    #[serde(default)]
+    pub range: Option<f64>,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// Axis mapping from the file's axes to ldh's.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AxesSpec {
+    /// For ldh x, y, z: which input axis with which sign, e.g. `["+x", "-z", "+y"]`.
+    pub map: [String; 3],
+}
+
+impl Default for AxesSpec {
+    fn default() -> Self {
+        AxesSpec {
+            map: ["+x".into(), "+y".into(), "+z".into()],
+        }
+    }
+}
+
+/// A vendor format: the column map of one kind of CSV export.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FormatSpec {
+    /// Short name (e.g. `ldh`, `xsens-mtmanager`).
+    pub name: String,
+    /// One line on where the format comes from.
+    #[serde(default)]
+    pub description: String,
+    /// Field delimiter; default auto-detected.
+    #[serde(default)]
+    pub delimiter: Delimiter,
+    /// Decimal separator; default `.`.
+    #[serde(default)]
+    pub decimal: Decimal,
+    /// Lines starting with any of these (after leading white space) are skipped.
+    #[serde(default)]
+    pub comment_prefixes: Vec<String>,
+    /// Rows under the header row to skip (e.g. a row of units).
+    #[serde(default)]
+    pub skip_rows_after_header: usize,
+    /// Time column.
+    #[serde(default)]
+    pub time: TimeSpec,
+    /// Accelerometer columns.
+    pub acc: ChannelSpec<AccUnit>,
+    /// Gyroscope columns.
+    pub gyro: ChannelSpec<GyroUnit>,
+    /// Axis map (default identity).
+    #[serde(default)]
+    pub axes: AxesSpec,
+}
+
+/// The checked form of an axis map: ldh axis `i` = `sign[i]` × input axis `index[i]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AxisMap {
+    /// Input axis index (0 = x, 1 = y, 2 = z) for each ldh axis.
+    pub index: [usize; 3],
+    /// Sign (+1 or −1) for each ldh axis.
+    pub sign: [f64; 3],
+}
+
+impl AxisMap {
+    /// The identity map.
+    pub const IDENTITY: AxisMap = AxisMap {
+        index: [0, 1, 2],
+        sign: [1.0, 1.0, 1.0],
+    };
+
+    /// Apply to one sample.
+    pub fn apply(&self, v: [f64; 3]) -> [f64; 3] {
+        [
+            self.sign[0] * v[self.index[0]],
+            self.sign[1] * v[self.index[1]],
+            self.sign[2] * v[self.index[2]],
+        ]
+    }
+
+    /// The inverse map (ldh axes back to the file's axes).
+    pub fn inverse(&self) -> AxisMap {
+        let mut index = [0; 3];
+        let mut sign = [1.0; 3];
+        for (i, (&j, &s)) in self.index.iter().zip(self.sign.iter()).enumerate() {
+            index[j] = i;
+            sign[j] = s;
+        }
+        AxisMap { index, sign }
+    }
+}
+
+/// Names of the formats compiled into ldh, in detection order.
+pub const BUILTIN_FORMATS: [&str; 4] =
+    ["ldh", "xsens-mtmanager", "shimmer-consensys", "raw-counts"];
+
+const BUILTIN_TOML: [(&str, &str); 4] = [
+    (
+        "ldh",
+        include_str!("../../../../data-fixtures/formats/ldh.toml"),
+    ),
+    (
+        "xsens-mtmanager",
+        include_str!("../../../../data-fixtures/formats/xsens-mtmanager.toml"),
+    ),
+    (
+        "shimmer-consensys",
+        include_str!("../../../../data-fixtures/formats/shimmer-consensys.toml"),
+    ),
+    (
+        "raw-counts",
+        include_str!("../../../../data-fixtures/formats/raw-counts.toml"),
+    ),
+];
+
+impl Default for FormatSpec {
+    /// The ldh default format: `time_s, acc_x, acc_y, acc_z, gyro_x, gyro_y, gyro_z` in s, g and
+    /// deg/s, delimiter auto-detected.
+    fn default() -> Self {
+        FormatSpec::builtin("ldh").expect("the built-in ldh format parses")
+    }
+}
+
+impl FormatSpec {
+    /// Parse a format from TOML text; `origin` names it in error messages.
+    pub fn from_toml_str(text: &str, origin: &str) -> Result<Self> {
+        let spec: FormatSpec = toml::from_str(text).map_err(|e| LdhError::Format {
+            name: origin.to_string(),
+            reason: e.to_string(),
+        })?;
+        spec.validate()?;
+        Ok(spec)
+    }
+
+    /// Read a format from a TOML file.
+    pub fn from_toml_file(path: impl AsRef<Path>) -> Result<Self> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|source| LdhError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        FormatSpec::from_toml_str(&text, &path.display().to_string())
+    }
+
+    /// One of the formats shipped with ldh ([`BUILTIN_FORMATS`]).
+    pub fn builtin(name: &str) -> Result<Self> {
+        let (_, text) = BUILTIN_TOML
+            .iter()
+            .find(|(n, _)| *n == name)
+            .ok_or_else(|| LdhError::Format {
+                name: name.to_string(),
+                reason: format!(
+                    "no such built-in format; known: {}",
+                    BUILTIN_FORMATS.join(", ")
+                ),
+            })?;
+        FormatSpec::from_toml_str(text, name)
+    }
+
+    /// All built-in formats.
+    pub fn builtins() -> Vec<FormatSpec> {
+        BUILTIN_FORMATS
+            .iter()
+            .map(|n| FormatSpec::builtin(n).expect("built-in formats parse"))
+            .collect()
+    }
+
+    /// Serialize to TOML.
+    pub fn to_toml(&self) -> String {
+        toml::to_string_pretty(self).unwrap_or_default()
+    }
+
+    /// This format with the stated sampling rate replaced.
+    pub fn with_rate_hz(mut self, rate_hz: f64) -> Self {
+        self.time.rate_hz = Some(rate_hz);
+        self
+    }
+
+    /// This format with another axis map.
+    pub fn with_axes(mut self, map: [&str; 3]) -> Self {
+        self.axes.map = map.map(|s| s.to_string());
+        self
+    }
+
+    fn err(&self, reason: impl Into<String>) -> LdhError {
+        LdhError::Format {
+            name: self.name.clone(),
+            reason: reason.into(),
+        }
+    }
+
+    /// Check the description is complete and consistent.
+    pub fn validate(&self) -> Result<()> {
+        if self.decimal == Decimal::Comma && self.delimiter == Delimiter::Comma {
+            return Err(self.err("decimal = \",\" cannot be used with delimiter = \",\""));
+        }
+        match self.time.unit {
+            TimeUnit::Counter | TimeUnit::None => {
+                match self.time.rate_hz {
+                    Some(r) if r.is_finite() && r > 0.0 => {}
+                    _ => return Err(self.err(
+                        "time.rate_hz (> 0) is required when time.unit is \"counter\" or \"none\"",
+                    )),
+                }
+            }
+            _ => {
+                if self.time.column.is_none() {
+                    return Err(self.err(
+                        "time.column is missing; set time.unit = \"none\" and time.rate_hz for files without time",
+                    ));
+                }
+            }
+        }
+        if self.time.unit == TimeUnit::None && self.time.column.is_some() {
+            return Err(self.err("time.unit = \"none\" but time.column is set"));
+        }
+        if let Some(r) = self.time.rate_hz {
+            if !(r.is_finite() && r > 0.0) {
+                return Err(self.err(format!("time.rate_hz = {r} must be > 0")));
+            }
+        }
+        for (what, scale, range) in [
+            ("acc", self.acc.scale, self.acc.range),
+            ("gyro", self.gyro.scale, self.gyro.range),
+        ] {
+            if !(scale.is_finite() && scale != 0.0) {
+                return Err(self.err(format!(
+                    "{what}.scale = {scale} must be finite and non-zero"
+                )));
+            }
+            if let Some(r) = range {
+                if !(r.is_finite() && r > 0.0) {
+                    return Err(self.err(format!("{what}.range = {r} must be > 0")));
+                }
+            }
+        }
+        self.axis_map()?;
+        Ok(())
+    }
+
+    /// The checked axis map. Errors on a malformed entry, a repeated axis, or a reflection
+    /// (determinant −1: both the sensor and ldh's frame are right-handed, so a reflection means
+    /// a sign is wrong).
+    pub fn axis_map(&self) -> Result<AxisMap> {
+        let mut index = [0usize; 3];
+        let mut sign = [1.0f64; 3];
+        for (i, entry) in self.axes.map.iter().enumerate() {
+            let e = entry.trim().to_ascii_lowercase();
+            let (s, axis) = match e.as_bytes() {
+                [b'+', a] => (1.0, *a),
+                [b'-', a] => (-1.0, *a),
+                [a] => (1.0, *a),
+                _ => {
+                    return Err(self.err(format!(
+                        "axes.map entry '{entry}' is not like \"+x\" or \"-z\""
+                    )))
+                }
+            };
+            index[i] = match axis {
+                b'x' => 0,
+                b'y' => 1,
+                b'z' => 2,
+                _ => {
+                    return Err(
+                        self.err(format!("axes.map entry '{entry}' names no axis x, y or z"))
+                    )
+                }
+            };
+            sign[i] = s;
+        }
+        if index[0] == index[1] || index[0] == index[2] || index[1] == index[2] {
+            return Err(self.err(format!("axes.map {:?} uses an axis twice", self.axes.map)));
+        }
+        // Determinant of a signed permutation = sign product × permutation parity.
+        let parity = {
+            let mut p = index;
+            let mut swaps = 0;
+            for i in 0..3 {
+                while p[i] != i {
+                    let j = p[i];
+                    p.swap(i, j);
+                    swaps += 1;
+                }
+            }
+            if swaps % 2 == 0 {
+                1.0
+            } else {
+                -1.0
+            }
+        };
+        if parity * sign[0] * sign[1] * sign[2] < 0.0 {
+            return Err(self.err(format!(
+                "axes.map {:?} is a reflection (determinant −1); sensors are right-handed, so one sign is wrong",
+                self.axes.map
+            )));
+        }
+        Ok(AxisMap { index, sign })
+    }
+
+    /// All column names the format requires, in the order time (if any), acc x y z, gyro x y z.
+    pub fn required_columns(&self) -> Vec<String> {
+        let mut v = Vec::with_capacity(7);
+        if let Some(t) = &self.time.column {
+            v.push(t.clone());
+        }
+        v.extend(self.acc.columns.iter().cloned());
+        v.extend(self.gyro.columns.iter().cloned());
+        v
+    }
+}

@@ -1,0 +1,12 @@
+//! Input and output of recordings: vendor formats ([`format`]), the CSV reader ([`reader`])
+//! and the writer ([`writer`]).
+
+pub mod format;
+pub mod reader;
+pub mod writer;
+
+pub use format::{FormatSpec, BUILTIN_FORMATS};
+pub use reader::{
+    read_recording, read_recording_bytes, GapPolicy, ReadParams, ReadReport, ValidReadParams,
+};
+pub use writer::{recording_to_csv, write_atomic, write_recording, WriteOptions};

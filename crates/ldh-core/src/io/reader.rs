@@ -1,0 +1,974 @@
+//! Reading one sensor's CSV export into a [`Recording`] (SPEC §2).
+//!
+//! What is detected, and reported in [`ReadReport::notes`]: a UTF-8 byte-order mark, a
+//! `sep=` line, the delimiter (most frequent of `,` `;` tab in the header row), comment lines
+//! before the header, the format (the first built-in format whose columns are all in the
+//! header), the sampling rate (from the timestamps), jitter, gaps and clipped samples.
+//!
+//! What is refused, with the file, line and column: empty, binary or non-UTF-8 files, missing
+//! columns, rows with a wrong number of fields, text or NaN/Inf in number columns, timestamps
+//! that repeat or go backwards, gaps longer than `max_gap_s` (with [`GapPolicy::Reject`]),
+//! recordings too short to hold three strides, and units that are physically implausible
+//! (e.g. angular velocity in rad/s declared as deg/s).
+//!
+//! Timing: the rate is `(n − 1) / (t_last − t_first)` over the kept segment. When every
+//! timestamp lies within 10 % of a sample period of the uniform grid, samples are kept as they
+//! are; otherwise the channels are resampled onto the uniform grid by linear interpolation
+//! (gaps up to `max_gap_s` are bridged that way).
+
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+use super::format::{AccUnit, Decimal, Delimiter, FormatSpec, GyroUnit, TimeUnit};
+use crate::error::{LdhError, Location, Result};
+use crate::recording::{Recording, STANDARD_GRAVITY_MPS2};
+
+/// What to do with a gap in the timestamps longer than `max_gap_s`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum GapPolicy {
+    /// Split at the gap and keep the longest segment (the others are listed in the report).
+    #[default]
+    Split,
+    /// Refuse the recording.
+    Reject,
+}
+
+/// Reader parameters (unchecked). See [`ReadParams::check`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ReadParams {
+    /// Longest gap between two timestamps that is bridged by interpolation, in s. Default 0.2.
+    pub max_gap_s: f64,
+    /// What to do with longer gaps. Default [`GapPolicy::Split`].
+    pub gap_policy: GapPolicy,
+    /// Shortest usable recording, in s: three strides of slow walking. Default 4.0.
+    pub min_duration_s: f64,
+    /// Lowest plausible sampling rate in Hz. Default 20.
+    pub min_rate_hz: f64,
+    /// Highest plausible sampling rate in Hz. Default 2000.
+    pub max_rate_hz: f64,
+    /// Refuse data whose magnitudes do not fit the declared units. Default true.
+    pub check_units: bool,
+}
+
+impl Default for ReadParams {
+    fn default() -> Self {
+        ReadParams {
+            max_gap_s: 0.2,
+            gap_policy: GapPolicy::Split,
+            min_duration_s: 4.0,
+            min_rate_hz: 20.0,
+            max_rate_hz: 2000.0,
+            check_units: true,
+        }
+    }
+}
+
+/// Checked reader parameters.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ValidReadParams(ReadParams);
+
+impl ReadParams {
+    /// Set `max_gap_s`.
+    pub fn max_gap_s(mut self, v: f64) -> Self {
+        self.max_gap_s = v;
+        self
+    }
+    /// Set `gap_policy`.
+    pub fn gap_policy(mut self, v: GapPolicy) -> Self {
+        self.gap_policy = v;
+        self
+    }
+    /// Set `min_duration_s`.
+    pub fn min_duration_s(mut self, v: f64) -> Self {
+        self.min_duration_s = v;
+        self
+    }
+    /// Set `check_units`.
+    pub fn check_units(mut self, v: bool) -> Self {
+        self.check_units = v;
+        self
+    }
+    /// Validate once into the type the reader accepts.
+    pub fn check(&self) -> Result<ValidReadParams> {
+        let p = self;
+        if !(p.max_gap_s.is_finite() && p.max_gap_s > 0.0) {
+            return Err(LdhError::param("max_gap_s", p.max_gap_s, "must be > 0"));
+        }
+        if !(p.min_duration_s.is_finite() && p.min_duration_s >= 0.0) {
+            return Err(LdhError::param(
+                "min_duration_s",
+                p.min_duration_s,
+                "must be ≥ 0",
+            ));
+        }
+        if !(p.min_rate_hz > 0.0 && p.max_rate_hz > p.min_rate_hz && p.max_rate_hz.is_finite()) {
+            return Err(LdhError::param(
+                "min_rate_hz/max_rate_hz",
+                format!("{}/{}", p.min_rate_hz, p.max_rate_hz),
+                "need 0 < min_rate_hz < max_rate_hz",
+            ));
+        }
+        Ok(ValidReadParams(self.clone()))
+    }
+}
+
+impl std::ops::Deref for ValidReadParams {
+    type Target = ReadParams;
+    fn deref(&self) -> &ReadParams {
+        &self.0
+    }
+}
+
+/// A gap found in the timestamps.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GapInfo {
+    /// Time before the gap, s (file clock).
+    pub from_s: f64,
+    /// Length of the gap, s.
+    pub gap_s: f64,
+    /// Line of the row after the gap.
+    pub line: u64,
+}
+
+/// What the reader found and assumed.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ReadReport {
+    /// The file.
+    pub file: PathBuf,
+    /// The format used.
+    pub format: String,
+    /// Whether the format was detected (true) or given (false).
+    pub format_detected: bool,
+    /// The delimiter used.
+    pub delimiter: String,
+    /// A UTF-8 byte-order mark was present.
+    pub bom: bool,
+    /// 1-based line of the header row.
+    pub header_line: u64,
+    /// Data rows read.
+    pub rows: usize,
+    /// Sampling rate measured (or stated), Hz.
+    pub fs_hz: f64,
+    /// Largest deviation of a timestamp from the uniform grid, ms.
+    pub max_jitter_ms: f64,
+    /// Channels were resampled onto a uniform grid.
+    pub resampled: bool,
+    /// Gaps longer than `max_gap_s`.
+    pub gaps: Vec<GapInfo>,
+    /// Segments (split at gaps) that were dropped, as (start_s, end_s) in the file clock.
+    pub dropped_segments: Vec<(f64, f64)>,
+    /// Clipped samples per channel: acc x, y, z, gyro x, y, z.
+    pub saturated_per_channel: [usize; 6],
+    /// Samples with any channel clipped.
+    pub saturated_samples: usize,
+    /// Samples kept.
+    pub samples: usize,
+    /// Duration kept, s.
+    pub duration_s: f64,
+    /// Assumptions and findings, one sentence each.
+    pub notes: Vec<String>,
+}
+
+/// Read a sensor CSV with a known format (`Some`) or by detecting a built-in one (`None`).
+///
+/// Returns the recording (its `source` set to `path`) and what was found.
+pub fn read_recording(
+    path: impl AsRef<Path>,
+    format: Option<&FormatSpec>,
+    params: &ValidReadParams,
+) -> Result<(Recording, ReadReport)> {
+    let path = path.as_ref();
+    let bytes = std::fs::read(path).map_err(|source| LdhError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    read_recording_bytes(&bytes, path, format, params)
+}
+
+/// As [`read_recording`], from bytes in memory; `path` is used in messages.
+pub fn read_recording_bytes(
+    bytes: &[u8],
+    path: &Path,
+    format: Option<&FormatSpec>,
+    params: &ValidReadParams,
+) -> Result<(Recording, ReadReport)> {
+    let text = decode_text(bytes, path)?;
+    let bom = text.len() + 3 == bytes.len() && bytes.starts_with(&[0xEF, 0xBB, 0xBF]);
+    let mut notes = Vec::new();
+    if bom {
+        notes.push("UTF-8 byte-order mark found and ignored".to_string());
+    }
+
+    // Lines with their 1-based numbers.
+    let lines: Vec<(u64, &str)> = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i as u64 + 1, l.strip_suffix('\r').unwrap_or(l)))
+        .collect();
+
+    // Find the header row and the format.
+    let builtins;
+    let candidates: Vec<&FormatSpec> = match format {
+        Some(f) => vec![f],
+        None => {
+            builtins = FormatSpec::builtins();
+            builtins.iter().collect()
+        }
+    };
+    let mut sep_line_delim: Option<u8> = None;
+    let mut header: Option<(usize, &FormatSpec, u8, Vec<String>)> = None;
+    let mut first_row = String::new();
+    for (idx, (_, line)) in lines.iter().enumerate() {
+        let trimmed = line.trim();
+        if trimmed.is_empty() {
+            continue;
+        }
+        if let Some(rest) = trimmed
+            .strip_prefix("sep=")
+            .or_else(|| trimmed.strip_prefix("\"sep="))
+        {
+            let rest = rest.trim_end_matches('"');
+            sep_line_delim = match rest {
+                "\\t" | "\t" | "" => Some(b'\t'),
+                r => r
+                    .bytes()
+                    .next()
+                    .filter(|b| Delimiter::from_byte(*b).is_some()),
+            };
+            notes.push(format!(
+                "'sep=' line found: delimiter {:?}",
+                sep_line_delim.map(|b| b as char)
+            ));
+            continue;
+        }
+        if candidates.iter().any(|f| {
+            f.comment_prefixes
+                .iter()
+                .any(|p| trimmed.starts_with(p.as_str()))
+        }) {
+            continue;
+        }
+        if first_row.is_empty() {
+            first_row = trimmed.chars().take(200).collect();
+        }
+        for f in &candidates {
+            let delim = f
+                .delimiter
+                .byte()
+                .or(sep_line_delim)
+                .unwrap_or_else(|| detect_delimiter(line));
+            let fields: Vec<String> = split_header(line, delim);
+            let lower: Vec<String> = fields.iter().map(|s| s.to_ascii_lowercase()).collect();
+            if f.required_columns()
+                .iter()
+                .all(|c| lower.contains(&c.to_ascii_lowercase()))
+            {
+                header = Some((idx, f, delim, fields));
+                break;
+            }
+        }
+        if header.is_some() {
+            break;
+        }
+        // A format was given and this non-comment line is not its header: stop at the first
+        // line that looks like a header (has letters) so the message can name missing columns.
+        if format.is_some() && line.chars().any(|c| c.is_ascii_alphabetic()) {
+            let f = candidates[0];
+            let delim = f
+                .delimiter
+                .byte()
+                .or(sep_line_delim)
+                .unwrap_or_else(|| detect_delimiter(line));
+            let fields = split_header(line, delim);
+            let lower: Vec<String> = fields.iter().map(|s| s.to_ascii_lowercase()).collect();
+            let missing: Vec<String> = f
+                .required_columns()
+                .into_iter()
+                .filter(|c| !lower.contains(&c.to_ascii_lowercase()))
+                .collect();
+            // Only a header-like row (several non-numeric fields) is taken as the header.
+            let texty = fields.iter().filter(|s| s.parse::<f64>().is_err()).count();
+            if texty >= 3 && fields.len() >= 3 {
+                return Err(LdhError::MissingColumn {
+                    loc: Location::line(path, lines[idx].0),
+                    column: missing.first().cloned().unwrap_or_default(),
+                    format: f.name.clone(),
+                    header: fields,
+                });
+            }
+        }
+    }
+    let Some((hidx, spec, delim, header_fields)) = header else {
+        if lines.iter().all(|(_, l)| l.trim().is_empty()) {
+            return Err(LdhError::EmptyFile {
+                path: path.to_path_buf(),
+            });
+        }
+        let f = candidates[0];
+        return Err(LdhError::NoHeader {
+            path: path.to_path_buf(),
+            format: if format.is_some() {
+                f.name.clone()
+            } else {
+                format!(
+                    "any of {}",
+                    candidates
+                        .iter()
+                        .map(|f| f.name.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )
+            },
+            missing: f.required_columns(),
+            first_row,
+        });
+    };
+    let spec = spec.clone();
+    let header_line = lines[hidx].0;
+    if format.is_none() {
+        notes.push(format!("format detected: {}", spec.name));
+    }
+    let delim_name = Delimiter::from_byte(delim).map(|d| d.name()).unwrap_or("?");
+    if spec.delimiter == Delimiter::Auto && sep_line_delim.is_none() {
+        notes.push(format!("delimiter detected: {delim_name}"));
+    }
+
+    // Column indices.
+    let lower: Vec<String> = header_fields
+        .iter()
+        .map(|s| s.to_ascii_lowercase())
+        .collect();
+    let col = |name: &str| -> usize {
+        lower
+            .iter()
+            .position(|c| *c == name.to_ascii_lowercase())
+            .expect("checked above")
+    };
+    let time_col = spec.time.column.as_deref().map(col);
+    let acc_cols = spec.acc.columns.clone().map(|c| col(&c));
+    let gyro_cols = spec.gyro.columns.clone().map(|c| col(&c));
+    let expected = header_fields.len();
+
+    // Data rows.
+    let first_data = hidx + 1 + spec.skip_rows_after_header;
+    let mut time_raw: Vec<f64> = Vec::new();
+    let mut raw: [Vec<f64>; 6] = Default::default();
+    let mut row_lines: Vec<u64> = Vec::new();
+    let mut fields: Vec<&str> = Vec::with_capacity(expected);
+    let mut rdr_buf = String::new();
+    for &(lineno, line) in lines.iter().skip(first_data) {
+        let trimmed = line.trim();
+        if trimmed.is_empty()
+            || spec
+                .comment_prefixes
+                .iter()
+                .any(|p| trimmed.starts_with(p.as_str()))
+        {
+            continue;
+        }
+        split_fields(line, delim, &mut fields, &mut rdr_buf);
+        if fields.len() != expected {
+            // Tolerate one trailing empty field (a trailing delimiter).
+            let trailing_empty =
+                fields.len() == expected + 1 && fields.last().is_some_and(|f| f.is_empty());
+            if !trailing_empty {
+                return Err(LdhError::FieldCount {
+                    loc: Location::line(path, lineno),
+                    found: fields.len(),
+                    expected,
+                });
+            }
+        }
+        if let Some(tc) = time_col {
+            let cell = fields[tc];
+            let v = match spec.time.unit {
+                TimeUnit::Iso8601 => parse_iso8601(cell).ok_or_else(|| LdhError::NotANumber {
+                    loc: Location::cell(path, lineno, tc + 1),
+                    column: header_fields[tc].clone(),
+                    value: cell.to_string(),
+                    hint: "; expected an ISO 8601 timestamp like 2024-03-01T10:15:02.250".into(),
+                })?,
+                _ => parse_number(
+                    cell,
+                    spec.decimal,
+                    delim,
+                    path,
+                    lineno,
+                    tc,
+                    &header_fields[tc],
+                )?,
+            };
+            time_raw.push(v);
+        }
+        for (k, &c) in acc_cols.iter().chain(gyro_cols.iter()).enumerate() {
+            raw[k].push(parse_number(
+                fields[c],
+                spec.decimal,
+                delim,
+                path,
+                lineno,
+                c,
+                &header_fields[c],
+            )?);
+        }
+        row_lines.push(lineno);
+    }
+    let rows = row_lines.len();
+    if rows == 0 {
+        return Err(LdhError::TooShort {
+            path: path.to_path_buf(),
+            duration_s: 0.0,
+            samples: 0,
+            min_s: params.min_duration_s,
+        });
+    }
+
+    // Time in seconds.
+    let times: Vec<f64> = match spec.time.unit {
+        TimeUnit::Seconds | TimeUnit::Iso8601 => time_raw,
+        TimeUnit::Milliseconds => time_raw.iter().map(|t| t * 1e-3).collect(),
+        TimeUnit::Microseconds => time_raw.iter().map(|t| t * 1e-6).collect(),
+        TimeUnit::Counter => {
+            let rate = spec.time.rate_hz.expect("validated");
+            let wrap = spec.time.counter_wrap.map(|w| w as f64);
+            let mut out = Vec::with_capacity(rows);
+            let mut offset = 0.0;
+            let mut prev = f64::NEG_INFINITY;
+            for &c in &time_raw {
+                if let Some(w) = wrap {
+                    if c < prev && prev - c > w / 2.0 {
+                        offset += w;
+                        if out.len() == 1 || offset == w {
+                            // first wrap only noted once
+                        }
+                    }
+                }
+                prev = c;
+                out.push((c + offset) / rate);
+            }
+            if offset > 0.0 {
+                notes.push(format!(
+                    "sample counter wrapped {} time(s)",
+                    (offset / wrap.unwrap_or(1.0)) as u64
+                ));
+            }
+            out
+        }
+        TimeUnit::None => {
+            let rate = spec.time.rate_hz.expect("validated");
+            notes.push(format!(
+                "no time column: uniform samples at the stated {rate} Hz"
+            ));
+            (0..rows).map(|i| i as f64 / rate).collect()
+        }
+    };
+
+    // Monotonic time.
+    for i in 1..times.len() {
+        if times[i] <= times[i - 1] {
+            return Err(LdhError::NonMonotonicTime {
+                loc: Location::cell(path, row_lines[i], time_col.map_or(1, |c| c + 1)),
+                value: times[i],
+                previous: times[i - 1],
+            });
+        }
+    }
+
+    // Gaps → segments.
+    let mut gaps = Vec::new();
+    let mut cuts = vec![0usize];
+    for i in 1..times.len() {
+        let dt = times[i] - times[i - 1];
+        if dt > params.max_gap_s {
+            if params.gap_policy == GapPolicy::Reject {
+                return Err(LdhError::Gap {
+                    loc: Location::line(path, row_lines[i]),
+                    gap_s: dt,
+                    from_s: times[i - 1],
+                    max_gap_s: params.max_gap_s,
+                });
+            }
+            gaps.push(GapInfo {
+                from_s: times[i - 1],
+                gap_s: dt,
+                line: row_lines[i],
+            });
+            cuts.push(i);
+        }
+    }
+    cuts.push(times.len());
+    let (seg_start, seg_end) = cuts
+        .windows(2)
+        .map(|w| (w[0], w[1]))
+        .max_by(|a, b| {
+            let da = times[a.1 - 1] - times[a.0];
+            let db = times[b.1 - 1] - times[b.0];
+            da.partial_cmp(&db)
+                .unwrap_or(std::cmp::Ordering::Equal)
+                .then(b.0.cmp(&a.0))
+        })
+        .expect("at least one segment");
+    let dropped_segments: Vec<(f64, f64)> = cuts
+        .windows(2)
+        .filter(|w| w[0] != seg_start)
+        .map(|w| (times[w[0]], times[w[1] - 1]))
+        .collect();
+    if !gaps.is_empty() {
+        notes.push(format!(
+            "{} gap(s) longer than {} s: kept the longest segment {:.2}–{:.2} s, dropped {}",
+            gaps.len(),
+            params.max_gap_s,
+            times[seg_start],
+            times[seg_end - 1],
+            dropped_segments.len()
+        ));
+    }
+    let seg_t = &times[seg_start..seg_end];
+    let n_seg = seg_t.len();
+    let span = seg_t[n_seg - 1] - seg_t[0];
+    if n_seg < 2 || span <= 0.0 {
+        return Err(LdhError::TooShort {
+            path: path.to_path_buf(),
+            duration_s: span.max(0.0),
+            samples: n_seg,
+            min_s: params.min_duration_s,
+        });
+    }
+    let fs = match spec.time.unit {
+        TimeUnit::None | TimeUnit::Counter => spec.time.rate_hz.expect("validated"),
+        _ => (n_seg - 1) as f64 / span,
+    };
+    if !(fs >= params.min_rate_hz && fs <= params.max_rate_hz) {
+        return Err(LdhError::SamplingRate {
+            path: path.to_path_buf(),
+            reason: format!(
+                "measured {fs:.3} Hz from the timestamps, outside the plausible {}–{} Hz; check the time unit ({:?})",
+                params.min_rate_hz, params.max_rate_hz, spec.time.unit
+            ),
+        });
+    }
+    let t0 = seg_t[0];
+    let max_jitter = seg_t
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| (t - (t0 + i as f64 / fs)).abs())
+        .fold(0.0f64, f64::max);
+    let uniform = max_jitter <= 0.1 / fs;
+    let mut channels: [Vec<f64>; 6] = Default::default();
+    let n_out;
+    if uniform {
+        for k in 0..6 {
+            channels[k] = raw[k][seg_start..seg_end].to_vec();
+        }
+        n_out = n_seg;
+    } else {
+        // Resample onto the uniform grid t0 + i / fs by linear interpolation.
+        n_out = (span * fs + 1e-9).floor() as usize + 1;
+        let grid: Vec<f64> = (0..n_out).map(|i| t0 + i as f64 / fs).collect();
+        for k in 0..6 {
+            channels[k] = interp_linear(seg_t, &raw[k][seg_start..seg_end], &grid);
+        }
+        notes.push(format!(
+            "timestamps not uniform (max deviation {:.2} ms): resampled to {fs:.3} Hz by linear interpolation",
+            max_jitter * 1e3
+        ));
+    }
+
+    // Saturation, on the values in the file's units after scaling.
+    let mut sat_per = [0usize; 6];
+    let mut saturated = vec![false; n_out];
+    for k in 0..6 {
+        let (scale, range, floor) = if k < 3 {
+            let floor = match spec.acc.unit {
+                AccUnit::G => 1.5,
+                AccUnit::Mps2 => 1.5 * STANDARD_GRAVITY_MPS2,
+            };
+            (spec.acc.scale, spec.acc.range, floor)
+        } else {
+            let floor = match spec.gyro.unit {
+                GyroUnit::Dps => 200.0,
+                GyroUnit::Rps => 200f64.to_radians(),
+            };
+            (spec.gyro.scale, spec.gyro.range, floor)
+        };
+        let ch = &mut channels[k];
+        for v in ch.iter_mut() {
+            *v *= scale;
+        }
+        let flags = detect_clipping(ch, range, floor);
+        for (i, f) in flags.iter().enumerate() {
+            if *f {
+                sat_per[k] += 1;
+                saturated[i] = true;
+            }
+        }
+    }
+    let saturated_samples = saturated.iter().filter(|&&s| s).count();
+    if saturated_samples > 0 {
+        notes.push(format!(
+            "{saturated_samples} clipped sample(s) at the sensor range (acc x/y/z, gyro x/y/z: {sat_per:?}); treated as outliers"
+        ));
+    }
+
+    // Units → g and deg/s, then the axis map.
+    let acc_to_g = match spec.acc.unit {
+        AccUnit::G => 1.0,
+        AccUnit::Mps2 => 1.0 / STANDARD_GRAVITY_MPS2,
+    };
+    let gyro_to_dps = match spec.gyro.unit {
+        GyroUnit::Dps => 1.0,
+        GyroUnit::Rps => 180.0 / std::f64::consts::PI,
+    };
+    let map = spec.axis_map()?;
+    let [c0, c1, c2, c3, c4, c5] = channels;
+    let acc_in = [c0, c1, c2];
+    let gyro_in = [c3, c4, c5];
+    let acc_g: [Vec<f64>; 3] = std::array::from_fn(|i| {
+        acc_in[map.index[i]]
+            .iter()
+            .map(|v| v * acc_to_g * map.sign[i])
+            .collect()
+    });
+    let gyro_dps: [Vec<f64>; 3] = std::array::from_fn(|i| {
+        gyro_in[map.index[i]]
+            .iter()
+            .map(|v| v * gyro_to_dps * map.sign[i])
+            .collect()
+    });
+    if map != super::format::AxisMap::IDENTITY {
+        notes.push(format!("axes mapped to ldh's frame as {:?}", spec.axes.map));
+    }
+
+    let duration_s = (n_out - 1) as f64 / fs;
+    if duration_s < params.min_duration_s {
+        return Err(LdhError::TooShort {
+            path: path.to_path_buf(),
+            duration_s,
+            samples: n_out,
+            min_s: params.min_duration_s,
+        });
+    }
+
+    let mut rec = Recording::new(fs, acc_g, gyro_dps, saturated).map_err(|e| LdhError::Signal {
+        context: path.display().to_string(),
+        reason: e.to_string(),
+    })?;
+    rec.t0_s = t0;
+    rec.source = Some(path.to_path_buf());
+    if params.check_units {
+        check_units_plausible(&rec, &spec, path)?;
+    }
+
+    let report = ReadReport {
+        file: path.to_path_buf(),
+        format: spec.name.clone(),
+        format_detected: format.is_none(),
+        delimiter: delim_name.to_string(),
+        bom,
+        header_line,
+        rows,
+        fs_hz: fs,
+        max_jitter_ms: max_jitter * 1e3,
+        resampled: !uniform,
+        gaps,
+        dropped_segments,
+        saturated_per_channel: sat_per,
+        saturated_samples,
+        samples: n_out,
+        duration_s,
+        notes,
+    };
+    Ok((rec, report))
+}
+
+/// Refuse empty, binary and non-UTF-8 content; strip a BOM.
+fn decode_text<'a>(bytes: &'a [u8], path: &Path) -> Result<&'a str> {
+    if bytes.is_empty() {
+        return Err(LdhError::EmptyFile {
+            path: path.to_path_buf(),
+        });
+    }
+    let body = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]).unwrap_or(bytes);
+    // UTF-16 byte-order marks: a common export mistake, named as such.
+    if bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]) {
+        return Err(LdhError::NotUtf8 {
+            loc: Location::file(path),
+            offset: 0,
+        });
+    }
+    if let Some(off) = body
+        .iter()
+        .take(1 << 16)
+        .position(|&b| b == 0 || (b < 0x09) || (0x0E..0x20).contains(&b) && b != 0x1B)
+    {
+        return Err(LdhError::Binary {
+            path: path.to_path_buf(),
+            offset: off as u64 + (bytes.len() - body.len()) as u64,
+            byte: body[off],
+        });
+    }
+    std::str::from_utf8(body).map_err(|e| {
+        let off = e.valid_up_to();
+        let line = body[..off].iter().filter(|&&b| b == b'\n').count() as u64 + 1;
+        LdhError::NotUtf8 {
+            loc: Location::line(path, line),
+            offset: off as u64 + (bytes.len() - body.len()) as u64,
+        }
+    })
+}
+
+/// The most frequent of `,` `;` tab in a header line (ties: tab, `;`, `,`).
+fn detect_delimiter(line: &str) -> u8 {
+    let count = |c: char| line.chars().filter(|&x| x == c).count();
+    let (t, s, c) = (count('\t'), count(';'), count(','));
+    if t >= s && t >= c && t > 0 {
+        b'\t'
+    } else if s >= c && s > 0 {
+        b';'
+    } else {
+        b','
+    }
+}
+
+fn split_header(line: &str, delim: u8) -> Vec<String> {
+    let mut v = Vec::new();
+    let mut buf = String::new();
+    split_fields(line, delim, &mut v, &mut buf);
+    v.into_iter().map(|s| s.to_string()).collect()
+}
+
+/// Split one line into trimmed fields, removing surrounding double quotes.
+///
+/// Hand-written rather than the `csv` crate: rows are numeric, and per-line splitting keeps the
+/// exact file line numbers for messages while skipping comment lines anywhere in the file.
+fn split_fields<'a>(line: &'a str, delim: u8, out: &mut Vec<&'a str>, _buf: &mut String) {
+    out.clear();
+    for f in line.split(delim as char) {
+        let f = f.trim();
+        let f = f
+            .strip_prefix('"')
+            .and_then(|x| x.strip_suffix('"'))
+            .unwrap_or(f)
+            .trim();
+        out.push(f);
+    }
+}
+
+fn parse_number(
+    cell: &str,
+    decimal: Decimal,
+    delim: u8,
+    path: &Path,
+    line: u64,
+    col: usize,
+    col_name: &str,
+) -> Result<f64> {
+    let owned;
+    let s = if decimal == Decimal::Comma {
+        owned = cell.replace(',', ".");
+        owned.as_str()
+    } else {
+        cell
+    };
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        Ok(_) => Err(LdhError::NonFinite {
+            loc: Location::cell(path, line, col + 1),
+            column: col_name.to_string(),
+            value: cell.to_string(),
+        }),
+        Err(_) => {
+            let hint = if cell.is_empty() {
+                "; the cell is empty".to_string()
+            } else if decimal == Decimal::Point
+                && delim != b','
+                && cell.contains(',')
+                && cell.replace(',', ".").parse::<f64>().is_ok()
+            {
+                "; this looks like a decimal comma: set decimal = \",\" in the format".to_string()
+            } else if cell.eq_ignore_ascii_case("nan") {
+                String::new()
+            } else {
+                String::new()
+            };
+            Err(LdhError::NotANumber {
+                loc: Location::cell(path, line, col + 1),
+                column: col_name.to_string(),
+                value: cell.chars().take(60).collect(),
+                hint,
+            })
+        }
+    }
+}
+
+/// Parse `YYYY-MM-DD[T ]HH:MM:SS[.fff][Z]` into seconds since 1970-01-01 (UTC assumed).
+///
+/// Hand-written: the timestamp grammar needed is tiny, and a date crate would be a large
+/// dependency for one conversion.
+pub fn parse_iso8601(s: &str) -> Option<f64> {
+    let s = s.trim().trim_end_matches('Z');
+    let (date, time) = s.split_once(['T', ' '])?;
+    let mut d = date.split('-');
+    let y: i64 = d.next()?.parse().ok()?;
+    let m: i64 = d.next()?.parse().ok()?;
+    let day: i64 = d.next()?.parse().ok()?;
+    if d.next().is_some() || !(1..=12).contains(&m) || !(1..=31).contains(&day) {
+        return None;
+    }
+    let mut t = time.split(':');
+    let hh: f64 = t.next()?.parse().ok()?;
+    let mm: f64 = t.next()?.parse().ok()?;
+    let ss: f64 = t.next()?.parse().ok()?;
+    if t.next().is_some()
+        || !(0.0..24.0).contains(&hh)
+        || !(0.0..60.0).contains(&mm)
+        || !(0.0..61.0).contains(&ss)
+    {
+        return None;
+    }
+    // Days from civil (Howard Hinnant's algorithm).
+    let y2 = if m <= 2 { y - 1 } else { y };
+    let era = if y2 >= 0 { y2 } else { y2 - 399 } / 400;
+    let yoe = y2 - era * 400;
+    let mp = (m + 9) % 12;
+    let doy = (153 * mp + 2) / 5 + day - 1;
+    let doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+    let days = era * 146097 + doe - 719468;
+    Some(days as f64 * 86400.0 + hh * 3600.0 + mm * 60.0 + ss)
+}
+
+/// Linear interpolation of `(x, y)` at increasing `at` (clamped at the ends).
+pub fn interp_linear(x: &[f64], y: &[f64], at: &[f64]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(at.len());
+    let mut j = 0usize;
+    for &t in at {
+        while j + 2 < x.len() && x[j + 1] < t {
+            j += 1;
+        }
+        let (x0, x1) = (x[j], x[(j + 1).min(x.len() - 1)]);
+        let (y0, y1) = (y[j], y[(j + 1).min(y.len() - 1)]);
+        let v = if x1 > x0 {
+            let w = ((t - x0) / (x1 - x0)).clamp(0.0, 1.0);
+            y0 + w * (y1 - y0)
+        } else {
+            y0
+        };
+        out.push(v);
+    }
+    out
+}
+
+/// Flag clipped samples of one channel.
+///
+/// With a known `range`: every sample with |v| ≥ 99.9 % of it. Without: samples at the channel's
+/// extreme value (within 0.1 %) that sit in a flat run of ≥ 3 equal values, provided that
+/// extreme is at least `floor` (so a sensor lying still is not called clipped).
+pub fn detect_clipping(ch: &[f64], range: Option<f64>, floor: f64) -> Vec<bool> {
+    let n = ch.len();
+    let mut flags = vec![false; n];
+    if let Some(r) = range {
+        for (f, v) in flags.iter_mut().zip(ch) {
+            *f = v.abs() >= 0.999 * r;
+        }
+        return flags;
+    }
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for &v in ch {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    for ext in [hi, lo] {
+        if ext.abs() < floor {
+            continue;
+        }
+        let near = |v: f64| (v - ext).abs() <= 1e-3 * ext.abs();
+        let mut i = 0;
+        while i < n {
+            if near(ch[i]) {
+                let mut j = i;
+                while j + 1 < n && ch[j + 1] == ch[i] {
+                    j += 1;
+                }
+                if j + 1 - i >= 3 {
+                    for f in &mut flags[i..=j] {
+                        *f = true;
+                    }
+                }
+                i = j + 1;
+            } else {
+                i += 1;
+            }
+        }
+    }
+    flags
+}
+
+/// Refuse data whose magnitudes contradict the declared units.
+///
+/// Rules (documented in docs/input.md): the median acceleration magnitude must lie in
+/// 0.5–2.5 g (a shank sensor spends most of the time near 1 g); the walking gyro must peak above
+/// 20 deg/s when the accelerometer shows movement (SD of the magnitude > 0.05 g) — smaller peaks
+/// mean rad/s declared as deg/s — and below 3000 deg/s (larger means deg/s declared as rad/s).
+pub fn check_units_plausible(rec: &Recording, spec: &FormatSpec, path: &Path) -> Result<()> {
+    let n = rec.len();
+    let mut mag: Vec<f64> = (0..n)
+        .map(|i| {
+            (rec.acc_g[0][i].powi(2) + rec.acc_g[1][i].powi(2) + rec.acc_g[2][i].powi(2)).sqrt()
+        })
+        .collect();
+    let mean = mag.iter().sum::<f64>() / n as f64;
+    let sd = (mag.iter().map(|m| (m - mean).powi(2)).sum::<f64>() / n as f64).sqrt();
+    mag.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+    let median = mag[n / 2];
+    let declared_acc = match spec.acc.unit {
+        AccUnit::G => "g",
+        AccUnit::Mps2 => "m/s2",
+    };
+    let declared_gyro = match spec.gyro.unit {
+        GyroUnit::Dps => "deg/s",
+        GyroUnit::Rps => "rad/s",
+    };
+    if !(0.5..=2.5).contains(&median) {
+        let hint = if (0.5 * STANDARD_GRAVITY_MPS2..=2.5 * STANDARD_GRAVITY_MPS2).contains(&median)
+        {
+            " — this looks like m/s² declared as g"
+        } else if (0.5 / STANDARD_GRAVITY_MPS2..=2.5 / STANDARD_GRAVITY_MPS2).contains(&median) {
+            " — this looks like g declared as m/s²"
+        } else if median == 0.0 {
+            " — the accelerometer reads zero: is it connected?"
+        } else {
+            ""
+        };
+        return Err(LdhError::Implausible {
+            path: path.to_path_buf(),
+            reason: format!(
+                "median acceleration magnitude is {median:.3} g after converting from the declared unit '{declared_acc}' (×{}); a shank sensor reads about 1 g{hint}",
+                spec.acc.scale
+            ),
+        });
+    }
+    let gyro_peak = rec
+        .gyro_dps
+        .iter()
+        .flat_map(|c| c.iter())
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    if sd > 0.05 && gyro_peak < 20.0 {
+        return Err(LdhError::Implausible {
+            path: path.to_path_buf(),
+            reason: format!(
+                "the accelerometer shows movement (SD {sd:.2} g) but the gyroscope peaks at only {gyro_peak:.2} deg/s after converting from the declared unit '{declared_gyro}'; walking gives 200–500 deg/s at the shank — is the gyroscope in rad/s?"
+            ),
+        });
+    }
+    if gyro_peak > 3000.0 {
+        return Err(LdhError::Implausible {
+            path: path.to_path_buf(),
+            reason: format!(
+                "the gyroscope peaks at {gyro_peak:.0} deg/s after converting from the declared unit '{declared_gyro}'; walking gives 200–500 deg/s — is it in deg/s declared as rad/s?"
+            ),
+        });
+    }
+    Ok(())
+}

@@ -1,0 +1,218 @@
+//! Writing a [`Recording`] in any [`FormatSpec`] — the inverse of the reader — and writing
+//! files atomically (a temporary file in the same folder, then a rename), so an interrupted run
+//! leaves the old file or the new one, never half of one.
+
+use std::io::Write;
+use std::path::Path;
+
+use super::format::{AccUnit, Decimal, Delimiter, FormatSpec, GyroUnit, TimeUnit};
+use crate::error::{LdhError, Result};
+use crate::recording::{Recording, STANDARD_GRAVITY_MPS2};
+
+/// Write `bytes` to `path` atomically: a temporary file beside it, flushed and synced, then
+/// renamed over `path`. Creates missing parent folders.
+pub fn write_atomic(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
+    let path = path.as_ref();
+    let werr = |e: std::io::Error| LdhError::Write {
+        path: path.to_path_buf(),
+        reason: e.to_string(),
+    };
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir).map_err(werr)?;
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().to_string())
+        .unwrap_or_default();
+    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
+    {
+        let mut f = std::fs::File::create(&tmp).map_err(werr)?;
+        f.write_all(bytes).map_err(werr)?;
+        f.sync_all().map_err(werr)?;
+    }
+    std::fs::rename(&tmp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        werr(e)
+    })
+}
+
+/// Options of the writer.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WriteOptions {
+    /// Decimal places for acceleration (in the format's unit). Default 5.
+    pub acc_decimals: usize,
+    /// Decimal places for angular velocity (in the format's unit). Default 3.
+    pub gyro_decimals: usize,
+    /// Decimal places for time in s (ms and µs scale accordingly). Default 4.
+    pub time_decimals: usize,
+    /// Lines written before the header, each prefixed with the format's first comment prefix.
+    pub preamble: Vec<String>,
+}
+
+impl Default for WriteOptions {
+    fn default() -> Self {
+        WriteOptions {
+            acc_decimals: 5,
+            gyro_decimals: 3,
+            time_decimals: 4,
+            preamble: Vec::new(),
+        }
+    }
+}
+
+/// Render `rec` as CSV text in `spec` (units, scale, axis map, delimiter, time column).
+///
+/// Integer-count formats (`scale` ≠ 1) are written as rounded integers.
+pub fn recording_to_csv(rec: &Recording, spec: &FormatSpec, opts: &WriteOptions) -> Result<String> {
+    spec.validate()?;
+    let delim = match spec.delimiter {
+        Delimiter::Auto => ',',
+        d => d.byte().expect("not auto") as char,
+    };
+    let inv = spec.axis_map()?.inverse();
+    let n = rec.len();
+    let mut out = String::with_capacity(n * 64 + 256);
+    if !opts.preamble.is_empty() {
+        let prefix = spec
+            .comment_prefixes
+            .first()
+            .map(String::as_str)
+            .unwrap_or("#");
+        for l in &opts.preamble {
+            out.push_str(prefix);
+            out.push(' ');
+            out.push_str(l);
+            out.push('\n');
+        }
+    }
+    let mut header: Vec<String> = Vec::new();
+    if let Some(t) = &spec.time.column {
+        header.push(t.clone());
+    }
+    header.extend(spec.acc.columns.iter().cloned());
+    header.extend(spec.gyro.columns.iter().cloned());
+    out.push_str(&header.join(&delim.to_string()));
+    out.push('\n');
+    for _ in 0..spec.skip_rows_after_header {
+        let mut units: Vec<String> = Vec::new();
+        if spec.time.column.is_some() {
+            units.push(format!("{:?}", spec.time.unit).to_lowercase());
+        }
+        let au = match spec.acc.unit {
+            AccUnit::G => "g",
+            AccUnit::Mps2 => "m/s^2",
+        };
+        let gu = match spec.gyro.unit {
+            GyroUnit::Dps => "deg/s",
+            GyroUnit::Rps => "rad/s",
+        };
+        units.extend([au, au, au, gu, gu, gu].map(String::from));
+        out.push_str(&units.join(&delim.to_string()));
+        out.push('\n');
+    }
+    let acc_from_g = match spec.acc.unit {
+        AccUnit::G => 1.0,
+        AccUnit::Mps2 => STANDARD_GRAVITY_MPS2,
+    } / spec.acc.scale;
+    let gyro_from_dps = match spec.gyro.unit {
+        GyroUnit::Dps => 1.0,
+        GyroUnit::Rps => std::f64::consts::PI / 180.0,
+    } / spec.gyro.scale;
+    let acc_int = spec.acc.scale != 1.0;
+    let gyro_int = spec.gyro.scale != 1.0;
+    let fmt_num = |v: f64, decimals: usize, integer: bool| -> String {
+        let s = if integer {
+            format!("{}", v.round() as i64)
+        } else {
+            format!("{v:.decimals$}")
+        };
+        if spec.decimal == Decimal::Comma {
+            s.replace('.', ",")
+        } else {
+            s
+        }
+    };
+    // Digits needed for the file's native acc unit.
+    let acc_dec = if spec.acc.unit == AccUnit::Mps2 {
+        opts.acc_decimals.saturating_sub(1).max(3)
+    } else {
+        opts.acc_decimals
+    };
+    let gyro_dec = if spec.gyro.unit == GyroUnit::Rps {
+        opts.gyro_decimals + 2
+    } else {
+        opts.gyro_decimals
+    };
+    let mut fields: Vec<String> = Vec::with_capacity(7);
+    for i in 0..n {
+        fields.clear();
+        let t = rec.t0_s + rec.time_s(i);
+        match spec.time.unit {
+            TimeUnit::Seconds => fields.push(fmt_num(t, opts.time_decimals, false)),
+            TimeUnit::Milliseconds => fields.push(fmt_num(
+                t * 1e3,
+                opts.time_decimals.saturating_sub(3),
+                false,
+            )),
+            TimeUnit::Microseconds => fields.push(fmt_num(t * 1e6, 0, false)),
+            TimeUnit::Counter => {
+                let rate = spec.time.rate_hz.expect("validated");
+                let mut c = (t * rate).round() as u64;
+                if let Some(w) = spec.time.counter_wrap {
+                    c %= w;
+                }
+                fields.push(c.to_string());
+            }
+            TimeUnit::Iso8601 => fields.push(format_iso8601(t)),
+            TimeUnit::None => {}
+        }
+        let a = [rec.acc_g[0][i], rec.acc_g[1][i], rec.acc_g[2][i]];
+        let g = [rec.gyro_dps[0][i], rec.gyro_dps[1][i], rec.gyro_dps[2][i]];
+        let a_in = inv.apply(a);
+        let g_in = inv.apply(g);
+        for v in a_in {
+            fields.push(fmt_num(v * acc_from_g, acc_dec, acc_int));
+        }
+        for v in g_in {
+            fields.push(fmt_num(v * gyro_from_dps, gyro_dec, gyro_int));
+        }
+        out.push_str(&fields.join(&delim.to_string()));
+        out.push('\n');
+    }
+    Ok(out)
+}
+
+/// Write `rec` to `path` in `spec`, atomically.
+pub fn write_recording(
+    path: impl AsRef<Path>,
+    rec: &Recording,
+    spec: &FormatSpec,
+    opts: &WriteOptions,
+) -> Result<()> {
+    let text = recording_to_csv(rec, spec, opts)?;
+    write_atomic(path, text.as_bytes())
+}
+
+/// Seconds since 1970-01-01 as `YYYY-MM-DDTHH:MM:SS.mmm` (UTC).
+pub fn format_iso8601(t: f64) -> String {
+    let ms_total = (t * 1000.0).round() as i64;
+    let days = ms_total.div_euclid(86_400_000);
+    let ms_day = ms_total.rem_euclid(86_400_000);
+    // Civil from days (Howard Hinnant's algorithm).
+    let z = days + 719468;
+    let era = if z >= 0 { z } else { z - 146096 } / 146097;
+    let doe = z - era * 146097;
+    let yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
+    let y = yoe + era * 400;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = if m <= 2 { y + 1 } else { y };
+    let (h, rem) = (ms_day / 3_600_000, ms_day % 3_600_000);
+    let (mi, rem) = (rem / 60_000, rem % 60_000);
+    let (s, ms) = (rem / 1000, rem % 1000);
+    format!("{y:04}-{m:02}-{d:02}T{h:02}:{mi:02}:{s:02}.{ms:03}")
+}

@@ -1,0 +1,204 @@
+//! The recording: one shank IMU, uniformly sampled, in canonical units.
+//!
+//! This is the first data type of the pipeline (recording → preprocessed → attitude → events →
+//! strides → features). Whatever the vendor format, a [`Recording`] holds acceleration in g and
+//! angular velocity in deg/s on a uniform time grid whose rate was measured from the data
+//! (SPEC §2; paper §2.2 for the sensor axes: x along the shank, y anterior-posterior,
+//! z medio-lateral).
+
+use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
+
+use crate::error::{LdhError, Result};
+
+/// Standard gravity in m/s² (the conversion factor between g and m/s²).
+pub const STANDARD_GRAVITY_MPS2: f64 = 9.80665;
+
+/// Which leg a sensor is on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Side {
+    /// Left shank.
+    Left,
+    /// Right shank.
+    Right,
+}
+
+impl Side {
+    /// `"left"` or `"right"`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Side::Left => "left",
+            Side::Right => "right",
+        }
+    }
+    /// The other leg.
+    pub fn other(self) -> Side {
+        match self {
+            Side::Left => Side::Right,
+            Side::Right => Side::Left,
+        }
+    }
+}
+
+impl std::fmt::Display for Side {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl std::str::FromStr for Side {
+    type Err = LdhError;
+    fn from_str(s: &str) -> Result<Self> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "left" | "l" => Ok(Side::Left),
+            "right" | "r" => Ok(Side::Right),
+            other => Err(LdhError::param("side", other, "expected 'left' or 'right'")),
+        }
+    }
+}
+
+/// One shank IMU recording on a uniform time grid.
+///
+/// Invariants (checked by [`Recording::new`]): all six channels have the same length ≥ 2, every
+/// value is finite, `fs_hz` is finite and positive.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Recording {
+    /// The file it was read from, if any.
+    pub source: Option<PathBuf>,
+    /// The leg, if known.
+    pub side: Option<Side>,
+    /// Sampling rate in Hz, measured from the timestamps (or stated where the file has none).
+    pub fs_hz: f64,
+    /// Time of the first sample in seconds, in the file's own clock (0 when the file has no time).
+    pub t0_s: f64,
+    /// Acceleration (specific force) in g, channels x, y, z of the sensor.
+    pub acc_g: [Vec<f64>; 3],
+    /// Angular velocity in deg/s, channels x, y, z of the sensor.
+    pub gyro_dps: [Vec<f64>; 3],
+    /// `true` for samples where any channel was at the sensor's range (clipped). Such samples
+    /// are outliers, not data: preprocessing replaces them by interpolation.
+    pub saturated: Vec<bool>,
+}
+
+impl Recording {
+    /// Build a recording from channels, checking the invariants.
+    ///
+    /// `saturated` may be empty (no sample flagged).
+    pub fn new(
+        fs_hz: f64,
+        acc_g: [Vec<f64>; 3],
+        gyro_dps: [Vec<f64>; 3],
+        saturated: Vec<bool>,
+    ) -> Result<Self> {
+        if !(fs_hz.is_finite() && fs_hz > 0.0) {
+            return Err(LdhError::param("fs_hz", fs_hz, "must be finite and > 0"));
+        }
+        let n = acc_g[0].len();
+        let names = ["acc_x", "acc_y", "acc_z", "gyro_x", "gyro_y", "gyro_z"];
+        for (name, ch) in names.iter().zip(acc_g.iter().chain(gyro_dps.iter())) {
+            if ch.len() != n {
+                return Err(LdhError::signal(
+                    "recording",
+                    format!("channel {name} has {} samples, acc_x has {n}", ch.len()),
+                ));
+            }
+            if let Some(i) = ch.iter().position(|v| !v.is_finite()) {
+                return Err(LdhError::signal(
+                    "recording",
+                    format!("channel {name} has a non-finite value at sample {i}"),
+                ));
+            }
+        }
+        if n < 2 {
+            return Err(LdhError::signal(
+                "recording",
+                format!("{n} samples: at least 2 are needed"),
+            ));
+        }
+        let saturated = if saturated.is_empty() {
+            vec![false; n]
+        } else if saturated.len() == n {
+            saturated
+        } else {
+            return Err(LdhError::signal(
+                "recording",
+                format!(
+                    "saturation mask has {} entries for {n} samples",
+                    saturated.len()
+                ),
+            ));
+        };
+        Ok(Recording {
+            source: None,
+            side: None,
+            fs_hz,
+            t0_s: 0.0,
+            acc_g,
+            gyro_dps,
+            saturated,
+        })
+    }
+
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.acc_g[0].len()
+    }
+
+    /// Never true for a valid recording (kept for API completeness).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Duration in seconds, `(n - 1) / fs_hz`.
+    pub fn duration_s(&self) -> f64 {
+        (self.len().saturating_sub(1)) as f64 / self.fs_hz
+    }
+
+    /// Sample period in seconds.
+    pub fn dt_s(&self) -> f64 {
+        1.0 / self.fs_hz
+    }
+
+    /// Time of sample `i` in seconds from the first sample.
+    pub fn time_s(&self, i: usize) -> f64 {
+        i as f64 / self.fs_hz
+    }
+
+    /// Times of all samples in seconds from the first sample.
+    pub fn times_s(&self) -> Vec<f64> {
+        (0..self.len()).map(|i| self.time_s(i)).collect()
+    }
+
+    /// Number of samples flagged as saturated.
+    pub fn saturated_count(&self) -> usize {
+        self.saturated.iter().filter(|&&s| s).count()
+    }
+
+    /// Acceleration in m/s² (a converted copy).
+    pub fn acc_mps2(&self) -> [Vec<f64>; 3] {
+        self.acc_g
+            .clone()
+            .map(|c| c.into_iter().map(|v| v * STANDARD_GRAVITY_MPS2).collect())
+    }
+
+    /// A label for messages: the file name, or `<memory>`.
+    pub fn label(&self) -> String {
+        self.source
+            .as_ref()
+            .map(|p| p.display().to_string())
+            .unwrap_or_else(|| "<memory>".to_string())
+    }
+
+    /// With the source file set.
+    pub fn with_source(mut self, path: impl Into<PathBuf>) -> Self {
+        self.source = Some(path.into());
+        self
+    }
+
+    /// With the side set.
+    pub fn with_side(mut self, side: Side) -> Self {
+        self.side = Some(side);
+        self
+    }
+}
