@@ -1,1 +1,242 @@
-//! ldh-py
+//! Python bindings of ldh-core: the native module `ldh._ldh`.
+//!
+//! Conversion only: numpy arrays in and out, errors mapped onto the `ldh` exception classes
+//! (defined in `python/ldh/_errors.py`, subclasses of `ValueError`, `FileNotFoundError` and
+//! `OSError`), and the GIL released (`py.detach`) around every computation. No algorithm code.
+
+use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use ldh_core::io::{read_recording, FormatSpec, GapPolicy, ReadParams};
+use ldh_core::preprocess::{preprocess as core_preprocess, PreprocessParams};
+use ldh_core::{ErrorKind, LdhError, Recording};
+
+/// Map a core error onto the `ldh` exception family.
+fn to_py(py: Python<'_>, e: LdhError) -> PyErr {
+    let class = match e.kind() {
+        ErrorKind::NotFound => "LdhFileNotFoundError",
+        ErrorKind::Io => "LdhOSError",
+        ErrorKind::Param => "LdhParamError",
+        ErrorKind::Data => "LdhDataError",
+    };
+    let msg = e.to_string();
+    match py.import("ldh._errors").and_then(|m| m.getattr(class)) {
+        Ok(cls) => match cls.call1((msg.clone(),)) {
+            Ok(inst) => PyErr::from_value(inst),
+            Err(err) => err,
+        },
+        Err(_) => PyValueError::new_err(msg),
+    }
+}
+
+fn vec1<'py>(py: Python<'py>, v: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
+    v.into_pyarray(py)
+}
+
+fn recording_dict<'py>(py: Python<'py>, rec: Recording) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("fs_hz", rec.fs_hz)?;
+    d.set_item("t0_s", rec.t0_s)?;
+    d.set_item("time_s", vec1(py, rec.times_s()))?;
+    let [ax, ay, az] = rec.acc_g;
+    let [gx, gy, gz] = rec.gyro_dps;
+    for (k, v) in [
+        ("acc_x_g", ax),
+        ("acc_y_g", ay),
+        ("acc_z_g", az),
+        ("gyro_x_dps", gx),
+        ("gyro_y_dps", gy),
+        ("gyro_z_dps", gz),
+    ] {
+        d.set_item(k, vec1(py, v))?;
+    }
+    d.set_item("saturated", rec.saturated.into_pyarray(py))?;
+    Ok(d)
+}
+
+fn format_of(format: Option<&str>) -> Result<Option<FormatSpec>, LdhError> {
+    match format {
+        None => Ok(None),
+        Some(f) if f.ends_with(".toml") => FormatSpec::from_toml_file(f).map(Some),
+        Some(f) => FormatSpec::builtin(f).map(Some),
+    }
+}
+
+/// Read one sensor CSV. See `ldh.read_recording`.
+#[pyfunction(name = "read_recording")]
+#[pyo3(signature = (path, format=None, max_gap_s=0.2, gap_policy="split", min_duration_s=4.0, check_units=true))]
+fn read_recording_py<'py>(
+    py: Python<'py>,
+    path: std::path::PathBuf,
+    format: Option<&str>,
+    max_gap_s: f64,
+    gap_policy: &str,
+    min_duration_s: f64,
+    check_units: bool,
+) -> PyResult<(Bound<'py, PyDict>, String)> {
+    let policy = match gap_policy {
+        "split" => GapPolicy::Split,
+        "reject" => GapPolicy::Reject,
+        other => {
+            return Err(to_py(
+                py,
+                LdhError::param("gap_policy", other, "expected 'split' or 'reject'"),
+            ))
+        }
+    };
+    let params = ReadParams {
+        max_gap_s,
+        gap_policy: policy,
+        min_duration_s,
+        check_units,
+        ..ReadParams::default()
+    };
+    let fmt = format.map(String::from);
+    let out = py.detach(move || {
+        let p = params.check()?;
+        let f = format_of(fmt.as_deref())?;
+        read_recording(&path, f.as_ref(), &p)
+    });
+    let (rec, report) = out.map_err(|e| to_py(py, e))?;
+    let report =
+        serde_json::to_string(&report).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok((recording_dict(py, rec)?, report))
+}
+
+/// Zero-phase Butterworth low-pass (scipy's sosfiltfilt of butter(order, cutoff_hz, fs=fs_hz)).
+#[pyfunction]
+#[pyo3(signature = (x, cutoff_hz, fs_hz, order=4))]
+fn butter_filtfilt<'py>(
+    py: Python<'py>,
+    x: PyReadonlyArray1<'py, f64>,
+    cutoff_hz: f64,
+    fs_hz: f64,
+    order: usize,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let v = x.as_slice()?.to_vec();
+    let y = py
+        .detach(move || ldh_core::preprocess::butter_filtfilt(&v, order, cutoff_hz, fs_hz))
+        .map_err(|e| to_py(py, e))?;
+    Ok(vec1(py, y))
+}
+
+/// Preprocess six channels (paper §3.1). Returns a dict of filtered channels.
+#[pyfunction]
+#[pyo3(signature = (acc_g, gyro_dps, fs_hz, cutoff_hz=10.0, filter_order=4, outlier_sd=3.0, replace_outliers=true))]
+#[allow(clippy::too_many_arguments)]
+fn preprocess<'py>(
+    py: Python<'py>,
+    acc_g: [PyReadonlyArray1<'py, f64>; 3],
+    gyro_dps: [PyReadonlyArray1<'py, f64>; 3],
+    fs_hz: f64,
+    cutoff_hz: f64,
+    filter_order: usize,
+    outlier_sd: f64,
+    replace_outliers: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let acc: [Vec<f64>; 3] = [
+        acc_g[0].as_slice()?.to_vec(),
+        acc_g[1].as_slice()?.to_vec(),
+        acc_g[2].as_slice()?.to_vec(),
+    ];
+    let gyro: [Vec<f64>; 3] = [
+        gyro_dps[0].as_slice()?.to_vec(),
+        gyro_dps[1].as_slice()?.to_vec(),
+        gyro_dps[2].as_slice()?.to_vec(),
+    ];
+    let params = PreprocessParams {
+        cutoff_hz,
+        filter_order,
+        outlier_sd,
+        replace_outliers,
+    };
+    let out = py
+        .detach(move || {
+            let rec = Recording::new(fs_hz, acc, gyro, vec![])?;
+            let p = params.check(fs_hz)?;
+            core_preprocess(&rec, &p)
+        })
+        .map_err(|e| to_py(py, e))?;
+    let d = PyDict::new(py);
+    let [ax, ay, az] = out.acc_g;
+    let [gx, gy, gz] = out.gyro_dps;
+    for (k, v) in [
+        ("acc_x_g", ax),
+        ("acc_y_g", ay),
+        ("acc_z_g", az),
+        ("gyro_x_dps", gx),
+        ("gyro_y_dps", gy),
+        ("gyro_z_dps", gz),
+        ("acc_norm_g", out.acc_norm_g),
+    ] {
+        d.set_item(k, vec1(py, v))?;
+    }
+    d.set_item(
+        "replaced",
+        out.replaced
+            .into_iter()
+            .map(|i| i as i64)
+            .collect::<Vec<_>>()
+            .into_pyarray(py),
+    )?;
+    d.set_item("fs_hz", out.fs_hz)?;
+    Ok(d)
+}
+
+/// Write the embedded demo cohort to a folder; returns the number of files.
+#[pyfunction]
+fn write_demo(py: Python<'_>, out: std::path::PathBuf) -> PyResult<usize> {
+    py.detach(move || ldh_core::demo::write_to(&out))
+        .map_err(|e| to_py(py, e))
+}
+
+/// Simulate a cohort into a folder (as `ldh simulate`); returns the manifest CSV text.
+#[pyfunction]
+#[pyo3(signature = (out, healthy=2, ldh=2, seconds=25.0, seed=1, rate_hz=100.0, turn=true))]
+fn simulate_cohort(
+    py: Python<'_>,
+    out: std::path::PathBuf,
+    healthy: usize,
+    ldh: usize,
+    seconds: f64,
+    seed: u64,
+    rate_hz: f64,
+    turn: bool,
+) -> PyResult<String> {
+    let params = ldh_core::simulate::CohortParams {
+        healthy,
+        ldh,
+        duration_s: seconds,
+        fs_hz: rate_hz,
+        seed,
+        turn,
+        ..Default::default()
+    };
+    py.detach(move || -> Result<String, LdhError> {
+        params.validate()?;
+        let fmt = FormatSpec::default();
+        let mut rows = Vec::new();
+        for i in 0..params.len() {
+            let s = params.simulate(i)?;
+            s.write(&out.join(&s.params.subject_id), &fmt)?;
+            rows.push(ldh_core::simulate::ManifestRow::of(&s));
+        }
+        let text = ldh_core::simulate::manifest_csv(&rows);
+        ldh_core::io::write_atomic(out.join("manifest.csv"), text.as_bytes())?;
+        Ok(text)
+    })
+    .map_err(|e| to_py(py, e))
+}
+
+#[pymodule]
+fn _ldh(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(read_recording_py, m)?)?;
+    m.add_function(wrap_pyfunction!(butter_filtfilt, m)?)?;
+    m.add_function(wrap_pyfunction!(preprocess, m)?)?;
+    m.add_function(wrap_pyfunction!(write_demo, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate_cohort, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

@@ -10,3 +10,6 @@ pub use reader::{
     read_recording, read_recording_bytes, GapPolicy, ReadParams, ReadReport, ValidReadParams,
 };
 pub use writer::{recording_to_csv, write_atomic, write_recording, WriteOptions};
+
+#[cfg(test)]
+mod tests;

@@ -536,9 +536,43 @@ pub fn read_recording_bytes(
             min_s: params.min_duration_s,
         });
     }
-    let fs = match spec.time.unit {
-        TimeUnit::None | TimeUnit::Counter => spec.time.rate_hz.expect("validated"),
-        _ => (n_seg - 1) as f64 / span,
+    // The rate: each row gets an integer sample index (every interval rounded to a whole
+    // number of median periods, at least one), then time is fitted against index by least
+    // squares. Exact under timestamp rounding and jitter, unbiased by dropped rows, and it
+    // follows a device clock that runs slightly fast or slow.
+    let (fs, index) = match spec.time.unit {
+        TimeUnit::None | TimeUnit::Counter => {
+            let fs = spec.time.rate_hz.expect("validated");
+            (
+                fs,
+                seg_t
+                    .iter()
+                    .map(|t| ((t - seg_t[0]) * fs).round())
+                    .collect::<Vec<f64>>(),
+            )
+        }
+        _ => {
+            let mut dts: Vec<f64> = seg_t.windows(2).map(|w| w[1] - w[0]).collect();
+            dts.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+            let median_dt = dts[dts.len() / 2];
+            let mut index = Vec::with_capacity(n_seg);
+            let mut k = 0.0;
+            index.push(0.0);
+            for w in seg_t.windows(2) {
+                k += ((w[1] - w[0]) / median_dt).round().max(1.0);
+                index.push(k);
+            }
+            let (km, tm) = (
+                index.iter().sum::<f64>() / n_seg as f64,
+                seg_t.iter().sum::<f64>() / n_seg as f64,
+            );
+            let (mut sxy, mut sxx) = (0.0, 0.0);
+            for (k, t) in index.iter().zip(seg_t) {
+                sxy += (k - km) * (t - tm);
+                sxx += (k - km) * (k - km);
+            }
+            (sxx / sxy, index)
+        }
     };
     if !(fs >= params.min_rate_hz && fs <= params.max_rate_hz) {
         return Err(LdhError::SamplingRate {
@@ -552,10 +586,11 @@ pub fn read_recording_bytes(
     let t0 = seg_t[0];
     let max_jitter = seg_t
         .iter()
-        .enumerate()
-        .map(|(i, &t)| (t - (t0 + i as f64 / fs)).abs())
+        .zip(&index)
+        .map(|(&t, &k)| (t - (t0 + k / fs)).abs())
         .fold(0.0f64, f64::max);
-    let uniform = max_jitter <= 0.1 / fs;
+    let consecutive = index.last().is_some_and(|&k| k as usize + 1 == n_seg);
+    let uniform = consecutive && max_jitter <= 0.1 / fs;
     let mut channels: [Vec<f64>; 6] = Default::default();
     let n_out;
     if uniform {

@@ -67,6 +67,18 @@ impl Default for WriteOptions {
 /// Integer-count formats (`scale` ≠ 1) are written as rounded integers.
 pub fn recording_to_csv(rec: &Recording, spec: &FormatSpec, opts: &WriteOptions) -> Result<String> {
     spec.validate()?;
+    if matches!(spec.time.unit, TimeUnit::Counter | TimeUnit::None) {
+        let stated = spec.time.rate_hz.expect("validated");
+        if (stated - rec.fs_hz).abs() > 1e-9 * rec.fs_hz {
+            return Err(LdhError::Format {
+                name: spec.name.clone(),
+                reason: format!(
+                    "states {stated} Hz for its sample counter but the recording is at {} Hz; use a copy of the format with time.rate_hz = {}",
+                    rec.fs_hz, rec.fs_hz
+                ),
+            });
+        }
+    }
     let delim = match spec.delimiter {
         Delimiter::Auto => ',',
         d => d.byte().expect("not auto") as char,

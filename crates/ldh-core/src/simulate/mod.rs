@@ -501,6 +501,15 @@ impl CohortParams {
             ));
         }
         self.sensor.validate()?;
+        // 3 s of standing at each end and four strides of the slowest drawn gait (1.35 s each,
+        // plus the ramps in and out).
+        if !(self.duration_s >= 14.0) {
+            return Err(LdhError::param(
+                "duration_s",
+                self.duration_s,
+                "a simulated cohort needs at least 14 s per subject (3 s standing at each end and four strides of slow gait)",
+            ));
+        }
         SubjectParams {
             fs_hz: self.fs_hz,
             duration_s: self.duration_s,
@@ -585,8 +594,16 @@ impl SimSubject {
     }
 
     /// Write `left.csv`, `right.csv` (in `format`) and `truth.json` into `dir`.
+    /// Formats without timestamps (a sample counter or no time) are written with the simulated
+    /// rate as their stated rate.
     pub fn write(&self, dir: &Path, format: &FormatSpec) -> Result<()> {
         let opts = WriteOptions::default();
+        let format = &match format.time.unit {
+            crate::io::format::TimeUnit::Counter | crate::io::format::TimeUnit::None => {
+                format.clone().with_rate_hz(self.params.fs_hz)
+            }
+            _ => format.clone(),
+        };
         for leg in [&self.left, &self.right] {
             let side = leg.truth.side.as_str();
             crate::io::write_recording(

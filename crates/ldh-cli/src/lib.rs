@@ -1,0 +1,305 @@
+//! The `ldh` command line: argument parsing, files, parallelism, progress, output and exit
+//! codes. No signal processing happens here; every computation is a call into `ldh_core`.
+//!
+//! Exit codes: 0 all good; 1 some inputs failed (the others' results are written); 2 usage or
+//! a failure that stopped the whole command.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::{Context, Result};
+use clap::{Args, Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+
+use ldh_core::io::{read_recording, FormatSpec, GapPolicy, ReadParams};
+use ldh_core::preprocess::{preprocess, PreprocessParams};
+use ldh_core::simulate::{manifest_csv, CohortParams, ManifestRow, SensorModel};
+
+mod demo_cmd;
+
+/// Gait assessment for lumbar disc herniation from two shank-worn IMUs.
+///
+/// Typical use: `ldh simulate --out demo` to make a cohort, `ldh inspect FILE` to check
+/// that a vendor export is read correctly.
+#[derive(Debug, Parser)]
+#[command(name = "ldh", version, about, long_about = None, propagate_version = true)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Simulate a cohort of healthy and LDH subjects with two shank IMUs and exact ground truth.
+    ///
+    /// Writes <OUT>/<subject>/left.csv, right.csv, truth.json and <OUT>/manifest.csv. The same
+    /// seed gives byte-identical files whatever --jobs is.
+    Simulate(SimulateArgs),
+    /// Read sensor files, say what was detected (format, delimiter, rate, gaps, clipping) and
+    /// run the preprocessing; one line per file, or JSON.
+    Inspect(InspectArgs),
+    /// List the built-in vendor formats, or print one as TOML to adapt for your device.
+    Formats {
+        /// A format's name; omit to list them all.
+        name: Option<String>,
+    },
+    /// Write the embedded demo cohort (the default data of `ldh analyze`) to a folder.
+    Demo {
+        /// Output folder.
+        #[arg(long, default_value = "ldh-demo")]
+        out: PathBuf,
+    },
+}
+
+#[derive(Debug, Args)]
+struct SimulateArgs {
+    /// Output folder (created if missing).
+    #[arg(long)]
+    out: PathBuf,
+    /// Number of healthy subjects.
+    #[arg(long, default_value_t = 2)]
+    healthy: usize,
+    /// Number of LDH subjects.
+    #[arg(long, default_value_t = 2)]
+    ldh: usize,
+    /// Recording length per subject, seconds.
+    #[arg(long, default_value_t = 25.0)]
+    seconds: f64,
+    /// Random seed.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Sampling rate of the simulated sensors, Hz.
+    #[arg(long, default_value_t = 100.0)]
+    rate_hz: f64,
+    /// Walk straight only (no 180° turn in the middle).
+    #[arg(long)]
+    no_turn: bool,
+    /// Noise-free sensors without bias, quantisation or misalignment.
+    #[arg(long)]
+    ideal: bool,
+    /// Output format: a built-in format name or a TOML file.
+    #[arg(long, default_value = "ldh")]
+    format: String,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    jobs: Option<usize>,
+}
+
+#[derive(Debug, Args)]
+struct InspectArgs {
+    /// Sensor CSV files.
+    #[arg(required = true)]
+    files: Vec<PathBuf>,
+    /// Format: a built-in name or a TOML column map; default: detect a built-in format.
+    #[arg(long)]
+    format: Option<String>,
+    /// Longest gap in the timestamps bridged by interpolation, s.
+    #[arg(long, default_value_t = 0.2)]
+    max_gap_s: f64,
+    /// Refuse recordings with longer gaps instead of keeping the longest segment.
+    #[arg(long)]
+    reject_gaps: bool,
+    /// Print JSON instead of one line per file.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Resolve `--format`: a built-in name or a path to a TOML file.
+pub fn resolve_format(name: &str) -> Result<FormatSpec> {
+    if Path::new(name).extension().is_some_and(|e| e == "toml") || Path::new(name).exists() {
+        Ok(FormatSpec::from_toml_file(name)?)
+    } else {
+        Ok(FormatSpec::builtin(name)?)
+    }
+}
+
+fn progress(len: u64, what: &str) -> ProgressBar {
+    let pb = if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
+        ProgressBar::new(len)
+    } else {
+        ProgressBar::hidden()
+    };
+    pb.set_style(
+        ProgressStyle::with_template("{prefix} [{bar:30}] {pos}/{len} {elapsed_precise} {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    pb.set_prefix(what.to_string());
+    pb
+}
+
+fn thread_pool(jobs: Option<usize>) -> Result<rayon::ThreadPool> {
+    let mut b = rayon::ThreadPoolBuilder::new();
+    if let Some(j) = jobs {
+        anyhow::ensure!(j >= 1, "--jobs must be at least 1");
+        b = b.num_threads(j);
+    }
+    Ok(b.build()?)
+}
+
+fn simulate(a: SimulateArgs) -> Result<ExitCode> {
+    let format = resolve_format(&a.format)?;
+    let params = CohortParams {
+        healthy: a.healthy,
+        ldh: a.ldh,
+        duration_s: a.seconds,
+        fs_hz: a.rate_hz,
+        seed: a.seed,
+        turn: !a.no_turn,
+        sensor: if a.ideal {
+            SensorModel::ideal()
+        } else {
+            SensorModel::default()
+        },
+    };
+    params.validate()?;
+    std::fs::create_dir_all(&a.out).with_context(|| format!("creating {}", a.out.display()))?;
+    let pool = thread_pool(a.jobs)?;
+    let pb = progress(params.len() as u64, "simulate");
+    let results: Vec<Result<ManifestRow>> = pool.install(|| {
+        (0..params.len())
+            .into_par_iter()
+            .map(|i| {
+                let s = params.simulate(i)?;
+                s.write(&a.out.join(&s.params.subject_id), &format)?;
+                pb.inc(1);
+                Ok(ManifestRow::of(&s))
+            })
+            .collect()
+    });
+    pb.finish_and_clear();
+    let rows: Vec<ManifestRow> = results.into_iter().collect::<Result<_>>()?;
+    ldh_core::io::write_atomic(a.out.join("manifest.csv"), manifest_csv(&rows).as_bytes())?;
+    let cohort = serde_json::to_string_pretty(&params)?;
+    ldh_core::io::write_atomic(a.out.join("cohort.json"), cohort.as_bytes())?;
+    eprintln!(
+        "wrote {} subjects ({} healthy, {} LDH) to {}",
+        rows.len(),
+        a.healthy,
+        a.ldh,
+        a.out.display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+fn inspect(a: InspectArgs) -> Result<ExitCode> {
+    let format = a.format.as_deref().map(resolve_format).transpose()?;
+    let rp = ReadParams {
+        max_gap_s: a.max_gap_s,
+        gap_policy: if a.reject_gaps {
+            GapPolicy::Reject
+        } else {
+            GapPolicy::Split
+        },
+        ..ReadParams::default()
+    }
+    .check()?;
+    let outcomes: Vec<(PathBuf, Result<serde_json::Value, String>)> = a
+        .files
+        .par_iter()
+        .map(|f| {
+            let r = read_recording(f, format.as_ref(), &rp).and_then(|(rec, report)| {
+                let pp = PreprocessParams::default().check(rec.fs_hz)?;
+                let pre = preprocess(&rec, &pp)?;
+                Ok(serde_json::json!({
+                    "file": f,
+                    "read": report,
+                    "preprocess": {
+                        "outliers_replaced": pre.replaced.len(),
+                        "raw_norm_mean_g": pre.raw_norm_mean_g,
+                        "raw_norm_sd_g": pre.raw_norm_sd_g,
+                    }
+                }))
+            });
+            (f.clone(), r.map_err(|e| e.to_string()))
+        })
+        .collect();
+    let failed = outcomes.iter().filter(|o| o.1.is_err()).count();
+    if a.json {
+        let v: Vec<serde_json::Value> = outcomes
+            .iter()
+            .map(|(f, r)| match r {
+                Ok(v) => v.clone(),
+                Err(e) => serde_json::json!({"file": f, "error": e}),
+            })
+            .collect();
+        println!("{}", serde_json::to_string_pretty(&v)?);
+    } else {
+        for (f, r) in &outcomes {
+            match r {
+                Ok(v) => {
+                    let rd = &v["read"];
+                    println!(
+                        "{}: {} format, {} Hz, {:.1} s, {} samples, {} clipped, {} outliers replaced{}",
+                        f.display(),
+                        rd["format"].as_str().unwrap_or("?"),
+                        rd["fs_hz"].as_f64().map(|x| format!("{x:.2}")).unwrap_or_default(),
+                        rd["duration_s"].as_f64().unwrap_or(0.0),
+                        rd["samples"],
+                        rd["saturated_samples"],
+                        v["preprocess"]["outliers_replaced"],
+                        rd["notes"]
+                            .as_array()
+                            .filter(|n| !n.is_empty())
+                            .map(|n| format!(
+                                "; {}",
+                                n.iter().filter_map(|x| x.as_str()).collect::<Vec<_>>().join("; ")
+                            ))
+                            .unwrap_or_default()
+                    );
+                }
+                Err(e) => eprintln!("error: {e}"),
+            }
+        }
+    }
+    if failed > 0 {
+        eprintln!("{failed} of {} file(s) failed", outcomes.len());
+        return Ok(ExitCode::from(1));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn formats(name: Option<String>) -> Result<ExitCode> {
+    match name {
+        None => {
+            for f in FormatSpec::builtins() {
+                println!("{:<20} {}", f.name, f.description);
+            }
+        }
+        Some(n) => print!("{}", resolve_format(&n)?.to_toml()),
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Run the command line with these arguments (the first is the program name).
+pub fn run<I, T>(args: I) -> ExitCode
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let cli = match Cli::try_parse_from(args) {
+        Ok(c) => c,
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() {
+                ExitCode::from(2)
+            } else {
+                ExitCode::SUCCESS
+            };
+        }
+    };
+    let r = match cli.command {
+        Command::Simulate(a) => simulate(a),
+        Command::Inspect(a) => inspect(a),
+        Command::Formats { name } => formats(name),
+        Command::Demo { out } => demo_cmd::write_demo(&out),
+    };
+    match r {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,0 +1,26 @@
+"""The ldh exception family.
+
+Every error raised by ldh is an ``LdhError``; each also derives from the built-in exception a
+Python user would catch (``ValueError`` for bad data or arguments, ``FileNotFoundError`` and
+``OSError`` for files), so ``except ValueError`` keeps working.
+"""
+
+
+class LdhError(Exception):
+    """Base class of all ldh errors."""
+
+
+class LdhDataError(LdhError, ValueError):
+    """The data cannot be used (format, values, timing, too short...)."""
+
+
+class LdhParamError(LdhError, ValueError):
+    """A parameter is outside its valid range."""
+
+
+class LdhFileNotFoundError(LdhError, FileNotFoundError):
+    """A file does not exist."""
+
+
+class LdhOSError(LdhError, OSError):
+    """Any other operating-system error while reading or writing."""

@@ -1,0 +1,73 @@
+"""Python tests of the foundations: parity with scipy, errors, demo data."""
+import json
+import pathlib
+
+import numpy as np
+import pytest
+from scipy import signal
+
+import ldh
+
+ROOT = pathlib.Path(__file__).resolve().parents[3]
+GOLDEN = ROOT / "data-fixtures" / "golden" / "preprocess"
+
+
+@pytest.mark.parametrize("order,cutoff,fs", [(2, 5.0, 100.0), (4, 10.0, 100.0), (6, 20.0, 200.0)])
+def test_butter_filtfilt_equals_scipy(order, cutoff, fs):
+    x = np.random.default_rng(1).standard_normal(500)
+    ref = signal.sosfiltfilt(signal.butter(order, cutoff, output="sos", fs=fs), x)
+    ours = ldh.butter_filtfilt(x, cutoff, fs, order)
+    np.testing.assert_allclose(ours, ref, rtol=1e-9, atol=1e-12 * np.abs(ref).max())
+
+
+def test_any_array_like_is_accepted():
+    x = np.random.default_rng(2).standard_normal(400)
+    ref = ldh.butter_filtfilt(x, 10.0, 100.0)
+    np.testing.assert_array_equal(ldh.butter_filtfilt(x.astype(np.float32).astype(np.float64), 10.0, 100.0),
+                                  ldh.butter_filtfilt(x.astype(np.float32), 10.0, 100.0))
+    np.testing.assert_array_equal(ldh.butter_filtfilt(list(x), 10.0, 100.0), ref)
+    np.testing.assert_array_equal(ldh.butter_filtfilt(np.repeat(x, 2)[::2], 10.0, 100.0), ref)
+
+
+def test_preprocess_matches_the_golden_file():
+    rec, report = ldh.read_recording(GOLDEN / "input.csv")
+    g = json.loads((GOLDEN / "expected.json").read_text())
+    out = ldh.preprocess([rec["acc_x_g"], rec["acc_y_g"], rec["acc_z_g"]],
+                         [rec["gyro_x_dps"], rec["gyro_y_dps"], rec["gyro_z_dps"]], rec["fs_hz"])
+    assert out["replaced"].tolist() == g["outliers"]
+    for ours, name in [("acc_x_g", "acc_x"), ("acc_y_g", "acc_y"), ("gyro_z_dps", "gyro_z")]:
+        ref = np.asarray(g["filtered"][name])
+        np.testing.assert_allclose(out[ours], ref, rtol=1e-9, atol=1e-12 * np.abs(ref).max())
+    assert report["format"] == "ldh" and report["samples"] == 800
+
+
+def test_errors_are_typed_and_name_the_problem(tmp_path):
+    with pytest.raises(FileNotFoundError) as e:
+        ldh.read_recording(tmp_path / "missing.csv")
+    assert isinstance(e.value, ldh.LdhError) and "missing.csv" in str(e.value)
+    bad = tmp_path / "bad.csv"
+    bad.write_text("time_s,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z\n0,1,0,0,0,0,x\n")
+    with pytest.raises(ValueError, match=r"bad.csv:2:7.*'x' is not a number"):
+        ldh.read_recording(bad)
+    with pytest.raises(ldh.LdhParamError, match="cutoff_hz"):
+        ldh.butter_filtfilt(np.zeros(100), 60.0, 100.0)
+    with pytest.raises(ldh.LdhDataError, match="too short"):
+        ldh.butter_filtfilt(np.zeros(10), 10.0, 100.0)
+    with pytest.raises(ldh.LdhDataError, match="non-finite"):
+        ldh.butter_filtfilt(np.array([1.0, np.nan] * 20), 10.0, 100.0)
+    with pytest.raises(ldh.LdhParamError, match="one-dimensional"):
+        ldh.butter_filtfilt(np.zeros((10, 10)), 10.0, 100.0)
+    with pytest.raises(ldh.LdhParamError, match="gap_policy"):
+        ldh.read_recording(bad, gap_policy="maybe")
+
+
+def test_demo_and_simulation_are_deterministic(tmp_path):
+    assert ldh.write_demo(tmp_path / "demo") == 14
+    m1 = ldh.simulate_cohort(tmp_path / "a", healthy=1, ldh=1, seconds=14, seed=5)
+    m2 = ldh.simulate_cohort(tmp_path / "b", healthy=1, ldh=1, seconds=14, seed=5)
+    assert m1 == m2
+    assert (tmp_path / "a" / "L01" / "left.csv").read_bytes() == (tmp_path / "b" / "L01" / "left.csv").read_bytes()
+    with pytest.raises(ldh.LdhParamError, match="at least 14 s"):
+        ldh.simulate_cohort(tmp_path / "c", seconds=12)
+    rec, report = ldh.read_recording(tmp_path / "demo" / "H01" / "left.csv")
+    assert abs(rec["fs_hz"] - 100.0) < 1e-9 and len(rec["time_s"]) == 2501
