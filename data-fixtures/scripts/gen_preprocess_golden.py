@@ -6,8 +6,10 @@ Writes data-fixtures/golden/preprocess/{input.csv,expected.json}. Deterministic.
 
 Steps reproduced (see crates/ldh-core/src/preprocess.rs):
   1. magnitude of the acceleration (eq. 1);
-  2. outliers: |norm - mean| > 3 * std (numpy std, ddof=0); those samples are replaced on all six
-     channels by numpy.interp over the remaining samples;
+  2. outliers: |norm - mean| > 3 * std (numpy std, ddof=0); those samples are replaced by
+     numpy.interp over the remaining samples, on all six channels ("filtered", the paper read
+     literally) and on the three acceleration channels only ("filtered_acc_outliers_only", ldh's
+     default);
   3. scipy.signal.butter(4, 10, output="sos", fs=fs) and scipy.signal.sosfiltfilt on each channel.
 Plus bare sosfiltfilt cases (orders 2, 4, 6; several cut-offs) on white noise.
 """
@@ -53,6 +55,8 @@ def main():
     y = np.array([np.interp(np.arange(N), good, ch[good]) for ch in x])
     sos = signal.butter(4, 10.0, output="sos", fs=fs)
     filt = np.array([signal.sosfiltfilt(sos, ch) for ch in y])
+    y_acc = np.vstack([y[:3], x[3:]])
+    filt_acc = np.array([signal.sosfiltfilt(sos, ch) for ch in y_acc])
 
     rng = np.random.default_rng(20261121)
     noise = rng.standard_normal(300)
@@ -71,6 +75,7 @@ def main():
         "outliers": bad.tolist(),
         "sos": sos.tolist(),
         "filtered": {c: filt[k].tolist() for k, c in enumerate(cols)},
+        "filtered_acc_outliers_only": {c: filt_acc[k].tolist() for k, c in enumerate(cols)},
         "filtered_norm_g": np.sqrt(filt[0] ** 2 + filt[1] ** 2 + filt[2] ** 2).tolist(),
         "noise": noise.tolist(),
         "sosfiltfilt_cases": cases,

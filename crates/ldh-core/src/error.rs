@@ -249,6 +249,9 @@ pub enum LdhError {
     /// A statistical test is undefined for its input (see [`crate::stats`]).
     #[error(transparent)]
     Stats(#[from] crate::stats::StatsError),
+    /// A nonlinear-dynamics computation is undefined for its input (see [`crate::nonlinear`]).
+    #[error(transparent)]
+    Nonlinear(#[from] crate::nonlinear::NonlinearError),
     /// Writing output failed.
     #[error("{}: cannot write: {reason}", path.display())]
     Write {

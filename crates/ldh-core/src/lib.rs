@@ -14,9 +14,13 @@
 //! Every algorithm takes a parameter type with serde, `Default` and setters, validated once
 //! into the type the algorithm accepts (`params.check(...)`). All errors are [`LdhError`].
 
+pub mod align;
+pub mod attitude;
 pub mod demo;
 pub mod error;
+pub mod events;
 pub mod io;
+pub mod nonlinear;
 pub mod preprocess;
 pub mod recording;
 pub mod simulate;

@@ -124,7 +124,7 @@ fn butter_filtfilt<'py>(
 
 /// Preprocess six channels (paper §3.1). Returns a dict of filtered channels.
 #[pyfunction]
-#[pyo3(signature = (acc_g, gyro_dps, fs_hz, cutoff_hz=10.0, filter_order=4, outlier_sd=3.0, replace_outliers=true))]
+#[pyo3(signature = (acc_g, gyro_dps, fs_hz, cutoff_hz=10.0, filter_order=4, outlier_sd=3.0, replace_outliers=true, outlier_channels="acc"))]
 #[allow(clippy::too_many_arguments)]
 fn preprocess<'py>(
     py: Python<'py>,
@@ -135,7 +135,18 @@ fn preprocess<'py>(
     filter_order: usize,
     outlier_sd: f64,
     replace_outliers: bool,
+    outlier_channels: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let outlier_channels = match outlier_channels {
+        "acc" => ldh_core::preprocess::OutlierChannels::Acc,
+        "all" => ldh_core::preprocess::OutlierChannels::All,
+        o => {
+            return Err(to_py(
+                py,
+                LdhError::param("outlier_channels", o, "expected 'acc' or 'all'"),
+            ))
+        }
+    };
     let acc: [Vec<f64>; 3] = [
         acc_g[0].as_slice()?.to_vec(),
         acc_g[1].as_slice()?.to_vec(),
@@ -151,6 +162,7 @@ fn preprocess<'py>(
         filter_order,
         outlier_sd,
         replace_outliers,
+        outlier_channels,
     };
     let out = py
         .detach(move || {
