@@ -13,6 +13,8 @@ use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
 use ldh_core::io::{read_recording, FormatSpec, GapPolicy, ReadParams};
+use ldh_core::output;
+use ldh_core::pipeline::{analyze_subject, discover, AnalysisParams, SubjectResult};
 use ldh_core::preprocess::{preprocess, PreprocessParams};
 use ldh_core::simulate::{manifest_csv, CohortParams, ManifestRow, SensorModel};
 
@@ -31,6 +33,18 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
+    /// Analyse recordings: events, strides and the 12 gait parameters per side.
+    ///
+    /// INPUT is a manifest CSV, a cohort folder (with manifest.csv or subject folders), a
+    /// subject folder with left.csv and right.csv, or a subject's two files. Without INPUT the
+    /// embedded demo cohort is analysed. Writes strides.csv/.json and recordings.csv/.json to
+    /// --out; a recording that fails is listed with its reason, the others are still written,
+    /// and the exit code is 1.
+    Analyze(AnalyzeArgs),
+    /// Score the pipeline against simulator ground truth: `ldh simulate` output (with
+    /// truth.json per subject) is analysed with both attitude models and the event and
+    /// stride accuracy is printed as a Markdown table.
+    Evaluate(EvaluateArgs),
     /// Simulate a cohort of healthy and LDH subjects with two shank IMUs and exact ground truth.
     ///
     /// Writes <OUT>/<subject>/left.csv, right.csv, truth.json and <OUT>/manifest.csv. The same
@@ -50,6 +64,52 @@ enum Command {
         #[arg(long, default_value = "ldh-demo")]
         out: PathBuf,
     },
+}
+
+#[derive(Debug, Args)]
+struct AnalyzeArgs {
+    /// Inputs (see above); none: the embedded demo cohort.
+    inputs: Vec<PathBuf>,
+    /// Output folder.
+    #[arg(long, default_value = "ldh-out")]
+    out: PathBuf,
+    /// Attitude model: fusion (adaptive Kalman) or acc (accelerometer tilt only).
+    #[arg(long, default_value = "fusion")]
+    model: String,
+    /// Event detector: gyro-landmarks, gyro-zero-crossing, salarian or pitch-peaks (the paper's).
+    #[arg(long, default_value = "gyro-landmarks")]
+    detector: String,
+    /// Sensor format: a built-in name or a TOML column map; default: detect.
+    #[arg(long)]
+    format: Option<String>,
+    /// Sensor height above the ankle when the manifest has none, m.
+    #[arg(long, default_value_t = ldh_core::gait::DEFAULT_SENSOR_HEIGHT_M)]
+    sensor_height_m: f64,
+    /// All analysis parameters as a TOML file (see docs/parameters.md); flags above override.
+    #[arg(long)]
+    params: Option<PathBuf>,
+    /// Skip the Lyapunov exponent (STA).
+    #[arg(long)]
+    no_sta: bool,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    jobs: Option<usize>,
+}
+
+#[derive(Debug, Args)]
+struct EvaluateArgs {
+    /// A folder written by `ldh simulate` (manifest.csv and truth.json per subject).
+    #[arg(long)]
+    truth: PathBuf,
+    /// Event detector to score.
+    #[arg(long, default_value = "gyro-landmarks")]
+    detector: String,
+    /// Also write the accuracy as JSON here.
+    #[arg(long)]
+    json: Option<PathBuf>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    jobs: Option<usize>,
 }
 
 #[derive(Debug, Args)]
@@ -260,6 +320,138 @@ fn inspect(a: InspectArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+fn analysis_params(
+    params: Option<&Path>,
+    model: &str,
+    detector: &str,
+    sensor_height_m: f64,
+    no_sta: bool,
+) -> Result<AnalysisParams> {
+    let mut p = match params {
+        Some(f) => {
+            let text =
+                std::fs::read_to_string(f).with_context(|| format!("reading {}", f.display()))?;
+            toml::from_str::<AnalysisParams>(&text)
+                .with_context(|| format!("parameters in {}", f.display()))?
+        }
+        None => AnalysisParams::default(),
+    };
+    p.attitude.model = model.parse()?;
+    p.events.detector = detector.parse()?;
+    p.strides.sensor_height_m = sensor_height_m;
+    if no_sta {
+        p.compute_sta = false;
+    }
+    p.check()?;
+    Ok(p)
+}
+
+fn analyze(a: AnalyzeArgs) -> Result<ExitCode> {
+    let params = analysis_params(
+        a.params.as_deref(),
+        &a.model,
+        &a.detector,
+        a.sensor_height_m,
+        a.no_sta,
+    )?;
+    let format = a.format.as_deref().map(resolve_format).transpose()?;
+    let read = ReadParams::default().check()?;
+    let subjects = discover(&a.inputs)?;
+    anyhow::ensure!(!subjects.is_empty(), "no subjects found in the inputs");
+    if a.inputs.is_empty() {
+        eprintln!(
+            "no input given: analysing the embedded demo cohort ({} subjects)",
+            subjects.len()
+        );
+    }
+    let pool = thread_pool(a.jobs)?;
+    let pb = progress(subjects.len() as u64, "analyze");
+    let results: Vec<SubjectResult> = pool.install(|| {
+        subjects
+            .par_iter()
+            .map(|s| {
+                let r = analyze_subject(s, &params, format.as_ref(), &read);
+                pb.inc(1);
+                r
+            })
+            .collect()
+    });
+    pb.finish_and_clear();
+    let strides = output::stride_rows(&results);
+    let recordings = output::recording_rows(&results);
+    let w =
+        |name: &str, text: String| ldh_core::io::write_atomic(a.out.join(name), text.as_bytes());
+    w(
+        "strides.csv",
+        output::to_csv(&strides, &output::STRIDE_COLUMNS)?,
+    )?;
+    w("strides.json", serde_json::to_string_pretty(&strides)?)?;
+    w("recordings.csv", output::to_csv(&recordings, &[])?)?;
+    w(
+        "recordings.json",
+        serde_json::to_string_pretty(&recordings)?,
+    )?;
+    w("params.json", serde_json::to_string_pretty(&params)?)?;
+    let failed: Vec<&output::RecordingRow> =
+        recordings.iter().filter(|r| r.status != "ok").collect();
+    let ok = recordings.len() - failed.len();
+    let valid: usize = strides.iter().filter(|s| s.valid).count();
+    eprintln!(
+        "analysed {ok} of {} recordings ({} subjects, model {}): {} strides, {valid} valid; results in {}",
+        recordings.len(),
+        results.len(),
+        params.attitude.model.as_str(),
+        strides.len(),
+        a.out.display()
+    );
+    for f in &failed {
+        eprintln!("error: {} {}: {}", f.subject_id, f.side, f.error);
+    }
+    Ok(if failed.is_empty() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
+
+fn evaluate(a: EvaluateArgs) -> Result<ExitCode> {
+    let subjects = discover(std::slice::from_ref(&a.truth))?;
+    let truths: Vec<ldh_core::simulate::SubjectTruth> = subjects
+        .iter()
+        .map(|s| ldh_core::simulate::read_truth(a.truth.join(&s.subject_id).join("truth.json")))
+        .collect::<ldh_core::Result<_>>()?;
+    let read = ReadParams::default().check()?;
+    let pool = thread_pool(a.jobs)?;
+    let mut accs = Vec::new();
+    for model in ["fusion", "acc"] {
+        let params = analysis_params(
+            None,
+            model,
+            &a.detector,
+            ldh_core::gait::DEFAULT_SENSOR_HEIGHT_M,
+            true,
+        )?;
+        let results: Vec<SubjectResult> = pool.install(|| {
+            subjects
+                .par_iter()
+                .map(|s| analyze_subject(s, &params, None, &read))
+                .collect()
+        });
+        accs.push(ldh_core::evaluate::evaluate(&results, &truths));
+    }
+    println!(
+        "Accuracy against ground truth: {} subjects in {}, detector {}\n",
+        subjects.len(),
+        a.truth.display(),
+        a.detector
+    );
+    println!("{}", ldh_core::evaluate::markdown(&accs));
+    if let Some(j) = a.json {
+        ldh_core::io::write_atomic(&j, serde_json::to_string_pretty(&accs)?.as_bytes())?;
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
 fn formats(name: Option<String>) -> Result<ExitCode> {
     match name {
         None => {
@@ -290,6 +482,8 @@ where
         }
     };
     let r = match cli.command {
+        Command::Analyze(a) => analyze(a),
+        Command::Evaluate(a) => evaluate(a),
         Command::Simulate(a) => simulate(a),
         Command::Inspect(a) => inspect(a),
         Command::Formats { name } => formats(name),

@@ -27,7 +27,9 @@
 //!
 //! **ACC-only** baseline: roll and pitch from the tilt of the acceleration low-passed at
 //! `acc_only_cutoff_hz` (the unfiltered tilt in swing is dominated by linear acceleration);
-//! yaw propagated from the angular velocity with those angles, for turn detection only.
+//! yaw propagated from the angular velocity with those angles, for turn detection only. In the
+//! pipeline only the attitude is replaced: events still come from the sagittal angular
+//! velocity, so fusion vs ACC-only (Table 4) compares attitude models, not event detectors.
 
 use nalgebra::{Matrix2, Matrix2x3, Matrix3, Matrix3x2, Vector2, Vector3};
 use serde::{Deserialize, Serialize};

@@ -1,0 +1,246 @@
+//! Accuracy of the pipeline against the simulator's ground truth (`ldh evaluate`).
+//!
+//! Scored on the truth's steady strides (not turning, not the first or last of the walk): each
+//! true HS and TO is matched to the nearest detected one within 250 ms (otherwise it is
+//! missed); a true stride is matched to the detected stride starting at the matched HS.
+//! Attitude errors are RMS over the whole recording, pitch against the true shank pitch θ and
+//! roll against the true anatomical roll.
+
+use serde::{Deserialize, Serialize};
+
+use crate::gait::anatomical_roll_deg;
+use crate::pipeline::{LegResult, SubjectResult};
+use crate::simulate::{LegTruth, SubjectTruth};
+
+/// Accuracy figures for one model over a cohort.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+pub struct Accuracy {
+    /// Attitude model.
+    pub model: String,
+    /// Recordings scored.
+    pub recordings: usize,
+    /// Steady true strides scored.
+    pub strides: usize,
+    /// HS mean absolute error, ms.
+    pub hs_mae_ms: f64,
+    /// HS 95th percentile of the absolute error, ms.
+    pub hs_p95_ms: f64,
+    /// HS mean signed error (detected − true), ms.
+    pub hs_bias_ms: f64,
+    /// TO mean absolute error, ms.
+    pub to_mae_ms: f64,
+    /// TO 95th percentile, ms.
+    pub to_p95_ms: f64,
+    /// TO mean signed error, ms.
+    pub to_bias_ms: f64,
+    /// True steady HS or TO without a detection within 250 ms.
+    pub missed_events: usize,
+    /// Stride time mean absolute error, ms.
+    pub stride_time_mae_ms: f64,
+    /// Stance ratio mean absolute error.
+    pub stance_ratio_mae: f64,
+    /// Stance ratio mean signed error (detected − true).
+    pub stance_ratio_bias: f64,
+    /// Stride length mean absolute error, % of the true length.
+    pub stride_length_mae_pct: f64,
+    /// Stride length mean signed error, %.
+    pub stride_length_bias_pct: f64,
+    /// Stride length SD of the signed error, %.
+    pub stride_length_sd_pct: f64,
+    /// Pitch RMSE (mean over recordings), deg.
+    pub pitch_rmse_deg: f64,
+    /// Roll RMSE (mean over recordings), deg.
+    pub roll_rmse_deg: f64,
+}
+
+fn mean(v: &[f64]) -> f64 {
+    if v.is_empty() {
+        f64::NAN
+    } else {
+        v.iter().sum::<f64>() / v.len() as f64
+    }
+}
+
+fn p95(v: &[f64]) -> f64 {
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    let mut a: Vec<f64> = v.iter().map(|x| x.abs()).collect();
+    a.sort_by(|x, y| x.partial_cmp(y).unwrap_or(std::cmp::Ordering::Equal));
+    a[((a.len() as f64 * 0.95).ceil() as usize).clamp(1, a.len()) - 1]
+}
+
+fn nearest(v: &[f64], t: f64) -> Option<f64> {
+    v.iter()
+        .copied()
+        .min_by(|a, b| {
+            (a - t)
+                .abs()
+                .partial_cmp(&(b - t).abs())
+                .unwrap_or(std::cmp::Ordering::Equal)
+        })
+        .filter(|x| (x - t).abs() < 0.25)
+}
+
+/// Score results against truths (matched by subject id); `results` may hold one model.
+pub fn evaluate(results: &[SubjectResult], truths: &[SubjectTruth]) -> Accuracy {
+    let mut hs = Vec::new();
+    let mut to = Vec::new();
+    let mut st = Vec::new();
+    let mut stance = Vec::new();
+    let mut sl = Vec::new();
+    let mut pitch = Vec::new();
+    let mut roll = Vec::new();
+    let mut missed = 0;
+    let mut recs = 0;
+    let mut model = String::new();
+    for r in results {
+        model = r.model.as_str().to_string();
+        let Some(t) = truths.iter().find(|t| t.subject_id == r.subject_id) else {
+            continue;
+        };
+        for (leg, truth) in [(&r.left, &t.left), (&r.right, &t.right)] {
+            let Ok(leg) = leg else { continue };
+            recs += 1;
+            score_leg(
+                leg,
+                truth,
+                &mut hs,
+                &mut to,
+                &mut st,
+                &mut stance,
+                &mut sl,
+                &mut missed,
+            );
+            if let Some(att) = &leg.attitude {
+                let n = att.pitch_deg.len().min(truth.pitch_deg.len());
+                let ep: f64 = (0..n)
+                    .map(|i| (att.pitch_deg[i] - truth.pitch_deg[i]).powi(2))
+                    .sum::<f64>()
+                    / n as f64;
+                let er: f64 = (0..n)
+                    .map(|i| {
+                        (anatomical_roll_deg(att.roll_deg[i], leg.side) - truth.roll_deg[i]).powi(2)
+                    })
+                    .sum::<f64>()
+                    / n as f64;
+                pitch.push(ep.sqrt());
+                roll.push(er.sqrt());
+            }
+        }
+    }
+    let sl_mean = mean(&sl);
+    Accuracy {
+        model,
+        recordings: recs,
+        strides: st.len(),
+        hs_mae_ms: mean(&hs.iter().map(|x: &f64| x.abs()).collect::<Vec<_>>()),
+        hs_p95_ms: p95(&hs),
+        hs_bias_ms: mean(&hs),
+        to_mae_ms: mean(&to.iter().map(|x: &f64| x.abs()).collect::<Vec<_>>()),
+        to_p95_ms: p95(&to),
+        to_bias_ms: mean(&to),
+        missed_events: missed,
+        stride_time_mae_ms: mean(&st.iter().map(|x: &f64| x.abs()).collect::<Vec<_>>()),
+        stance_ratio_mae: mean(&stance.iter().map(|x: &f64| x.abs()).collect::<Vec<_>>()),
+        stance_ratio_bias: mean(&stance),
+        stride_length_mae_pct: mean(&sl.iter().map(|x: &f64| x.abs()).collect::<Vec<_>>()),
+        stride_length_bias_pct: sl_mean,
+        stride_length_sd_pct: if sl.len() > 1 {
+            (sl.iter().map(|x| (x - sl_mean).powi(2)).sum::<f64>() / (sl.len() - 1) as f64).sqrt()
+        } else {
+            f64::NAN
+        },
+        pitch_rmse_deg: mean(&pitch),
+        roll_rmse_deg: mean(&roll),
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn score_leg(
+    leg: &LegResult,
+    truth: &LegTruth,
+    hs: &mut Vec<f64>,
+    to: &mut Vec<f64>,
+    st: &mut Vec<f64>,
+    stance: &mut Vec<f64>,
+    sl: &mut Vec<f64>,
+    missed: &mut usize,
+) {
+    for ts in truth.strides.iter().filter(|s| !s.turning && !s.bout_edge) {
+        match nearest(&leg.events.hs_s, ts.hs_time_s) {
+            Some(d) => hs.push((d - ts.hs_time_s) * 1e3),
+            None => *missed += 1,
+        }
+        match nearest(&leg.events.to_s, ts.to_time_s) {
+            Some(d) => to.push((d - ts.to_time_s) * 1e3),
+            None => *missed += 1,
+        }
+        if let Some(s) = leg.strides.iter().find(|s| {
+            (s.hs_time_s - ts.hs_time_s).abs() < 0.25
+                && (s.next_hs_time_s - ts.next_hs_time_s).abs() < 0.25
+        }) {
+            st.push((s.stride_time_s - ts.stride_time_s) * 1e3);
+            if s.stance_ratio.is_finite() {
+                stance.push(s.stance_ratio - ts.stance_ratio);
+            }
+            if s.stride_length_m.is_finite() && ts.stride_length_m.is_finite() {
+                sl.push((s.stride_length_m - ts.stride_length_m) / ts.stride_length_m * 100.0);
+            }
+        }
+    }
+}
+
+/// A Markdown table of accuracies side by side (one column per model).
+pub fn markdown(acc: &[Accuracy]) -> String {
+    let mut s = String::from("| metric |");
+    for a in acc {
+        s.push_str(&format!(" {} |", a.model));
+    }
+    s.push_str("\n|---|");
+    for _ in acc {
+        s.push_str("---:|");
+    }
+    s.push('\n');
+    let rows: [(&str, fn(&Accuracy) -> String); 14] = [
+        ("recordings / steady strides", |a| {
+            format!("{} / {}", a.recordings, a.strides)
+        }),
+        ("HS MAE / P95 (ms)", |a| {
+            format!("{:.1} / {:.1}", a.hs_mae_ms, a.hs_p95_ms)
+        }),
+        ("HS bias (ms)", |a| format!("{:+.1}", a.hs_bias_ms)),
+        ("TO MAE / P95 (ms)", |a| {
+            format!("{:.1} / {:.1}", a.to_mae_ms, a.to_p95_ms)
+        }),
+        ("TO bias (ms)", |a| format!("{:+.1}", a.to_bias_ms)),
+        ("missed steady events", |a| a.missed_events.to_string()),
+        ("stride time MAE (ms)", |a| {
+            format!("{:.2}", a.stride_time_mae_ms)
+        }),
+        ("stance ratio MAE", |a| format!("{:.4}", a.stance_ratio_mae)),
+        ("stance ratio bias", |a| {
+            format!("{:+.4}", a.stance_ratio_bias)
+        }),
+        ("stride length MAE (%)", |a| {
+            format!("{:.2}", a.stride_length_mae_pct)
+        }),
+        ("stride length bias ± SD (%)", |a| {
+            format!(
+                "{:+.2} ± {:.2}",
+                a.stride_length_bias_pct, a.stride_length_sd_pct
+            )
+        }),
+        ("pitch RMSE (deg)", |a| format!("{:.2}", a.pitch_rmse_deg)),
+        ("roll RMSE (deg)", |a| format!("{:.2}", a.roll_rmse_deg)),
+        ("model", |a| a.model.clone()),
+    ];
+    for (name, f) in rows.iter().take(13) {
+        s.push_str(&format!("| {name} |"));
+        for a in acc {
+            s.push_str(&format!(" {} |", f(a)));
+        }
+        s.push('\n');
+    }
+    s
+}

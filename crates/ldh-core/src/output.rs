@@ -1,0 +1,295 @@
+//! The result tables of `ldh analyze` (SPEC §6): per stride and per recording, as CSV and JSON
+//! with stable column names that carry their units. A value that could not be computed is an
+//! empty CSV cell and a JSON `null`, never a made-up number; the `reason`, `sta_status` and
+//! `error` columns say why.
+//!
+//! Parameter codes (paper Table 2) → columns: ST `stride_time_s`, STT `step_time_s`, SF
+//! `step_frequency_steps_per_s`, STP `stance_ratio`, SWP `swing_ratio`, SL `stride_length_m`,
+//! SS `speed_mps`, SV `stride_length_cv`, STV `stride_time_cv`, STA `sta_per_s` /
+//! `sta_per_stride`, WQK `wqk_deg`, PBI `pbi_deg`, BDK `bdk_deg`.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{LdhError, Result};
+use crate::pipeline::SubjectResult;
+
+fn num(x: f64, decimals: i32) -> Option<f64> {
+    if x.is_finite() {
+        let k = 10f64.powi(decimals);
+        Some((x * k).round() / k)
+    } else {
+        None
+    }
+}
+
+/// A row of the per-stride table.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StrideRow {
+    /// Subject.
+    pub subject_id: String,
+    /// `left` or `right`.
+    pub side: String,
+    /// Attitude model.
+    pub model: String,
+    /// Stride number within the recording.
+    pub stride_index: usize,
+    /// Walking bout.
+    pub bout: usize,
+    /// Heel strike, s from the recording's first sample.
+    pub hs_time_s: Option<f64>,
+    /// Toe off, s.
+    pub to_time_s: Option<f64>,
+    /// Next heel strike, s.
+    pub next_hs_time_s: Option<f64>,
+    /// Stride time, s.
+    pub stride_time_s: Option<f64>,
+    /// Stance ratio.
+    pub stance_ratio: Option<f64>,
+    /// Stride length, m.
+    pub stride_length_m: Option<f64>,
+    /// Speed, m/s.
+    pub speed_mps: Option<f64>,
+    /// Max pitch, deg.
+    pub wqk_deg: Option<f64>,
+    /// −min pitch, deg.
+    pub pbi_deg: Option<f64>,
+    /// Roll excursion in swing, deg.
+    pub bdk_deg: Option<f64>,
+    /// Heading change over the stride, deg.
+    pub heading_change_deg: Option<f64>,
+    /// Used for the per-side means.
+    pub valid: bool,
+    /// Why not valid.
+    pub reason: String,
+}
+
+/// A row of the per-recording table (one per subject and side).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RecordingRow {
+    /// Subject.
+    pub subject_id: String,
+    /// `left` or `right`.
+    pub side: String,
+    /// Attitude model.
+    pub model: String,
+    /// `healthy`, `ldh` or empty.
+    pub group: String,
+    /// `left`, `right`, `none` or empty.
+    pub affected_side: String,
+    /// `affected`, `unaffected`, `healthy` or empty: this side's role in the cohort analysis.
+    pub side_role: String,
+    /// The file.
+    pub source: String,
+    /// `ok` or `error`.
+    pub status: String,
+    /// The error, when status is `error`.
+    pub error: String,
+    /// Sampling rate, Hz.
+    pub fs_hz: Option<f64>,
+    /// Duration, s.
+    pub duration_s: Option<f64>,
+    /// Strides found.
+    pub strides_total: Option<usize>,
+    /// Valid strides.
+    pub strides_valid: Option<usize>,
+    /// ST, s.
+    pub stride_time_s: Option<f64>,
+    /// STT, s.
+    pub step_time_s: Option<f64>,
+    /// SF, steps/s.
+    pub step_frequency_steps_per_s: Option<f64>,
+    /// STP.
+    pub stance_ratio: Option<f64>,
+    /// SWP.
+    pub swing_ratio: Option<f64>,
+    /// SL, m.
+    pub stride_length_m: Option<f64>,
+    /// SS, m/s.
+    pub speed_mps: Option<f64>,
+    /// SV.
+    pub stride_length_cv: Option<f64>,
+    /// STV.
+    pub stride_time_cv: Option<f64>,
+    /// STA, 1/s.
+    pub sta_per_s: Option<f64>,
+    /// STA per stride.
+    pub sta_per_stride: Option<f64>,
+    /// Why STA is empty.
+    pub sta_status: String,
+    /// WQK, deg.
+    pub wqk_deg: Option<f64>,
+    /// PBI, deg.
+    pub pbi_deg: Option<f64>,
+    /// BDK, deg.
+    pub bdk_deg: Option<f64>,
+    /// Device mounted mirrored.
+    pub mirrored: Option<bool>,
+    /// Device rotation about the shank, deg.
+    pub axial_rotation_deg: Option<f64>,
+    /// Samples replaced as outliers or clipped.
+    pub outliers_replaced: Option<usize>,
+    /// Clipped samples.
+    pub clipped_samples: Option<usize>,
+}
+
+/// The per-stride rows of a set of results.
+pub fn stride_rows(results: &[SubjectResult]) -> Vec<StrideRow> {
+    let mut out = Vec::new();
+    for r in results {
+        for (side, leg) in r.legs() {
+            let Ok(leg) = leg else { continue };
+            for s in &leg.strides {
+                out.push(StrideRow {
+                    subject_id: r.subject_id.clone(),
+                    side: side.as_str().into(),
+                    model: r.model.as_str().into(),
+                    stride_index: s.stride_index,
+                    bout: s.bout,
+                    hs_time_s: num(s.hs_time_s, 4),
+                    to_time_s: num(s.to_time_s, 4),
+                    next_hs_time_s: num(s.next_hs_time_s, 4),
+                    stride_time_s: num(s.stride_time_s, 4),
+                    stance_ratio: num(s.stance_ratio, 4),
+                    stride_length_m: num(s.stride_length_m, 4),
+                    speed_mps: num(s.speed_mps, 4),
+                    wqk_deg: num(s.wqk_deg, 3),
+                    pbi_deg: num(s.pbi_deg, 3),
+                    bdk_deg: num(s.bdk_deg, 3),
+                    heading_change_deg: num(s.heading_change_deg, 2),
+                    valid: s.valid,
+                    reason: s.reason.clone(),
+                });
+            }
+        }
+    }
+    out
+}
+
+/// The per-recording rows of a set of results (failed legs included, with their error).
+pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
+    let mut out = Vec::new();
+    for r in results {
+        for (side, leg) in r.legs() {
+            let role = match (r.group, r.affected_side) {
+                (Some(crate::simulate::Group::Healthy), _) => "healthy",
+                (Some(crate::simulate::Group::Ldh), Some(a)) if a == side => "affected",
+                (Some(crate::simulate::Group::Ldh), Some(_)) => "unaffected",
+                _ => "",
+            };
+            let mut row = RecordingRow {
+                subject_id: r.subject_id.clone(),
+                side: side.as_str().into(),
+                model: r.model.as_str().into(),
+                group: r.group.map(|g| g.as_str().to_string()).unwrap_or_default(),
+                affected_side: match (r.group, r.affected_side) {
+                    (_, Some(s)) => s.as_str().into(),
+                    (Some(_), None) => "none".into(),
+                    _ => String::new(),
+                },
+                side_role: role.into(),
+                source: String::new(),
+                status: "ok".into(),
+                error: String::new(),
+                fs_hz: None,
+                duration_s: None,
+                strides_total: None,
+                strides_valid: None,
+                stride_time_s: None,
+                step_time_s: None,
+                step_frequency_steps_per_s: None,
+                stance_ratio: None,
+                swing_ratio: None,
+                stride_length_m: None,
+                speed_mps: None,
+                stride_length_cv: None,
+                stride_time_cv: None,
+                sta_per_s: None,
+                sta_per_stride: None,
+                sta_status: String::new(),
+                wqk_deg: None,
+                pbi_deg: None,
+                bdk_deg: None,
+                mirrored: None,
+                axial_rotation_deg: None,
+                outliers_replaced: None,
+                clipped_samples: None,
+            };
+            match leg {
+                Err(e) => {
+                    row.status = "error".into();
+                    row.error = e.clone();
+                }
+                Ok(l) => {
+                    let p = &l.parameters;
+                    row.source = l.source.clone();
+                    row.fs_hz = num(l.read.fs_hz, 4);
+                    row.duration_s = num(l.read.duration_s, 3);
+                    row.strides_total = Some(p.strides_total);
+                    row.strides_valid = Some(p.strides_valid);
+                    row.stride_time_s = num(p.stride_time_s, 4);
+                    row.step_time_s = num(p.step_time_s, 4);
+                    row.step_frequency_steps_per_s = num(p.step_frequency_hz, 4);
+                    row.stance_ratio = num(p.stance_ratio, 4);
+                    row.swing_ratio = num(p.swing_ratio, 4);
+                    row.stride_length_m = num(p.stride_length_m, 4);
+                    row.speed_mps = num(p.speed_mps, 4);
+                    row.stride_length_cv = num(p.stride_length_cv, 4);
+                    row.stride_time_cv = num(p.stride_time_cv, 4);
+                    row.sta_per_s = num(p.sta_per_s, 4);
+                    row.sta_per_stride = num(p.sta_per_stride, 4);
+                    row.sta_status = p.sta_status.clone();
+                    row.wqk_deg = num(p.wqk_deg, 3);
+                    row.pbi_deg = num(p.pbi_deg, 3);
+                    row.bdk_deg = num(p.bdk_deg, 3);
+                    row.mirrored = Some(l.alignment.mirrored);
+                    row.axial_rotation_deg = num(l.alignment.axial_rotation_deg, 1);
+                    row.outliers_replaced = Some(l.outliers_replaced);
+                    row.clipped_samples = Some(l.read.saturated_samples);
+                }
+            }
+            out.push(row);
+        }
+    }
+    out
+}
+
+/// Rows as CSV text (header from the field names).
+pub fn to_csv<T: Serialize>(rows: &[T], header_if_empty: &[&str]) -> Result<String> {
+    let mut w = csv::WriterBuilder::new()
+        .has_headers(true)
+        .from_writer(Vec::new());
+    if rows.is_empty() {
+        w.write_record(header_if_empty)
+            .map_err(|e| LdhError::signal("csv", e.to_string()))?;
+    }
+    for r in rows {
+        w.serialize(r)
+            .map_err(|e| LdhError::signal("csv", e.to_string()))?;
+    }
+    let bytes = w
+        .into_inner()
+        .map_err(|e| LdhError::signal("csv", e.to_string()))?;
+    String::from_utf8(bytes).map_err(|e| LdhError::signal("csv", e.to_string()))
+}
+
+/// Column names of the per-stride table.
+pub const STRIDE_COLUMNS: [&str; 18] = [
+    "subject_id",
+    "side",
+    "model",
+    "stride_index",
+    "bout",
+    "hs_time_s",
+    "to_time_s",
+    "next_hs_time_s",
+    "stride_time_s",
+    "stance_ratio",
+    "stride_length_m",
+    "speed_mps",
+    "wqk_deg",
+    "pbi_deg",
+    "bdk_deg",
+    "heading_change_deg",
+    "valid",
+    "reason",
+];

@@ -1,0 +1,677 @@
+//! The per-recording pipeline (SPEC §3): recording → preprocessed → aligned → attitude →
+//! events → strides → parameters, for one subject's two legs, and the discovery of inputs
+//! (a pair of files, a subject folder, a cohort folder, a manifest, or the embedded demo).
+//!
+//! One bad recording never stops the other leg or the other subjects: each side's outcome is a
+//! `Result`, with the error message naming the file.
+
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+use crate::align::{align, AlignParams, Alignment};
+use crate::attitude::{estimate, Attitude, AttitudeModel, AttitudeParams};
+use crate::error::{LdhError, Result};
+use crate::events::{detect, EventParams, Events};
+use crate::gait::{side_parameters, strides, SideParameters, Stride, StrideParams};
+use crate::io::{read_recording, read_recording_bytes, FormatSpec, ReadReport, ValidReadParams};
+use crate::nonlinear::{gait_sta, GaitStaParams};
+use crate::preprocess::{preprocess, PreprocessParams};
+use crate::recording::{Recording, Side};
+use crate::simulate::Group;
+
+/// All analysis parameters (each stage's own type; validated by [`AnalysisParams::check`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct AnalysisParams {
+    /// Preprocessing (paper §3.1).
+    pub preprocess: PreprocessParams,
+    /// Sensor-to-segment alignment.
+    pub align: AlignParams,
+    /// Attitude model and filter.
+    pub attitude: AttitudeParams,
+    /// Event detection.
+    pub events: EventParams,
+    /// Strides and stride length. `sensor_height_m` is overridden per subject by the manifest.
+    pub strides: StrideParams,
+    /// Gait stability (STA).
+    pub sta: GaitStaParams,
+    /// Compute STA. Default true.
+    pub compute_sta: bool,
+}
+
+impl Default for AnalysisParams {
+    fn default() -> Self {
+        AnalysisParams {
+            preprocess: PreprocessParams::default(),
+            align: AlignParams::default(),
+            attitude: AttitudeParams::default(),
+            events: EventParams::default(),
+            strides: StrideParams::default(),
+            sta: GaitStaParams::default(),
+            compute_sta: true,
+        }
+    }
+}
+
+impl AnalysisParams {
+    /// With another attitude model.
+    pub fn model(mut self, m: AttitudeModel) -> Self {
+        self.attitude.model = m;
+        self
+    }
+    /// Validate every stage's parameters that do not depend on the recording.
+    pub fn check(&self) -> Result<()> {
+        self.align.check()?;
+        self.attitude.check()?;
+        self.events.check()?;
+        self.strides.check()?;
+        Ok(())
+    }
+}
+
+/// Where a recording comes from.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum Source {
+    /// A file.
+    Path(PathBuf),
+    /// A file of the embedded demo cohort (relative path).
+    Embedded(String),
+}
+
+impl Source {
+    /// A label for messages and tables.
+    pub fn label(&self) -> String {
+        match self {
+            Source::Path(p) => p.display().to_string(),
+            Source::Embedded(r) => format!("<demo>/{r}"),
+        }
+    }
+    /// Read the recording.
+    pub fn read(
+        &self,
+        format: Option<&FormatSpec>,
+        params: &ValidReadParams,
+    ) -> Result<(Recording, ReadReport)> {
+        match self {
+            Source::Path(p) => read_recording(p, format, params),
+            Source::Embedded(rel) => {
+                let text = crate::demo::file(rel)
+                    .ok_or_else(|| LdhError::signal("demo", format!("no embedded file {rel}")))?;
+                read_recording_bytes(text.as_bytes(), Path::new(&self.label()), format, params)
+            }
+        }
+    }
+}
+
+/// One subject to analyse.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SubjectInput {
+    /// Identifier.
+    pub subject_id: String,
+    /// Group, when a manifest gives it.
+    pub group: Option<Group>,
+    /// Affected side, when a manifest gives it (`None` for healthy or unknown).
+    pub affected_side: Option<Side>,
+    /// Left recording.
+    pub left: Option<Source>,
+    /// Right recording.
+    pub right: Option<Source>,
+    /// Sensor height above the ankle, m (manifest column `sensor_height_m`).
+    pub sensor_height_m: Option<f64>,
+}
+
+/// Parse a cohort manifest (SPEC §2): `subject_id, group, affected_side, left, right` and the
+/// optional `sensor_height_m`; paths relative to the manifest's folder.
+pub fn read_manifest(path: &Path) -> Result<Vec<SubjectInput>> {
+    let text = std::fs::read_to_string(path).map_err(|source| LdhError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    parse_manifest(&text, path, &|rel| {
+        Source::Path(path.parent().unwrap_or(Path::new(".")).join(rel))
+    })
+}
+
+fn parse_manifest(
+    text: &str,
+    path: &Path,
+    resolve: &dyn Fn(&str) -> Source,
+) -> Result<Vec<SubjectInput>> {
+    use crate::error::Location;
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
+    let Some((hl, header)) = lines.next() else {
+        return Err(LdhError::EmptyFile {
+            path: path.to_path_buf(),
+        });
+    };
+    let header = header.trim_start_matches('\u{feff}');
+    let cols: Vec<String> = header
+        .split(',')
+        .map(|c| c.trim().to_ascii_lowercase())
+        .collect();
+    let col = |name: &str| cols.iter().position(|c| c == name);
+    let need = ["subject_id", "group", "affected_side", "left", "right"];
+    for n in need {
+        if col(n).is_none() {
+            return Err(LdhError::MissingColumn {
+                loc: Location::line(path, hl as u64 + 1),
+                column: n.into(),
+                format: "cohort manifest".into(),
+                header: cols.clone(),
+            });
+        }
+    }
+    let mut out = Vec::new();
+    for (i, line) in lines {
+        let f: Vec<&str> = line.split(',').map(|x| x.trim()).collect();
+        let get = |n: &str| col(n).and_then(|c| f.get(c).copied()).unwrap_or("");
+        let lineno = i as u64 + 1;
+        let group = match get("group").to_ascii_lowercase().as_str() {
+            "healthy" | "h" | "control" => Group::Healthy,
+            "ldh" => Group::Ldh,
+            other => {
+                return Err(LdhError::NotANumber {
+                    loc: Location::cell(path, lineno, col("group").unwrap() + 1),
+                    column: "group".into(),
+                    value: other.into(),
+                    hint: "; expected 'healthy' or 'ldh'".into(),
+                })
+            }
+        };
+        let affected_side = match get("affected_side").to_ascii_lowercase().as_str() {
+            "left" => Some(Side::Left),
+            "right" => Some(Side::Right),
+            "none" | "" => None,
+            other => {
+                return Err(LdhError::NotANumber {
+                    loc: Location::cell(path, lineno, col("affected_side").unwrap() + 1),
+                    column: "affected_side".into(),
+                    value: other.into(),
+                    hint: "; expected 'left', 'right' or 'none'".into(),
+                })
+            }
+        };
+        let h = get("sensor_height_m");
+        let sensor_height_m = if h.is_empty() {
+            None
+        } else {
+            Some(h.parse::<f64>().map_err(|_| LdhError::NotANumber {
+                loc: Location::cell(path, lineno, col("sensor_height_m").unwrap() + 1),
+                column: "sensor_height_m".into(),
+                value: h.into(),
+                hint: String::new(),
+            })?)
+        };
+        let side = |n: &str| {
+            let v = get(n);
+            (!v.is_empty()).then(|| resolve(v))
+        };
+        out.push(SubjectInput {
+            subject_id: get("subject_id").to_string(),
+            group: Some(group),
+            affected_side,
+            left: side("left"),
+            right: side("right"),
+            sensor_height_m,
+        });
+    }
+    Ok(out)
+}
+
+/// The embedded demo cohort as inputs.
+pub fn demo_inputs() -> Result<Vec<SubjectInput>> {
+    let text = crate::demo::file("manifest.csv").expect("embedded manifest");
+    parse_manifest(text, Path::new("<demo>/manifest.csv"), &|rel| {
+        Source::Embedded(rel.to_string())
+    })
+}
+
+/// Turn command-line inputs into subjects: no input → the embedded demo; a manifest CSV; a
+/// folder with `manifest.csv`; a subject folder with `left.csv` / `right.csv`; a cohort folder
+/// of such subject folders; or files (two files are a left/right pair, by name or in order).
+pub fn discover(inputs: &[PathBuf]) -> Result<Vec<SubjectInput>> {
+    if inputs.is_empty() {
+        return demo_inputs();
+    }
+    let is_manifest = |p: &Path| {
+        p.is_file()
+            && std::fs::read_to_string(p)
+                .map(|t| {
+                    t.lines()
+                        .next()
+                        .unwrap_or("")
+                        .trim_start_matches('\u{feff}')
+                        .to_ascii_lowercase()
+                        .starts_with("subject_id,")
+                })
+                .unwrap_or(false)
+    };
+    let subject_dir = |d: &Path| -> Option<SubjectInput> {
+        let (l, r) = (d.join("left.csv"), d.join("right.csv"));
+        (l.exists() || r.exists()).then(|| SubjectInput {
+            subject_id: d
+                .file_name()
+                .map(|n| n.to_string_lossy().to_string())
+                .unwrap_or_else(|| "subject".into()),
+            group: None,
+            affected_side: None,
+            left: l.exists().then(|| Source::Path(l)),
+            right: r.exists().then(|| Source::Path(r)),
+            sensor_height_m: None,
+        })
+    };
+    let files: Vec<&PathBuf> = inputs
+        .iter()
+        .filter(|p| !p.is_dir() && !is_manifest(p))
+        .collect();
+    let mut out = Vec::new();
+    for p in inputs {
+        if p.is_dir() {
+            if p.join("manifest.csv").is_file() {
+                out.extend(read_manifest(&p.join("manifest.csv"))?);
+            } else if let Some(s) = subject_dir(p) {
+                out.push(s);
+            } else {
+                let mut subs: Vec<PathBuf> = std::fs::read_dir(p)
+                    .map_err(|source| LdhError::Io {
+                        path: p.clone(),
+                        source,
+                    })?
+                    .filter_map(|e| e.ok().map(|e| e.path()))
+                    .filter(|e| e.is_dir())
+                    .collect();
+                subs.sort();
+                let found: Vec<SubjectInput> = subs.iter().filter_map(|d| subject_dir(d)).collect();
+                if found.is_empty() {
+                    return Err(LdhError::signal(
+                        p.display().to_string(),
+                        "no manifest.csv, no left.csv/right.csv and no subject folders with them",
+                    ));
+                }
+                out.extend(found);
+            }
+        } else if is_manifest(p) {
+            out.extend(read_manifest(p)?);
+        }
+    }
+    if !files.is_empty() {
+        if files.len() > 2 {
+            return Err(LdhError::signal(
+                "inputs",
+                format!("{} loose files: give one subject's left and right files, or a folder or manifest", files.len()),
+            ));
+        }
+        let name = |p: &Path| {
+            p.file_name()
+                .map(|n| n.to_string_lossy().to_ascii_lowercase())
+                .unwrap_or_default()
+        };
+        let (mut left, mut right) = (None, None);
+        for (i, f) in files.iter().enumerate() {
+            let n = name(f);
+            if n.contains("right") || (i == 1 && !n.contains("left")) {
+                right = Some(Source::Path((*f).clone()));
+            } else {
+                left = Some(Source::Path((*f).clone()));
+            }
+        }
+        let id = files[0]
+            .parent()
+            .and_then(|d| d.file_name())
+            .map(|n| n.to_string_lossy().to_string())
+            .filter(|s| !s.is_empty())
+            .unwrap_or_else(|| "subject".into());
+        out.push(SubjectInput {
+            subject_id: id,
+            group: None,
+            affected_side: None,
+            left,
+            right,
+            sensor_height_m: None,
+        });
+    }
+    Ok(out)
+}
+
+/// The analysis of one leg.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LegResult {
+    /// The leg.
+    pub side: Side,
+    /// The file.
+    pub source: String,
+    /// What the reader found.
+    pub read: ReadReport,
+    /// Samples replaced as outliers or clipped.
+    pub outliers_replaced: usize,
+    /// What the alignment found.
+    pub alignment: Alignment,
+    /// Detected events.
+    pub events: Events,
+    /// Strides.
+    pub strides: Vec<Stride>,
+    /// Per-side parameters.
+    pub parameters: SideParameters,
+    /// The attitude over time (kept for reports and evaluation; not serialised).
+    #[serde(skip)]
+    pub attitude: Option<Attitude>,
+}
+
+/// The analysis of one subject.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SubjectResult {
+    /// Identifier.
+    pub subject_id: String,
+    /// Group (from the manifest).
+    pub group: Option<Group>,
+    /// Affected side (from the manifest).
+    pub affected_side: Option<Side>,
+    /// Attitude model used.
+    pub model: AttitudeModel,
+    /// Left leg, or the error that stopped it.
+    pub left: std::result::Result<LegResult, String>,
+    /// Right leg, or the error that stopped it.
+    pub right: std::result::Result<LegResult, String>,
+}
+
+impl SubjectResult {
+    /// Both legs' results or errors, left first.
+    pub fn legs(&self) -> [(Side, &std::result::Result<LegResult, String>); 2] {
+        [(Side::Left, &self.left), (Side::Right, &self.right)]
+    }
+}
+
+/// Analyse one recording up to its strides (no bilateral parameters yet).
+pub fn analyze_leg(
+    rec: &Recording,
+    side: Side,
+    params: &AnalysisParams,
+    sensor_height_m: Option<f64>,
+) -> Result<(LegResult, Vec<f64>)> {
+    let pp = params.preprocess.check(rec.fs_hz)?;
+    let pre = preprocess(rec, &pp)?;
+    let al = align(&pre, &params.align.check()?)?;
+    let att = estimate(&al, &params.attitude.check()?)?;
+    let fs = rec.fs_hz;
+    // Events come from the gyroscope's sagittal rate in both models (the ACC-only model replaces
+    // the attitude only, so the comparison isolates it; SPEC §3.7).
+    let omega = al.gyro_dps[1].clone();
+    let ev_params = params.events.clone();
+    let ev = detect(&att.pitch_deg, &omega, fs, &ev_params.check()?)?;
+    let mut sp = params.strides.clone();
+    if let Some(h) = sensor_height_m {
+        sp.sensor_height_m = h;
+    }
+    let st = strides(side, &al, &att, &ev, &sp.check()?)?;
+    let mut parameters = side_parameters(&st, None);
+    if params.compute_sta {
+        fill_sta(&mut parameters, &st, &omega, fs, &params.sta);
+    }
+    let hs = ev.hs_s.clone();
+    Ok((
+        LegResult {
+            side,
+            source: rec.label(),
+            read: empty_report(rec),
+            outliers_replaced: pre.replaced.len(),
+            alignment: al.alignment.clone(),
+            events: ev,
+            strides: st,
+            parameters,
+            attitude: Some(att),
+        },
+        hs,
+    ))
+}
+
+/// STA over the longest run of consecutive valid strides.
+fn fill_sta(p: &mut SideParameters, st: &[Stride], omega: &[f64], fs: f64, params: &GaitStaParams) {
+    let mut best: Option<(usize, usize)> = None;
+    let mut i = 0;
+    while i < st.len() {
+        if !st[i].valid {
+            i += 1;
+            continue;
+        }
+        let s = i;
+        while i + 1 < st.len()
+            && st[i + 1].valid
+            && (st[i + 1].hs_time_s - st[i].next_hs_time_s).abs() < 1e-9
+        {
+            i += 1;
+        }
+        if best.is_none_or(|(a, b)| i - s > b - a) {
+            best = Some((s, i));
+        }
+        i += 1;
+    }
+    let Some((a, b)) = best else {
+        p.sta_status = "no valid strides".into();
+        return;
+    };
+    let (i0, i1) = (
+        (st[a].hs_time_s * fs).round() as usize,
+        ((st[b].next_hs_time_s * fs).round() as usize).min(omega.len()),
+    );
+    let mean_st = p.stride_time_s;
+    match gait_sta(&omega[i0..i1], fs, mean_st, params) {
+        Ok(r) => {
+            p.sta_per_s = r.lambda_per_s;
+            p.sta_per_stride = r.lambda_per_stride;
+            p.sta_status = String::new();
+        }
+        Err(e) => {
+            p.sta_status = format!(
+                "{} strides ({:.1} s): {e}",
+                b - a + 1,
+                (i1 - i0) as f64 / fs
+            )
+        }
+    }
+}
+
+fn empty_report(rec: &Recording) -> ReadReport {
+    ReadReport {
+        file: rec
+            .source
+            .clone()
+            .unwrap_or_else(|| PathBuf::from("<memory>")),
+        format: "memory".into(),
+        format_detected: false,
+        delimiter: String::new(),
+        bom: false,
+        header_line: 0,
+        rows: rec.len(),
+        fs_hz: rec.fs_hz,
+        max_jitter_ms: 0.0,
+        resampled: false,
+        gaps: vec![],
+        dropped_segments: vec![],
+        saturated_per_channel: [0; 6],
+        saturated_samples: rec.saturated_count(),
+        samples: rec.len(),
+        duration_s: rec.duration_s(),
+        notes: vec![],
+    }
+}
+
+/// Analyse one subject: read both legs, run the pipeline, pair the legs for step time and
+/// frequency. Errors are per leg and name the file.
+pub fn analyze_subject(
+    input: &SubjectInput,
+    params: &AnalysisParams,
+    format: Option<&FormatSpec>,
+    read: &ValidReadParams,
+) -> SubjectResult {
+    let load = |src: &Option<Source>,
+                side: Side|
+     -> std::result::Result<(Recording, ReadReport, String), String> {
+        let src = src
+            .as_ref()
+            .ok_or_else(|| format!("no {side} recording given"))?;
+        let (rec, report) = src.read(format, read).map_err(|e| e.to_string())?;
+        Ok((rec, report, src.label()))
+    };
+    analyze_pair(
+        input,
+        load(&input.left, Side::Left),
+        load(&input.right, Side::Right),
+        params,
+    )
+}
+
+/// The read outcome of one leg: the recording, what the reader found and a label, or the error.
+pub type LoadedLeg = std::result::Result<(Recording, ReadReport, String), String>;
+
+/// Analyse one subject from recordings already read (or their read errors).
+pub fn analyze_pair(
+    input: &SubjectInput,
+    left: LoadedLeg,
+    right: LoadedLeg,
+    params: &AnalysisParams,
+) -> SubjectResult {
+    let run =
+        |loaded: LoadedLeg, side: Side| -> std::result::Result<(LegResult, Vec<f64>), String> {
+            let (rec, report, label) = loaded?;
+            let (mut leg, hs) = analyze_leg(&rec, side, params, input.sensor_height_m)
+                .map_err(|e| format!("{label}: {e}"))?;
+            leg.read = report;
+            leg.source = label;
+            Ok((leg, hs))
+        };
+    let l = run(left, Side::Left);
+    let r = run(right, Side::Right);
+    let other_hs = |x: &std::result::Result<(LegResult, Vec<f64>), String>| {
+        x.as_ref().ok().map(|(_, hs)| hs.clone())
+    };
+    let (lhs, rhs) = (other_hs(&l), other_hs(&r));
+    let finish = |x: std::result::Result<(LegResult, Vec<f64>), String>,
+                  other: Option<Vec<f64>>| {
+        x.map(|(mut leg, _)| {
+            let sta = (
+                leg.parameters.sta_per_s,
+                leg.parameters.sta_per_stride,
+                leg.parameters.sta_status.clone(),
+            );
+            leg.parameters = side_parameters(&leg.strides, other.as_deref());
+            (
+                leg.parameters.sta_per_s,
+                leg.parameters.sta_per_stride,
+                leg.parameters.sta_status,
+            ) = sta;
+            leg
+        })
+    };
+    SubjectResult {
+        subject_id: input.subject_id.clone(),
+        group: input.group,
+        affected_side: input.affected_side,
+        model: params.attitude.model,
+        left: finish(l, rhs),
+        right: finish(r, lhs),
+    }
+}
+
+/// Analyse a simulated subject in memory (for evaluation and tests).
+pub fn analyze_simulated(
+    s: &crate::simulate::SimSubject,
+    params: &AnalysisParams,
+) -> SubjectResult {
+    let input = SubjectInput {
+        subject_id: s.params.subject_id.clone(),
+        group: Some(s.params.group),
+        affected_side: s.params.affected_side,
+        left: None,
+        right: None,
+        sensor_height_m: Some((s.left.truth.sensor_height_m + s.right.truth.sensor_height_m) / 2.0),
+    };
+    let leg = |l: &crate::simulate::SimLeg| -> LoadedLeg {
+        let rec = l.recording.clone();
+        let report = empty_report(&rec);
+        Ok((
+            rec,
+            report,
+            format!("{}/{}", s.params.subject_id, l.truth.side),
+        ))
+    };
+    analyze_pair(&input, leg(&s.left), leg(&s.right), params)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::simulate::CohortParams;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
+        /// Detected events alternate HS/TO and increase, on any simulated subject.
+        #[test]
+        fn events_alternate_and_increase(seed in 0u64..10_000, ldh in any::<bool>()) {
+            let c = CohortParams { healthy: usize::from(!ldh), ldh: usize::from(ldh), duration_s: 20.0, seed, ..CohortParams::default() };
+            let r = analyze_simulated(&c.simulate(0).unwrap(), &AnalysisParams { compute_sta: false, ..AnalysisParams::default() });
+            for (_, leg) in r.legs() {
+                let leg = leg.as_ref().unwrap();
+                let mut ev: Vec<(f64, u8)> = leg.events.hs_s.iter().map(|&t| (t, 0)).chain(leg.events.to_s.iter().map(|&t| (t, 1))).collect();
+                ev.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap());
+                prop_assert!(ev.len() >= 16);
+                for w in ev.windows(2) {
+                    prop_assert!(w[1].0 > w[0].0);
+                    prop_assert_ne!(w[0].1, w[1].1, "two {} in a row at {} s", if w[0].1 == 0 { "HS" } else { "TO" }, w[1].0);
+                }
+                for s in &leg.strides {
+                    prop_assert!(s.hs_time_s < s.to_time_s || !s.to_time_s.is_finite());
+                    prop_assert!(s.valid == s.reason.is_empty());
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn manifests_are_parsed_and_bad_rows_named() {
+        let d = tempfile::tempdir().unwrap();
+        let m = d.path().join("manifest.csv");
+        std::fs::write(&m, "subject_id,group,affected_side,left,right,sensor_height_m\nS1,ldh,right,a/l.csv,a/r.csv,0.12\nS2,healthy,none,b/l.csv,b/r.csv,\n").unwrap();
+        let v = read_manifest(&m).unwrap();
+        assert_eq!(v.len(), 2);
+        assert_eq!(v[0].affected_side, Some(Side::Right));
+        assert_eq!(v[0].sensor_height_m, Some(0.12));
+        assert_eq!(v[0].left, Some(Source::Path(d.path().join("a/l.csv"))));
+        assert_eq!(v[1].group, Some(Group::Healthy));
+        std::fs::write(
+            &m,
+            "subject_id,group,affected_side,left,right\nS1,sick,right,a,b\n",
+        )
+        .unwrap();
+        let e = read_manifest(&m).unwrap_err().to_string();
+        assert!(
+            e.contains("manifest.csv:2:2") && e.contains("'sick'"),
+            "{e}"
+        );
+        std::fs::write(&m, "subject_id,group,left,right\n").unwrap();
+        assert!(read_manifest(&m)
+            .unwrap_err()
+            .to_string()
+            .contains("affected_side"));
+        assert_eq!(discover(&[]).unwrap().len(), 4);
+        // A missing file is kept as an input: reading it fails per recording, naming it.
+        let v = discover(&[d.path().join("nothing-here.csv")]).unwrap();
+        let r = analyze_subject(
+            &v[0],
+            &AnalysisParams::default(),
+            None,
+            &crate::io::ReadParams::default().check().unwrap(),
+        );
+        assert!(r
+            .left
+            .unwrap_err()
+            .contains("nothing-here.csv: cannot read"));
+        assert!(r.right.unwrap_err().contains("no right recording"));
+        std::fs::create_dir(d.path().join("empty")).unwrap();
+        let e = discover(&[d.path().join("empty")]).unwrap_err().to_string();
+        assert!(e.contains("empty") && e.contains("no manifest.csv"), "{e}");
+    }
+}

@@ -1,0 +1,256 @@
+//! `ldh analyze` and `ldh evaluate` end to end.
+
+use std::process::{Command, Output};
+
+fn ldh(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_ldh-under-test"))
+        .args(args)
+        .output()
+        .expect("runs")
+}
+
+fn text(o: &Output) -> String {
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+fn json(path: &std::path::Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+#[test]
+fn analyze_without_input_runs_the_embedded_demo() {
+    let d = tempfile::tempdir().unwrap();
+    let out = d.path().join("out");
+    let o = ldh(&["analyze", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(text(&o).contains("embedded demo cohort (4 subjects)"));
+    let strides = std::fs::read_to_string(out.join("strides.csv")).unwrap();
+    assert!(strides.starts_with(
+        "subject_id,side,model,stride_index,bout,hs_time_s,to_time_s,next_hs_time_s,stride_time_s,stance_ratio,stride_length_m,speed_mps,wqk_deg,pbi_deg,bdk_deg,heading_change_deg,valid,reason\n"
+    ));
+    let rec = json(&out.join("recordings.json"));
+    let rows = rec.as_array().unwrap();
+    assert_eq!(rows.len(), 8);
+    for r in rows {
+        assert_eq!(r["status"], "ok", "{r}");
+        let st = r["stride_time_s"].as_f64().unwrap();
+        assert!((0.9..1.4).contains(&st), "{r}");
+        assert!(
+            (0.55..0.70).contains(&r["stance_ratio"].as_f64().unwrap()),
+            "{r}"
+        );
+        assert!(
+            (0.8..1.7).contains(&r["stride_length_m"].as_f64().unwrap()),
+            "{r}"
+        );
+        assert!(
+            (35.0..60.0).contains(&r["wqk_deg"].as_f64().unwrap()),
+            "{r}"
+        );
+        assert!(r["sta_per_s"].as_f64().unwrap() > 0.0, "{r}");
+        assert!(r["strides_valid"].as_u64().unwrap() >= 6, "{r}");
+        let role = r["side_role"].as_str().unwrap();
+        assert!(["healthy", "affected", "unaffected"].contains(&role));
+    }
+    // The affected side of each LDH subject has the longer stance (simulated effect).
+    for id in ["L01", "L02"] {
+        let get = |role: &str| {
+            rows.iter()
+                .find(|r| r["subject_id"] == id && r["side_role"] == role)
+                .unwrap()["stance_ratio"]
+                .as_f64()
+                .unwrap()
+        };
+        assert!(get("affected") > get("unaffected"), "{id}");
+    }
+    let strides = json(&out.join("strides.json"));
+    let invalid: Vec<&serde_json::Value> = strides
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|s| s["valid"] == false)
+        .collect();
+    assert!(invalid
+        .iter()
+        .all(|s| !s["reason"].as_str().unwrap().is_empty()));
+    assert!(invalid
+        .iter()
+        .any(|s| s["reason"].as_str().unwrap().contains("turning")));
+    assert!(invalid.iter().any(|s| s["reason"]
+        .as_str()
+        .unwrap()
+        .contains("first stride of a walking bout")));
+}
+
+#[test]
+fn a_bad_recording_is_reported_and_the_rest_is_written() {
+    let d = tempfile::tempdir().unwrap();
+    ldh_core::demo::write_to(d.path()).unwrap();
+    std::fs::write(d.path().join("H02/right.csv"), "time_s,acc_x\n0,1\n").unwrap();
+    std::fs::remove_file(d.path().join("L01/left.csv")).unwrap();
+    let out = d.path().join("out");
+    let o = ldh(&[
+        "analyze",
+        d.path().to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--jobs",
+        "2",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    let t = text(&o);
+    assert!(t.contains("analysed 6 of 8 recordings"), "{t}");
+    assert!(
+        t.contains("H02 right") && t.contains("H02/right.csv"),
+        "{t}"
+    );
+    assert!(
+        t.contains("L01 left") && t.contains("L01/left.csv: cannot read"),
+        "{t}"
+    );
+    let rec = json(&out.join("recordings.json"));
+    let errors: Vec<&serde_json::Value> = rec
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|r| r["status"] == "error")
+        .collect();
+    assert_eq!(errors.len(), 2);
+    // The other side of a subject with a failed leg is still analysed (without step time).
+    let h02l = rec
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["subject_id"] == "H02" && r["side"] == "left")
+        .unwrap();
+    assert_eq!(h02l["status"], "ok");
+    assert!(h02l["step_time_s"].is_null());
+}
+
+#[test]
+fn inputs_as_pair_subject_folder_and_manifest() {
+    let d = tempfile::tempdir().unwrap();
+    ldh_core::demo::write_to(d.path()).unwrap();
+    let out = d.path().join("o1");
+    let l = d.path().join("L02/left.csv");
+    let r = d.path().join("L02/right.csv");
+    let o = ldh(&[
+        "analyze",
+        l.to_str().unwrap(),
+        r.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--no-sta",
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let rec = json(&out.join("recordings.json"));
+    assert_eq!(rec[0]["subject_id"], "L02");
+    assert!(rec[0]["sta_per_s"].is_null());
+    let out2 = d.path().join("o2");
+    let o = ldh(&[
+        "analyze",
+        d.path().join("L02").to_str().unwrap(),
+        "--out",
+        out2.to_str().unwrap(),
+        "--no-sta",
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert_eq!(
+        std::fs::read(out.join("strides.csv")).unwrap(),
+        std::fs::read(out2.join("strides.csv")).unwrap()
+    );
+    let o = ldh(&[
+        "analyze",
+        d.path().join("manifest.csv").to_str().unwrap(),
+        "--out",
+        d.path().join("o3").to_str().unwrap(),
+        "--model",
+        "acc",
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(text(&o).contains("model acc"));
+    let o = ldh(&["analyze", "--model", "kalman"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(text(&o).contains("expected 'fusion' or 'acc'"));
+}
+
+#[test]
+fn results_are_byte_identical_whatever_the_jobs() {
+    let d = tempfile::tempdir().unwrap();
+    let (a, b) = (d.path().join("a"), d.path().join("b"));
+    assert!(
+        ldh(&["analyze", "--out", a.to_str().unwrap(), "--jobs", "1"])
+            .status
+            .success()
+    );
+    assert!(
+        ldh(&["analyze", "--out", b.to_str().unwrap(), "--jobs", "2"])
+            .status
+            .success()
+    );
+    for f in [
+        "strides.csv",
+        "recordings.csv",
+        "strides.json",
+        "recordings.json",
+    ] {
+        assert_eq!(
+            std::fs::read(a.join(f)).unwrap(),
+            std::fs::read(b.join(f)).unwrap(),
+            "{f}"
+        );
+    }
+}
+
+/// Accuracy against the simulator's truth on a fixed cohort (seed 300, not used for tuning):
+/// bounds tighter than trivial, looser than the measured values in docs/accuracy.md.
+#[test]
+fn evaluate_reports_accuracy_within_the_issue_targets() {
+    let d = tempfile::tempdir().unwrap();
+    let c = d.path().join("cohort");
+    let o = ldh(&[
+        "simulate",
+        "--out",
+        c.to_str().unwrap(),
+        "--healthy",
+        "3",
+        "--ldh",
+        "3",
+        "--seconds",
+        "30",
+        "--seed",
+        "300",
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let j = d.path().join("acc.json");
+    let o = ldh(&[
+        "evaluate",
+        "--truth",
+        c.to_str().unwrap(),
+        "--json",
+        j.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(text(&o).contains("| HS MAE / P95 (ms) |"));
+    let acc = json(&j);
+    let f = &acc[0];
+    assert_eq!(f["model"], "fusion");
+    let v = |k: &str| f[k].as_f64().unwrap();
+    assert!(f["strides"].as_u64().unwrap() >= 150);
+    assert_eq!(f["missed_events"], 0);
+    assert!(v("hs_mae_ms") < 8.0 && v("hs_p95_ms") < 20.0, "{f}");
+    assert!(v("to_mae_ms") < 10.0 && v("to_p95_ms") < 25.0, "{f}");
+    assert!(v("stride_time_mae_ms") < 3.0, "{f}");
+    assert!(v("stance_ratio_mae") < 0.01, "{f}");
+    assert!(v("stride_length_mae_pct") < 2.0, "{f}");
+    assert!(v("pitch_rmse_deg") < 1.5 && v("roll_rmse_deg") < 1.0, "{f}");
+    // The ACC-only baseline is worse where only the attitude differs.
+    let a = &acc[1];
+    assert_eq!(a["model"], "acc");
+    assert!(a["pitch_rmse_deg"].as_f64().unwrap() > 5.0 * v("pitch_rmse_deg"));
+    assert!(a["stride_length_mae_pct"].as_f64().unwrap() > 10.0);
+}
