@@ -27,10 +27,12 @@ arrays (the faster numpy idiom; its ratio is the conservative one).
 
 It then
 * checks its results against `ldh analyze DIR --no-sta` (per-recording mean stride time, stance
-  ratio, stride length, stride counts) and prints the differences;
-* times the Python pipeline, both EKF styles (median of --repeats passes over all recordings,
-  time.perf_counter, divided by the number of recordings) and `ldh analyze DIR --no-sta --jobs 1|2` (median of
-  --repeats runs of the whole process, nothing subtracted, divided by the number of recordings);
+  ratio, stride length, stride counts; per-stride HS, TO and stride length) and prints the
+  differences;
+* times the Python pipeline in both EKF styles (median of --repeats passes over all recordings,
+  time.perf_counter, divided by the number of recordings) and `ldh analyze DIR --no-sta
+  --jobs 1|2` (median of --repeats runs of the whole process: start-up, reading and writing the
+  outputs included, nothing subtracted, divided by the number of recordings), interleaved;
 * prints a Markdown table and the python/numpy/scipy versions.
 
 Run from the repository root (needs target/release/ldh: `cargo build --release -p ldh-cli`):
