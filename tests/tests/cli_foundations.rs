@@ -1,22 +1,9 @@
 //! The command line's foundations: simulate, inspect, formats, demo.
 
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn ldh(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ldh-under-test"))
-        .args(args)
-        .output()
-        .expect("runs")
-}
-
-fn text(o: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
-}
+mod common;
+use common::*;
+use std::process::Command;
 
 fn files_of(dir: &Path) -> Vec<(String, Vec<u8>)> {
     let mut v = Vec::new();

@@ -1,25 +1,7 @@
 //! `ldh analyze` and `ldh evaluate` end to end.
 
-use std::process::{Command, Output};
-
-fn ldh(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ldh-under-test"))
-        .args(args)
-        .output()
-        .expect("runs")
-}
-
-fn text(o: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
-}
-
-fn json(path: &std::path::Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
-}
+mod common;
+use common::*;
 
 #[test]
 fn analyze_without_input_runs_the_embedded_demo() {

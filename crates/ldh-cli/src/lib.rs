@@ -37,7 +37,8 @@ enum Command {
     ///
     /// INPUT is a manifest CSV, a cohort folder (with manifest.csv or subject folders), a
     /// subject folder with left.csv and right.csv, or a subject's two files. Without INPUT the
-    /// embedded demo cohort is analysed. Writes strides.csv/.json and recordings.csv/.json to
+    /// embedded demo cohort is analysed. Writes strides.csv/.json, recordings.csv/.json and
+    /// events.csv (both legs' HS and TO in one time-ordered sequence) to
     /// --out; a recording that fails is listed with its reason, the others are still written,
     /// and the exit code is 1.
     Analyze(AnalyzeArgs),
@@ -387,6 +388,13 @@ fn analyze(a: AnalyzeArgs) -> Result<ExitCode> {
     )?;
     w("strides.json", serde_json::to_string_pretty(&strides)?)?;
     w("recordings.csv", output::to_csv(&recordings, &[])?)?;
+    w(
+        "events.csv",
+        output::to_csv(
+            &output::event_rows(&results),
+            &["subject_id", "time_s", "side", "event", "order"],
+        )?,
+    )?;
     w(
         "recordings.json",
         serde_json::to_string_pretty(&recordings)?,

@@ -202,7 +202,7 @@ pub fn markdown(acc: &[Accuracy]) -> String {
         s.push_str("---:|");
     }
     s.push('\n');
-    let rows: [(&str, fn(&Accuracy) -> String); 14] = [
+    let rows: [(&str, fn(&Accuracy) -> String); 13] = [
         ("recordings / steady strides", |a| {
             format!("{} / {}", a.recordings, a.strides)
         }),
@@ -233,9 +233,8 @@ pub fn markdown(acc: &[Accuracy]) -> String {
         }),
         ("pitch RMSE (deg)", |a| format!("{:.2}", a.pitch_rmse_deg)),
         ("roll RMSE (deg)", |a| format!("{:.2}", a.roll_rmse_deg)),
-        ("model", |a| a.model.clone()),
     ];
-    for (name, f) in rows.iter().take(13) {
+    for (name, f) in rows.iter() {
         s.push_str(&format!("| {name} |"));
         for a in acc {
             s.push_str(&format!(" {} |", f(a)));

@@ -145,16 +145,7 @@ impl EventParams {
                 "must be > 0",
             ));
         }
-        if !(self.min_stride_s > 0.0
-            && self.max_stride_s > self.min_stride_s
-            && self.max_stride_s.is_finite())
-        {
-            return Err(LdhError::param(
-                "min_stride_s/max_stride_s",
-                format!("{}/{}", self.min_stride_s, self.max_stride_s),
-                "need 0 < min < max",
-            ));
-        }
+        crate::gait::check_stride_range(self.min_stride_s, self.max_stride_s)?;
         for (n, v) in [
             ("hs_offset_stride", self.hs_offset_stride),
             ("to_offset_stride", self.to_offset_stride),

@@ -67,16 +67,7 @@ impl StrideParams {
     }
     /// Validate.
     pub fn check(&self) -> Result<ValidStrideParams> {
-        if !(self.min_stride_s > 0.0
-            && self.max_stride_s > self.min_stride_s
-            && self.max_stride_s.is_finite())
-        {
-            return Err(LdhError::param(
-                "min_stride_s/max_stride_s",
-                format!("{}/{}", self.min_stride_s, self.max_stride_s),
-                "need 0 < min < max",
-            ));
-        }
+        check_stride_range(self.min_stride_s, self.max_stride_s)?;
         if !(self.turn_deg > 0.0 && self.turn_deg < 180.0) {
             return Err(LdhError::param(
                 "turn_deg",
@@ -92,6 +83,19 @@ impl StrideParams {
             ));
         }
         Ok(ValidStrideParams(self.clone()))
+    }
+}
+
+/// Check a physiological stride-time range: 0 < min < max < ∞ (shared by events and strides).
+pub fn check_stride_range(min_stride_s: f64, max_stride_s: f64) -> Result<()> {
+    if min_stride_s > 0.0 && max_stride_s > min_stride_s && max_stride_s.is_finite() {
+        Ok(())
+    } else {
+        Err(LdhError::param(
+            "min_stride_s/max_stride_s",
+            format!("{min_stride_s}/{max_stride_s}"),
+            "need 0 < min < max",
+        ))
     }
 }
 

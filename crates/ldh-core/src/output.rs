@@ -253,6 +253,41 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
     out
 }
 
+/// A row of the bilateral event table (`events.csv`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EventRow {
+    /// Subject.
+    pub subject_id: String,
+    /// Time, s from the recordings' first sample.
+    pub time_s: f64,
+    /// `left` or `right`.
+    pub side: String,
+    /// `HS` or `TO`.
+    pub event: String,
+    /// Where the alternation breaks, why; else empty.
+    pub order: String,
+}
+
+/// The bilateral event rows of a set of results, per subject in time order.
+pub fn event_rows(results: &[SubjectResult]) -> Vec<EventRow> {
+    let mut out = Vec::new();
+    for r in results {
+        for e in r.bilateral_events() {
+            out.push(EventRow {
+                subject_id: r.subject_id.clone(),
+                time_s: (e.time_s * 1e4).round() / 1e4,
+                side: e.side.as_str().into(),
+                event: match e.event {
+                    crate::pipeline::EventKind::HeelStrike => "HS".into(),
+                    crate::pipeline::EventKind::ToeOff => "TO".into(),
+                },
+                order: e.order,
+            });
+        }
+    }
+    out
+}
+
 /// Rows as CSV text (header from the field names).
 pub fn to_csv<T: Serialize>(rows: &[T], header_if_empty: &[&str]) -> Result<String> {
     let mut w = csv::WriterBuilder::new()

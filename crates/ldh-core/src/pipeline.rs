@@ -360,6 +360,97 @@ pub struct LegResult {
     pub attitude: Option<Attitude>,
 }
 
+/// Kind of a gait event.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum EventKind {
+    /// Heel strike.
+    #[serde(rename = "HS")]
+    HeelStrike,
+    /// Toe off.
+    #[serde(rename = "TO")]
+    ToeOff,
+}
+
+/// One event of the bilateral sequence.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BilateralEvent {
+    /// Time, s from the recordings' first sample (both sensors share a clock).
+    pub time_s: f64,
+    /// The leg.
+    pub side: Side,
+    /// HS or TO.
+    pub event: EventKind,
+    /// Where the expected order (… HS_L, TO_R, HS_R, TO_L, HS_L …) is broken, why; else "".
+    pub order: String,
+}
+
+/// Both legs' events merged into one time-ordered sequence. In walking the sequence cycles
+/// HS(a) → TO(b) → HS(b) → TO(a) → HS(a) (the other leg leaves the ground after the loading
+/// response and lands before this leg's push-off): each event is checked against its
+/// predecessor — a HS must follow the same leg's TO, a TO the other leg's HS — and breaks are
+/// marked, e.g. at gait initiation and termination, pauses or missed events.
+pub fn bilateral_events(left: Option<&Events>, right: Option<&Events>) -> Vec<BilateralEvent> {
+    let mut v: Vec<BilateralEvent> = Vec::new();
+    for (side, ev) in [(Side::Left, left), (Side::Right, right)] {
+        let Some(ev) = ev else { continue };
+        for &t in &ev.hs_s {
+            v.push(BilateralEvent {
+                time_s: t,
+                side,
+                event: EventKind::HeelStrike,
+                order: String::new(),
+            });
+        }
+        for &t in &ev.to_s {
+            v.push(BilateralEvent {
+                time_s: t,
+                side,
+                event: EventKind::ToeOff,
+                order: String::new(),
+            });
+        }
+    }
+    v.sort_by(|a, b| {
+        a.time_s
+            .partial_cmp(&b.time_s)
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    for i in 1..v.len() {
+        let (p, c) = (&v[i - 1], &v[i]);
+        let (want_side, want_event) = match c.event {
+            EventKind::HeelStrike => (c.side, EventKind::ToeOff),
+            EventKind::ToeOff => (c.side.other(), EventKind::HeelStrike),
+        };
+        if p.side != want_side || p.event != want_event {
+            let name = |e: EventKind| {
+                if e == EventKind::HeelStrike {
+                    "HS"
+                } else {
+                    "TO"
+                }
+            };
+            v[i].order = format!(
+                "follows {} {} (expected {} {})",
+                p.side,
+                name(p.event),
+                want_side,
+                name(want_event)
+            );
+        }
+    }
+    v
+}
+
+impl SubjectResult {
+    /// The bilateral event sequence of this subject (see [`bilateral_events`]).
+    pub fn bilateral_events(&self) -> Vec<BilateralEvent> {
+        bilateral_events(
+            self.left.as_ref().ok().map(|l| &l.events),
+            self.right.as_ref().ok().map(|r| &r.events),
+        )
+    }
+}
+
 /// The analysis of one subject.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SubjectResult {
@@ -628,6 +719,43 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn bilateral_sequence_alternates_in_steady_walking() {
+        let c = CohortParams {
+            healthy: 0,
+            ldh: 1,
+            duration_s: 30.0,
+            seed: 5,
+            turn: false,
+            ..CohortParams::default()
+        };
+        let r = analyze_simulated(
+            &c.simulate(0).unwrap(),
+            &AnalysisParams {
+                compute_sta: false,
+                ..AnalysisParams::default()
+            },
+        );
+        let seq = r.bilateral_events();
+        assert!(seq.len() > 60);
+        let breaks: Vec<&BilateralEvent> = seq.iter().filter(|e| !e.order.is_empty()).collect();
+        // Only where gait starts (the first leg's TO has no HS before it) may it break.
+        assert!(breaks.len() <= 2, "{breaks:?}");
+        assert!(
+            seq.iter()
+                .filter(|e| e.event == EventKind::HeelStrike)
+                .count()
+                > 30
+        );
+        // With one leg, every TO lacks the other leg's HS before it.
+        let one = bilateral_events(r.left.as_ref().ok().map(|l| &l.events), None);
+        assert!(one
+            .iter()
+            .skip(1)
+            .filter(|e| e.event == EventKind::ToeOff)
+            .all(|e| e.order.contains("expected right HS")));
     }
 
     #[test]

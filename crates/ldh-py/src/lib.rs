@@ -35,23 +35,32 @@ fn vec1<'py>(py: Python<'py>, v: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
     v.into_pyarray(py)
 }
 
+/// Put the six channels into a dict as `acc_x_g` … `gyro_z_dps` numpy arrays.
+fn put_channels(
+    d: &Bound<'_, PyDict>,
+    acc_g: [Vec<f64>; 3],
+    gyro_dps: [Vec<f64>; 3],
+) -> PyResult<()> {
+    let names = [
+        "acc_x_g",
+        "acc_y_g",
+        "acc_z_g",
+        "gyro_x_dps",
+        "gyro_y_dps",
+        "gyro_z_dps",
+    ];
+    for (k, v) in names.into_iter().zip(acc_g.into_iter().chain(gyro_dps)) {
+        d.set_item(k, vec1(d.py(), v))?;
+    }
+    Ok(())
+}
+
 fn recording_dict<'py>(py: Python<'py>, rec: Recording) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("fs_hz", rec.fs_hz)?;
     d.set_item("t0_s", rec.t0_s)?;
     d.set_item("time_s", vec1(py, rec.times_s()))?;
-    let [ax, ay, az] = rec.acc_g;
-    let [gx, gy, gz] = rec.gyro_dps;
-    for (k, v) in [
-        ("acc_x_g", ax),
-        ("acc_y_g", ay),
-        ("acc_z_g", az),
-        ("gyro_x_dps", gx),
-        ("gyro_y_dps", gy),
-        ("gyro_z_dps", gz),
-    ] {
-        d.set_item(k, vec1(py, v))?;
-    }
+    put_channels(&d, rec.acc_g, rec.gyro_dps)?;
     d.set_item("saturated", rec.saturated.into_pyarray(py))?;
     Ok(d)
 }
@@ -172,19 +181,8 @@ fn preprocess<'py>(
         })
         .map_err(|e| to_py(py, e))?;
     let d = PyDict::new(py);
-    let [ax, ay, az] = out.acc_g;
-    let [gx, gy, gz] = out.gyro_dps;
-    for (k, v) in [
-        ("acc_x_g", ax),
-        ("acc_y_g", ay),
-        ("acc_z_g", az),
-        ("gyro_x_dps", gx),
-        ("gyro_y_dps", gy),
-        ("gyro_z_dps", gz),
-        ("acc_norm_g", out.acc_norm_g),
-    ] {
-        d.set_item(k, vec1(py, v))?;
-    }
+    put_channels(&d, out.acc_g, out.gyro_dps)?;
+    d.set_item("acc_norm_g", vec1(py, out.acc_norm_g))?;
     d.set_item(
         "replaced",
         out.replaced
@@ -242,6 +240,140 @@ fn simulate_cohort(
     .map_err(|e| to_py(py, e))
 }
 
+/// Rosenstein's largest Lyapunov exponent with nolds' parameters (`nolds.lyap_r`, fit="poly").
+/// Returns (exponent, ks, divergence, [slope, intercept]).
+#[pyfunction]
+#[pyo3(signature = (data, emb_dim=10, lag=None, min_tsep=None, tau=1.0, min_neighbors=20, trajectory_len=20, fit="poly", fit_offset=0))]
+#[allow(clippy::too_many_arguments)]
+fn lyap_r<'py>(
+    py: Python<'py>,
+    data: PyReadonlyArray1<'py, f64>,
+    emb_dim: usize,
+    lag: Option<usize>,
+    min_tsep: Option<usize>,
+    tau: f64,
+    min_neighbors: usize,
+    trajectory_len: usize,
+    fit: &str,
+    fit_offset: usize,
+) -> PyResult<(
+    f64,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    (f64, f64),
+)> {
+    use ldh_core::nonlinear::{Fit, RosensteinParams};
+    if fit != "poly" {
+        return Err(to_py(
+            py,
+            LdhError::param(
+                "fit",
+                fit,
+                "only 'poly' is supported (nolds' RANSAC fit is random)",
+            ),
+        ));
+    }
+    let x = data.as_slice()?.to_vec();
+    let params = RosensteinParams {
+        emb_dim,
+        lag,
+        min_tsep,
+        tau,
+        min_neighbors,
+        trajectory_len,
+        fit: Fit::Poly,
+        fit_offset,
+    };
+    let r = py
+        .detach(move || -> Result<_, LdhError> {
+            let p = params.check()?;
+            Ok(ldh_core::nonlinear::lyap_r(&x, &p)?)
+        })
+        .map_err(|e| to_py(py, e))?;
+    let ks: Vec<f64> = r.ks.iter().map(|&k| k as f64).collect();
+    Ok((
+        r.exponent,
+        vec1(py, ks),
+        vec1(py, r.divergence),
+        (r.slope, r.intercept),
+    ))
+}
+
+/// Eckmann's Lyapunov spectrum with nolds' parameters (`nolds.lyap_e`).
+#[pyfunction]
+#[pyo3(signature = (data, emb_dim=10, matrix_dim=4, min_nb=None, min_tsep=0, tau=1.0))]
+fn lyap_e<'py>(
+    py: Python<'py>,
+    data: PyReadonlyArray1<'py, f64>,
+    emb_dim: usize,
+    matrix_dim: usize,
+    min_nb: Option<usize>,
+    min_tsep: usize,
+    tau: f64,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    use ldh_core::nonlinear::EckmannParams;
+    let x = data.as_slice()?.to_vec();
+    let params = EckmannParams {
+        emb_dim,
+        matrix_dim,
+        min_nb,
+        min_tsep,
+        tau,
+    };
+    let r = py
+        .detach(move || -> Result<_, LdhError> {
+            let p = params.check()?;
+            Ok(ldh_core::nonlinear::lyap_e(&x, &p)?)
+        })
+        .map_err(|e| to_py(py, e))?;
+    Ok(vec1(py, r.exponents))
+}
+
+/// Analyse subjects as `ldh analyze` does; returns JSON text of
+/// {"strides": [...], "recordings": [...], "events": [...]} rows.
+#[pyfunction]
+#[pyo3(signature = (inputs, model="fusion", detector="gyro-landmarks", format=None, compute_sta=true, sensor_height_m=0.10))]
+fn analyze(
+    py: Python<'_>,
+    inputs: Vec<std::path::PathBuf>,
+    model: &str,
+    detector: &str,
+    format: Option<&str>,
+    compute_sta: bool,
+    sensor_height_m: f64,
+) -> PyResult<String> {
+    use ldh_core::pipeline::{analyze_subject, discover, AnalysisParams};
+    let (model, detector, fmt) = (
+        model.to_string(),
+        detector.to_string(),
+        format.map(String::from),
+    );
+    let out = py
+        .detach(move || -> Result<String, LdhError> {
+            let mut p = AnalysisParams::default();
+            p.attitude.model = model.parse()?;
+            p.events.detector = detector.parse()?;
+            p.strides.sensor_height_m = sensor_height_m;
+            p.compute_sta = compute_sta;
+            p.check()?;
+            let f = format_of(fmt.as_deref())?;
+            let read = ReadParams::default().check()?;
+            let subjects = discover(&inputs)?;
+            let results: Vec<_> = subjects
+                .iter()
+                .map(|s| analyze_subject(s, &p, f.as_ref(), &read))
+                .collect();
+            let v = serde_json::json!({
+                "strides": ldh_core::output::stride_rows(&results),
+                "recordings": ldh_core::output::recording_rows(&results),
+                "events": ldh_core::output::event_rows(&results),
+            });
+            Ok(v.to_string())
+        })
+        .map_err(|e| to_py(py, e))?;
+    Ok(out)
+}
+
 #[pymodule]
 fn _ldh(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read_recording_py, m)?)?;
@@ -249,6 +381,9 @@ fn _ldh(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(preprocess, m)?)?;
     m.add_function(wrap_pyfunction!(write_demo, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_cohort, m)?)?;
+    m.add_function(wrap_pyfunction!(lyap_r, m)?)?;
+    m.add_function(wrap_pyfunction!(lyap_e, m)?)?;
+    m.add_function(wrap_pyfunction!(analyze, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -32,6 +32,9 @@ __all__ = [
     "preprocess",
     "write_demo",
     "simulate_cohort",
+    "analyze",
+    "lyap_r",
+    "lyap_e",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -180,3 +183,106 @@ def simulate_cohort(
     """Simulate a cohort into ``out`` exactly as ``ldh simulate`` does; returns the manifest
     CSV text. The same seed gives byte-identical files."""
     return _ldh.simulate_cohort(os.fspath(out), healthy, ldh, seconds, seed, rate_hz, turn)
+
+
+def _columns(rows: Sequence[Dict[str, Any]]) -> Dict[str, Any]:
+    """Rows (dicts) to columns: numeric columns as float64 arrays with NaN for missing values,
+    the others as lists. ``pandas.DataFrame(result)`` takes it as it is."""
+    if not rows:
+        return {}
+    out: Dict[str, Any] = {}
+    for key in rows[0]:
+        vals = [r[key] for r in rows]
+        if all(v is None or (isinstance(v, (int, float)) and not isinstance(v, bool)) for v in vals):
+            out[key] = np.array([np.nan if v is None else v for v in vals], dtype=np.float64)
+        else:
+            out[key] = vals
+    return out
+
+
+def analyze(
+    inputs: Union[None, PathLike, Sequence[PathLike]] = None,
+    *,
+    model: str = "fusion",
+    detector: str = "gyro-landmarks",
+    format: Optional[str] = None,
+    compute_sta: bool = True,
+    sensor_height_m: float = 0.10,
+) -> Dict[str, Dict[str, Any]]:
+    """Analyse recordings exactly as ``ldh analyze`` does.
+
+    Parameters
+    ----------
+    inputs : path or sequence of paths, optional
+        A manifest CSV, a cohort folder, a subject folder or a subject's two files; ``None``:
+        the embedded demo cohort.
+    model : {"fusion", "acc"}, default "fusion"
+        Attitude model.
+    detector : str, default "gyro-landmarks"
+        Event detector (``gyro-landmarks``, ``gyro-zero-crossing``, ``salarian``,
+        ``pitch-peaks``).
+    format : str, optional
+        Sensor format name or TOML column map; default: detect.
+    compute_sta : bool, default True
+        Compute the Lyapunov stability STA.
+    sensor_height_m : float, default 0.10
+        Sensor height above the ankle when the manifest has none, in metres.
+
+    Returns
+    -------
+    dict
+        ``{"strides": ..., "recordings": ..., "events": ...}``, each a dict of columns
+        (float64 arrays with NaN for missing values, lists for text) that
+        ``pandas.DataFrame`` accepts as it is. A recording that failed has ``status ==
+        "error"`` and its ``error``; nothing is raised for it.
+    """
+    if inputs is None:
+        paths: list = []
+    elif isinstance(inputs, (str, os.PathLike)):
+        paths = [os.fspath(inputs)]
+    else:
+        paths = [os.fspath(p) for p in inputs]
+    raw = json.loads(_ldh.analyze(paths, model, detector, format, compute_sta, float(sensor_height_m)))
+    return {k: _columns(v) for k, v in raw.items()}
+
+
+def lyap_r(
+    data: Any,
+    emb_dim: int = 10,
+    lag: Optional[int] = None,
+    min_tsep: Optional[int] = None,
+    tau: float = 1,
+    min_neighbors: int = 20,
+    trajectory_len: int = 20,
+    fit: str = "poly",
+    debug_data: bool = False,
+    fit_offset: int = 0,
+) -> Union[float, Tuple[float, Tuple[np.ndarray, np.ndarray, np.ndarray]]]:
+    """Largest Lyapunov exponent by Rosenstein et al. (1993), equal to
+    ``nolds.lyap_r(..., fit="poly")`` to 1e-6 with the same arguments (nolds' names and
+    defaults; lag and min_tsep from nolds' rules when None). A k-d tree replaces nolds' full
+    distance matrix, so long series are fine.
+
+    Returns the exponent, or with ``debug_data=True`` ``(exponent, (ks, divergence, poly))`` as
+    nolds does.
+    """
+    le, ks, div, (slope, intercept) = _ldh.lyap_r(
+        _vec(data, "data"), int(emb_dim), lag, min_tsep, float(tau), int(min_neighbors),
+        int(trajectory_len), fit, int(fit_offset),
+    )
+    if debug_data:
+        return le, (ks, div, np.array([slope, intercept]))
+    return le
+
+
+def lyap_e(
+    data: Any,
+    emb_dim: int = 10,
+    matrix_dim: int = 4,
+    min_nb: Optional[int] = None,
+    min_tsep: int = 0,
+    tau: float = 1,
+) -> np.ndarray:
+    """Lyapunov spectrum (``matrix_dim`` exponents) by Eckmann et al. (1986), equal to
+    ``nolds.lyap_e`` with the same arguments (nolds' names and defaults)."""
+    return _ldh.lyap_e(_vec(data, "data"), int(emb_dim), int(matrix_dim), min_nb, int(min_tsep), float(tau))

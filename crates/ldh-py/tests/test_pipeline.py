@@ -1,0 +1,83 @@
+"""Python tests of the pipeline and Lyapunov functions."""
+import json
+import pathlib
+import subprocess
+
+import numpy as np
+import pytest
+
+import ldh
+
+ROOT = pathlib.Path(__file__).resolve().parents[3]
+LYAP = ROOT / "data-fixtures" / "golden" / "lyapunov"
+
+
+def _series(g):
+    return np.array(g["series"], dtype=np.float64)
+
+
+@pytest.mark.parametrize("name", ["lorenz", "logistic", "noise", "gait"])
+def test_lyap_r_equals_nolds_goldens(name):
+    g = json.loads((LYAP / f"{name}.json").read_text())
+    x = _series(g)
+    for case in g["lyap_r"]:
+        p = {k: v for k, v in case["params"].items() if k in
+             ("emb_dim", "lag", "min_tsep", "tau", "min_neighbors", "trajectory_len", "fit_offset")}
+        ours = ldh.lyap_r(x, fit="poly", **p)
+        assert ours == pytest.approx(case["lyap"], rel=1e-6), (name, p)
+
+
+@pytest.mark.parametrize("name", ["lorenz", "noise", "gait"])
+def test_lyap_e_equals_nolds_goldens(name):
+    g = json.loads((LYAP / f"{name}.json").read_text())
+    x = _series(g)
+    for case in g["lyap_e"]:
+        p = {k: v for k, v in case["params"].items() if k in ("emb_dim", "matrix_dim", "min_nb", "min_tsep", "tau")}
+        np.testing.assert_allclose(ldh.lyap_e(x, **p), case["lyap"], rtol=1e-6, atol=1e-9)
+
+
+def test_lyapunov_errors():
+    with pytest.raises(ValueError, match="short"):
+        ldh.lyap_r(np.random.default_rng(0).standard_normal(50))
+    with pytest.raises(ldh.LdhParamError, match="poly"):
+        ldh.lyap_r(np.zeros(1000), fit="RANSAC")
+    with pytest.raises(ValueError):
+        ldh.lyap_r(np.full(2000, np.nan))
+
+
+def _cli():
+    for c in ["target/debug/ldh-under-test", "target/debug/ldh", "target/release/ldh"]:
+        if (ROOT / c).exists():
+            return ROOT / c
+    return None
+
+
+def test_analyze_demo_equals_the_cli(tmp_path):
+    res = ldh.analyze()
+    rec = res["recordings"]
+    assert len(rec["subject_id"]) == 8 and set(rec["status"]) == {"ok"}
+    assert np.all((rec["stride_time_s"] > 0.9) & (rec["stride_time_s"] < 1.4))
+    assert np.all(rec["sta_per_s"] > 0)
+    assert set(res["events"]["event"]) == {"HS", "TO"}
+    cli = _cli()
+    if cli is None:
+        pytest.skip("no ldh binary built (run cargo test or cargo build first)")
+    subprocess.run([str(cli), "analyze", "--out", str(tmp_path)], check=True, capture_output=True)
+    ref = json.loads((tmp_path / "recordings.json").read_text())
+    assert [r["subject_id"] for r in ref] == rec["subject_id"]
+    for key in ["stride_time_s", "stance_ratio", "stride_length_m", "sta_per_s", "wqk_deg"]:
+        np.testing.assert_array_equal(rec[key], np.array([r[key] for r in ref], dtype=float))
+    strides = json.loads((tmp_path / "strides.json").read_text())
+    assert len(strides) == len(res["strides"]["subject_id"])
+
+
+def test_analyze_reports_bad_files_without_raising(tmp_path):
+    ldh.write_demo(tmp_path)
+    (tmp_path / "H01" / "right.csv").write_text("garbage\n")
+    res = ldh.analyze(tmp_path, compute_sta=False)
+    rec = res["recordings"]
+    i = [k for k, (s, side) in enumerate(zip(rec["subject_id"], rec["side"])) if s == "H01" and side == "right"][0]
+    assert rec["status"][i] == "error" and "H01/right.csv" in rec["error"][i]
+    assert rec["status"].count("ok") == 7
+    with pytest.raises(ldh.LdhParamError, match="fusion"):
+        ldh.analyze(tmp_path, model="kalman")

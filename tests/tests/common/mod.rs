@@ -1,0 +1,26 @@
+//! Helpers shared by the end-to-end tests.
+#![allow(dead_code)]
+
+use std::process::{Command, Output};
+
+/// Run the `ldh` command (the `ldh-under-test` binary, i.e. `ldh_cli::run`).
+pub fn ldh(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_ldh-under-test"))
+        .args(args)
+        .output()
+        .expect("runs")
+}
+
+/// stdout and stderr of a run, for messages.
+pub fn text(o: &Output) -> String {
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+/// Parse a JSON file.
+pub fn json(path: &std::path::Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
