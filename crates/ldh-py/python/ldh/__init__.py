@@ -128,6 +128,7 @@ def preprocess(
     filter_order: int = 4,
     outlier_sd: float = 3.0,
     replace_outliers: bool = True,
+    outlier_channels: str = "acc",
 ) -> Dict[str, Any]:
     """Preprocess one sensor (paper section 3.1): magnitude, 3-SD outlier replacement,
     zero-phase Butterworth low-pass on all six channels.
@@ -148,6 +149,9 @@ def preprocess(
         Outlier threshold in standard deviations of the acceleration magnitude.
     replace_outliers : bool, default True
         Replace outliers by linear interpolation before filtering.
+    outlier_channels : {"acc", "all"}, default "acc"
+        Replace acceleration-magnitude outliers on the acceleration channels only, or on all
+        six channels (the paper read literally; see docs/pipeline.md).
 
     Returns
     -------
@@ -161,7 +165,7 @@ def preprocess(
     gyro = [_vec(c, f"gyro_dps[{i}]") for i, c in enumerate(gyro_dps)]
     return _ldh.preprocess(
         acc, gyro, float(fs_hz), float(cutoff_hz), int(filter_order), float(outlier_sd),
-        bool(replace_outliers),
+        bool(replace_outliers), outlier_channels,
     )
 
 
