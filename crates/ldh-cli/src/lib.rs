@@ -46,6 +46,14 @@ enum Command {
     /// truth.json per subject) is analysed with both attitude models and the event and
     /// stride accuracy is printed as a Markdown table.
     Evaluate(EvaluateArgs),
+    /// Cohort statistics like the paper's Tables 3 and 4, with radar charts and box plots.
+    ///
+    /// Analyses INPUT (a manifest or cohort folder with groups; see `analyze`) — or reads the
+    /// per-recording table of an earlier `ldh analyze` with --results — and compares the LDH
+    /// subjects' unaffected (LDHH) and affected (LDHE) sides with healthy subjects (H) and
+    /// healthy left vs right (LR). With --compare acc the ACC-only model is analysed from the
+    /// same recordings and Table 4 (z-normalised offsets OFF0/OFF1) compares the two models.
+    Stats(StatsArgs),
     /// Simulate a cohort of healthy and LDH subjects with two shank IMUs and exact ground truth.
     ///
     /// Writes <OUT>/<subject>/left.csv, right.csv, truth.json and <OUT>/manifest.csv. The same
@@ -92,6 +100,24 @@ struct AnalyzeArgs {
     /// Skip the Lyapunov exponent (STA).
     #[arg(long)]
     no_sta: bool,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    jobs: Option<usize>,
+}
+
+#[derive(Debug, Args)]
+struct StatsArgs {
+    /// Inputs as for `analyze` (they need groups: a manifest or `ldh simulate` output).
+    inputs: Vec<PathBuf>,
+    /// Read recordings.json from an `ldh analyze` output folder instead of analysing.
+    #[arg(long, conflicts_with = "inputs")]
+    results: Option<PathBuf>,
+    /// Also analyse with this model and compare (Table 4): `acc`.
+    #[arg(long)]
+    compare: Option<String>,
+    /// Output folder.
+    #[arg(long, default_value = "ldh-stats")]
+    out: PathBuf,
     /// Worker threads (default: all cores).
     #[arg(long)]
     jobs: Option<usize>,
@@ -422,6 +448,119 @@ fn analyze(a: AnalyzeArgs) -> Result<ExitCode> {
     })
 }
 
+fn recording_rows_for(
+    inputs: &[PathBuf],
+    model: &str,
+    pool: &rayon::ThreadPool,
+) -> Result<Vec<output::RecordingRow>> {
+    let params = analysis_params(
+        None,
+        model,
+        "gyro-landmarks",
+        ldh_core::gait::DEFAULT_SENSOR_HEIGHT_M,
+        false,
+    )?;
+    let read = ReadParams::default().check()?;
+    let subjects = discover(inputs)?;
+    let results: Vec<SubjectResult> = pool.install(|| {
+        subjects
+            .par_iter()
+            .map(|s| analyze_subject(s, &params, None, &read))
+            .collect()
+    });
+    Ok(output::recording_rows(&results))
+}
+
+fn stats(a: StatsArgs) -> Result<ExitCode> {
+    use ldh_core::cohort::{
+        offsets, table3, table3_markdown, table3_rows, table4_markdown, Cohort, PARAMETERS,
+    };
+    let pool = thread_pool(a.jobs)?;
+    let mut models: Vec<Vec<output::RecordingRow>> = Vec::new();
+    match &a.results {
+        Some(dir) => {
+            let f = dir.join("recordings.json");
+            let text =
+                std::fs::read_to_string(&f).with_context(|| format!("reading {}", f.display()))?;
+            let rows: Vec<output::RecordingRow> = serde_json::from_str(&text)
+                .with_context(|| format!("{} is not an ldh recordings table", f.display()))?;
+            anyhow::ensure!(
+                a.compare.is_none(),
+                "--compare needs the recordings (INPUT), not --results"
+            );
+            models.push(rows);
+        }
+        None => {
+            models.push(recording_rows_for(&a.inputs, "fusion", &pool)?);
+            if let Some(m) = &a.compare {
+                anyhow::ensure!(
+                    m == "acc",
+                    "--compare takes 'acc' (the ACC-only model), got '{m}'"
+                );
+                models.push(recording_rows_for(&a.inputs, "acc", &pool)?);
+            }
+        }
+    }
+    let w = |name: &str, text: &str| ldh_core::io::write_atomic(a.out.join(name), text.as_bytes());
+    let mut md = String::from("# Cohort statistics (ldh stats)\n\n");
+    let mut all_rows = Vec::new();
+    let mut offs = Vec::new();
+    for rows in &models {
+        let cohort = Cohort::from_rows(rows)?;
+        let t3 = table3(&cohort);
+        md.push_str(&format!(
+            "## Table 3 — model {}\n\n{}\n",
+            cohort.model,
+            table3_markdown(&t3, &cohort)
+        ));
+        all_rows.extend(table3_rows(&cohort.model, &t3));
+        let off = offsets(&cohort);
+        let series = [
+            ("LDHH".to_string(), off.z_ldhh.clone()),
+            ("LDHE".to_string(), off.z_ldhe.clone()),
+            ("H".to_string(), off.z_h.clone()),
+        ];
+        w(
+            &format!("radar_{}.svg", cohort.model),
+            &ldh_core::plots::radar_svg(
+                &format!("Gait parameters, {} model (z vs healthy)", cohort.model),
+                &off.codes,
+                &series,
+            )?,
+        )?;
+        if cohort.model == "fusion" {
+            for p in PARAMETERS {
+                let g = cohort.groups(p.column);
+                if g.h.is_empty() {
+                    continue;
+                }
+                let svg = ldh_core::plots::boxplot_svg(
+                    &format!("{} — {}", p.code, p.name),
+                    &format!("{} ({})", p.name, p.unit),
+                    &[
+                        ("LDHH".into(), g.ldhh),
+                        ("LDHE".into(), g.ldhe),
+                        ("H".into(), g.h),
+                    ],
+                )?;
+                w(&format!("box_{}.svg", p.code), &svg)?;
+            }
+        }
+        offs.push(off);
+    }
+    md.push_str(&format!(
+        "## Table 4 — model comparison\n\n{}",
+        table4_markdown(&offs)
+    ));
+    w("table3.csv", &output::to_csv(&all_rows, &[])?)?;
+    w("table3.json", &serde_json::to_string_pretty(&all_rows)?)?;
+    w("table4.json", &serde_json::to_string_pretty(&offs)?)?;
+    w("stats.md", &md)?;
+    println!("{md}");
+    eprintln!("tables and figures in {}", a.out.display());
+    Ok(ExitCode::SUCCESS)
+}
+
 fn evaluate(a: EvaluateArgs) -> Result<ExitCode> {
     let subjects = discover(std::slice::from_ref(&a.truth))?;
     let truths: Vec<ldh_core::simulate::SubjectTruth> = subjects
@@ -492,6 +631,7 @@ where
     let r = match cli.command {
         Command::Analyze(a) => analyze(a),
         Command::Evaluate(a) => evaluate(a),
+        Command::Stats(a) => stats(a),
         Command::Simulate(a) => simulate(a),
         Command::Inspect(a) => inspect(a),
         Command::Formats { name } => formats(name),

@@ -16,6 +16,7 @@
 
 pub mod align;
 pub mod attitude;
+pub mod cohort;
 pub mod demo;
 pub mod error;
 pub mod evaluate;
@@ -25,6 +26,7 @@ pub mod io;
 pub mod nonlinear;
 pub mod output;
 pub mod pipeline;
+pub mod plots;
 pub mod preprocess;
 pub mod recording;
 pub mod simulate;

@@ -1,0 +1,147 @@
+//! `ldh stats` end to end: Table 3 and Table 4 layouts, figures, known simulated effects.
+
+mod common;
+use common::*;
+
+#[test]
+fn stats_on_a_simulated_cohort_finds_the_simulated_effects() {
+    let d = tempfile::tempdir().unwrap();
+    let c = d.path().join("cohort");
+    let o = ldh(&[
+        "simulate",
+        "--out",
+        c.to_str().unwrap(),
+        "--healthy",
+        "15",
+        "--ldh",
+        "20",
+        "--seconds",
+        "30",
+        "--seed",
+        "11",
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let out = d.path().join("stats");
+    let o = ldh(&[
+        "stats",
+        c.to_str().unwrap(),
+        "--compare",
+        "acc",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let md = std::fs::read_to_string(out.join("stats.md")).unwrap();
+    assert!(md.contains("| Feature | unit | LDHH | LDHE | H | HE (paired) | HE (indep.) | H-H | E-H | LR | ANOVA | Kruskal |"));
+    assert!(md.contains("| Model | OFF0 (LDHH) | OFF1 (LDHE) |"));
+    let rows = json(&out.join("table3.json"));
+    let row = |model: &str, code: &str| {
+        rows.as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["model"] == model && r["code"] == code)
+            .unwrap()
+            .clone()
+    };
+    let f = |r: &serde_json::Value, k: &str| r[k].as_f64().unwrap();
+    // 13 parameters for each of the two models.
+    assert_eq!(rows.as_array().unwrap().len(), 26);
+    // Longer stance on the affected side, paired test significant.
+    let stp = row("fusion", "STP");
+    assert!(f(&stp, "ldhe_mean") > f(&stp, "ldhh_mean"));
+    assert!(f(&stp, "he_paired_p") < 0.01 && f(&stp, "he_paired_p_holm") < 0.05);
+    assert!(["paired t", "wilcoxon"].contains(&stp["he_paired_test"].as_str().unwrap()));
+    // Slower than healthy.
+    let ss = row("fusion", "SS");
+    assert!(f(&ss, "ldhe_mean") < f(&ss, "h_mean") && f(&ss, "eh_p") < 0.01);
+    assert!(f(&ss, "ldhh_mean") < f(&ss, "h_mean") && f(&ss, "hh_p") < 0.01);
+    // Less knee flexion (max shank inclination) on the affected side; more circumduction.
+    let wqk = row("fusion", "WQK");
+    assert!(f(&wqk, "ldhe_mean") < f(&wqk, "ldhh_mean") && f(&wqk, "he_paired_p") < 0.01);
+    let bdk = row("fusion", "BDK");
+    assert!(f(&bdk, "ldhe_mean") > f(&bdk, "ldhh_mean") && f(&bdk, "he_paired_p") < 0.01);
+    // Healthy left vs right: no stance difference.
+    assert!(f(&stp, "lr_p") > 0.01);
+    // Holm never lowers a p-value.
+    for r in rows.as_array().unwrap() {
+        if let (Some(p), Some(h)) = (r["eh_p"].as_f64(), r["eh_p_holm"].as_f64()) {
+            assert!(h >= p);
+        }
+    }
+    let t4 = json(&out.join("table4.json"));
+    assert_eq!(t4[0]["model"], "fusion");
+    assert_eq!(t4[1]["model"], "acc");
+    assert!(t4[0]["off1"].as_f64().unwrap() > t4[0]["off0"].as_f64().unwrap());
+    for f in [
+        "radar_fusion.svg",
+        "radar_acc.svg",
+        "box_STP.svg",
+        "box_SS.svg",
+        "table3.csv",
+    ] {
+        let t = std::fs::read_to_string(out.join(f)).unwrap();
+        assert!(t.len() > 200, "{f}");
+    }
+    let b = std::fs::read_to_string(out.join("box_SS.svg")).unwrap();
+    assert!(b.contains("stride speed (m/s)") && b.contains("LDHE"));
+}
+
+#[test]
+fn stats_refuses_cohorts_it_cannot_test_and_names_what_is_missing() {
+    let d = tempfile::tempdir().unwrap();
+    // The demo has two subjects per group.
+    let o = ldh(&["stats", "--out", d.path().join("s").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        text(&o).contains("has 2 subject(s) with both legs analysed; at least 3 are needed"),
+        "{}",
+        text(&o)
+    );
+    // Without a manifest there are no groups.
+    ldh_core::demo::write_to(d.path()).unwrap();
+    std::fs::remove_file(d.path().join("manifest.csv")).unwrap();
+    let o = ldh(&[
+        "stats",
+        d.path().to_str().unwrap(),
+        "--out",
+        d.path().join("s2").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        text(&o).contains("no group (give a manifest with group and affected_side)"),
+        "{}",
+        text(&o)
+    );
+    // A subject with one leg is named.
+    let c = d.path().join("c");
+    assert!(ldh(&[
+        "simulate",
+        "--out",
+        c.to_str().unwrap(),
+        "--healthy",
+        "3",
+        "--ldh",
+        "3",
+        "--seconds",
+        "20",
+        "--seed",
+        "4"
+    ])
+    .status
+    .success());
+    std::fs::remove_file(c.join("L02/right.csv")).unwrap();
+    let o = ldh(&[
+        "stats",
+        c.to_str().unwrap(),
+        "--out",
+        d.path().join("s3").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        text(&o).contains("L02: right failed") && text(&o).contains("at least 3"),
+        "{}",
+        text(&o)
+    );
+    let o = ldh(&["stats", c.to_str().unwrap(), "--compare", "gyro"]);
+    assert_eq!(o.status.code(), Some(2));
+}
