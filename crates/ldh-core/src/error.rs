@@ -270,7 +270,8 @@ impl LdhError {
                 ErrorKind::NotFound
             }
             LdhError::Io { .. } | LdhError::Write { .. } => ErrorKind::Io,
-            LdhError::Param { .. } => ErrorKind::Param,
+            LdhError::Param { .. }
+            | LdhError::Stats(crate::stats::StatsError::InvalidArgument { .. }) => ErrorKind::Param,
             _ => ErrorKind::Data,
         }
     }

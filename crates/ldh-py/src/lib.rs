@@ -332,7 +332,8 @@ fn lyap_e<'py>(
 /// Analyse subjects as `ldh analyze` does; returns JSON text of
 /// {"strides": [...], "recordings": [...], "events": [...]} rows.
 #[pyfunction]
-#[pyo3(signature = (inputs, model="fusion", detector="gyro-landmarks", format=None, compute_sta=true, sensor_height_m=0.10))]
+#[pyo3(signature = (inputs, model="fusion", detector="gyro-landmarks", format=None, compute_sta=true, sensor_height_m=0.10, n_jobs=1))]
+#[allow(clippy::too_many_arguments)]
 fn analyze(
     py: Python<'_>,
     inputs: Vec<std::path::PathBuf>,
@@ -341,8 +342,10 @@ fn analyze(
     format: Option<&str>,
     compute_sta: bool,
     sensor_height_m: f64,
+    n_jobs: usize,
 ) -> PyResult<String> {
     use ldh_core::pipeline::{analyze_subject, discover, AnalysisParams};
+    use rayon::prelude::*;
     let (model, detector, fmt) = (
         model.to_string(),
         detector.to_string(),
@@ -359,10 +362,16 @@ fn analyze(
             let f = format_of(fmt.as_deref())?;
             let read = ReadParams::default().check()?;
             let subjects = discover(&inputs)?;
-            let results: Vec<_> = subjects
-                .iter()
-                .map(|s| analyze_subject(s, &p, f.as_ref(), &read))
-                .collect();
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(n_jobs)
+                .build()
+                .map_err(|e| LdhError::param("n_jobs", n_jobs, e.to_string()))?;
+            let results: Vec<_> = pool.install(|| {
+                subjects
+                    .par_iter()
+                    .map(|s| analyze_subject(s, &p, f.as_ref(), &read))
+                    .collect()
+            });
             let v = serde_json::json!({
                 "strides": ldh_core::output::stride_rows(&results),
                 "recordings": ldh_core::output::recording_rows(&results),
@@ -372,6 +381,140 @@ fn analyze(
         })
         .map_err(|e| to_py(py, e))?;
     Ok(out)
+}
+
+/// The scipy.stats-compatible tests: `name` is the scipy function, `samples` the sample
+/// arrays, `alternative` scipy's spelling, `equal_var` for ttest_ind. Returns (statistic, p).
+#[pyfunction]
+#[pyo3(signature = (name, samples, alternative="two-sided", equal_var=true))]
+fn stats_test(
+    py: Python<'_>,
+    name: &str,
+    samples: Vec<Vec<f64>>,
+    alternative: &str,
+    equal_var: bool,
+) -> PyResult<(f64, f64)> {
+    use ldh_core::stats;
+    let (name, alt) = (name.to_string(), alternative.to_string());
+    py.detach(move || -> Result<(f64, f64), LdhError> {
+        let alt: stats::Alternative = alt.parse()?;
+        let two = |n: usize| -> Result<(), LdhError> {
+            if samples.len() == n {
+                Ok(())
+            } else {
+                Err(LdhError::param(
+                    "samples",
+                    samples.len(),
+                    format!("{name} takes {n} sample(s)"),
+                ))
+            }
+        };
+        Ok(match name.as_str() {
+            "shapiro" => {
+                two(1)?;
+                let r = stats::shapiro(&samples[0])?;
+                (r.statistic, r.pvalue)
+            }
+            "mannwhitneyu" => {
+                two(2)?;
+                let r = stats::mannwhitneyu(&samples[0], &samples[1], alt)?;
+                (r.statistic, r.pvalue)
+            }
+            "ttest_ind" => {
+                two(2)?;
+                let r = stats::ttest_ind(&samples[0], &samples[1], equal_var, alt)?;
+                (r.statistic, r.pvalue)
+            }
+            "ttest_rel" => {
+                two(2)?;
+                let r = stats::ttest_rel(&samples[0], &samples[1], alt)?;
+                (r.statistic, r.pvalue)
+            }
+            "wilcoxon" => {
+                let r = match samples.len() {
+                    1 => stats::wilcoxon(&samples[0], alt)?,
+                    _ => {
+                        two(2)?;
+                        stats::wilcoxon_paired(&samples[0], &samples[1], alt)?
+                    }
+                };
+                (r.statistic, r.pvalue)
+            }
+            "f_oneway" | "kruskal" => {
+                let g: Vec<&[f64]> = samples.iter().map(|v| v.as_slice()).collect();
+                if name == "f_oneway" {
+                    let r = stats::f_oneway(&g)?;
+                    (r.statistic, r.pvalue)
+                } else {
+                    let r = stats::kruskal(&g)?;
+                    (r.statistic, r.pvalue)
+                }
+            }
+            "pearsonr" => {
+                two(2)?;
+                let r = stats::pearsonr(&samples[0], &samples[1], alt)?;
+                (r.statistic, r.pvalue)
+            }
+            other => return Err(LdhError::param("test", other, "unknown test")),
+        })
+    })
+    .map_err(|e| to_py(py, e))
+}
+
+/// Holm-adjusted p-values.
+#[pyfunction]
+fn holm(py: Python<'_>, pvalues: Vec<f64>) -> PyResult<Vec<f64>> {
+    ldh_core::stats::holm(&pvalues).map_err(|e| to_py(py, e.into()))
+}
+
+/// Analyse one recording given as arrays; returns JSON text with the alignment, events,
+/// strides, parameters and the attitude.
+#[pyfunction]
+#[pyo3(signature = (acc_g, gyro_dps, fs_hz, side="left", model="fusion", detector="gyro-landmarks", sensor_height_m=0.10, compute_sta=true))]
+#[allow(clippy::too_many_arguments)]
+fn analyze_recording(
+    py: Python<'_>,
+    acc_g: [PyReadonlyArray1<'_, f64>; 3],
+    gyro_dps: [PyReadonlyArray1<'_, f64>; 3],
+    fs_hz: f64,
+    side: &str,
+    model: &str,
+    detector: &str,
+    sensor_height_m: f64,
+    compute_sta: bool,
+) -> PyResult<String> {
+    let acc: [Vec<f64>; 3] = [
+        acc_g[0].as_slice()?.to_vec(),
+        acc_g[1].as_slice()?.to_vec(),
+        acc_g[2].as_slice()?.to_vec(),
+    ];
+    let gyro: [Vec<f64>; 3] = [
+        gyro_dps[0].as_slice()?.to_vec(),
+        gyro_dps[1].as_slice()?.to_vec(),
+        gyro_dps[2].as_slice()?.to_vec(),
+    ];
+    let (side, model, detector) = (side.to_string(), model.to_string(), detector.to_string());
+    py.detach(move || -> Result<String, LdhError> {
+        let side: ldh_core::Side = side.parse()?;
+        let mut p = ldh_core::pipeline::AnalysisParams::default();
+        p.attitude.model = model.parse()?;
+        p.events.detector = detector.parse()?;
+        p.compute_sta = compute_sta;
+        p.check()?;
+        let rec = Recording::new(fs_hz, acc, gyro, vec![])?.with_side(side);
+        let (leg, _) = ldh_core::pipeline::analyze_leg(&rec, side, &p, Some(sensor_height_m))?;
+        let att = leg.attitude.as_ref().expect("analyze_leg keeps the attitude");
+        Ok(serde_json::json!({
+            "alignment": leg.alignment,
+            "events": leg.events,
+            "strides": leg.strides,
+            "parameters": leg.parameters,
+            "attitude": {"pitch_deg": att.pitch_deg, "roll_deg": att.roll_deg, "yaw_deg": att.yaw_deg},
+            "outliers_replaced": leg.outliers_replaced,
+        })
+        .to_string())
+    })
+    .map_err(|e| to_py(py, e))
 }
 
 #[pymodule]
@@ -384,6 +527,9 @@ fn _ldh(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(lyap_r, m)?)?;
     m.add_function(wrap_pyfunction!(lyap_e, m)?)?;
     m.add_function(wrap_pyfunction!(analyze, m)?)?;
+    m.add_function(wrap_pyfunction!(stats_test, m)?)?;
+    m.add_function(wrap_pyfunction!(holm, m)?)?;
+    m.add_function(wrap_pyfunction!(analyze_recording, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

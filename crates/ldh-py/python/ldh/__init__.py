@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Dict, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -33,8 +33,20 @@ __all__ = [
     "write_demo",
     "simulate_cohort",
     "analyze",
+    "analyze_many",
+    "analyze_recording",
     "lyap_r",
     "lyap_e",
+    "shapiro",
+    "mannwhitneyu",
+    "ttest_ind",
+    "ttest_rel",
+    "wilcoxon",
+    "f_oneway",
+    "kruskal",
+    "pearsonr",
+    "holm",
+    "TestResult",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -212,6 +224,7 @@ def analyze(
     format: Optional[str] = None,
     compute_sta: bool = True,
     sensor_height_m: float = 0.10,
+    n_jobs: Optional[int] = 1,
 ) -> Dict[str, Dict[str, Any]]:
     """Analyse recordings exactly as ``ldh analyze`` does.
 
@@ -231,6 +244,9 @@ def analyze(
         Compute the Lyapunov stability STA.
     sensor_height_m : float, default 0.10
         Sensor height above the ankle when the manifest has none, in metres.
+    n_jobs : int or None, default 1
+        Rust threads for the subjects (the GIL is released); ``None`` or ``-1``: all cores.
+        Results are identical whatever the number.
 
     Returns
     -------
@@ -246,8 +262,75 @@ def analyze(
         paths = [os.fspath(inputs)]
     else:
         paths = [os.fspath(p) for p in inputs]
-    raw = json.loads(_ldh.analyze(paths, model, detector, format, compute_sta, float(sensor_height_m)))
+    jobs = 0 if n_jobs in (None, -1) else int(n_jobs)
+    if jobs < 0:
+        raise LdhParamError(f"n_jobs must be a positive number, -1 or None, got {n_jobs}")
+    raw = json.loads(
+        _ldh.analyze(paths, model, detector, format, compute_sta, float(sensor_height_m), jobs)
+    )
     return {k: _columns(v) for k, v in raw.items()}
+
+
+def analyze_many(paths: Sequence[PathLike], n_jobs: Optional[int] = None, **kwargs: Any) -> Dict[str, Dict[str, Any]]:
+    """Analyse many inputs (manifests, cohort or subject folders, pairs of files) in parallel
+    on Rust threads; the same as :func:`analyze` with ``n_jobs`` defaulting to all cores.
+
+    The function is pure (files in, columns out) and keeps no state, so it runs unchanged in
+    Dask or Ray workers: ``client.map(lambda d: ldh.analyze(d, n_jobs=1), subject_dirs)``.
+    """
+    return analyze(list(paths), n_jobs=n_jobs, **kwargs)
+
+
+def analyze_recording(
+    acc_g: Sequence[Any],
+    gyro_dps: Sequence[Any],
+    fs_hz: float,
+    *,
+    side: str = "left",
+    model: str = "fusion",
+    detector: str = "gyro-landmarks",
+    sensor_height_m: float = 0.10,
+    compute_sta: bool = True,
+) -> Dict[str, Any]:
+    """Run the per-recording pipeline on arrays: preprocessing, alignment, attitude, events,
+    strides and the per-side parameters (without the other leg: no step time).
+
+    Parameters
+    ----------
+    acc_g, gyro_dps : sequence of three array_like
+        Acceleration in g and angular velocity in deg/s, sensor axes x, y, z.
+    fs_hz : float
+        Sampling rate in Hz.
+    side : {"left", "right"}
+        The leg.
+    model : {"fusion", "acc"}
+        Attitude model.
+    detector : str
+        Event detector.
+    sensor_height_m : float
+        Sensor height above the ankle, m.
+    compute_sta : bool
+        Compute the Lyapunov stability STA.
+
+    Returns
+    -------
+    dict
+        ``alignment`` (dict), ``events`` (``hs_s``, ``to_s``, ``midswing_s`` arrays),
+        ``strides`` (columns), ``parameters`` (dict), ``attitude`` (``pitch_deg``,
+        ``roll_deg``, ``yaw_deg`` arrays), ``outliers_replaced``.
+    """
+    acc = [_vec(c, f"acc_g[{i}]") for i, c in enumerate(acc_g)]
+    gyro = [_vec(c, f"gyro_dps[{i}]") for i, c in enumerate(gyro_dps)]
+    if len(acc) != 3 or len(gyro) != 3:
+        raise LdhParamError("acc_g and gyro_dps must each hold three channels (x, y, z)")
+    raw = json.loads(
+        _ldh.analyze_recording(acc, gyro, float(fs_hz), side, model, detector, float(sensor_height_m), bool(compute_sta))
+    )
+    raw["strides"] = _columns(raw["strides"])
+    raw["events"] = {k: np.asarray(v, dtype=np.float64) if isinstance(v, list) else v for k, v in raw["events"].items()}
+    raw["attitude"] = {k: np.asarray(v, dtype=np.float64) for k, v in raw["attitude"].items()}
+    raw["parameters"] = {k: (np.nan if v is None else v) for k, v in raw["parameters"].items()}
+    return raw
 
 
 def lyap_r(
@@ -290,3 +373,62 @@ def lyap_e(
     """Lyapunov spectrum (``matrix_dim`` exponents) by Eckmann et al. (1986), equal to
     ``nolds.lyap_e`` with the same arguments (nolds' names and defaults)."""
     return _ldh.lyap_e(_vec(data, "data"), int(emb_dim), int(matrix_dim), min_nb, int(min_tsep), float(tau))
+
+
+class TestResult(NamedTuple):
+    """(statistic, pvalue), like scipy.stats' result objects."""
+
+    statistic: float
+    pvalue: float
+
+
+def _test(name: str, samples: Sequence[Any], alternative: str = "two-sided", equal_var: bool = True) -> TestResult:
+    arrs = [_vec(x, f"sample {i}").tolist() for i, x in enumerate(samples)]
+    return TestResult(*_ldh.stats_test(name, arrs, alternative, bool(equal_var)))
+
+
+def shapiro(x: Any) -> TestResult:
+    """Shapiro-Wilk normality test; equals ``scipy.stats.shapiro`` to 1e-6."""
+    return _test("shapiro", [x])
+
+
+def mannwhitneyu(x: Any, y: Any, alternative: str = "two-sided") -> TestResult:
+    """Mann-Whitney U (statistic: U of ``x``); equals ``scipy.stats.mannwhitneyu`` with its
+    defaults (``use_continuity=True``, ``method="auto"``)."""
+    return _test("mannwhitneyu", [x, y], alternative)
+
+
+def ttest_ind(a: Any, b: Any, equal_var: bool = True, alternative: str = "two-sided") -> TestResult:
+    """Student (``equal_var=True``) or Welch t-test; equals ``scipy.stats.ttest_ind``."""
+    return _test("ttest_ind", [a, b], alternative, equal_var)
+
+
+def ttest_rel(a: Any, b: Any, alternative: str = "two-sided") -> TestResult:
+    """Paired t-test; equals ``scipy.stats.ttest_rel``."""
+    return _test("ttest_rel", [a, b], alternative)
+
+
+def wilcoxon(x: Any, y: Any = None, alternative: str = "two-sided") -> TestResult:
+    """Wilcoxon signed-rank test of ``x`` (differences) or of ``x - y``; equals
+    ``scipy.stats.wilcoxon`` with its defaults."""
+    return _test("wilcoxon", [x] if y is None else [x, y], alternative)
+
+
+def f_oneway(*groups: Any) -> TestResult:
+    """One-way ANOVA; equals ``scipy.stats.f_oneway``."""
+    return _test("f_oneway", groups)
+
+
+def kruskal(*groups: Any) -> TestResult:
+    """Kruskal-Wallis H test with tie correction; equals ``scipy.stats.kruskal``."""
+    return _test("kruskal", groups)
+
+
+def pearsonr(x: Any, y: Any, alternative: str = "two-sided") -> TestResult:
+    """Pearson correlation and its exact p-value; equals ``scipy.stats.pearsonr``."""
+    return _test("pearsonr", [x, y], alternative)
+
+
+def holm(pvalues: Sequence[float]) -> np.ndarray:
+    """Holm-adjusted p-values (as ``statsmodels.stats.multitest.multipletests(method="holm")``)."""
+    return np.asarray(_ldh.holm([float(p) for p in pvalues]), dtype=np.float64)

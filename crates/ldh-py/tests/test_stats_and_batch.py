@@ -1,0 +1,94 @@
+"""Statistics vs scipy.stats (golden file and live scipy), array-level analysis, batch and Dask."""
+import json
+import pathlib
+
+import numpy as np
+import pytest
+from scipy import stats as ss
+
+import ldh
+
+ROOT = pathlib.Path(__file__).resolve().parents[3]
+
+
+def _ok(ours, ref):
+    assert ours.statistic == pytest.approx(ref.statistic, rel=1e-6, abs=1e-12)
+    assert ours.pvalue == pytest.approx(ref.pvalue, rel=1e-6, abs=1e-12)
+
+
+def test_tests_equal_scipy_on_random_and_tied_data():
+    rng = np.random.default_rng(3)
+    for n in [3, 8, 25, 60]:
+        x, y, z = rng.normal(0, 1, n), rng.normal(0.4, 1.2, n), rng.normal(-0.2, 0.8, n + 3)
+        xt = np.round(x * 2) / 2  # ties
+        _ok(ldh.shapiro(x), ss.shapiro(x))
+        for alt in ["two-sided", "less", "greater"]:
+            _ok(ldh.mannwhitneyu(x, z, alternative=alt), ss.mannwhitneyu(x, z, alternative=alt))
+            _ok(ldh.mannwhitneyu(xt, np.round(z * 2) / 2, alternative=alt), ss.mannwhitneyu(xt, np.round(z * 2) / 2, alternative=alt))
+            _ok(ldh.ttest_ind(x, z, alternative=alt), ss.ttest_ind(x, z, alternative=alt))
+            _ok(ldh.ttest_ind(x, z, equal_var=False, alternative=alt), ss.ttest_ind(x, z, equal_var=False, alternative=alt))
+            _ok(ldh.ttest_rel(x, y, alternative=alt), ss.ttest_rel(x, y, alternative=alt))
+            _ok(ldh.wilcoxon(x, y, alternative=alt), ss.wilcoxon(x, y, alternative=alt))
+            _ok(ldh.pearsonr(x, y, alternative=alt), ss.pearsonr(x, y, alternative=alt))
+        _ok(ldh.f_oneway(x, y, z), ss.f_oneway(x, y, z))
+        _ok(ldh.kruskal(xt, y, z), ss.kruskal(xt, y, z))
+    r = ldh.shapiro([1.0, 2.0, 4.0, 7.0])
+    assert r == (r.statistic, r.pvalue) and isinstance(r, ldh.TestResult)
+
+
+def test_holm_and_undefined_tests():
+    np.testing.assert_allclose(ldh.holm([0.01, 0.04, 0.03]), [0.03, 0.06, 0.06])
+    with pytest.raises(ValueError, match="constant"):
+        ldh.ttest_ind([1.0, 1.0, 1.0], [1.0, 1.0, 1.0])
+    with pytest.raises(ValueError, match="at least 3"):
+        ldh.shapiro([1.0, 2.0])
+    with pytest.raises(ldh.LdhParamError, match="alternative"):
+        ldh.ttest_rel([1.0, 2.0, 3.0], [1.0, 2.5, 3.5], alternative="bigger")
+
+
+def test_analyze_recording_from_arrays(tmp_path):
+    ldh.write_demo(tmp_path)
+    rec, _ = ldh.read_recording(tmp_path / "L01" / "right.csv")
+    acc = [rec["acc_x_g"], rec["acc_y_g"], rec["acc_z_g"]]
+    gyro = [rec["gyro_x_dps"], rec["gyro_y_dps"], rec["gyro_z_dps"]]
+    out = ldh.analyze_recording(acc, gyro, rec["fs_hz"], side="right")
+    assert len(out["attitude"]["pitch_deg"]) == len(rec["time_s"])
+    assert out["alignment"]["mirrored"] is True
+    assert 0.55 < out["parameters"]["stance_ratio"] < 0.7
+    assert len(out["events"]["hs_s"]) > 10
+    assert np.isnan(out["parameters"]["step_time_s"])  # one leg: no step time
+    acc_only = ldh.analyze_recording(acc, gyro, rec["fs_hz"], side="right", model="acc", compute_sta=False)
+    assert acc_only["parameters"]["stride_length_m"] < 0.5 * out["parameters"]["stride_length_m"]
+    with pytest.raises(ldh.LdhParamError, match="side"):
+        ldh.analyze_recording(acc, gyro, rec["fs_hz"], side="middle")
+    with pytest.raises(ValueError, match="non-finite"):
+        bad = [a.copy() for a in acc]
+        bad[0][10] = np.nan
+        ldh.analyze_recording(bad, gyro, rec["fs_hz"])
+
+
+def test_analyze_many_is_identical_whatever_n_jobs(tmp_path):
+    ldh.write_demo(tmp_path)
+    dirs = [tmp_path / s for s in ["H01", "H02", "L01", "L02"]]
+    one = ldh.analyze_many(dirs, n_jobs=1, compute_sta=False)
+    two = ldh.analyze_many(dirs, n_jobs=2, compute_sta=False)
+    assert one["recordings"]["subject_id"] == two["recordings"]["subject_id"]
+    np.testing.assert_array_equal(one["strides"]["stride_length_m"], two["strides"]["stride_length_m"])
+    with pytest.raises(ldh.LdhParamError, match="n_jobs"):
+        ldh.analyze(tmp_path, n_jobs=-3)
+
+
+def test_dask_workers_give_the_cli_results(tmp_path):
+    distributed = pytest.importorskip("dask.distributed")
+    ldh.write_demo(tmp_path)
+    subjects = ["H01", "H02", "L01", "L02"]
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+        futures = client.map(lambda s: ldh.analyze(str(tmp_path / s), n_jobs=1), subjects)
+        parts = client.gather(futures)
+    # The same inputs analysed in this process (ldh.analyze equals the CLI: test_pipeline.py).
+    # Subject folders carry no manifest, so the default sensor height applies in both.
+    local = ldh.analyze([tmp_path / s for s in subjects])
+    for s, part in zip(subjects, parts):
+        idx = [i for i, x in enumerate(local["recordings"]["subject_id"]) if x == s]
+        for key in ["stride_time_s", "stance_ratio", "stride_length_m", "sta_per_s"]:
+            np.testing.assert_array_equal(part["recordings"][key], local["recordings"][key][idx])
