@@ -165,6 +165,10 @@ struct SimulateArgs {
     /// Noise-free sensors without bias, quantisation or misalignment.
     #[arg(long)]
     ideal: bool,
+    /// Lowest LDH severity (0–1): each LDH subject's effects are scaled by a severity drawn in
+    /// [this, 1]; 1 (default) makes every LDH subject fully affected.
+    #[arg(long, default_value_t = 1.0)]
+    ldh_severity_min: f64,
     /// Output format: a built-in format name or a TOML file.
     #[arg(long, default_value = "ldh")]
     format: String,
@@ -234,6 +238,7 @@ fn simulate(a: SimulateArgs) -> Result<ExitCode> {
         fs_hz: a.rate_hz,
         seed: a.seed,
         turn: !a.no_turn,
+        ldh_severity_min: a.ldh_severity_min,
         sensor: if a.ideal {
             SensorModel::ideal()
         } else {

@@ -23,6 +23,7 @@ pub mod evaluate;
 pub mod events;
 pub mod gait;
 pub mod io;
+pub mod ml;
 pub mod nonlinear;
 pub mod output;
 pub mod pipeline;

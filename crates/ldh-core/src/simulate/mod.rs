@@ -371,6 +371,30 @@ impl SubjectParams {
         p
     }
 
+    /// This (LDH) subject's gait moved towards `healthy`: every gait parameter becomes
+    /// healthy + severity · (self − healthy). Group, affected side and sensor placement stay.
+    pub fn blend_towards(&self, healthy: &SubjectParams, severity: f64) -> SubjectParams {
+        let b = |l: f64, h: f64| h + severity * (l - h);
+        let mut p = self.clone();
+        p.stride_time_s = b(self.stride_time_s, healthy.stride_time_s);
+        p.stride_length_m = b(self.stride_length_m, healthy.stride_length_m);
+        p.stride_time_cv = b(self.stride_time_cv, healthy.stride_time_cv);
+        p.stride_length_cv = b(self.stride_length_cv, healthy.stride_length_cv);
+        p.stance_ratio_sd = b(self.stance_ratio_sd, healthy.stance_ratio_sd);
+        p.step_timing_asymmetry = b(self.step_timing_asymmetry, healthy.step_timing_asymmetry);
+        p.step_length_asymmetry = b(self.step_length_asymmetry, healthy.step_length_asymmetry);
+        for side in [Side::Left, Side::Right] {
+            let (l, h) = (self.leg(side).clone(), healthy.leg(side).clone());
+            let t = p.leg_mut(side);
+            t.stance_ratio = b(l.stance_ratio, h.stance_ratio);
+            t.knee_reduction = b(l.knee_reduction, h.knee_reduction);
+            t.hip_scale = b(l.hip_scale, h.hip_scale);
+            t.circumduction_m = b(l.circumduction_m, h.circumduction_m);
+            t.roll_swing_deg = b(l.roll_swing_deg, h.roll_swing_deg);
+        }
+        p
+    }
+
     /// Check the parameters are physically sensible.
     pub fn validate(&self) -> Result<()> {
         let range = |name: &'static str, v: f64, lo: f64, hi: f64| {
@@ -454,6 +478,10 @@ pub struct CohortParams {
     pub seed: u64,
     /// Walk there and back with a turn. Default true.
     pub turn: bool,
+    /// Lowest LDH severity: each LDH subject's severity is drawn uniformly in [this, 1] and
+    /// scales every LDH effect from a healthy gait (0) to the full LDH gait (1). Default 1 (all
+    /// subjects fully affected; nothing extra is drawn, so seeds keep their output).
+    pub ldh_severity_min: f64,
     /// Sensor model.
     pub sensor: SensorModel,
 }
@@ -467,6 +495,7 @@ impl Default for CohortParams {
             fs_hz: 100.0,
             seed: 1,
             turn: true,
+            ldh_severity_min: 1.0,
             sensor: SensorModel::default(),
         }
     }
@@ -498,6 +527,13 @@ impl CohortParams {
                 "healthy + ldh",
                 0,
                 "at least one subject is needed",
+            ));
+        }
+        if !(0.0..=1.0).contains(&self.ldh_severity_min) {
+            return Err(LdhError::param(
+                "ldh_severity_min",
+                self.ldh_severity_min,
+                "must lie in [0, 1]",
             ));
         }
         self.sensor.validate()?;
@@ -538,6 +574,18 @@ impl CohortParams {
             self.duration_s,
             &mut rng,
         );
+        if group == Group::Ldh && self.ldh_severity_min < 1.0 {
+            use rand::Rng;
+            let severity = rng.gen_range(self.ldh_severity_min..=1.0);
+            let h = SubjectParams::draw(
+                self.subject_id(i),
+                Group::Healthy,
+                self.fs_hz,
+                self.duration_s,
+                &mut rng,
+            );
+            p = p.blend_towards(&h, severity);
+        }
         p.turn = self.turn;
         simulate_subject(&p, &self.sensor, &mut rng)
     }

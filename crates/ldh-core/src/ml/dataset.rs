@@ -1,0 +1,390 @@
+//! Classification datasets from the per-recording table, min–max scaling and folds.
+
+use ndarray::{Array2, Axis};
+use rand::seq::SliceRandom;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use serde::{Deserialize, Serialize};
+
+use crate::cohort::{value, Cohort, PARAMETERS};
+use crate::error::{LdhError, Result};
+use crate::output::RecordingRow;
+
+/// Classification task.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Task {
+    /// LDHH (0) / LDHE (1) / H (2).
+    ThreeClass,
+    /// H (0) / LDHE (1).
+    Binary,
+}
+
+impl std::str::FromStr for Task {
+    type Err = LdhError;
+    fn from_str(s: &str) -> Result<Self> {
+        match s {
+            "three-class" | "3" => Ok(Task::ThreeClass),
+            "binary" | "2" => Ok(Task::Binary),
+            o => Err(LdhError::param(
+                "task",
+                o,
+                "expected 'three-class' or 'binary'",
+            )),
+        }
+    }
+}
+
+impl Task {
+    /// Class names in label order.
+    pub fn class_names(self) -> Vec<String> {
+        match self {
+            Task::ThreeClass => vec!["LDHH".into(), "LDHE".into(), "H".into()],
+            Task::Binary => vec!["H".into(), "LDHE".into()],
+        }
+    }
+    /// `three-class` or `binary`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Task::ThreeClass => "three-class",
+            Task::Binary => "binary",
+        }
+    }
+}
+
+/// A labelled feature table.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Dataset {
+    /// Task.
+    pub task: Task,
+    /// Feature (column) names, with units in the names.
+    pub feature_names: Vec<String>,
+    /// Class names in label order.
+    pub class_names: Vec<String>,
+    /// Rows × features.
+    pub x: Array2<f64>,
+    /// Labels.
+    pub y: Vec<usize>,
+    /// Subject id of every row (the grouping for subject-grouped folds).
+    pub groups: Vec<String>,
+    /// A readable id per row (`L03/affected`…).
+    pub row_ids: Vec<String>,
+    /// Rows dropped (missing values), with the reason.
+    pub dropped: Vec<String>,
+}
+
+/// The default features: the 13 parameters of Table 3 by their columns.
+pub fn default_features() -> Vec<String> {
+    PARAMETERS.iter().map(|p| p.column.to_string()).collect()
+}
+
+impl Dataset {
+    /// Build from a per-recording table (one model). Rows with a missing feature are dropped and
+    /// listed; groups with fewer than 3 complete subjects are refused (see [`Cohort`]).
+    pub fn from_recordings(
+        rows: &[RecordingRow],
+        task: Task,
+        features: &[String],
+    ) -> Result<Dataset> {
+        for f in features {
+            if !PARAMETERS.iter().any(|p| p.column == f) {
+                return Err(LdhError::param(
+                    "features",
+                    f,
+                    format!("unknown feature; known: {}", default_features().join(", ")),
+                ));
+            }
+        }
+        let cohort = Cohort::from_rows(rows)?;
+        let mut x: Vec<Vec<f64>> = Vec::new();
+        let (mut y, mut groups, mut ids, mut dropped) = (vec![], vec![], vec![], vec![]);
+        let mut push = |vals: Option<Vec<f64>>, label: usize, subject: &str, what: &str| match vals
+        {
+            Some(v) => {
+                x.push(v);
+                y.push(label);
+                groups.push(subject.to_string());
+                ids.push(format!("{subject}/{what}"));
+            }
+            None => dropped.push(format!("{subject}/{what}: a feature is missing")),
+        };
+        let get = |r: &RecordingRow| -> Option<Vec<f64>> {
+            features.iter().map(|f| value(r, f)).collect()
+        };
+        for s in &cohort.ldh {
+            if task == Task::ThreeClass {
+                push(get(&s.a), 0, &s.subject_id, "unaffected");
+            }
+            push(
+                get(&s.b),
+                if task == Task::ThreeClass { 1 } else { 1 },
+                &s.subject_id,
+                "affected",
+            );
+        }
+        for s in &cohort.healthy {
+            let mean = match (get(&s.a), get(&s.b)) {
+                (Some(a), Some(b)) => Some(a.iter().zip(&b).map(|(p, q)| (p + q) / 2.0).collect()),
+                _ => None,
+            };
+            push(
+                mean,
+                if task == Task::ThreeClass { 2 } else { 0 },
+                &s.subject_id,
+                "healthy",
+            );
+        }
+        let n = x.len();
+        let p = features.len();
+        let flat: Vec<f64> = x.into_iter().flatten().collect();
+        let x = Array2::from_shape_vec((n, p), flat)
+            .map_err(|e| LdhError::signal("dataset", e.to_string()))?;
+        let ds = Dataset {
+            task,
+            feature_names: features.to_vec(),
+            class_names: task.class_names(),
+            x,
+            y,
+            groups,
+            row_ids: ids,
+            dropped,
+        };
+        ds.validate()?;
+        Ok(ds)
+    }
+
+    /// Refuse datasets a classifier cannot learn from, saying why.
+    pub fn validate(&self) -> Result<()> {
+        let k = self.class_names.len();
+        let counts = self.class_counts();
+        if counts.iter().filter(|&&c| c > 0).count() < 2 {
+            return Err(LdhError::signal(
+                "dataset",
+                format!("only one class present ({:?} rows per class {:?}); a classifier needs at least two", counts, self.class_names),
+            ));
+        }
+        if counts.len() != k {
+            return Err(LdhError::signal("dataset", "labels outside the class list"));
+        }
+        if let Some((i, j)) = self
+            .x
+            .indexed_iter()
+            .find(|(_, v)| !v.is_finite())
+            .map(|(ij, _)| ij)
+        {
+            return Err(LdhError::signal(
+                "dataset",
+                format!(
+                    "non-finite value in row {} feature {}",
+                    self.row_ids[i], self.feature_names[j]
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Rows per class.
+    pub fn class_counts(&self) -> Vec<usize> {
+        let mut c = vec![0; self.class_names.len()];
+        for &l in &self.y {
+            if l < c.len() {
+                c[l] += 1;
+            }
+        }
+        c
+    }
+
+    /// Number of rows.
+    pub fn len(&self) -> usize {
+        self.y.len()
+    }
+
+    /// No rows.
+    pub fn is_empty(&self) -> bool {
+        self.y.is_empty()
+    }
+
+    /// The rows `idx` (features, labels).
+    pub fn take(&self, idx: &[usize]) -> (Array2<f64>, Vec<usize>) {
+        (
+            self.x.select(Axis(0), idx),
+            idx.iter().map(|&i| self.y[i]).collect(),
+        )
+    }
+
+    /// Read the CSV written by [`Dataset::to_csv`].
+    pub fn from_csv(text: &str, task: Task, origin: &str) -> Result<Dataset> {
+        let mut lines = text.lines();
+        let header: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
+        if header.len() < 5 || header[..4] != ["row_id", "subject_id", "label", "class"] {
+            return Err(LdhError::Format {
+                name: origin.into(),
+                reason: "expected columns row_id,subject_id,label,class,<features>".into(),
+            });
+        }
+        let feature_names: Vec<String> = header[4..].iter().map(|s| s.to_string()).collect();
+        let (mut xs, mut y, mut groups, mut ids) = (vec![], vec![], vec![], vec![]);
+        for (i, line) in lines.enumerate() {
+            let f: Vec<&str> = line.split(',').collect();
+            let bad = |what: &str| LdhError::Format {
+                name: origin.into(),
+                reason: format!("line {}: {what}", i + 2),
+            };
+            if f.len() != header.len() {
+                return Err(bad("wrong number of fields"));
+            }
+            ids.push(f[0].to_string());
+            groups.push(f[1].to_string());
+            y.push(
+                f[2].parse::<usize>()
+                    .map_err(|_| bad("label is not a number"))?,
+            );
+            for v in &f[4..] {
+                xs.push(
+                    v.parse::<f64>()
+                        .map_err(|_| bad("feature is not a number"))?,
+                );
+            }
+        }
+        let n = y.len();
+        let x = Array2::from_shape_vec((n, feature_names.len()), xs)
+            .map_err(|e| LdhError::signal("dataset", e.to_string()))?;
+        let ds = Dataset {
+            task,
+            feature_names,
+            class_names: task.class_names(),
+            x,
+            y,
+            groups,
+            row_ids: ids,
+            dropped: vec![],
+        };
+        ds.validate()?;
+        Ok(ds)
+    }
+
+    /// As CSV: `row_id, subject_id, label, class, <features…>` (17 significant digits).
+    pub fn to_csv(&self) -> String {
+        let mut s = format!(
+            "row_id,subject_id,label,class,{}\n",
+            self.feature_names.join(",")
+        );
+        for i in 0..self.len() {
+            s.push_str(&format!(
+                "{},{},{},{}",
+                self.row_ids[i], self.groups[i], self.y[i], self.class_names[self.y[i]]
+            ));
+            for v in self.x.row(i) {
+                s.push_str(&format!(",{v:e}"));
+            }
+            s.push('\n');
+        }
+        s
+    }
+}
+
+/// Min–max scaling to [0, 1] per feature (constant features map to 0), fitted on training rows.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MinMax {
+    /// Minimum per feature.
+    pub min: Vec<f64>,
+    /// Range per feature (1 for a constant feature).
+    pub range: Vec<f64>,
+}
+
+impl MinMax {
+    /// Fit on rows.
+    pub fn fit(x: &Array2<f64>) -> MinMax {
+        let (mut min, mut range) = (vec![], vec![]);
+        for col in x.columns() {
+            let lo = col.iter().cloned().fold(f64::INFINITY, f64::min);
+            let hi = col.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+            min.push(lo);
+            range.push(if hi > lo { hi - lo } else { 1.0 });
+        }
+        MinMax { min, range }
+    }
+    /// Apply (values outside the training range map outside [0, 1], as scikit-learn does).
+    pub fn transform(&self, x: &Array2<f64>) -> Array2<f64> {
+        let mut out = x.clone();
+        for (j, mut col) in out.columns_mut().into_iter().enumerate() {
+            col.mapv_inplace(|v| (v - self.min[j]) / self.range[j]);
+        }
+        out
+    }
+}
+
+/// Fold of every row for stratified k-fold: within each class, rows are shuffled by `seed` and
+/// dealt to folds in turn, so every fold holds each class in proportion.
+pub fn stratified_folds(y: &[usize], k: usize, seed: u64) -> Result<Vec<usize>> {
+    check_k(y.len(), k, "rows")?;
+    let classes = y.iter().max().map_or(0, |m| m + 1);
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut fold = vec![0usize; y.len()];
+    let mut next = 0usize;
+    for c in 0..classes {
+        let mut idx: Vec<usize> = (0..y.len()).filter(|&i| y[i] == c).collect();
+        idx.shuffle(&mut rng);
+        for i in idx {
+            fold[i] = next % k;
+            next += 1;
+        }
+    }
+    Ok(fold)
+}
+
+/// Fold of every row for subject-grouped k-fold: subjects (groups) are shuffled by `seed`, then,
+/// largest first, each goes to the fold with the fewest rows so far. All rows of a subject share a
+/// fold.
+pub fn grouped_folds(groups: &[String], k: usize, seed: u64) -> Result<Vec<usize>> {
+    let mut ids: Vec<&String> = groups.iter().collect();
+    ids.sort();
+    ids.dedup();
+    check_k(ids.len(), k, "subjects")?;
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    ids.shuffle(&mut rng);
+    let size = |g: &String| groups.iter().filter(|x| *x == g).count();
+    ids.sort_by_key(|g| std::cmp::Reverse(size(g)));
+    let mut load = vec![0usize; k];
+    let mut of_group = std::collections::HashMap::new();
+    for g in ids {
+        let f = (0..k).min_by_key(|&f| (load[f], f)).expect("k ≥ 2");
+        load[f] += size(g);
+        of_group.insert(g.clone(), f);
+    }
+    Ok(groups.iter().map(|g| of_group[g]).collect())
+}
+
+fn check_k(n: usize, k: usize, what: &str) -> Result<()> {
+    if k < 2 {
+        return Err(LdhError::param("k", k, "at least 2 folds"));
+    }
+    if n < k {
+        return Err(LdhError::param(
+            "k",
+            k,
+            format!("there are fewer {what} ({n}) than folds ({k}): use k ≤ {n}"),
+        ));
+    }
+    Ok(())
+}
+
+/// Pearson r of every feature with the label (ordinal codes; Table 5). NaN for a constant feature.
+pub fn pearson_with_label(x: &Array2<f64>, y: &[usize]) -> Vec<f64> {
+    let yf: Vec<f64> = y.iter().map(|&v| v as f64).collect();
+    x.columns()
+        .into_iter()
+        .map(|c| {
+            crate::stats::pearsonr(
+                c.as_slice()
+                    .map(|s| s.to_vec())
+                    .unwrap_or_else(|| c.to_vec())
+                    .as_slice(),
+                &yf,
+                crate::stats::Alternative::TwoSided,
+            )
+            .map(|r| r.statistic)
+            .unwrap_or(f64::NAN)
+        })
+        .collect()
+}

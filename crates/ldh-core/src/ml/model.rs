@@ -1,0 +1,248 @@
+//! Classifiers behind one interface, and the saved model file.
+//!
+//! The model file is JSON with a schema version, the task, the feature names (with units in
+//! them), the class names, the training-set scaling, the fitted model and training metadata.
+//! [`ModelFile::check_features`] refuses a model whose version or features do not match the
+//! input, naming the difference.
+
+use ndarray::{Array2, Axis};
+use serde::{Deserialize, Serialize};
+
+use super::dataset::{Dataset, MinMax, Task};
+use super::forest::{Forest, ForestParams};
+use super::mlp::{Mlp, MlpParams};
+use super::svm::{SvmModel, SvmParams};
+use crate::error::{LdhError, Result};
+
+/// Version tag of the model file.
+pub const MODEL_SCHEMA: &str = "ldh-model/1";
+
+/// A classifier and its parameters.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum Classifier {
+    /// Random forest.
+    RandomForest(ForestParams),
+    /// RBF SVM.
+    Svm(SvmParams),
+    /// Multi-layer perceptron.
+    Mlp(MlpParams),
+}
+
+impl Classifier {
+    /// Short name (`rf`, `svm`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Classifier::RandomForest(_) => "rf",
+            Classifier::Svm(_) => "svm",
+            Classifier::Mlp(_) => "mlp",
+        }
+    }
+    /// The default classifier of a short name.
+    pub fn from_name(name: &str, seed: u64) -> Result<Classifier> {
+        match name {
+            "rf" | "random-forest" => Ok(Classifier::RandomForest(ForestParams {
+                seed,
+                ..ForestParams::default()
+            })),
+            "svm" => Ok(Classifier::Svm(SvmParams::default())),
+            "mlp" => Ok(Classifier::Mlp(MlpParams::default().seed(seed))),
+            o => Err(LdhError::param("classifier", o, "expected rf, svm or mlp")),
+        }
+    }
+    /// The same classifier with another seed (for repeats and folds).
+    pub fn reseeded(&self, seed: u64) -> Classifier {
+        match self {
+            Classifier::RandomForest(p) => {
+                Classifier::RandomForest(ForestParams { seed, ..p.clone() })
+            }
+            Classifier::Mlp(p) => Classifier::Mlp(p.clone().seed(seed)),
+            c => c.clone(),
+        }
+    }
+    /// Fit on (already scaled) rows.
+    pub fn fit(&self, x: &Array2<f64>, y: &[usize], n_classes: usize) -> Result<FittedModel> {
+        Ok(match self {
+            Classifier::RandomForest(p) => {
+                FittedModel::RandomForest(Forest::fit(p, x, y, n_classes)?)
+            }
+            Classifier::Svm(p) => FittedModel::Svm(SvmModel::fit(p, x, y, n_classes)?),
+            Classifier::Mlp(p) => {
+                let v = p
+                    .clone()
+                    .check()
+                    .map_err(|e| LdhError::param("mlp", "", e.to_string()))?;
+                FittedModel::Mlp(
+                    Mlp::fit(&v, x.view(), y)
+                        .map_err(|e| LdhError::signal("mlp", e.to_string()))?,
+                )
+            }
+        })
+    }
+}
+
+/// A fitted classifier.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum FittedModel {
+    /// Random forest.
+    RandomForest(Forest),
+    /// SVM.
+    Svm(SvmModel),
+    /// MLP.
+    Mlp(Mlp),
+}
+
+impl FittedModel {
+    /// Predicted classes for (scaled) rows.
+    pub fn predict(&self, x: &Array2<f64>) -> Result<Vec<usize>> {
+        Ok(match self {
+            FittedModel::RandomForest(f) => argmax_rows(&f.predict_proba(x)),
+            FittedModel::Svm(s) => s.predict(x),
+            FittedModel::Mlp(m) => m
+                .predict(x)
+                .map_err(|e| LdhError::signal("mlp", e.to_string()))?
+                .to_vec(),
+        })
+    }
+    /// Class probabilities where the model has them (forest: vote shares; MLP: softmax; SVM:
+    /// none), columns in class order.
+    pub fn predict_proba(&self, x: &Array2<f64>, n_classes: usize) -> Result<Option<Array2<f64>>> {
+        Ok(match self {
+            FittedModel::RandomForest(f) => Some(f.predict_proba(x)),
+            FittedModel::Svm(_) => None,
+            FittedModel::Mlp(m) => {
+                let p = m
+                    .predict_proba(x)
+                    .map_err(|e| LdhError::signal("mlp", e.to_string()))?;
+                // The MLP's columns are the classes it saw in training; map them to all classes.
+                let mut full = Array2::<f64>::zeros((x.nrows(), n_classes));
+                for (j, &c) in m.classes().iter().enumerate() {
+                    if c < n_classes {
+                        full.column_mut(c).assign(&p.column(j));
+                    }
+                }
+                Some(full)
+            }
+        })
+    }
+}
+
+/// Index of the largest value of every row (first on ties).
+pub fn argmax_rows(p: &Array2<f64>) -> Vec<usize> {
+    p.axis_iter(Axis(0))
+        .map(|r| {
+            r.iter()
+                .enumerate()
+                .fold((0, f64::MIN), |b, (j, &v)| if v > b.1 { (j, v) } else { b })
+                .0
+        })
+        .collect()
+}
+
+/// A saved, trained model.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ModelFile {
+    /// [`MODEL_SCHEMA`].
+    pub schema: String,
+    /// ldh version that trained it.
+    pub ldh_version: String,
+    /// Task.
+    pub task: Task,
+    /// Feature names (columns of the per-recording table, units in the names).
+    pub feature_names: Vec<String>,
+    /// Class names in label order.
+    pub class_names: Vec<String>,
+    /// Scaling fitted on the training rows.
+    pub scaling: MinMax,
+    /// The classifier's parameters.
+    pub classifier: Classifier,
+    /// The fitted model.
+    pub model: FittedModel,
+    /// Training rows per class.
+    pub trained_rows_per_class: Vec<usize>,
+    /// Attitude model of the features (`fusion` or `acc`).
+    pub attitude_model: String,
+}
+
+impl ModelFile {
+    /// Train on the whole dataset.
+    pub fn train(ds: &Dataset, classifier: &Classifier, attitude_model: &str) -> Result<ModelFile> {
+        ds.validate()?;
+        let scaling = MinMax::fit(&ds.x);
+        let model = classifier.fit(&scaling.transform(&ds.x), &ds.y, ds.class_names.len())?;
+        Ok(ModelFile {
+            schema: MODEL_SCHEMA.into(),
+            ldh_version: env!("CARGO_PKG_VERSION").into(),
+            task: ds.task,
+            feature_names: ds.feature_names.clone(),
+            class_names: ds.class_names.clone(),
+            scaling,
+            classifier: classifier.clone(),
+            model,
+            trained_rows_per_class: ds.class_counts(),
+            attitude_model: attitude_model.into(),
+        })
+    }
+
+    /// Parse a model file, refusing other schema versions.
+    pub fn from_json(text: &str, origin: &str) -> Result<ModelFile> {
+        let v: serde_json::Value = serde_json::from_str(text).map_err(|e| LdhError::Format {
+            name: origin.into(),
+            reason: format!("not JSON: {e}"),
+        })?;
+        match v.get("schema").and_then(|s| s.as_str()) {
+            Some(MODEL_SCHEMA) => {}
+            Some(other) => {
+                return Err(LdhError::Format {
+                    name: origin.into(),
+                    reason: format!("model schema '{other}' is not supported by this ldh (expects '{MODEL_SCHEMA}'): retrain with ldh train"),
+                })
+            }
+            None => return Err(LdhError::Format { name: origin.into(), reason: "not an ldh model file (no schema field)".into() }),
+        }
+        serde_json::from_value(v).map_err(|e| LdhError::Format {
+            name: origin.into(),
+            reason: format!("damaged model file: {e}"),
+        })
+    }
+
+    /// Check an input's features against the model's, by name and order.
+    pub fn check_features(&self, names: &[String]) -> Result<()> {
+        if names != self.feature_names.as_slice() {
+            let missing: Vec<&String> = self
+                .feature_names
+                .iter()
+                .filter(|f| !names.contains(f))
+                .collect();
+            let extra: Vec<&String> = names
+                .iter()
+                .filter(|f| !self.feature_names.contains(f))
+                .collect();
+            return Err(LdhError::signal(
+                "model",
+                format!("the input's features do not match the model's: missing {missing:?}, unexpected {extra:?} (the model was trained on {:?})", self.feature_names),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Predict (labels and probabilities where the model has them) for unscaled rows.
+    pub fn predict(&self, x: &Array2<f64>) -> Result<(Vec<usize>, Option<Array2<f64>>)> {
+        if x.ncols() != self.feature_names.len() {
+            return Err(LdhError::signal(
+                "model",
+                format!(
+                    "{} features given, the model needs {}",
+                    x.ncols(),
+                    self.feature_names.len()
+                ),
+            ));
+        }
+        let xs = self.scaling.transform(x);
+        Ok((
+            self.model.predict(&xs)?,
+            self.model.predict_proba(&xs, self.class_names.len())?,
+        ))
+    }
+}
