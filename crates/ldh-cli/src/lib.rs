@@ -54,6 +54,15 @@ enum Command {
     /// healthy left vs right (LR). With --compare acc the ACC-only model is analysed from the
     /// same recordings and Table 4 (z-normalised offsets OFF0/OFF1) compares the two models.
     Stats(StatsArgs),
+    /// Rank features and cross-validate RF, SVM and MLP classifiers; save trained models.
+    ///
+    /// Subject-grouped cross-validation is the default: both sides of a subject always fall on
+    /// the same side of a split (the paper's plain stratified folds let a subject's unaffected
+    /// side train the model that tests its affected side). Stratified folds are run beside it
+    /// for comparison with the paper, and the report shows the gap.
+    Train(TrainArgs),
+    /// Predict the class of recordings with a model saved by `ldh train`.
+    Predict(PredictArgs),
     /// Simulate a cohort of healthy and LDH subjects with two shank IMUs and exact ground truth.
     ///
     /// Writes <OUT>/<subject>/left.csv, right.csv, truth.json and <OUT>/manifest.csv. The same
@@ -121,6 +130,57 @@ struct StatsArgs {
     /// Worker threads (default: all cores).
     #[arg(long)]
     jobs: Option<usize>,
+}
+
+#[derive(Debug, Args)]
+struct TrainArgs {
+    /// Inputs as for `analyze` (they need groups: a manifest or `ldh simulate` output).
+    inputs: Vec<PathBuf>,
+    /// Read recordings.json from an `ldh analyze` output folder instead of analysing.
+    #[arg(long, conflicts_with = "inputs")]
+    results: Option<PathBuf>,
+    /// Task: three-class (LDHH / LDHE / H) or binary (LDHE vs H).
+    #[arg(long, default_value = "three-class")]
+    task: String,
+    /// Classifiers, comma-separated: rf, svm, mlp.
+    #[arg(long, default_value = "rf,svm,mlp")]
+    classifiers: String,
+    /// Folds.
+    #[arg(long, default_value_t = 10)]
+    k: usize,
+    /// Repeats of the k-fold split.
+    #[arg(long, default_value_t = 10)]
+    repeats: usize,
+    /// Seed of folds and models.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Keep the k features with the largest |Pearson r| inside each training fold.
+    #[arg(long)]
+    top_k: Option<usize>,
+    /// Features (comma-separated columns of recordings.csv); default: the 13 parameters.
+    #[arg(long)]
+    features: Option<String>,
+    /// Output folder.
+    #[arg(long, default_value = "ldh-train")]
+    out: PathBuf,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    jobs: Option<usize>,
+}
+
+#[derive(Debug, Args)]
+struct PredictArgs {
+    /// A model file written by `ldh train`.
+    #[arg(long)]
+    model: PathBuf,
+    /// Inputs as for `analyze`; or --results.
+    inputs: Vec<PathBuf>,
+    /// Read recordings.json from an `ldh analyze` output folder instead of analysing.
+    #[arg(long, conflicts_with = "inputs")]
+    results: Option<PathBuf>,
+    /// Output folder.
+    #[arg(long, default_value = "ldh-predict")]
+    out: PathBuf,
 }
 
 #[derive(Debug, Args)]
@@ -476,6 +536,241 @@ fn recording_rows_for(
     Ok(output::recording_rows(&results))
 }
 
+fn read_results(dir: &Path) -> Result<Vec<output::RecordingRow>> {
+    let f = dir.join("recordings.json");
+    let text = std::fs::read_to_string(&f).with_context(|| format!("reading {}", f.display()))?;
+    serde_json::from_str(&text)
+        .with_context(|| format!("{} is not an ldh recordings table", f.display()))
+}
+
+fn train(a: TrainArgs) -> Result<ExitCode> {
+    use ldh_core::ml::{cv, dataset, Classifier, CvKind, CvParams, Dataset, ModelFile};
+    let pool = thread_pool(a.jobs)?;
+    let rows = match &a.results {
+        Some(d) => read_results(d)?,
+        None => recording_rows_for(&a.inputs, "fusion", &pool)?,
+    };
+    let task: ldh_core::ml::Task = a.task.parse()?;
+    let features: Vec<String> = match &a.features {
+        Some(f) => f.split(',').map(|s| s.trim().to_string()).collect(),
+        None => dataset::default_features(),
+    };
+    let ds = Dataset::from_recordings(&rows, task, &features)?;
+    let attitude_model = rows.first().map(|r| r.model.clone()).unwrap_or_default();
+    let clfs: Vec<Classifier> = a
+        .classifiers
+        .split(',')
+        .map(|c| Classifier::from_name(c.trim(), a.seed))
+        .collect::<ldh_core::Result<_>>()?;
+    let w = |name: &str, text: &str| ldh_core::io::write_atomic(a.out.join(name), text.as_bytes());
+    let mut reports = Vec::new();
+    pool.install(|| -> Result<()> {
+        for kind in [CvKind::Grouped, CvKind::Stratified] {
+            let p = CvParams {
+                k: a.k,
+                repeats: a.repeats,
+                seed: a.seed,
+                kind,
+                top_k: a.top_k,
+                permutation_importance: true,
+            };
+            for c in &clfs {
+                reports.push(ldh_core::ml::cross_validate(&ds, c, &p)?);
+            }
+        }
+        Ok(())
+    })?;
+    // Folds as used (for the scikit-learn comparison script) and the dataset.
+    let mut folds_csv = String::from("row_id");
+    for kind in ["grouped", "stratified"] {
+        for r in 0..a.repeats {
+            folds_csv.push_str(&format!(",{kind}_r{r}"));
+        }
+    }
+    folds_csv.push('\n');
+    let mut cols: Vec<Vec<usize>> = Vec::new();
+    for kind in [CvKind::Grouped, CvKind::Stratified] {
+        let p = CvParams {
+            k: a.k,
+            repeats: a.repeats,
+            seed: a.seed,
+            kind,
+            ..CvParams::default()
+        };
+        for r in 0..a.repeats {
+            cols.push(cv::folds(&ds, &p, r)?);
+        }
+    }
+    for i in 0..ds.len() {
+        folds_csv.push_str(&ds.row_ids[i]);
+        for c in &cols {
+            folds_csv.push_str(&format!(",{}", c[i]));
+        }
+        folds_csv.push('\n');
+    }
+    w("dataset.csv", &ds.to_csv())?;
+    w("folds.csv", &folds_csv)?;
+    let mut md = format!(
+        "# Classification ({}, {} rows: {})\n\nFeatures from the `{attitude_model}` attitude model. Min–max scaling{} is fitted on each training fold only.\n\n",
+        task.as_str(),
+        ds.len(),
+        ds.class_names.iter().zip(ds.class_counts()).map(|(n, c)| format!("{c} {n}")).collect::<Vec<_>>().join(", "),
+        if a.top_k.is_some() { " and the top-k feature selection" } else { "" }
+    );
+    md.push_str("## Cross-validation\n\n**Subject-grouped folds are the primary result**: both sides of a subject always fall on the same side of a split. The paper's stratified folds, beside them, let one side of a subject train the model that tests the other side.\n\n");
+    md.push_str(&cv::markdown(&reports));
+    md.push_str("\n| classifier | grouped − stratified accuracy |\n|---|---:|\n");
+    for c in &clfs {
+        let g = reports
+            .iter()
+            .find(|r| r.classifier == c.name() && r.kind == CvKind::Grouped)
+            .map(|r| r.accuracy.mean)
+            .unwrap_or(f64::NAN);
+        let s = reports
+            .iter()
+            .find(|r| r.classifier == c.name() && r.kind == CvKind::Stratified)
+            .map(|r| r.accuracy.mean)
+            .unwrap_or(f64::NAN);
+        md.push_str(&format!("| {} | {:+.3} |\n", c.name(), g - s));
+    }
+    md.push_str(
+        "\n## Feature ranking (Table 5): Pearson r with the label\n\n| feature | r |\n|---|---:|\n",
+    );
+    for (f, r) in cv::ranking(&ds) {
+        md.push_str(&format!("| {f} | {r:+.3} |\n"));
+    }
+    md.push_str("\n## Permutation importance (grouped CV, mean accuracy drop)\n\n| feature |");
+    let grouped: Vec<&ldh_core::ml::CvReport> = reports
+        .iter()
+        .filter(|r| r.kind == CvKind::Grouped)
+        .collect();
+    for r in &grouped {
+        md.push_str(&format!(" {} |", r.classifier));
+    }
+    md.push_str("\n|---|");
+    for _ in &grouped {
+        md.push_str("---:|");
+    }
+    md.push('\n');
+    for (j, f) in ds.feature_names.iter().enumerate() {
+        md.push_str(&format!("| {f} |"));
+        for r in &grouped {
+            md.push_str(&format!(" {:+.3} |", r.permutation_importance[j].1));
+        }
+        md.push('\n');
+    }
+    for r in &reports {
+        let kind = match r.kind {
+            CvKind::Grouped => "grouped",
+            CvKind::Stratified => "stratified",
+        };
+        let svg = ldh_core::plots::confusion_svg(
+            &format!("{} — {kind} {}-fold × {}", r.classifier, r.k, r.repeats),
+            &r.class_names,
+            &r.confusion,
+        )?;
+        w(&format!("confusion_{}_{kind}.svg", r.classifier), &svg)?;
+    }
+    for c in &clfs {
+        let m = ModelFile::train(&ds, c, &attitude_model)?;
+        w(
+            &format!("model_{}.json", c.name()),
+            &serde_json::to_string(&m)?,
+        )?;
+    }
+    w("cv_results.json", &serde_json::to_string_pretty(&reports)?)?;
+    w("report.md", &md)?;
+    println!("{md}");
+    eprintln!("report, models and figures in {}", a.out.display());
+    Ok(ExitCode::SUCCESS)
+}
+
+fn predict(a: PredictArgs) -> Result<ExitCode> {
+    use ldh_core::ml::ModelFile;
+    let text = std::fs::read_to_string(&a.model)
+        .with_context(|| format!("reading {}", a.model.display()))?;
+    let model = ModelFile::from_json(&text, &a.model.display().to_string())?;
+    let rows = match &a.results {
+        Some(d) => read_results(d)?,
+        None => {
+            let pool = thread_pool(None)?;
+            recording_rows_for(&a.inputs, &model.attitude_model, &pool)?
+        }
+    };
+    if let Some(r) = rows.iter().find(|r| r.model != model.attitude_model) {
+        anyhow::bail!(
+            "the model was trained on features of the '{}' attitude model but the input has '{}' (subject {}): analyse with --model {}",
+            model.attitude_model,
+            r.model,
+            r.subject_id,
+            model.attitude_model
+        );
+    }
+    let mut out = String::from("subject_id,side,status,predicted_class");
+    for c in &model.class_names {
+        out.push_str(&format!(",p_{c}"));
+    }
+    out.push_str(",note\n");
+    let mut failed = 0;
+    for r in &rows {
+        let vals: Option<Vec<f64>> = model
+            .feature_names
+            .iter()
+            .map(|f| ldh_core::cohort::value(r, f))
+            .collect();
+        let line = match (r.status.as_str(), vals) {
+            ("ok", Some(v)) => {
+                let x = ndarray::Array2::from_shape_vec((1, v.len()), v)?;
+                let (label, proba) = model.predict(&x)?;
+                let probs: Vec<String> = match &proba {
+                    Some(p) => p.row(0).iter().map(|x| format!("{x:.4}")).collect(),
+                    None => vec![String::new(); model.class_names.len()],
+                };
+                format!(
+                    "{},{},ok,{},{},{}",
+                    r.subject_id,
+                    r.side,
+                    model.class_names[label[0]],
+                    probs.join(","),
+                    if proba.is_none() {
+                        "no probabilities for this model"
+                    } else {
+                        ""
+                    }
+                )
+            }
+            (_, _) => {
+                failed += 1;
+                let why = if r.status != "ok" {
+                    r.error.replace(',', ";")
+                } else {
+                    "a feature is missing".into()
+                };
+                format!(
+                    "{},{},error,{},{}",
+                    r.subject_id,
+                    r.side,
+                    ",".repeat(model.class_names.len()),
+                    why
+                )
+            }
+        };
+        out.push_str(&line);
+        out.push('\n');
+    }
+    ldh_core::io::write_atomic(a.out.join("predictions.csv"), out.as_bytes())?;
+    print!("{out}");
+    eprintln!(
+        "decision support, not a diagnosis: predictions in {}",
+        a.out.join("predictions.csv").display()
+    );
+    Ok(if failed > 0 {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    })
+}
+
 fn stats(a: StatsArgs) -> Result<ExitCode> {
     use ldh_core::cohort::{
         offsets, table3, table3_markdown, table3_rows, table4_markdown, Cohort, PARAMETERS,
@@ -637,6 +932,8 @@ where
         Command::Analyze(a) => analyze(a),
         Command::Evaluate(a) => evaluate(a),
         Command::Stats(a) => stats(a),
+        Command::Train(a) => train(a),
+        Command::Predict(a) => predict(a),
         Command::Simulate(a) => simulate(a),
         Command::Inspect(a) => inspect(a),
         Command::Formats { name } => formats(name),

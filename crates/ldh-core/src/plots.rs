@@ -210,3 +210,77 @@ mod tests {
         assert!(boxplot_svg("x", "y", &[("A".into(), vec![])]).is_err());
     }
 }
+
+/// A confusion matrix (rows true, columns predicted) as an SVG heat map with counts.
+pub fn confusion_svg(title: &str, classes: &[String], m: &[Vec<usize>]) -> Result<String> {
+    let k = classes.len();
+    let cell = 110i32;
+    let (left, top) = (150i32, 90i32);
+    let w = (left + cell * k as i32 + 40) as u32;
+    let h = (top + cell * k as i32 + 70) as u32;
+    let max = m.iter().flatten().copied().max().unwrap_or(1).max(1) as f64;
+    let mut buf = String::new();
+    {
+        let root = SVGBackend::with_string(&mut buf, (w.max(420), h)).into_drawing_area();
+        root.fill(&WHITE).map_err(perr)?;
+        root.draw(&Text::new(
+            title.to_string(),
+            (15, 15),
+            ("sans-serif", 20).into_font(),
+        ))
+        .map_err(perr)?;
+        root.draw(&Text::new(
+            "predicted class".to_string(),
+            (left, top - 45),
+            ("sans-serif", 15).into_font(),
+        ))
+        .map_err(perr)?;
+        root.draw(&Text::new(
+            "true class".to_string(),
+            (10, top + cell * k as i32 / 2),
+            ("sans-serif", 15).into_font(),
+        ))
+        .map_err(perr)?;
+        for (i, name) in classes.iter().enumerate() {
+            let x = left + cell * i as i32;
+            root.draw(&Text::new(
+                name.clone(),
+                (x + cell / 3, top - 22),
+                ("sans-serif", 15).into_font(),
+            ))
+            .map_err(perr)?;
+            root.draw(&Text::new(
+                name.clone(),
+                (left - 60, top + cell * i as i32 + cell / 2 - 8),
+                ("sans-serif", 15).into_font(),
+            ))
+            .map_err(perr)?;
+        }
+        for (i, row) in m.iter().enumerate() {
+            let total: usize = row.iter().sum();
+            for (j, &v) in row.iter().enumerate() {
+                let a = v as f64 / max;
+                let shade = (255.0 - 200.0 * a) as u8;
+                let (x, y) = (left + cell * j as i32, top + cell * i as i32);
+                root.draw(&Rectangle::new(
+                    [(x, y), (x + cell - 2, y + cell - 2)],
+                    RGBColor(shade, shade, 255).filled(),
+                ))
+                .map_err(perr)?;
+                let pct = if total > 0 {
+                    100.0 * v as f64 / total as f64
+                } else {
+                    0.0
+                };
+                root.draw(&Text::new(
+                    format!("{v} ({pct:.0} %)"),
+                    (x + 18, y + cell / 2 - 8),
+                    ("sans-serif", 15).into_font(),
+                ))
+                .map_err(perr)?;
+            }
+        }
+        root.present().map_err(perr)?;
+    }
+    Ok(buf)
+}

@@ -1,15 +1,14 @@
-//! Random forest: bagged linfa-trees decision trees, each on a bootstrap sample of the rows and
-//! a random subset of ⌈√p⌉ features (the random-subspace forest of linfa-ensemble, written as our
-//! own bagging so the forest can be saved and can give vote probabilities).
+//! Random forest: bagged CART trees ([`super::tree`]), each on a bootstrap sample of the rows,
+//! with ⌈√p⌉ features drawn at every split and probabilities averaged over the trees — the
+//! algorithm of scikit-learn's `RandomForestClassifier` with its defaults. Deterministic for a
+//! seed (linfa-trees is not: see [`super::tree`]); serialisable, so a trained forest can be saved.
 
-use linfa::prelude::*;
-use linfa_trees::{DecisionTree, SplitQuality};
-use ndarray::{Array1, Array2, Axis};
-use rand::seq::index::sample;
+use ndarray::Array2;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
+use super::tree::{grow, Node, TreeParams};
 use crate::error::{LdhError, Result};
 
 /// Forest parameters.
@@ -18,7 +17,7 @@ use crate::error::{LdhError, Result};
 pub struct ForestParams {
     /// Number of trees. Default 100.
     pub n_trees: usize,
-    /// Features per tree; `None`: ⌈√p⌉. Default None.
+    /// Features tried at each split; `None`: ⌈√p⌉ (scikit-learn's "sqrt"). Default None.
     pub max_features: Option<usize>,
     /// Maximum depth; `None`: grow until pure. Default None.
     pub max_depth: Option<usize>,
@@ -42,8 +41,8 @@ impl Default for ForestParams {
 pub struct Forest {
     /// Number of classes.
     pub n_classes: usize,
-    /// Per tree: the feature columns it uses and the tree.
-    pub trees: Vec<(Vec<usize>, DecisionTree<f64, usize>)>,
+    /// The trees.
+    pub trees: Vec<Node>,
 }
 
 impl Forest {
@@ -53,42 +52,40 @@ impl Forest {
             return Err(LdhError::param("n_trees", 0, "at least one tree"));
         }
         let (n, f) = x.dim();
-        let m = p
-            .max_features
-            .unwrap_or_else(|| (f as f64).sqrt().ceil() as usize)
-            .clamp(1, f);
-        let mut rng = ChaCha8Rng::seed_from_u64(p.seed);
-        let mut trees = Vec::with_capacity(p.n_trees);
-        for _ in 0..p.n_trees {
-            let rows: Vec<usize> = (0..n).map(|_| rng.gen_range(0..n)).collect();
-            let mut cols: Vec<usize> = sample(&mut rng, f, m).into_vec();
-            cols.sort_unstable();
-            let xs = x.select(Axis(0), &rows).select(Axis(1), &cols);
-            let ys = Array1::from(rows.iter().map(|&i| y[i]).collect::<Vec<_>>());
-            let ds = Dataset::new(xs, ys);
-            let tree = DecisionTree::params()
-                .split_quality(SplitQuality::Gini)
-                .max_depth(p.max_depth)
-                .min_weight_split(2.0)
-                .min_weight_leaf(1.0)
-                .fit(&ds)
-                .map_err(|e| LdhError::signal("random forest", e.to_string()))?;
-            trees.push((cols, tree));
+        if n == 0 || y.len() != n || y.iter().any(|&c| c >= n_classes) {
+            return Err(LdhError::signal(
+                "random forest",
+                "rows, labels and classes do not match",
+            ));
         }
+        let tp = TreeParams {
+            max_features: p
+                .max_features
+                .unwrap_or_else(|| (f as f64).sqrt().ceil() as usize)
+                .clamp(1, f),
+            max_depth: p.max_depth.unwrap_or(usize::MAX),
+            min_samples_split: 2,
+        };
+        let mut rng = ChaCha8Rng::seed_from_u64(p.seed);
+        let trees = (0..p.n_trees)
+            .map(|_| {
+                let rows: Vec<usize> = (0..n).map(|_| rng.gen_range(0..n)).collect();
+                grow(x, y, &rows, n_classes, &tp, 0, &mut rng)
+            })
+            .collect();
         Ok(Forest { n_classes, trees })
     }
 
-    /// Vote shares per class.
+    /// Mean class probabilities over the trees (scikit-learn's `predict_proba`).
     pub fn predict_proba(&self, x: &Array2<f64>) -> Array2<f64> {
-        let mut votes = Array2::<f64>::zeros((x.nrows(), self.n_classes));
-        for (cols, tree) in &self.trees {
-            let pred: Array1<usize> = tree.predict(&x.select(Axis(1), cols));
-            for (i, &c) in pred.iter().enumerate() {
-                if c < self.n_classes {
-                    votes[[i, c]] += 1.0;
+        let mut p = Array2::<f64>::zeros((x.nrows(), self.n_classes));
+        for t in &self.trees {
+            for (i, row) in x.rows().into_iter().enumerate() {
+                for (c, v) in t.proba(row).into_iter().enumerate() {
+                    p[[i, c]] += v;
                 }
             }
         }
-        votes / self.trees.len() as f64
+        p / self.trees.len() as f64
     }
 }

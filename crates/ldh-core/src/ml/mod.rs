@@ -5,9 +5,9 @@
 //!   a healthy subject's two legs, as in the paper) and binary (LDHE vs H); subject ids are kept
 //!   as groups.
 //! * **Scaling**: min–max, fitted on the training fold only.
-//! * **Classifiers** on linfa: a random forest of linfa-trees decision trees (bootstrap rows, a
-//!   random feature subset of ⌈√p⌉ per tree as linfa-ensemble does; our own bagging because
-//!   linfa-ensemble's forest can neither be serialised nor give vote probabilities), an RBF SVM
+//! * **Classifiers**: a random forest of CART trees with ⌈√p⌉ features per split (scikit-learn's
+//!   algorithm; hand-written because linfa-trees is not deterministic for a seed and
+//!   linfa-ensemble's forest can neither be serialised nor give probabilities), an RBF SVM
 //!   (linfa-svm, one-vs-rest on the decision values for three classes, γ = 1 / (p · Var X) as
 //!   scikit-learn's "scale", C = 1), and a small MLP ([`mlp`]; linfa has none).
 //! * **Cross-validation**: stratified k-fold (shuffled by seed) and subject-grouped k-fold (both
@@ -23,7 +23,11 @@ pub mod forest;
 pub mod mlp;
 pub mod model;
 pub mod svm;
+pub mod tree;
 
 pub use cv::{cross_validate, cross_validate_with_folds, CvKind, CvParams, CvReport};
 pub use dataset::{Dataset, Task};
 pub use model::{Classifier, FittedModel, ModelFile};
+
+#[cfg(test)]
+mod tests;
