@@ -617,6 +617,12 @@ fn train(a: TrainArgs) -> Result<ExitCode> {
         ds.class_names.iter().zip(ds.class_counts()).map(|(n, c)| format!("{c} {n}")).collect::<Vec<_>>().join(", "),
         if a.top_k.is_some() { " and the top-k feature selection" } else { "" }
     );
+    if !ds.dropped.is_empty() {
+        md.push_str(&format!(
+            "Rows left out (a feature missing): {}.\n\n",
+            ds.dropped.join("; ")
+        ));
+    }
     md.push_str("## Cross-validation\n\n**Subject-grouped folds are the primary result**: both sides of a subject always fall on the same side of a split. The paper's stratified folds, beside them, let one side of a subject train the model that tests the other side.\n\n");
     md.push_str(&cv::markdown(&reports));
     md.push_str("\n| classifier | grouped − stratified accuracy |\n|---|---:|\n");
@@ -744,7 +750,17 @@ fn predict(a: PredictArgs) -> Result<ExitCode> {
                 let why = if r.status != "ok" {
                     r.error.replace(',', ";")
                 } else {
-                    "a feature is missing".into()
+                    let missing: Vec<&String> = model
+                        .feature_names
+                        .iter()
+                        .filter(|f| ldh_core::cohort::value(r, f).is_none())
+                        .collect();
+                    let sta = if r.sta_status.is_empty() {
+                        String::new()
+                    } else {
+                        format!(" (STA: {})", r.sta_status.replace(',', ";"))
+                    };
+                    format!("missing {missing:?}{sta}")
                 };
                 format!(
                     "{},{},error,{},{}",

@@ -1,0 +1,209 @@
+//! `ldh train` and `ldh predict` end to end.
+
+mod common;
+use common::*;
+
+#[test]
+fn train_reports_grouped_and_stratified_cv_and_predict_uses_the_model() {
+    let d = tempfile::tempdir().unwrap();
+    let c = d.path().join("cohort");
+    let o = ldh(&[
+        "simulate",
+        "--out",
+        c.to_str().unwrap(),
+        "--healthy",
+        "8",
+        "--ldh",
+        "8",
+        "--seconds",
+        "30",
+        "--seed",
+        "21",
+        "--ldh-severity-min",
+        "0.5",
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let out = d.path().join("train");
+    let args = [
+        "train",
+        c.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--k",
+        "4",
+        "--repeats",
+        "2",
+        "--task",
+        "binary",
+    ];
+    let o = ldh(&args);
+    assert!(o.status.success(), "{}", text(&o));
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(md.contains("Subject-grouped folds are the primary result"));
+    assert!(
+        md.contains("| rf | subject-grouped 4-fold × 2 |")
+            && md.contains("| mlp | stratified 4-fold × 2 |")
+    );
+    assert!(md.contains("grouped − stratified accuracy") && md.contains("Pearson r"));
+    let cv = json(&out.join("cv_results.json"));
+    assert_eq!(cv.as_array().unwrap().len(), 6);
+    for r in cv.as_array().unwrap() {
+        let acc = r["accuracy"]["mean"].as_f64().unwrap();
+        assert!(acc > 0.6, "{r}");
+    }
+    for f in [
+        "confusion_rf_grouped.svg",
+        "confusion_svm_stratified.svg",
+        "model_rf.json",
+        "model_svm.json",
+        "model_mlp.json",
+        "dataset.csv",
+        "folds.csv",
+    ] {
+        assert!(out.join(f).exists(), "{f}");
+    }
+    // Same seed: byte-identical CV results.
+    let out2 = d.path().join("train2");
+    let mut args2 = args.to_vec();
+    args2[3] = out2.to_str().unwrap();
+    assert!(ldh(&args2).status.success());
+    assert_eq!(
+        std::fs::read(out.join("cv_results.json")).unwrap(),
+        std::fs::read(out2.join("cv_results.json")).unwrap()
+    );
+    assert_eq!(
+        std::fs::read(out.join("model_rf.json")).unwrap(),
+        std::fs::read(out2.join("model_rf.json")).unwrap()
+    );
+
+    // Predict with the forest: labels and probabilities for every recording.
+    let pred = d.path().join("pred");
+    let o = ldh(&[
+        "predict",
+        "--model",
+        out.join("model_rf.json").to_str().unwrap(),
+        c.to_str().unwrap(),
+        "--out",
+        pred.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(text(&o).contains("decision support, not a diagnosis"));
+    let p = std::fs::read_to_string(pred.join("predictions.csv")).unwrap();
+    assert!(
+        p.starts_with("subject_id,side,status,predicted_class,p_H,p_LDHE,note\n"),
+        "{p}"
+    );
+    assert_eq!(p.lines().count(), 1 + 32);
+    let healthy_right = p
+        .lines()
+        .filter(|l| l.starts_with('H') && l.contains(",ok,H,"))
+        .count();
+    assert!(healthy_right >= 12, "{p}");
+    let affected_found = p
+        .lines()
+        .filter(|l| l.starts_with('L') && l.contains(",ok,LDHE,"))
+        .count();
+    assert!(affected_found >= 6, "{p}");
+
+    // A model from another schema, or with features the input lacks, is refused.
+    let m = std::fs::read_to_string(out.join("model_rf.json")).unwrap();
+    let old = d.path().join("old.json");
+    std::fs::write(&old, m.replace("ldh-model/1", "ldh-model/0")).unwrap();
+    let o = ldh(&[
+        "predict",
+        "--model",
+        old.to_str().unwrap(),
+        c.to_str().unwrap(),
+        "--out",
+        pred.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        text(&o).contains("ldh-model/0") && text(&o).contains("retrain"),
+        "{}",
+        text(&o)
+    );
+    // Features from the ACC-only model do not fit a model trained on fusion features.
+    let acc = d.path().join("acc");
+    assert!(ldh(&[
+        "analyze",
+        c.to_str().unwrap(),
+        "--model",
+        "acc",
+        "--no-sta",
+        "--out",
+        acc.to_str().unwrap()
+    ])
+    .status
+    .success());
+    let o = ldh(&[
+        "predict",
+        "--model",
+        out.join("model_svm.json").to_str().unwrap(),
+        "--results",
+        acc.to_str().unwrap(),
+        "--out",
+        pred.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        text(&o).contains("'fusion' attitude model but the input has 'acc'"),
+        "{}",
+        text(&o)
+    );
+}
+
+#[test]
+fn train_refuses_what_it_cannot_do() {
+    let d = tempfile::tempdir().unwrap();
+    let c = d.path().join("cohort");
+    assert!(ldh(&[
+        "simulate",
+        "--out",
+        c.to_str().unwrap(),
+        "--healthy",
+        "3",
+        "--ldh",
+        "3",
+        "--seconds",
+        "15",
+        "--seed",
+        "2"
+    ])
+    .status
+    .success());
+    let out = d.path().join("t");
+    // Fewer subjects than folds.
+    let o = ldh(&[
+        "train",
+        c.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--k",
+        "10",
+        "--repeats",
+        "1",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(text(&o).contains("than folds (10)"), "{}", text(&o));
+    let o = ldh(&[
+        "train",
+        c.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--classifiers",
+        "rf,knn",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(text(&o).contains("expected rf, svm or mlp"));
+    let o = ldh(&[
+        "train",
+        c.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--features",
+        "stride_time_s,height_cm",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(text(&o).contains("height_cm") && text(&o).contains("unknown feature"));
+}
