@@ -517,6 +517,156 @@ fn analyze_recording(
     .map_err(|e| to_py(py, e))
 }
 
+fn ml_dataset(
+    x: numpy::PyReadonlyArray2<'_, f64>,
+    y: Vec<usize>,
+    groups: Option<Vec<String>>,
+    task: &str,
+    feature_names: Option<Vec<String>>,
+) -> Result<ldh_core::ml::Dataset, LdhError> {
+    let task: ldh_core::ml::Task = task.parse()?;
+    let x = x.as_array().to_owned();
+    if x.nrows() != y.len() {
+        return Err(LdhError::param(
+            "y",
+            y.len(),
+            format!("X has {} rows", x.nrows()),
+        ));
+    }
+    let n = y.len();
+    let groups = groups.unwrap_or_else(|| (0..n).map(|i| format!("row{i}")).collect());
+    if groups.len() != n {
+        return Err(LdhError::param(
+            "groups",
+            groups.len(),
+            format!("X has {n} rows"),
+        ));
+    }
+    let names = feature_names.unwrap_or_else(|| (0..x.ncols()).map(|j| format!("x{j}")).collect());
+    if names.len() != x.ncols() {
+        return Err(LdhError::param(
+            "feature_names",
+            names.len(),
+            format!("X has {} columns", x.ncols()),
+        ));
+    }
+    let ds = ldh_core::ml::Dataset {
+        task,
+        feature_names: names,
+        class_names: task.class_names(),
+        x,
+        y,
+        row_ids: groups
+            .iter()
+            .enumerate()
+            .map(|(i, g)| format!("{g}#{i}"))
+            .collect(),
+        groups,
+        dropped: vec![],
+    };
+    ds.validate()?;
+    Ok(ds)
+}
+
+/// Repeated k-fold cross-validation of one classifier on arrays; returns the report as JSON.
+#[pyfunction]
+#[pyo3(signature = (x, y, groups=None, classifier="rf", task="three-class", k=10, repeats=10, seed=1, kind="grouped", folds=None, top_k=None))]
+#[allow(clippy::too_many_arguments)]
+fn cross_validate(
+    py: Python<'_>,
+    x: numpy::PyReadonlyArray2<'_, f64>,
+    y: Vec<usize>,
+    groups: Option<Vec<String>>,
+    classifier: &str,
+    task: &str,
+    k: usize,
+    repeats: usize,
+    seed: u64,
+    kind: &str,
+    folds: Option<Vec<Vec<usize>>>,
+    top_k: Option<usize>,
+) -> PyResult<String> {
+    use ldh_core::ml::{CvKind, CvParams};
+    let ds = ml_dataset(x, y, groups, task, None).map_err(|e| to_py(py, e))?;
+    let (clf, kind) = (classifier.to_string(), kind.to_string());
+    py.detach(move || -> Result<String, LdhError> {
+        let kind = match kind.as_str() {
+            "grouped" => CvKind::Grouped,
+            "stratified" => CvKind::Stratified,
+            o => {
+                return Err(LdhError::param(
+                    "kind",
+                    o,
+                    "expected 'grouped' or 'stratified'",
+                ))
+            }
+        };
+        let c = ldh_core::ml::Classifier::from_name(&clf, seed)?;
+        let p = CvParams {
+            k,
+            repeats,
+            seed,
+            kind,
+            top_k,
+            permutation_importance: true,
+        };
+        let r = match folds {
+            Some(f) => ldh_core::ml::cross_validate_with_folds(&ds, &c, &p, &f)?,
+            None => ldh_core::ml::cross_validate(&ds, &c, &p)?,
+        };
+        serde_json::to_string(&r).map_err(|e| LdhError::signal("json", e.to_string()))
+    })
+    .map_err(|e| to_py(py, e))
+}
+
+/// Train a classifier on all rows; returns the model file (JSON) that `ldh predict` reads.
+#[pyfunction]
+#[pyo3(signature = (x, y, feature_names, classifier="rf", task="three-class", seed=1, attitude_model="fusion"))]
+#[allow(clippy::too_many_arguments)]
+fn train(
+    py: Python<'_>,
+    x: numpy::PyReadonlyArray2<'_, f64>,
+    y: Vec<usize>,
+    feature_names: Vec<String>,
+    classifier: &str,
+    task: &str,
+    seed: u64,
+    attitude_model: &str,
+) -> PyResult<String> {
+    let ds = ml_dataset(x, y, None, task, Some(feature_names)).map_err(|e| to_py(py, e))?;
+    let (clf, am) = (classifier.to_string(), attitude_model.to_string());
+    py.detach(move || -> Result<String, LdhError> {
+        let c = ldh_core::ml::Classifier::from_name(&clf, seed)?;
+        let m = ldh_core::ml::ModelFile::train(&ds, &c, &am)?;
+        serde_json::to_string(&m).map_err(|e| LdhError::signal("json", e.to_string()))
+    })
+    .map_err(|e| to_py(py, e))
+}
+
+/// Predict with a model file's JSON: (labels, probabilities or None).
+#[pyfunction]
+#[pyo3(signature = (model_json, x, feature_names=None))]
+#[allow(clippy::type_complexity)]
+fn predict<'py>(
+    py: Python<'py>,
+    model_json: &str,
+    x: numpy::PyReadonlyArray2<'py, f64>,
+    feature_names: Option<Vec<String>>,
+) -> PyResult<(Vec<usize>, Option<Bound<'py, numpy::PyArray2<f64>>>)> {
+    let x = x.as_array().to_owned();
+    let text = model_json.to_string();
+    let (labels, proba) = py
+        .detach(move || -> Result<_, LdhError> {
+            let m = ldh_core::ml::ModelFile::from_json(&text, "<model>")?;
+            if let Some(names) = feature_names {
+                m.check_features(&names)?;
+            }
+            m.predict(&x)
+        })
+        .map_err(|e| to_py(py, e))?;
+    Ok((labels, proba.map(|p| p.into_pyarray(py))))
+}
+
 #[pymodule]
 fn _ldh(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read_recording_py, m)?)?;
@@ -530,6 +680,9 @@ fn _ldh(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(stats_test, m)?)?;
     m.add_function(wrap_pyfunction!(holm, m)?)?;
     m.add_function(wrap_pyfunction!(analyze_recording, m)?)?;
+    m.add_function(wrap_pyfunction!(cross_validate, m)?)?;
+    m.add_function(wrap_pyfunction!(train, m)?)?;
+    m.add_function(wrap_pyfunction!(predict, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }
