@@ -468,21 +468,26 @@ fn holm(py: Python<'_>, pvalues: Vec<f64>) -> PyResult<Vec<f64>> {
 }
 
 /// Analyse one recording given as arrays; returns JSON text with the alignment, events,
-/// strides, parameters and the attitude.
+/// strides and parameters, and the attitude (pitch, roll, yaw in deg) as numpy arrays.
 #[pyfunction]
 #[pyo3(signature = (acc_g, gyro_dps, fs_hz, side="left", model="fusion", detector="gyro-landmarks", sensor_height_m=0.10, compute_sta=true))]
 #[allow(clippy::too_many_arguments)]
-fn analyze_recording(
-    py: Python<'_>,
-    acc_g: [PyReadonlyArray1<'_, f64>; 3],
-    gyro_dps: [PyReadonlyArray1<'_, f64>; 3],
+fn analyze_recording<'py>(
+    py: Python<'py>,
+    acc_g: [PyReadonlyArray1<'py, f64>; 3],
+    gyro_dps: [PyReadonlyArray1<'py, f64>; 3],
     fs_hz: f64,
     side: &str,
     model: &str,
     detector: &str,
     sensor_height_m: f64,
     compute_sta: bool,
-) -> PyResult<String> {
+) -> PyResult<(
+    String,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+)> {
     let acc: [Vec<f64>; 3] = [
         acc_g[0].as_slice()?.to_vec(),
         acc_g[1].as_slice()?.to_vec(),
@@ -494,27 +499,40 @@ fn analyze_recording(
         gyro_dps[2].as_slice()?.to_vec(),
     ];
     let (side, model, detector) = (side.to_string(), model.to_string(), detector.to_string());
-    py.detach(move || -> Result<String, LdhError> {
-        let side: ldh_core::Side = side.parse()?;
-        let mut p = ldh_core::pipeline::AnalysisParams::default();
-        p.attitude.model = model.parse()?;
-        p.events.detector = detector.parse()?;
-        p.compute_sta = compute_sta;
-        p.check()?;
-        let rec = Recording::new(fs_hz, acc, gyro, vec![])?.with_side(side);
-        let (leg, _) = ldh_core::pipeline::analyze_leg(&rec, side, &p, Some(sensor_height_m))?;
-        let att = leg.attitude.as_ref().expect("analyze_leg keeps the attitude");
-        Ok(serde_json::json!({
-            "alignment": leg.alignment,
-            "events": leg.events,
-            "strides": leg.strides,
-            "parameters": leg.parameters,
-            "attitude": {"pitch_deg": att.pitch_deg, "roll_deg": att.roll_deg, "yaw_deg": att.yaw_deg},
-            "outliers_replaced": leg.outliers_replaced,
-        })
-        .to_string())
-    })
-    .map_err(|e| to_py(py, e))
+    let (json, att) = py
+        .detach(
+            move || -> Result<(String, ldh_core::attitude::Attitude), LdhError> {
+                let side: ldh_core::Side = side.parse()?;
+                let mut p = ldh_core::pipeline::AnalysisParams::default();
+                p.attitude.model = model.parse()?;
+                p.events.detector = detector.parse()?;
+                p.compute_sta = compute_sta;
+                p.check()?;
+                let rec = Recording::new(fs_hz, acc, gyro, vec![])?.with_side(side);
+                let (leg, _) =
+                    ldh_core::pipeline::analyze_leg(&rec, side, &p, Some(sensor_height_m))?;
+                let att = leg
+                    .attitude
+                    .clone()
+                    .expect("analyze_leg keeps the attitude");
+                let json = serde_json::json!({
+                    "alignment": leg.alignment,
+                    "events": leg.events,
+                    "strides": leg.strides,
+                    "parameters": leg.parameters,
+                    "outliers_replaced": leg.outliers_replaced,
+                })
+                .to_string();
+                Ok((json, att))
+            },
+        )
+        .map_err(|e| to_py(py, e))?;
+    Ok((
+        json,
+        vec1(py, att.pitch_deg),
+        vec1(py, att.roll_deg),
+        vec1(py, att.yaw_deg),
+    ))
 }
 
 fn ml_dataset(

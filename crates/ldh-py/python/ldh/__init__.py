@@ -326,12 +326,13 @@ def analyze_recording(
     gyro = [_vec(c, f"gyro_dps[{i}]") for i, c in enumerate(gyro_dps)]
     if len(acc) != 3 or len(gyro) != 3:
         raise LdhParamError("acc_g and gyro_dps must each hold three channels (x, y, z)")
-    raw = json.loads(
-        _ldh.analyze_recording(acc, gyro, float(fs_hz), side, model, detector, float(sensor_height_m), bool(compute_sta))
+    text, pitch, roll, yaw = _ldh.analyze_recording(
+        acc, gyro, float(fs_hz), side, model, detector, float(sensor_height_m), bool(compute_sta)
     )
+    raw = json.loads(text)
     raw["strides"] = _columns(raw["strides"])
     raw["events"] = {k: np.asarray(v, dtype=np.float64) if isinstance(v, list) else v for k, v in raw["events"].items()}
-    raw["attitude"] = {k: np.asarray(v, dtype=np.float64) for k, v in raw["attitude"].items()}
+    raw["attitude"] = {"pitch_deg": pitch, "roll_deg": roll, "yaw_deg": yaw}
     raw["parameters"] = {k: (np.nan if v is None else v) for k, v in raw["parameters"].items()}
     return raw
 
