@@ -91,19 +91,21 @@ struct AnalyzeArgs {
     /// Output folder.
     #[arg(long, default_value = "ldh-out")]
     out: PathBuf,
-    /// Attitude model: fusion (adaptive Kalman) or acc (accelerometer tilt only).
-    #[arg(long, default_value = "fusion")]
-    model: String,
-    /// Event detector: gyro-landmarks, gyro-zero-crossing, salarian or pitch-peaks (the paper's).
-    #[arg(long, default_value = "gyro-landmarks")]
-    detector: String,
+    /// Attitude model: fusion (adaptive Kalman; default) or acc (accelerometer tilt only).
+    #[arg(long)]
+    model: Option<String>,
+    /// Event detector: gyro-landmarks (default), gyro-zero-crossing, salarian or pitch-peaks (the
+    /// paper's).
+    #[arg(long)]
+    detector: Option<String>,
     /// Sensor format: a built-in name or a TOML column map; default: detect.
     #[arg(long)]
     format: Option<String>,
-    /// Sensor height above the ankle when the manifest has none, m.
-    #[arg(long, default_value_t = ldh_core::gait::DEFAULT_SENSOR_HEIGHT_M)]
-    sensor_height_m: f64,
-    /// All analysis parameters as a TOML file (see docs/parameters.md); flags above override.
+    /// Sensor height above the ankle when the manifest has none, m (default 0.10).
+    #[arg(long)]
+    sensor_height_m: Option<f64>,
+    /// All analysis parameters as a TOML file (docs/parameters.md); the flags above, when given,
+    /// override it.
     #[arg(long)]
     params: Option<PathBuf>,
     /// Skip the Lyapunov exponent (STA).
@@ -258,11 +260,7 @@ struct InspectArgs {
 
 /// Resolve `--format`: a built-in name or a path to a TOML file.
 pub fn resolve_format(name: &str) -> Result<FormatSpec> {
-    if Path::new(name).extension().is_some_and(|e| e == "toml") || Path::new(name).exists() {
-        Ok(FormatSpec::from_toml_file(name)?)
-    } else {
-        Ok(FormatSpec::builtin(name)?)
-    }
+    Ok(FormatSpec::resolve(name)?)
 }
 
 fn progress(len: u64, what: &str) -> ProgressBar {
@@ -414,9 +412,9 @@ fn inspect(a: InspectArgs) -> Result<ExitCode> {
 
 fn analysis_params(
     params: Option<&Path>,
-    model: &str,
-    detector: &str,
-    sensor_height_m: f64,
+    model: Option<&str>,
+    detector: Option<&str>,
+    sensor_height_m: Option<f64>,
     no_sta: bool,
 ) -> Result<AnalysisParams> {
     let mut p = match params {
@@ -428,9 +426,15 @@ fn analysis_params(
         }
         None => AnalysisParams::default(),
     };
-    p.attitude.model = model.parse()?;
-    p.events.detector = detector.parse()?;
-    p.strides.sensor_height_m = sensor_height_m;
+    if let Some(m) = model {
+        p.attitude.model = m.parse()?;
+    }
+    if let Some(d) = detector {
+        p.events.detector = d.parse()?;
+    }
+    if let Some(h) = sensor_height_m {
+        p.strides.sensor_height_m = h;
+    }
     if no_sta {
         p.compute_sta = false;
     }
@@ -441,8 +445,8 @@ fn analysis_params(
 fn analyze(a: AnalyzeArgs) -> Result<ExitCode> {
     let params = analysis_params(
         a.params.as_deref(),
-        &a.model,
-        &a.detector,
+        a.model.as_deref(),
+        a.detector.as_deref(),
         a.sensor_height_m,
         a.no_sta,
     )?;
@@ -518,13 +522,7 @@ fn recording_rows_for(
     model: &str,
     pool: &rayon::ThreadPool,
 ) -> Result<Vec<output::RecordingRow>> {
-    let params = analysis_params(
-        None,
-        model,
-        "gyro-landmarks",
-        ldh_core::gait::DEFAULT_SENSOR_HEIGHT_M,
-        false,
-    )?;
+    let params = analysis_params(None, Some(model), None, None, false)?;
     let read = ReadParams::default().check()?;
     let subjects = discover(inputs)?;
     let results: Vec<SubjectResult> = pool.install(|| {
@@ -678,7 +676,13 @@ fn train(a: TrainArgs) -> Result<ExitCode> {
         w(&format!("confusion_{}_{kind}.svg", r.classifier), &svg)?;
     }
     for c in &clfs {
-        let m = ModelFile::train(&ds, c, &attitude_model)?;
+        // The saved model is the cross-validated pipeline: with --top-k, the top features
+        // ranked on all rows.
+        let final_ds = match a.top_k {
+            Some(k) => ds.select_top_k(k)?,
+            None => ds.clone(),
+        };
+        let m = ModelFile::train(&final_ds, c, &attitude_model)?;
         w(
             &format!("model_{}.json", c.name()),
             &serde_json::to_string(&m)?,
@@ -887,13 +891,7 @@ fn evaluate(a: EvaluateArgs) -> Result<ExitCode> {
     let pool = thread_pool(a.jobs)?;
     let mut accs = Vec::new();
     for model in ["fusion", "acc"] {
-        let params = analysis_params(
-            None,
-            model,
-            &a.detector,
-            ldh_core::gait::DEFAULT_SENSOR_HEIGHT_M,
-            true,
-        )?;
+        let params = analysis_params(None, Some(model), Some(&a.detector), None, true)?;
         let results: Vec<SubjectResult> = pool.install(|| {
             subjects
                 .par_iter()

@@ -160,6 +160,18 @@ pub enum LdhError {
         /// Extra advice (e.g. about decimal commas), empty or starting with "; ".
         hint: String,
     },
+    /// A cell holds a value that is not one of the accepted ones.
+    #[error("{loc}: column '{column}': '{value}' is not valid; expected {expected}")]
+    InvalidValue {
+        /// Where.
+        loc: Location,
+        /// Column name.
+        column: String,
+        /// The text found.
+        value: String,
+        /// What is accepted.
+        expected: String,
+    },
     /// A cell holds NaN or an infinity.
     #[error("{loc}: column '{column}': non-finite value '{value}'")]
     NonFinite {

@@ -111,7 +111,7 @@ pub struct EventParams {
     pub to_offset_stride: Option<f64>,
     /// Smallest mid-swing peak of −ω_s, deg/s. Default 100.
     pub min_midswing_dps: f64,
-    /// Shortest plausible stride, s (also the minimum distance between mid-swings). Default 0.7.
+    /// Shortest plausible stride, s; mid-swings closer than 0.8 × this are merged. Default 0.7.
     pub min_stride_s: f64,
     /// Longest plausible stride, s. Default 2.5.
     pub max_stride_s: f64,
@@ -189,7 +189,7 @@ pub struct Events {
     pub to_s: Vec<f64>,
     /// Mid-swings (negative peaks of ω_s).
     pub midswing_s: Vec<f64>,
-    /// Median interval between mid-swings, s.
+    /// Median interval between mid-swings, s (the upper median for an even count).
     pub median_stride_s: f64,
 }
 

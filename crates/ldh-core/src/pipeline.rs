@@ -173,11 +173,11 @@ fn parse_manifest(
             "healthy" | "h" | "control" => Group::Healthy,
             "ldh" => Group::Ldh,
             other => {
-                return Err(LdhError::NotANumber {
+                return Err(LdhError::InvalidValue {
                     loc: Location::cell(path, lineno, col("group").unwrap() + 1),
                     column: "group".into(),
                     value: other.into(),
-                    hint: "; expected 'healthy' or 'ldh'".into(),
+                    expected: "'healthy' or 'ldh'".into(),
                 })
             }
         };
@@ -186,11 +186,11 @@ fn parse_manifest(
             "right" => Some(Side::Right),
             "none" | "" => None,
             other => {
-                return Err(LdhError::NotANumber {
+                return Err(LdhError::InvalidValue {
                     loc: Location::cell(path, lineno, col("affected_side").unwrap() + 1),
                     column: "affected_side".into(),
                     value: other.into(),
-                    hint: "; expected 'left', 'right' or 'none'".into(),
+                    expected: "'left', 'right' or 'none'".into(),
                 })
             }
         };
@@ -209,8 +209,25 @@ fn parse_manifest(
             let v = get(n);
             (!v.is_empty()).then(|| resolve(v))
         };
+        let id = get("subject_id");
+        if id.is_empty() {
+            return Err(LdhError::InvalidValue {
+                loc: Location::cell(path, lineno, col("subject_id").unwrap() + 1),
+                column: "subject_id".into(),
+                value: String::new(),
+                expected: "a non-empty subject id".into(),
+            });
+        }
+        if out.iter().any(|s: &SubjectInput| s.subject_id == id) {
+            return Err(LdhError::InvalidValue {
+                loc: Location::cell(path, lineno, col("subject_id").unwrap() + 1),
+                column: "subject_id".into(),
+                value: id.into(),
+                expected: "a subject id not used on an earlier line".into(),
+            });
+        }
         out.push(SubjectInput {
-            subject_id: get("subject_id").to_string(),
+            subject_id: id.to_string(),
             group: Some(group),
             affected_side,
             left: side("left"),
@@ -333,6 +350,15 @@ pub fn discover(inputs: &[PathBuf]) -> Result<Vec<SubjectInput>> {
             sensor_height_m: None,
         });
     }
+    let mut seen = std::collections::BTreeSet::new();
+    for s in &out {
+        if !seen.insert(s.subject_id.as_str()) {
+            return Err(LdhError::signal(
+                "inputs",
+                format!("subject id '{}' appears twice (two folders or manifests with the same subject): rename one", s.subject_id),
+            ));
+        }
+    }
     Ok(out)
 }
 
@@ -343,6 +369,9 @@ pub struct LegResult {
     pub side: Side,
     /// The file.
     pub source: String,
+    /// Time of the first sample in the file's own clock, s (event times count from it; the two
+    /// legs are paired on this common clock).
+    pub t0_s: f64,
     /// What the reader found.
     pub read: ReadReport,
     /// Samples replaced as outliers or clipped.
@@ -390,12 +419,20 @@ pub struct BilateralEvent {
 /// predecessor — a HS must follow the same leg's TO, a TO the other leg's HS — and breaks are
 /// marked, e.g. at gait initiation and termination, pauses or missed events.
 pub fn bilateral_events(left: Option<&Events>, right: Option<&Events>) -> Vec<BilateralEvent> {
+    bilateral_events_on_clock(left.map(|e| (e, 0.0)), right.map(|e| (e, 0.0)))
+}
+
+/// As [`bilateral_events`], each leg's events shifted by its offset (s) onto a common clock.
+pub fn bilateral_events_on_clock(
+    left: Option<(&Events, f64)>,
+    right: Option<(&Events, f64)>,
+) -> Vec<BilateralEvent> {
     let mut v: Vec<BilateralEvent> = Vec::new();
     for (side, ev) in [(Side::Left, left), (Side::Right, right)] {
-        let Some(ev) = ev else { continue };
+        let Some((ev, offset)) = ev else { continue };
         for &t in &ev.hs_s {
             v.push(BilateralEvent {
-                time_s: t,
+                time_s: t + offset,
                 side,
                 event: EventKind::HeelStrike,
                 order: String::new(),
@@ -403,7 +440,7 @@ pub fn bilateral_events(left: Option<&Events>, right: Option<&Events>) -> Vec<Bi
         }
         for &t in &ev.to_s {
             v.push(BilateralEvent {
-                time_s: t,
+                time_s: t + offset,
                 side,
                 event: EventKind::ToeOff,
                 order: String::new(),
@@ -506,7 +543,8 @@ pub fn analyze_leg(
         LegResult {
             side,
             source: rec.label(),
-            read: empty_report(rec),
+            t0_s: rec.t0_s,
+            read: memory_report(rec),
             outliers_replaced: pre.replaced.len(),
             alignment: al.alignment.clone(),
             events: ev,
@@ -564,7 +602,8 @@ fn fill_sta(p: &mut SideParameters, st: &[Stride], omega: &[f64], fs: f64, param
     }
 }
 
-fn empty_report(rec: &Recording) -> ReadReport {
+/// The read report of a recording that came from memory (no file).
+pub fn memory_report(rec: &Recording) -> ReadReport {
     ReadReport {
         file: rec
             .source
@@ -635,10 +674,20 @@ pub fn analyze_pair(
         };
     let l = run(left, Side::Left);
     let r = run(right, Side::Right);
-    let other_hs = |x: &std::result::Result<(LegResult, Vec<f64>), String>| {
-        x.as_ref().ok().map(|(_, hs)| hs.clone())
+    // The other leg's heel strikes on this leg's clock: event times count from each file's own
+    // first sample, and the two files may start at different times.
+    let t0 = |x: &std::result::Result<(LegResult, Vec<f64>), String>| {
+        x.as_ref().ok().map(|(leg, _)| leg.t0_s)
     };
-    let (lhs, rhs) = (other_hs(&l), other_hs(&r));
+    let shifted = |x: &std::result::Result<(LegResult, Vec<f64>), String>, to: Option<f64>| {
+        x.as_ref().ok().map(|(leg, hs)| {
+            hs.iter()
+                .map(|t| t + leg.t0_s - to.unwrap_or(leg.t0_s))
+                .collect::<Vec<f64>>()
+        })
+    };
+    let (lt0, rt0) = (t0(&l), t0(&r));
+    let (lhs, rhs) = (shifted(&l, rt0), shifted(&r, lt0));
     let finish = |x: std::result::Result<(LegResult, Vec<f64>), String>,
                   other: Option<Vec<f64>>| {
         x.map(|(mut leg, _)| {
@@ -681,7 +730,7 @@ pub fn analyze_simulated(
     };
     let leg = |l: &crate::simulate::SimLeg| -> LoadedLeg {
         let rec = l.recording.clone();
-        let report = empty_report(&rec);
+        let report = memory_report(&rec);
         Ok((
             rec,
             report,

@@ -66,11 +66,7 @@ fn recording_dict<'py>(py: Python<'py>, rec: Recording) -> PyResult<Bound<'py, P
 }
 
 fn format_of(format: Option<&str>) -> Result<Option<FormatSpec>, LdhError> {
-    match format {
-        None => Ok(None),
-        Some(f) if f.ends_with(".toml") => FormatSpec::from_toml_file(f).map(Some),
-        Some(f) => FormatSpec::builtin(f).map(Some),
-    }
+    format.map(FormatSpec::resolve).transpose()
 }
 
 /// Read one sensor CSV. See `ldh.read_recording`.
@@ -535,6 +531,76 @@ fn analyze_recording<'py>(
     ))
 }
 
+/// Analyse a subject's two recordings given as arrays (6 channels each); returns the JSON of
+/// {"strides", "recordings", "events"} rows as `analyze` does.
+#[pyfunction]
+#[pyo3(signature = (left, right, fs_hz, subject_id="subject", model="fusion", detector="gyro-landmarks", sensor_height_m=0.10, compute_sta=true))]
+#[allow(clippy::too_many_arguments)]
+fn analyze_pair<'py>(
+    py: Python<'py>,
+    left: [PyReadonlyArray1<'py, f64>; 6],
+    right: [PyReadonlyArray1<'py, f64>; 6],
+    fs_hz: f64,
+    subject_id: &str,
+    model: &str,
+    detector: &str,
+    sensor_height_m: f64,
+    compute_sta: bool,
+) -> PyResult<String> {
+    let chans = |a: &[PyReadonlyArray1<'py, f64>; 6]| -> PyResult<[Vec<f64>; 6]> {
+        Ok([
+            a[0].as_slice()?.to_vec(),
+            a[1].as_slice()?.to_vec(),
+            a[2].as_slice()?.to_vec(),
+            a[3].as_slice()?.to_vec(),
+            a[4].as_slice()?.to_vec(),
+            a[5].as_slice()?.to_vec(),
+        ])
+    };
+    let (l, r) = (chans(&left)?, chans(&right)?);
+    let (id, model, detector) = (
+        subject_id.to_string(),
+        model.to_string(),
+        detector.to_string(),
+    );
+    py.detach(move || -> Result<String, LdhError> {
+        use ldh_core::pipeline::{analyze_pair as core_pair, AnalysisParams, SubjectInput};
+        let mut p = AnalysisParams::default();
+        p.attitude.model = model.parse()?;
+        p.events.detector = detector.parse()?;
+        p.compute_sta = compute_sta;
+        p.check()?;
+        let load = |c: [Vec<f64>; 6], side: ldh_core::Side| -> ldh_core::pipeline::LoadedLeg {
+            let [a, b, cc, d, e, f] = c;
+            let rec = Recording::new(fs_hz, [a, b, cc], [d, e, f], vec![])
+                .map_err(|e| format!("{side}: {e}"))?;
+            let report = ldh_core::pipeline::memory_report(&rec);
+            Ok((rec, report, format!("<{side} arrays>")))
+        };
+        let input = SubjectInput {
+            subject_id: id,
+            group: None,
+            affected_side: None,
+            left: None,
+            right: None,
+            sensor_height_m: Some(sensor_height_m),
+        };
+        let res = vec![core_pair(
+            &input,
+            load(l, ldh_core::Side::Left),
+            load(r, ldh_core::Side::Right),
+            &p,
+        )];
+        Ok(serde_json::json!({
+            "strides": ldh_core::output::stride_rows(&res),
+            "recordings": ldh_core::output::recording_rows(&res),
+            "events": ldh_core::output::event_rows(&res),
+        })
+        .to_string())
+    })
+    .map_err(|e| to_py(py, e))
+}
+
 fn ml_dataset(
     x: numpy::PyReadonlyArray2<'_, f64>,
     y: Vec<usize>,
@@ -699,6 +765,7 @@ fn _ldh(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(holm, m)?)?;
     m.add_function(wrap_pyfunction!(analyze_recording, m)?)?;
     m.add_function(wrap_pyfunction!(cross_validate, m)?)?;
+    m.add_function(wrap_pyfunction!(analyze_pair, m)?)?;
     m.add_function(wrap_pyfunction!(train, m)?)?;
     m.add_function(wrap_pyfunction!(predict, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -92,3 +92,33 @@ def test_dask_workers_give_the_cli_results(tmp_path):
         idx = [i for i, x in enumerate(local["recordings"]["subject_id"]) if x == s]
         for key in ["stride_time_s", "stance_ratio", "stride_length_m", "sta_per_s"]:
             np.testing.assert_array_equal(part["recordings"][key], local["recordings"][key][idx])
+
+
+def test_pair_from_arrays_equals_the_files(tmp_path):
+    ldh.write_demo(tmp_path)
+    left, _ = ldh.read_recording(tmp_path / "L02" / "left.csv")
+    right, _ = ldh.read_recording(tmp_path / "L02" / "right.csv")
+    pair = ldh.analyze_pair(left, right, subject_id="L02", compute_sta=False)
+    files = ldh.analyze([tmp_path / "L02" / "left.csv", tmp_path / "L02" / "right.csv"], compute_sta=False)
+    for key in ["stride_time_s", "step_time_s", "stance_ratio", "stride_length_m"]:
+        np.testing.assert_array_equal(pair["recordings"][key], files["recordings"][key])
+    assert set(pair["events"]["side"]) == {"left", "right"}
+    with pytest.raises(ldh.LdhParamError, match="lacks the channels"):
+        ldh.analyze_pair({"acc_x_g": [1.0]}, right)
+
+
+def test_empty_and_bad_arrays_raise_value_errors():
+    with pytest.raises(ValueError, match="too short"):
+        ldh.butter_filtfilt(np.array([]), 10.0, 100.0)
+    with pytest.raises(ValueError):
+        ldh.preprocess([[], [], []], [[], [], []], 100.0)
+    with pytest.raises(ValueError):
+        ldh.analyze_recording([[], [], []], [[], [], []], 100.0)
+    with pytest.raises(ValueError):
+        ldh.shapiro([])
+    with pytest.raises(ValueError):
+        ldh.lyap_r(np.array([]))
+    with pytest.raises(ValueError):
+        ldh.butter_filtfilt(np.array(["a", "b"]), 10.0, 100.0)
+    with pytest.raises(ValueError):
+        ldh.cross_validate(np.zeros((0, 3)), [])

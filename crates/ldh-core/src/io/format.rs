@@ -317,6 +317,17 @@ impl FormatSpec {
         FormatSpec::from_toml_str(&text, &path.display().to_string())
     }
 
+    /// A format named on a command line or in an API call: a path to a TOML column map (a name
+    /// ending in `.toml`, or an existing file), else a built-in format's name.
+    pub fn resolve(name: &str) -> Result<Self> {
+        let p = Path::new(name);
+        if p.extension().is_some_and(|e| e == "toml") || p.is_file() {
+            FormatSpec::from_toml_file(p)
+        } else {
+            FormatSpec::builtin(name)
+        }
+    }
+
     /// One of the formats shipped with ldh ([`BUILTIN_FORMATS`]).
     pub fn builtin(name: &str) -> Result<Self> {
         let (_, text) = BUILTIN_TOML

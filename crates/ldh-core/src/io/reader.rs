@@ -11,10 +11,11 @@
 //! recordings too short to hold three strides, and units that are physically implausible
 //! (e.g. angular velocity in rad/s declared as deg/s).
 //!
-//! Timing: the rate is `(n − 1) / (t_last − t_first)` over the kept segment. When every
-//! timestamp lies within 10 % of a sample period of the uniform grid, samples are kept as they
-//! are; otherwise the channels are resampled onto the uniform grid by linear interpolation
-//! (gaps up to `max_gap_s` are bridged that way).
+//! Timing: every row of the kept segment gets an integer sample index (each interval rounded to
+//! a whole number of median periods), and the period is the least-squares slope of time against
+//! index. When every timestamp lies within 10 % of a period of that uniform grid and no row is
+//! missing, samples are kept as they are; otherwise the channels are resampled onto the grid by
+//! linear interpolation (gaps up to `max_gap_s` are bridged that way).
 
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -194,6 +195,9 @@ pub fn read_recording_bytes(
     format: Option<&FormatSpec>,
     params: &ValidReadParams,
 ) -> Result<(Recording, ReadReport)> {
+    if let Some(f) = format {
+        f.validate()?;
+    }
     let text = decode_text(bytes, path)?;
     let bom = text.len() + 3 == bytes.len() && bytes.starts_with(&[0xEF, 0xBB, 0xBF]);
     let mut notes = Vec::new();
@@ -440,9 +444,6 @@ pub fn read_recording_bytes(
                 if let Some(w) = wrap {
                     if c < prev && prev - c > w / 2.0 {
                         offset += w;
-                        if out.len() == 1 || offset == w {
-                            // first wrap only noted once
-                        }
                     }
                 }
                 prev = c;

@@ -146,7 +146,7 @@ pub fn folds(ds: &Dataset, p: &CvParams, repeat: usize) -> Result<Vec<usize>> {
             }
             stratified_folds(&ds.y, p.k, seed)
         }
-        CvKind::Grouped => grouped_folds(&ds.groups, p.k, seed),
+        CvKind::Grouped => grouped_folds(&ds.groups, &ds.y, p.k, seed),
     }
 }
 
@@ -178,9 +178,25 @@ pub fn cross_validate_with_folds(
             "one fold id per row for every repeat",
         ));
     }
+    let k = fold_sets.iter().flatten().max().map_or(0, |m| m + 1);
+    if k < 2 {
+        return Err(LdhError::param("folds", k, "at least 2 folds"));
+    }
+    if let Some(r) = fold_sets
+        .iter()
+        .position(|f| (0..k).any(|q| !f.contains(&q)))
+    {
+        return Err(LdhError::param(
+            "folds",
+            r,
+            format!(
+                "repeat {r} leaves a fold of 0..{k} empty: every repeat must use every fold id"
+            ),
+        ));
+    }
     let p = &CvParams {
         repeats: fold_sets.len(),
-        k: fold_sets[0].iter().max().map_or(0, |m| m + 1),
+        k,
         ..p.clone()
     };
     if let Some(t) = p.top_k {

@@ -156,6 +156,34 @@ impl Dataset {
     /// Refuse datasets a classifier cannot learn from, saying why.
     pub fn validate(&self) -> Result<()> {
         let k = self.class_names.len();
+        if self.x.ncols() == 0 {
+            return Err(LdhError::signal(
+                "dataset",
+                "no features: at least one column is needed",
+            ));
+        }
+        if self.x.nrows() != self.y.len() || self.groups.len() != self.y.len() {
+            return Err(LdhError::signal(
+                "dataset",
+                format!(
+                    "{} rows of features, {} labels, {} groups",
+                    self.x.nrows(),
+                    self.y.len(),
+                    self.groups.len()
+                ),
+            ));
+        }
+        if let Some((i, &l)) = self.y.iter().enumerate().find(|(_, &l)| l >= k) {
+            return Err(LdhError::signal(
+                "dataset",
+                format!(
+                    "label {l} of row {i} is outside the {} classes {:?} (labels 0–{})",
+                    k,
+                    self.class_names,
+                    k - 1
+                ),
+            ));
+        }
         let counts = self.class_counts();
         if counts.iter().filter(|&&c| c > 0).count() < 2 {
             return Err(LdhError::signal(
@@ -181,6 +209,36 @@ impl Dataset {
             ));
         }
         Ok(())
+    }
+
+    /// The same rows with only the `k` features of largest |Pearson r| with the label (ranked on
+    /// all rows; used for the saved model when cross-validation selected top-k per fold).
+    pub fn select_top_k(&self, k: usize) -> Result<Dataset> {
+        if k == 0 || k > self.feature_names.len() {
+            return Err(LdhError::param(
+                "top_k",
+                k,
+                format!("must lie in 1..={}", self.feature_names.len()),
+            ));
+        }
+        let r = pearson_with_label(&self.x, &self.y);
+        let mut idx: Vec<usize> = (0..r.len()).collect();
+        idx.sort_by(|&a, &b| {
+            r[b].abs()
+                .partial_cmp(&r[a].abs())
+                .unwrap_or(std::cmp::Ordering::Equal)
+                .then(a.cmp(&b))
+        });
+        let mut keep: Vec<usize> = idx.into_iter().take(k).collect();
+        keep.sort_unstable();
+        Ok(Dataset {
+            feature_names: keep
+                .iter()
+                .map(|&j| self.feature_names[j].clone())
+                .collect(),
+            x: self.x.select(Axis(1), &keep),
+            ..self.clone()
+        })
     }
 
     /// Rows per class.
@@ -333,24 +391,45 @@ pub fn stratified_folds(y: &[usize], k: usize, seed: u64) -> Result<Vec<usize>> 
     Ok(fold)
 }
 
-/// Fold of every row for subject-grouped k-fold: subjects (groups) are shuffled by `seed`, then,
-/// largest first, each goes to the fold with the fewest rows so far. All rows of a subject share a
-/// fold.
-pub fn grouped_folds(groups: &[String], k: usize, seed: u64) -> Result<Vec<usize>> {
+/// Fold of every row for subject-grouped k-fold, stratified by class (scikit-learn's
+/// StratifiedGroupKFold idea): subjects are grouped by the set of classes of their rows (an LDH
+/// subject's two sides; a healthy subject), shuffled by `seed` within each set, and dealt to the
+/// folds in turn across the sets, so every fold holds a share of every kind of subject and no
+/// training fold loses a class while there are at least k subjects of it. All rows of a subject
+/// share a fold.
+pub fn grouped_folds(groups: &[String], y: &[usize], k: usize, seed: u64) -> Result<Vec<usize>> {
     let mut ids: Vec<&String> = groups.iter().collect();
     ids.sort();
     ids.dedup();
     check_k(ids.len(), k, "subjects")?;
+    let signature = |g: &String| -> Vec<usize> {
+        let mut c: Vec<usize> = groups
+            .iter()
+            .zip(y)
+            .filter(|(x, _)| *x == g)
+            .map(|(_, &l)| l)
+            .collect();
+        c.sort_unstable();
+        c.dedup();
+        c
+    };
+    let mut sigs: Vec<Vec<usize>> = ids.iter().map(|g| signature(g)).collect();
+    sigs.sort();
+    sigs.dedup();
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    ids.shuffle(&mut rng);
-    let size = |g: &String| groups.iter().filter(|x| *x == g).count();
-    ids.sort_by_key(|g| std::cmp::Reverse(size(g)));
-    let mut load = vec![0usize; k];
     let mut of_group = std::collections::HashMap::new();
-    for g in ids {
-        let f = (0..k).min_by_key(|&f| (load[f], f)).expect("k ≥ 2");
-        load[f] += size(g);
-        of_group.insert(g.clone(), f);
+    let mut next = 0usize;
+    for sig in &sigs {
+        let mut members: Vec<&String> = ids
+            .iter()
+            .copied()
+            .filter(|g| &signature(g) == sig)
+            .collect();
+        members.shuffle(&mut rng);
+        for g in members {
+            of_group.insert(g.clone(), next % k);
+            next += 1;
+        }
     }
     Ok(groups.iter().map(|g| of_group[g]).collect())
 }

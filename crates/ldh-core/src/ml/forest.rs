@@ -1,5 +1,5 @@
 //! Random forest: bagged CART trees ([`super::tree`]), each on a bootstrap sample of the rows,
-//! with ⌈√p⌉ features drawn at every split and probabilities averaged over the trees — the
+//! with ⌊√p⌋ features (at least 1) drawn at every split and probabilities averaged over the trees — the
 //! algorithm of scikit-learn's `RandomForestClassifier` with its defaults. Deterministic for a
 //! seed (linfa-trees is not: see [`super::tree`]); serialisable, so a trained forest can be saved.
 
@@ -17,7 +17,7 @@ use crate::error::{LdhError, Result};
 pub struct ForestParams {
     /// Number of trees. Default 100.
     pub n_trees: usize,
-    /// Features tried at each split; `None`: ⌈√p⌉ (scikit-learn's "sqrt"). Default None.
+    /// Features tried at each split; `None`: max(1, ⌊√p⌋) (scikit-learn's "sqrt"). Default None.
     pub max_features: Option<usize>,
     /// Maximum depth; `None`: grow until pure. Default None.
     pub max_depth: Option<usize>,
@@ -61,7 +61,7 @@ impl Forest {
         let tp = TreeParams {
             max_features: p
                 .max_features
-                .unwrap_or_else(|| (f as f64).sqrt().ceil() as usize)
+                .unwrap_or_else(|| ((f as f64).sqrt().floor() as usize).max(1))
                 .clamp(1, f),
             max_depth: p.max_depth.unwrap_or(usize::MAX),
             min_samples_split: 2,

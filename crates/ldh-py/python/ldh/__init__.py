@@ -35,6 +35,7 @@ __all__ = [
     "analyze",
     "analyze_many",
     "analyze_recording",
+    "analyze_pair",
     "lyap_r",
     "lyap_e",
     "shapiro",
@@ -282,6 +283,52 @@ def analyze_many(paths: Sequence[PathLike], n_jobs: Optional[int] = None, **kwar
     Dask or Ray workers: ``client.map(lambda d: ldh.analyze(d, n_jobs=1), subject_dirs)``.
     """
     return analyze(list(paths), n_jobs=n_jobs, **kwargs)
+
+
+_CHANNELS = ["acc_x_g", "acc_y_g", "acc_z_g", "gyro_x_dps", "gyro_y_dps", "gyro_z_dps"]
+
+
+def analyze_pair(
+    left: Dict[str, Any],
+    right: Dict[str, Any],
+    fs_hz: Optional[float] = None,
+    *,
+    subject_id: str = "subject",
+    model: str = "fusion",
+    detector: str = "gyro-landmarks",
+    sensor_height_m: float = 0.10,
+    compute_sta: bool = True,
+) -> Dict[str, Dict[str, Any]]:
+    """Analyse one subject's two recordings given as arrays, with step time and step frequency
+    from both legs — the same tables as :func:`analyze`.
+
+    Parameters
+    ----------
+    left, right : dict
+        Channels ``acc_x_g`` … ``gyro_z_dps`` (array_like, g and deg/s), e.g. the first value
+        returned by :func:`read_recording`; ``fs_hz`` is taken from them when present.
+    fs_hz : float, optional
+        Sampling rate of both (both sensors share one clock).
+
+    Returns
+    -------
+    dict
+        ``{"strides", "recordings", "events"}`` as columns.
+    """
+    for name, rec in (("left", left), ("right", right)):
+        missing = [c for c in _CHANNELS if c not in rec]
+        if missing:
+            raise LdhParamError(f"{name} lacks the channels {missing}")
+    rates = {float(r["fs_hz"]) for r in (left, right) if r.get("fs_hz") is not None}
+    if fs_hz is None and len(rates) > 1:
+        raise LdhDataError(f"the two recordings have different sampling rates {sorted(rates)} Hz; resample one or pass fs_hz")
+    rate = fs_hz if fs_hz is not None else (rates.pop() if rates else None)
+    if rate is None:
+        raise LdhParamError("fs_hz is needed when the dicts do not carry it")
+    lv = [_vec(left[c], f"left[{c}]") for c in _CHANNELS]
+    rv = [_vec(right[c], f"right[{c}]") for c in _CHANNELS]
+    raw = json.loads(_ldh.analyze_pair(lv, rv, float(rate), subject_id, model, detector, float(sensor_height_m), bool(compute_sta)))
+    return {k: _columns(v) for k, v in raw.items()}
 
 
 def analyze_recording(
