@@ -417,7 +417,7 @@ fn analysis_params(
     sensor_height_m: Option<f64>,
     no_sta: bool,
 ) -> Result<AnalysisParams> {
-    let mut p = match params {
+    let base = match params {
         Some(f) => {
             let text =
                 std::fs::read_to_string(f).with_context(|| format!("reading {}", f.display()))?;
@@ -426,20 +426,7 @@ fn analysis_params(
         }
         None => AnalysisParams::default(),
     };
-    if let Some(m) = model {
-        p.attitude.model = m.parse()?;
-    }
-    if let Some(d) = detector {
-        p.events.detector = d.parse()?;
-    }
-    if let Some(h) = sensor_height_m {
-        p.strides.sensor_height_m = h;
-    }
-    if no_sta {
-        p.compute_sta = false;
-    }
-    p.check()?;
-    Ok(p)
+    Ok(base.with_options(model, detector, sensor_height_m, no_sta.then_some(false))?)
 }
 
 fn analyze(a: AnalyzeArgs) -> Result<ExitCode> {

@@ -59,6 +59,31 @@ impl AnalysisParams {
         self.attitude.model = m;
         self
     }
+    /// These parameters with the options of a command line or an API call applied (each `None`
+    /// keeps the current value), then checked. One place for the CLI and the Python binding.
+    pub fn with_options(
+        mut self,
+        model: Option<&str>,
+        detector: Option<&str>,
+        sensor_height_m: Option<f64>,
+        compute_sta: Option<bool>,
+    ) -> Result<Self> {
+        if let Some(m) = model {
+            self.attitude.model = m.parse()?;
+        }
+        if let Some(d) = detector {
+            self.events.detector = d.parse()?;
+        }
+        if let Some(h) = sensor_height_m {
+            self.strides.sensor_height_m = h;
+        }
+        if let Some(c) = compute_sta {
+            self.compute_sta = c;
+        }
+        self.check()?;
+        Ok(self)
+    }
+
     /// Validate every stage's parameters that do not depend on the recording.
     pub fn check(&self) -> Result<()> {
         self.align.check()?;

@@ -340,7 +340,7 @@ fn analyze(
     sensor_height_m: f64,
     n_jobs: usize,
 ) -> PyResult<String> {
-    use ldh_core::pipeline::{analyze_subject, discover, AnalysisParams};
+    use ldh_core::pipeline::{analyze_subject, discover};
     use rayon::prelude::*;
     let (model, detector, fmt) = (
         model.to_string(),
@@ -349,12 +349,12 @@ fn analyze(
     );
     let out = py
         .detach(move || -> Result<String, LdhError> {
-            let mut p = AnalysisParams::default();
-            p.attitude.model = model.parse()?;
-            p.events.detector = detector.parse()?;
-            p.strides.sensor_height_m = sensor_height_m;
-            p.compute_sta = compute_sta;
-            p.check()?;
+            let p = ldh_core::pipeline::AnalysisParams::default().with_options(
+                Some(&model),
+                Some(&detector),
+                Some(sensor_height_m),
+                Some(compute_sta),
+            )?;
             let f = format_of(fmt.as_deref())?;
             let read = ReadParams::default().check()?;
             let subjects = discover(&inputs)?;
@@ -499,11 +499,12 @@ fn analyze_recording<'py>(
         .detach(
             move || -> Result<(String, ldh_core::attitude::Attitude), LdhError> {
                 let side: ldh_core::Side = side.parse()?;
-                let mut p = ldh_core::pipeline::AnalysisParams::default();
-                p.attitude.model = model.parse()?;
-                p.events.detector = detector.parse()?;
-                p.compute_sta = compute_sta;
-                p.check()?;
+                let p = ldh_core::pipeline::AnalysisParams::default().with_options(
+                    Some(&model),
+                    Some(&detector),
+                    Some(sensor_height_m),
+                    Some(compute_sta),
+                )?;
                 let rec = Recording::new(fs_hz, acc, gyro, vec![])?.with_side(side);
                 let (leg, _) =
                     ldh_core::pipeline::analyze_leg(&rec, side, &p, Some(sensor_height_m))?;
@@ -564,12 +565,13 @@ fn analyze_pair<'py>(
         detector.to_string(),
     );
     py.detach(move || -> Result<String, LdhError> {
-        use ldh_core::pipeline::{analyze_pair as core_pair, AnalysisParams, SubjectInput};
-        let mut p = AnalysisParams::default();
-        p.attitude.model = model.parse()?;
-        p.events.detector = detector.parse()?;
-        p.compute_sta = compute_sta;
-        p.check()?;
+        use ldh_core::pipeline::{analyze_pair as core_pair, SubjectInput};
+        let p = ldh_core::pipeline::AnalysisParams::default().with_options(
+            Some(&model),
+            Some(&detector),
+            Some(sensor_height_m),
+            Some(compute_sta),
+        )?;
         let load = |c: [Vec<f64>; 6], side: ldh_core::Side| -> ldh_core::pipeline::LoadedLeg {
             let [a, b, cc, d, e, f] = c;
             let rec = Recording::new(fs_hz, [a, b, cc], [d, e, f], vec![])
