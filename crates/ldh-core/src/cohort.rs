@@ -546,7 +546,14 @@ pub fn offsets(c: &Cohort) -> ModelOffsets {
         out.z_ldhe.push(z(&g.ldhe));
         out.z_h.push(z(&g.h));
     }
-    let m = |v: &[f64]| v.iter().map(|x| x.abs()).sum::<f64>() / v.len().max(1) as f64;
+    // No usable parameter (e.g. every healthy SD is 0): no offset, not 0.
+    let m = |v: &[f64]| {
+        if v.is_empty() {
+            f64::NAN
+        } else {
+            v.iter().map(|x| x.abs()).sum::<f64>() / v.len() as f64
+        }
+    };
     out.off0 = m(&out.z_ldhh);
     out.off1 = m(&out.z_ldhe);
     out

@@ -76,6 +76,8 @@ def test_analyze_many_is_identical_whatever_n_jobs(tmp_path):
     np.testing.assert_array_equal(one["strides"]["stride_length_m"], two["strides"]["stride_length_m"])
     with pytest.raises(ldh.LdhParamError, match="n_jobs"):
         ldh.analyze(tmp_path, n_jobs=-3)
+    with pytest.raises(ldh.LdhParamError, match="n_jobs"):
+        ldh.analyze(tmp_path, n_jobs=0)
 
 
 def test_dask_workers_give_the_cli_results(tmp_path):

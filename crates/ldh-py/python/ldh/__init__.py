@@ -266,9 +266,9 @@ def analyze(
         paths = [os.fspath(inputs)]
     else:
         paths = [os.fspath(p) for p in inputs]
+    if n_jobs is not None and n_jobs != -1 and int(n_jobs) < 1:
+        raise LdhParamError(f"n_jobs must be a positive number, -1 or None (all cores), got {n_jobs}")
     jobs = 0 if n_jobs in (None, -1) else int(n_jobs)
-    if jobs < 0:
-        raise LdhParamError(f"n_jobs must be a positive number, -1 or None, got {n_jobs}")
     raw = json.loads(
         _ldh.analyze(paths, model, detector, format, compute_sta, float(sensor_height_m), jobs)
     )
