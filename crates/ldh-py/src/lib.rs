@@ -328,32 +328,29 @@ fn lyap_e<'py>(
 /// Analyse subjects as `ldh analyze` does; returns JSON text of
 /// {"strides": [...], "recordings": [...], "events": [...]} rows.
 #[pyfunction]
-#[pyo3(signature = (inputs, model="fusion", detector="gyro-landmarks", format=None, compute_sta=true, sensor_height_m=0.10, n_jobs=1))]
+#[pyo3(signature = (inputs, model=None, detector=None, format=None, compute_sta=None, sensor_height_m=None, n_jobs=1, params_json=None))]
 #[allow(clippy::too_many_arguments)]
 fn analyze(
     py: Python<'_>,
     inputs: Vec<std::path::PathBuf>,
-    model: &str,
-    detector: &str,
+    model: Option<String>,
+    detector: Option<String>,
     format: Option<&str>,
-    compute_sta: bool,
-    sensor_height_m: f64,
+    compute_sta: Option<bool>,
+    sensor_height_m: Option<f64>,
     n_jobs: usize,
+    params_json: Option<String>,
 ) -> PyResult<String> {
     use ldh_core::pipeline::{analyze_subject, discover};
     use rayon::prelude::*;
-    let (model, detector, fmt) = (
-        model.to_string(),
-        detector.to_string(),
-        format.map(String::from),
-    );
+    let (model, detector, fmt) = (model, detector, format.map(String::from));
     let out = py
         .detach(move || -> Result<String, LdhError> {
-            let p = ldh_core::pipeline::AnalysisParams::default().with_options(
-                Some(&model),
-                Some(&detector),
-                Some(sensor_height_m),
-                Some(compute_sta),
+            let p = base_params(params_json.as_deref())?.with_options(
+                model.as_deref(),
+                detector.as_deref(),
+                sensor_height_m,
+                compute_sta,
             )?;
             let f = format_of(fmt.as_deref())?;
             let read = ReadParams::default().check()?;
@@ -466,7 +463,7 @@ fn holm(py: Python<'_>, pvalues: Vec<f64>) -> PyResult<Vec<f64>> {
 /// Analyse one recording given as arrays; returns JSON text with the alignment, events,
 /// strides and parameters, and the attitude (pitch, roll, yaw in deg) as numpy arrays.
 #[pyfunction]
-#[pyo3(signature = (acc_g, gyro_dps, fs_hz, side="left", model="fusion", detector="gyro-landmarks", sensor_height_m=0.10, compute_sta=true))]
+#[pyo3(signature = (acc_g, gyro_dps, fs_hz, side="left", model=None, detector=None, sensor_height_m=None, compute_sta=None, params_json=None))]
 #[allow(clippy::too_many_arguments)]
 fn analyze_recording<'py>(
     py: Python<'py>,
@@ -474,10 +471,11 @@ fn analyze_recording<'py>(
     gyro_dps: [PyReadonlyArray1<'py, f64>; 3],
     fs_hz: f64,
     side: &str,
-    model: &str,
-    detector: &str,
-    sensor_height_m: f64,
-    compute_sta: bool,
+    model: Option<String>,
+    detector: Option<String>,
+    sensor_height_m: Option<f64>,
+    compute_sta: Option<bool>,
+    params_json: Option<String>,
 ) -> PyResult<(
     String,
     Bound<'py, PyArray1<f64>>,
@@ -494,20 +492,19 @@ fn analyze_recording<'py>(
         gyro_dps[1].as_slice()?.to_vec(),
         gyro_dps[2].as_slice()?.to_vec(),
     ];
-    let (side, model, detector) = (side.to_string(), model.to_string(), detector.to_string());
+    let side = side.to_string();
     let (json, att) = py
         .detach(
             move || -> Result<(String, ldh_core::attitude::Attitude), LdhError> {
                 let side: ldh_core::Side = side.parse()?;
-                let p = ldh_core::pipeline::AnalysisParams::default().with_options(
-                    Some(&model),
-                    Some(&detector),
-                    Some(sensor_height_m),
-                    Some(compute_sta),
+                let p = base_params(params_json.as_deref())?.with_options(
+                    model.as_deref(),
+                    detector.as_deref(),
+                    sensor_height_m,
+                    compute_sta,
                 )?;
                 let rec = Recording::new(fs_hz, acc, gyro, vec![])?.with_side(side);
-                let (leg, _) =
-                    ldh_core::pipeline::analyze_leg(&rec, side, &p, Some(sensor_height_m))?;
+                let (leg, _) = ldh_core::pipeline::analyze_leg(&rec, side, &p, None)?;
                 let att = leg
                     .attitude
                     .clone()
@@ -535,7 +532,7 @@ fn analyze_recording<'py>(
 /// Analyse a subject's two recordings given as arrays (6 channels each); returns the JSON of
 /// {"strides", "recordings", "events"} rows as `analyze` does.
 #[pyfunction]
-#[pyo3(signature = (left, right, fs_hz, subject_id="subject", model="fusion", detector="gyro-landmarks", sensor_height_m=0.10, compute_sta=true))]
+#[pyo3(signature = (left, right, fs_hz, subject_id="subject", model=None, detector=None, sensor_height_m=None, compute_sta=None, params_json=None))]
 #[allow(clippy::too_many_arguments)]
 fn analyze_pair<'py>(
     py: Python<'py>,
@@ -543,10 +540,11 @@ fn analyze_pair<'py>(
     right: [PyReadonlyArray1<'py, f64>; 6],
     fs_hz: f64,
     subject_id: &str,
-    model: &str,
-    detector: &str,
-    sensor_height_m: f64,
-    compute_sta: bool,
+    model: Option<String>,
+    detector: Option<String>,
+    sensor_height_m: Option<f64>,
+    compute_sta: Option<bool>,
+    params_json: Option<String>,
 ) -> PyResult<String> {
     let chans = |a: &[PyReadonlyArray1<'py, f64>; 6]| -> PyResult<[Vec<f64>; 6]> {
         Ok([
@@ -559,18 +557,14 @@ fn analyze_pair<'py>(
         ])
     };
     let (l, r) = (chans(&left)?, chans(&right)?);
-    let (id, model, detector) = (
-        subject_id.to_string(),
-        model.to_string(),
-        detector.to_string(),
-    );
+    let (id, model, detector) = (subject_id.to_string(), model, detector);
     py.detach(move || -> Result<String, LdhError> {
         use ldh_core::pipeline::{analyze_pair as core_pair, SubjectInput};
-        let p = ldh_core::pipeline::AnalysisParams::default().with_options(
-            Some(&model),
-            Some(&detector),
-            Some(sensor_height_m),
-            Some(compute_sta),
+        let p = base_params(params_json.as_deref())?.with_options(
+            model.as_deref(),
+            detector.as_deref(),
+            sensor_height_m,
+            compute_sta,
         )?;
         let load = |c: [Vec<f64>; 6], side: ldh_core::Side| -> ldh_core::pipeline::LoadedLeg {
             let [a, b, cc, d, e, f] = c;
@@ -585,7 +579,7 @@ fn analyze_pair<'py>(
             affected_side: None,
             left: None,
             right: None,
-            sensor_height_m: Some(sensor_height_m),
+            sensor_height_m: None,
         };
         let res = vec![core_pair(
             &input,
@@ -601,6 +595,17 @@ fn analyze_pair<'py>(
         .to_string())
     })
     .map_err(|e| to_py(py, e))
+}
+
+/// Analysis parameters from an optional JSON object (the Python `params` dict: the same names,
+/// nesting and defaults as the Rust `AnalysisParams`, unknown names refused).
+fn base_params(params_json: Option<&str>) -> Result<ldh_core::pipeline::AnalysisParams, LdhError> {
+    match params_json {
+        None => Ok(ldh_core::pipeline::AnalysisParams::default()),
+        Some(j) => {
+            serde_json::from_str(j).map_err(|e| LdhError::param("params", "dict", e.to_string()))
+        }
+    }
 }
 
 fn ml_dataset(

@@ -124,3 +124,20 @@ def test_empty_and_bad_arrays_raise_value_errors():
         ldh.butter_filtfilt(np.array(["a", "b"]), 10.0, 100.0)
     with pytest.raises(ValueError):
         ldh.cross_validate(np.zeros((0, 3)), [])
+
+
+def test_every_analysis_parameter_can_be_set_from_python(tmp_path):
+    ldh.write_demo(tmp_path)
+    rec, _ = ldh.read_recording(tmp_path / "H01" / "left.csv")
+    acc = [rec["acc_x_g"], rec["acc_y_g"], rec["acc_z_g"]]
+    gyro = [rec["gyro_x_dps"], rec["gyro_y_dps"], rec["gyro_z_dps"]]
+    a = ldh.analyze_recording(acc, gyro, rec["fs_hz"], compute_sta=False)
+    b = ldh.analyze_recording(acc, gyro, rec["fs_hz"], compute_sta=False, params={"attitude": {"smoother": False}})
+    assert not np.array_equal(a["attitude"]["pitch_deg"], b["attitude"]["pitch_deg"])
+    c = ldh.analyze(tmp_path / "H01", compute_sta=False, params={"events": {"detector": "pitch-peaks"}})
+    d = ldh.analyze(tmp_path / "H01", compute_sta=False)
+    assert not np.array_equal(c["recordings"]["stance_ratio"], d["recordings"]["stance_ratio"])
+    with pytest.raises(ldh.LdhParamError, match="unknown field"):
+        ldh.analyze(tmp_path / "H01", params={"attitude": {"smoothing": True}})
+    with pytest.raises(ldh.LdhParamError, match="params must be a dict"):
+        ldh.analyze(tmp_path / "H01", params="fast")

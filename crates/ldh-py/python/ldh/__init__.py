@@ -205,6 +205,18 @@ def simulate_cohort(
     return _ldh.simulate_cohort(os.fspath(out), healthy, ldh, seconds, seed, rate_hz, turn)
 
 
+def _opt_float(v: Optional[float]) -> Optional[float]:
+    return None if v is None else float(v)
+
+
+def _params_json(params: Optional[Dict[str, Any]]) -> Optional[str]:
+    if params is None:
+        return None
+    if not isinstance(params, dict):
+        raise LdhParamError(f"params must be a dict like docs/parameters.md, got {type(params).__name__}")
+    return json.dumps(params)
+
+
 def _columns(rows: Sequence[Dict[str, Any]]) -> Dict[str, Any]:
     """Rows (dicts) to columns: numeric columns as float64 arrays with NaN for missing values,
     the others as lists. ``pandas.DataFrame(result)`` takes it as it is."""
@@ -223,12 +235,13 @@ def _columns(rows: Sequence[Dict[str, Any]]) -> Dict[str, Any]:
 def analyze(
     inputs: Union[None, PathLike, Sequence[PathLike]] = None,
     *,
-    model: str = "fusion",
-    detector: str = "gyro-landmarks",
+    model: Optional[str] = None,
+    detector: Optional[str] = None,
     format: Optional[str] = None,
-    compute_sta: bool = True,
-    sensor_height_m: float = 0.10,
+    compute_sta: Optional[bool] = None,
+    sensor_height_m: Optional[float] = None,
     n_jobs: Optional[int] = 1,
+    params: Optional[Dict[str, Any]] = None,
 ) -> Dict[str, Dict[str, Any]]:
     """Analyse recordings exactly as ``ldh analyze`` does.
 
@@ -237,20 +250,25 @@ def analyze(
     inputs : path or sequence of paths, optional
         A manifest CSV, a cohort folder, a subject folder or a subject's two files; ``None``:
         the embedded demo cohort.
-    model : {"fusion", "acc"}, default "fusion"
-        Attitude model.
-    detector : str, default "gyro-landmarks"
-        Event detector (``gyro-landmarks``, ``gyro-zero-crossing``, ``salarian``,
-        ``pitch-peaks``).
+    model : {"fusion", "acc"}, optional
+        Attitude model (default: from ``params``, else "fusion").
+    detector : str, optional
+        Event detector (``gyro-landmarks`` — the default —, ``gyro-zero-crossing``,
+        ``salarian``, ``pitch-peaks``).
     format : str, optional
         Sensor format name or TOML column map; default: detect.
-    compute_sta : bool, default True
-        Compute the Lyapunov stability STA.
-    sensor_height_m : float, default 0.10
-        Sensor height above the ankle when the manifest has none, in metres.
+    compute_sta : bool, optional
+        Compute the Lyapunov stability STA (default True).
+    sensor_height_m : float, optional
+        Sensor height above the ankle when the manifest has none, in metres (default 0.10).
     n_jobs : int or None, default 1
         Rust threads for the subjects (the GIL is released); ``None`` or ``-1``: all cores.
         Results are identical whatever the number.
+    params : dict, optional
+        Any analysis parameter, nested as in docs/parameters.md and with the Rust names and
+        defaults, e.g. ``{"attitude": {"smoother": False}, "preprocess": {"cutoff_hz": 8.0}}``;
+        unknown names are refused. ``model``, ``detector``, ``sensor_height_m`` and
+        ``compute_sta`` are applied on top.
 
     Returns
     -------
@@ -270,7 +288,7 @@ def analyze(
         raise LdhParamError(f"n_jobs must be a positive number, -1 or None (all cores), got {n_jobs}")
     jobs = 0 if n_jobs in (None, -1) else int(n_jobs)
     raw = json.loads(
-        _ldh.analyze(paths, model, detector, format, compute_sta, float(sensor_height_m), jobs)
+        _ldh.analyze(paths, model, detector, format, compute_sta, _opt_float(sensor_height_m), jobs, _params_json(params))
     )
     return {k: _columns(v) for k, v in raw.items()}
 
@@ -294,10 +312,11 @@ def analyze_pair(
     fs_hz: Optional[float] = None,
     *,
     subject_id: str = "subject",
-    model: str = "fusion",
-    detector: str = "gyro-landmarks",
-    sensor_height_m: float = 0.10,
-    compute_sta: bool = True,
+    model: Optional[str] = None,
+    detector: Optional[str] = None,
+    sensor_height_m: Optional[float] = None,
+    compute_sta: Optional[bool] = None,
+    params: Optional[Dict[str, Any]] = None,
 ) -> Dict[str, Dict[str, Any]]:
     """Analyse one subject's two recordings given as arrays, with step time and step frequency
     from both legs — the same tables as :func:`analyze`.
@@ -327,7 +346,7 @@ def analyze_pair(
         raise LdhParamError("fs_hz is needed when the dicts do not carry it")
     lv = [_vec(left[c], f"left[{c}]") for c in _CHANNELS]
     rv = [_vec(right[c], f"right[{c}]") for c in _CHANNELS]
-    raw = json.loads(_ldh.analyze_pair(lv, rv, float(rate), subject_id, model, detector, float(sensor_height_m), bool(compute_sta)))
+    raw = json.loads(_ldh.analyze_pair(lv, rv, float(rate), subject_id, model, detector, _opt_float(sensor_height_m), compute_sta, _params_json(params)))
     return {k: _columns(v) for k, v in raw.items()}
 
 
@@ -337,10 +356,11 @@ def analyze_recording(
     fs_hz: float,
     *,
     side: str = "left",
-    model: str = "fusion",
-    detector: str = "gyro-landmarks",
-    sensor_height_m: float = 0.10,
-    compute_sta: bool = True,
+    model: Optional[str] = None,
+    detector: Optional[str] = None,
+    sensor_height_m: Optional[float] = None,
+    compute_sta: Optional[bool] = None,
+    params: Optional[Dict[str, Any]] = None,
 ) -> Dict[str, Any]:
     """Run the per-recording pipeline on arrays: preprocessing, alignment, attitude, events,
     strides and the per-side parameters (without the other leg: no step time).
@@ -374,7 +394,7 @@ def analyze_recording(
     if len(acc) != 3 or len(gyro) != 3:
         raise LdhParamError("acc_g and gyro_dps must each hold three channels (x, y, z)")
     text, pitch, roll, yaw = _ldh.analyze_recording(
-        acc, gyro, float(fs_hz), side, model, detector, float(sensor_height_m), bool(compute_sta)
+        acc, gyro, float(fs_hz), side, model, detector, _opt_float(sensor_height_m), compute_sta, _params_json(params)
     )
     raw = json.loads(text)
     raw["strides"] = _columns(raw["strides"])
