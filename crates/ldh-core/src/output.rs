@@ -288,6 +288,28 @@ pub fn event_rows(results: &[SubjectResult]) -> Vec<EventRow> {
     out
 }
 
+/// The three result tables of a set of results (what `ldh analyze` writes as separate files).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Tables {
+    /// Per-stride rows.
+    pub strides: Vec<StrideRow>,
+    /// Per-recording rows.
+    pub recordings: Vec<RecordingRow>,
+    /// Bilateral event rows.
+    pub events: Vec<EventRow>,
+}
+
+impl Tables {
+    /// All three tables of `results`.
+    pub fn of(results: &[SubjectResult]) -> Tables {
+        Tables {
+            strides: stride_rows(results),
+            recordings: recording_rows(results),
+            events: event_rows(results),
+        }
+    }
+}
+
 /// Rows as CSV text (header from the field names).
 pub fn to_csv<T: Serialize>(rows: &[T], header_if_empty: &[&str]) -> Result<String> {
     let mut w = csv::WriterBuilder::new()

@@ -55,6 +55,21 @@ fn put_channels(
     Ok(())
 }
 
+/// Copy N numpy channels (contiguous float64, as the Python layer passes them) into vectors.
+fn vecs<const N: usize>(a: &[PyReadonlyArray1<'_, f64>; N]) -> PyResult<[Vec<f64>; N]> {
+    let v: Vec<Vec<f64>> = a
+        .iter()
+        .map(|c| c.as_slice().map(|s| s.to_vec()))
+        .collect::<Result<_, _>>()?;
+    Ok(v.try_into().expect("N channels in, N out"))
+}
+
+/// The result tables of `ldh analyze` as one JSON object for the Python layer.
+fn tables_json(results: &[ldh_core::pipeline::SubjectResult]) -> Result<String, LdhError> {
+    serde_json::to_string(&ldh_core::output::Tables::of(results))
+        .map_err(|e| LdhError::signal("json", e.to_string()))
+}
+
 fn recording_dict<'py>(py: Python<'py>, rec: Recording) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("fs_hz", rec.fs_hz)?;
@@ -152,16 +167,8 @@ fn preprocess<'py>(
             ))
         }
     };
-    let acc: [Vec<f64>; 3] = [
-        acc_g[0].as_slice()?.to_vec(),
-        acc_g[1].as_slice()?.to_vec(),
-        acc_g[2].as_slice()?.to_vec(),
-    ];
-    let gyro: [Vec<f64>; 3] = [
-        gyro_dps[0].as_slice()?.to_vec(),
-        gyro_dps[1].as_slice()?.to_vec(),
-        gyro_dps[2].as_slice()?.to_vec(),
-    ];
+    let acc: [Vec<f64>; 3] = vecs(&acc_g)?;
+    let gyro: [Vec<f64>; 3] = vecs(&gyro_dps)?;
     let params = PreprocessParams {
         cutoff_hz,
         filter_order,
@@ -365,12 +372,7 @@ fn analyze(
                     .map(|s| analyze_subject(s, &p, f.as_ref(), &read))
                     .collect()
             });
-            let v = serde_json::json!({
-                "strides": ldh_core::output::stride_rows(&results),
-                "recordings": ldh_core::output::recording_rows(&results),
-                "events": ldh_core::output::event_rows(&results),
-            });
-            Ok(v.to_string())
+            tables_json(&results)
         })
         .map_err(|e| to_py(py, e))?;
     Ok(out)
@@ -482,16 +484,8 @@ fn analyze_recording<'py>(
     Bound<'py, PyArray1<f64>>,
     Bound<'py, PyArray1<f64>>,
 )> {
-    let acc: [Vec<f64>; 3] = [
-        acc_g[0].as_slice()?.to_vec(),
-        acc_g[1].as_slice()?.to_vec(),
-        acc_g[2].as_slice()?.to_vec(),
-    ];
-    let gyro: [Vec<f64>; 3] = [
-        gyro_dps[0].as_slice()?.to_vec(),
-        gyro_dps[1].as_slice()?.to_vec(),
-        gyro_dps[2].as_slice()?.to_vec(),
-    ];
+    let acc: [Vec<f64>; 3] = vecs(&acc_g)?;
+    let gyro: [Vec<f64>; 3] = vecs(&gyro_dps)?;
     let side = side.to_string();
     let (json, att) = py
         .detach(
@@ -546,17 +540,7 @@ fn analyze_pair<'py>(
     compute_sta: Option<bool>,
     params_json: Option<String>,
 ) -> PyResult<String> {
-    let chans = |a: &[PyReadonlyArray1<'py, f64>; 6]| -> PyResult<[Vec<f64>; 6]> {
-        Ok([
-            a[0].as_slice()?.to_vec(),
-            a[1].as_slice()?.to_vec(),
-            a[2].as_slice()?.to_vec(),
-            a[3].as_slice()?.to_vec(),
-            a[4].as_slice()?.to_vec(),
-            a[5].as_slice()?.to_vec(),
-        ])
-    };
-    let (l, r) = (chans(&left)?, chans(&right)?);
+    let (l, r): ([Vec<f64>; 6], [Vec<f64>; 6]) = (vecs(&left)?, vecs(&right)?);
     let (id, model, detector) = (subject_id.to_string(), model, detector);
     py.detach(move || -> Result<String, LdhError> {
         use ldh_core::pipeline::{analyze_pair as core_pair, SubjectInput};
@@ -587,12 +571,7 @@ fn analyze_pair<'py>(
             load(r, ldh_core::Side::Right),
             &p,
         )];
-        Ok(serde_json::json!({
-            "strides": ldh_core::output::stride_rows(&res),
-            "recordings": ldh_core::output::recording_rows(&res),
-            "events": ldh_core::output::event_rows(&res),
-        })
-        .to_string())
+        tables_json(&res)
     })
     .map_err(|e| to_py(py, e))
 }
