@@ -63,6 +63,14 @@ enum Command {
     Train(TrainArgs),
     /// Predict the class of recordings with a model saved by `ldh train`.
     Predict(PredictArgs),
+    /// HTML reports a clinician opens offline: one per subject and one for the cohort.
+    ///
+    /// Reads the output folder of `ldh analyze` (recordings.json, strides.csv and, when
+    /// `analyze --report` kept them, the signal traces in traces/) and writes
+    /// <OUT>/index.html (the cohort) and <OUT>/subjects/<subject>.html. With --model the
+    /// classifier's output is added to each subject's report as decision support; --stats and
+    /// --train add Table 4 and the classifier results to the cohort report.
+    Report(ReportArgs),
     /// Simulate a cohort of healthy and LDH subjects with two shank IMUs and exact ground truth.
     ///
     /// Writes <OUT>/<subject>/left.csv, right.csv, truth.json and <OUT>/manifest.csv. The same
@@ -111,6 +119,37 @@ struct AnalyzeArgs {
     /// Skip the Lyapunov exponent (STA).
     #[arg(long)]
     no_sta: bool,
+    /// Also write the HTML reports (as `ldh report`) to <OUT>/reports, and the signal traces
+    /// they plot to <OUT>/traces.
+    #[arg(long)]
+    report: bool,
+    /// With --report: a model saved by `ldh train` whose output the subject reports show.
+    #[arg(long, requires = "report")]
+    classifier: Option<PathBuf>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    jobs: Option<usize>,
+}
+
+#[derive(Debug, Args)]
+struct ReportArgs {
+    /// Output folder of `ldh analyze`.
+    results: PathBuf,
+    /// Where to write the reports (default: <RESULTS>/reports).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// A model saved by `ldh train`: its output goes into each subject's report.
+    #[arg(long)]
+    model: Option<PathBuf>,
+    /// Output folder of `ldh stats` (table4.json) for the cohort report.
+    #[arg(long)]
+    stats: Option<PathBuf>,
+    /// Output folder of `ldh train` (cv_results.json) for the cohort report.
+    #[arg(long)]
+    train: Option<PathBuf>,
+    /// Report parameters as TOML (docs/reports.md).
+    #[arg(long)]
+    params: Option<PathBuf>,
     /// Worker threads (default: all cores).
     #[arg(long)]
     jobs: Option<usize>,
@@ -448,50 +487,89 @@ fn analyze(a: AnalyzeArgs) -> Result<ExitCode> {
         );
     }
     let pool = thread_pool(a.jobs)?;
+    // Checked before the analysis so a bad model file fails fast.
+    let classifier = a.classifier.as_deref().map(read_model).transpose()?;
+    let report_params = ldh_core::report::ReportParams::default().check()?;
     let pb = progress(subjects.len() as u64, "analyze");
-    let results: Vec<SubjectResult> = pool.install(|| {
-        subjects
-            .par_iter()
-            .map(|s| {
-                let r = analyze_subject(s, &params, format.as_ref(), &read);
-                pb.inc(1);
-                r
-            })
-            .collect()
-    });
+    // Subjects are analysed a chunk at a time and their rows streamed to the output files, so
+    // memory stays flat however many subjects there are; chunks keep the input order, so the
+    // files are the same whatever --jobs is.
+    let mut strides = output::TableSink::create(&a.out, "strides", &output::STRIDE_COLUMNS, true)?;
+    let mut events = output::TableSink::create(
+        &a.out,
+        "events",
+        &["subject_id", "time_s", "side", "event", "order"],
+        false,
+    )?;
+    let mut recordings: Vec<output::RecordingRow> = Vec::new();
+    let mut valid = 0usize;
+    let chunk = (pool.current_num_threads() * 8).max(8);
+    for part in subjects.chunks(chunk) {
+        let done: Vec<ldh_core::Result<output::Tables>> = pool.install(|| {
+            part.par_iter()
+                .map(|s| {
+                    let r = analyze_subject(s, &params, format.as_ref(), &read);
+                    if a.report {
+                        let t = ldh_core::report::SubjectTraces::of(&r, report_params.trace());
+                        ldh_core::io::write_atomic(
+                            a.out.join("traces").join(format!(
+                                "{}.json",
+                                ldh_core::report::file_stem(&r.subject_id)
+                            )),
+                            serde_json::to_string(&t)
+                                .map_err(|e| ldh_core::LdhError::signal("trace", e.to_string()))?
+                                .as_bytes(),
+                        )?;
+                    }
+                    pb.inc(1);
+                    Ok(output::Tables::of(std::slice::from_ref(&r)))
+                })
+                .collect()
+        });
+        for t in done {
+            let t = t?;
+            valid += t.strides.iter().filter(|s| s.valid).count();
+            strides.push(&t.strides)?;
+            events.push(&t.events)?;
+            recordings.extend(t.recordings);
+        }
+    }
     pb.finish_and_clear();
-    let strides = output::stride_rows(&results);
-    let recordings = output::recording_rows(&results);
+    let n_strides = strides.rows();
+    strides.finish()?;
+    events.finish()?;
     let w =
         |name: &str, text: String| ldh_core::io::write_atomic(a.out.join(name), text.as_bytes());
-    w(
-        "strides.csv",
-        output::to_csv(&strides, &output::STRIDE_COLUMNS)?,
-    )?;
-    w("strides.json", serde_json::to_string_pretty(&strides)?)?;
     w("recordings.csv", output::to_csv(&recordings, &[])?)?;
-    w(
-        "events.csv",
-        output::to_csv(
-            &output::event_rows(&results),
-            &["subject_id", "time_s", "side", "event", "order"],
-        )?,
-    )?;
     w(
         "recordings.json",
         serde_json::to_string_pretty(&recordings)?,
     )?;
     w("params.json", serde_json::to_string_pretty(&params)?)?;
+    if a.report {
+        let dir = a.out.join("reports");
+        let n = build_reports(
+            &a.out,
+            &dir,
+            classifier.as_ref(),
+            None,
+            None,
+            &report_params,
+            &pool,
+        )?;
+        eprintln!(
+            "{n} subject reports and the cohort report (index.html) in {}",
+            dir.display()
+        );
+    }
     let failed: Vec<&output::RecordingRow> =
         recordings.iter().filter(|r| r.status != "ok").collect();
     let ok = recordings.len() - failed.len();
-    let valid: usize = strides.iter().filter(|s| s.valid).count();
     eprintln!(
-        "analysed {ok} of {} recordings ({} subjects, model {}): {} strides, {valid} valid; results in {}",
+        "analysed {ok} of {} recordings ({} subjects, model {}): {n_strides} strides, {valid} valid; results in {}",
         recordings.len(),
-        results.len(),
+        subjects.len(),
         params.attitude.model.as_str(),
-        strides.len(),
         a.out.display()
     );
     for f in &failed {
@@ -502,6 +580,170 @@ fn analyze(a: AnalyzeArgs) -> Result<ExitCode> {
     } else {
         ExitCode::from(1)
     })
+}
+
+fn read_model(path: &Path) -> Result<ldh_core::ml::ModelFile> {
+    let text =
+        std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+    Ok(ldh_core::ml::ModelFile::from_json(
+        &text,
+        &path.display().to_string(),
+    )?)
+}
+
+fn read_json<T: serde::de::DeserializeOwned>(path: &Path, what: &str) -> Result<T> {
+    let text =
+        std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+    serde_json::from_str(&text).with_context(|| format!("{} is not {what}", path.display()))
+}
+
+/// Write the subject reports and the cohort report of an `ldh analyze` output folder; returns
+/// the number of subject reports.
+fn build_reports(
+    results: &Path,
+    out: &Path,
+    model: Option<&ldh_core::ml::ModelFile>,
+    stats: Option<&Path>,
+    train: Option<&Path>,
+    params: &ldh_core::report::ValidReportParams,
+    pool: &rayon::ThreadPool,
+) -> Result<usize> {
+    use ldh_core::report::{
+        self, file_stem, CohortReport, Reference, SubjectReport, SubjectTraces,
+    };
+    let rows = read_results(results)?;
+    let reference = Reference::from_rows(&rows, params);
+    let predictions = model.map(|m| m.predict_rows(&rows)).transpose()?;
+    let model_desc = model.map(|m| {
+        format!(
+            "{} classifier, task {}, trained on {} rows per class",
+            m.classifier.name(),
+            m.task.as_str(),
+            m.trained_rows_per_class
+                .iter()
+                .zip(&m.class_names)
+                .map(|(n, c)| format!("{n} {c}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    });
+    let mut ids: Vec<String> = Vec::new();
+    for r in &rows {
+        if ids.last() != Some(&r.subject_id) && !ids.contains(&r.subject_id) {
+            ids.push(r.subject_id.clone());
+        }
+    }
+    let mut groups = output::stride_groups(&results.join("strides.csv"))?.peekable();
+    let pb = progress(ids.len() as u64, "report");
+    let chunk = (pool.current_num_threads() * 8).max(8);
+    for part in ids.chunks(chunk) {
+        // Strides of this chunk's subjects (the file has each subject's rows together, in the
+        // order of recordings.json).
+        let mut jobs: Vec<SubjectReport> = Vec::with_capacity(part.len());
+        for id in part {
+            let mut strides = Vec::new();
+            if let Some(Ok((gid, _))) = groups.peek() {
+                if gid == id {
+                    strides = groups.next().expect("peeked")?.1;
+                }
+            } else if let Some(Err(_)) = groups.peek() {
+                groups.next().expect("peeked")?;
+            }
+            jobs.push(SubjectReport {
+                subject_id: id.clone(),
+                recordings: rows
+                    .iter()
+                    .filter(|r| &r.subject_id == id)
+                    .cloned()
+                    .collect(),
+                strides,
+                traces: None,
+                predictions: predictions.as_ref().map(|p| {
+                    (
+                        p.iter().filter(|x| &x.subject_id == id).cloned().collect(),
+                        model.map(|m| m.class_names.clone()).unwrap_or_default(),
+                        model_desc.clone().unwrap_or_default(),
+                    )
+                }),
+            });
+        }
+        let done: Vec<Result<()>> = pool.install(|| {
+            jobs.into_par_iter()
+                .map(|mut job| {
+                    let stem = file_stem(&job.subject_id);
+                    let tf = results.join("traces").join(format!("{stem}.json"));
+                    if tf.exists() {
+                        let text = std::fs::read_to_string(&tf)
+                            .with_context(|| format!("reading {}", tf.display()))?;
+                        job.traces =
+                            Some(SubjectTraces::from_json(&text, &tf.display().to_string())?);
+                    }
+                    let html = report::subject_html(&job, &reference, params)?;
+                    ldh_core::io::write_atomic(
+                        out.join("subjects").join(format!("{stem}.html")),
+                        html.as_bytes(),
+                    )?;
+                    pb.inc(1);
+                    Ok(())
+                })
+                .collect()
+        });
+        for d in done {
+            d?;
+        }
+    }
+    pb.finish_and_clear();
+    let cohort = CohortReport {
+        offsets: match stats {
+            Some(d) => read_json(&d.join("table4.json"), "an ldh stats Table 4")?,
+            None => Vec::new(),
+        },
+        cv: match train {
+            Some(d) => read_json(&d.join("cv_results.json"), "an ldh train result")?,
+            None => Vec::new(),
+        },
+        subject_links: ids
+            .iter()
+            .map(|id| (id.clone(), format!("subjects/{}.html", file_stem(id))))
+            .collect(),
+        recordings: rows,
+    };
+    ldh_core::io::write_atomic(
+        out.join("index.html"),
+        report::cohort_html(&cohort)?.as_bytes(),
+    )?;
+    Ok(ids.len())
+}
+
+fn report(a: ReportArgs) -> Result<ExitCode> {
+    let params = match &a.params {
+        Some(f) => {
+            let text =
+                std::fs::read_to_string(f).with_context(|| format!("reading {}", f.display()))?;
+            toml::from_str::<ldh_core::report::ReportParams>(&text)
+                .with_context(|| format!("report parameters in {}", f.display()))?
+        }
+        None => ldh_core::report::ReportParams::default(),
+    }
+    .check()?;
+    let model = a.model.as_deref().map(read_model).transpose()?;
+    let out = a.out.clone().unwrap_or_else(|| a.results.join("reports"));
+    let pool = thread_pool(a.jobs)?;
+    let n = build_reports(
+        &a.results,
+        &out,
+        model.as_ref(),
+        a.stats.as_deref(),
+        a.train.as_deref(),
+        &params,
+        &pool,
+    )?;
+    eprintln!(
+        "{n} subject reports in {} and the cohort report {}",
+        out.join("subjects").display(),
+        out.join("index.html").display()
+    );
+    Ok(ExitCode::SUCCESS)
 }
 
 fn recording_rows_for(
@@ -651,10 +893,7 @@ fn train(a: TrainArgs) -> Result<ExitCode> {
         md.push('\n');
     }
     for r in &reports {
-        let kind = match r.kind {
-            CvKind::Grouped => "grouped",
-            CvKind::Stratified => "stratified",
-        };
+        let kind = r.kind.as_str();
         let svg = ldh_core::plots::confusion_svg(
             &format!("{} — {kind} {}-fold × {}", r.classifier, r.k, r.repeats),
             &r.class_names,
@@ -683,10 +922,7 @@ fn train(a: TrainArgs) -> Result<ExitCode> {
 }
 
 fn predict(a: PredictArgs) -> Result<ExitCode> {
-    use ldh_core::ml::ModelFile;
-    let text = std::fs::read_to_string(&a.model)
-        .with_context(|| format!("reading {}", a.model.display()))?;
-    let model = ModelFile::from_json(&text, &a.model.display().to_string())?;
+    let model = read_model(&a.model)?;
     let rows = match &a.results {
         Some(d) => read_results(d)?,
         None => {
@@ -694,76 +930,32 @@ fn predict(a: PredictArgs) -> Result<ExitCode> {
             recording_rows_for(&a.inputs, &model.attitude_model, &pool)?
         }
     };
-    if let Some(r) = rows.iter().find(|r| r.model != model.attitude_model) {
-        anyhow::bail!(
-            "the model was trained on features of the '{}' attitude model but the input has '{}' (subject {}): analyse with --model {}",
-            model.attitude_model,
-            r.model,
-            r.subject_id,
-            model.attitude_model
-        );
-    }
+    let predictions = model.predict_rows(&rows)?;
     let mut out = String::from("subject_id,side,status,predicted_class");
     for c in &model.class_names {
         out.push_str(&format!(",p_{c}"));
     }
     out.push_str(",note\n");
     let mut failed = 0;
-    for r in &rows {
-        let vals: Option<Vec<f64>> = model
-            .feature_names
-            .iter()
-            .map(|f| ldh_core::cohort::value(r, f))
-            .collect();
-        let line = match (r.status.as_str(), vals) {
-            ("ok", Some(v)) => {
-                let x = ndarray::Array2::from_shape_vec((1, v.len()), v)?;
-                let (label, proba) = model.predict(&x)?;
-                let probs: Vec<String> = match &proba {
-                    Some(p) => p.row(0).iter().map(|x| format!("{x:.4}")).collect(),
-                    None => vec![String::new(); model.class_names.len()],
-                };
-                format!(
-                    "{},{},ok,{},{},{}",
-                    r.subject_id,
-                    r.side,
-                    model.class_names[label[0]],
-                    probs.join(","),
-                    if proba.is_none() {
-                        "no probabilities for this model"
-                    } else {
-                        ""
-                    }
-                )
-            }
-            (_, _) => {
-                failed += 1;
-                let why = if r.status != "ok" {
-                    r.error.replace(',', ";")
-                } else {
-                    let missing: Vec<&String> = model
-                        .feature_names
-                        .iter()
-                        .filter(|f| ldh_core::cohort::value(r, f).is_none())
-                        .collect();
-                    let sta = if r.sta_status.is_empty() {
-                        String::new()
-                    } else {
-                        format!(" (STA: {})", r.sta_status.replace(',', ";"))
-                    };
-                    format!("missing {missing:?}{sta}")
-                };
-                format!(
-                    "{},{},error,{},{}",
-                    r.subject_id,
-                    r.side,
-                    ",".repeat(model.class_names.len()),
-                    why
-                )
-            }
+    for p in &predictions {
+        let probs: Vec<String> = match &p.probabilities {
+            Some(v) => v.iter().map(|x| format!("{x:.4}")).collect(),
+            None => vec![String::new(); model.class_names.len()],
         };
-        out.push_str(&line);
-        out.push('\n');
+        let status = if p.predicted_class.is_some() {
+            "ok"
+        } else {
+            failed += 1;
+            "error"
+        };
+        out.push_str(&format!(
+            "{},{},{status},{},{},{}\n",
+            p.subject_id,
+            p.side,
+            p.predicted_class.as_deref().unwrap_or(""),
+            probs.join(","),
+            p.note.replace(',', ";")
+        ));
     }
     ldh_core::io::write_atomic(a.out.join("predictions.csv"), out.as_bytes())?;
     print!("{out}");
@@ -931,6 +1123,7 @@ where
     };
     let r = match cli.command {
         Command::Analyze(a) => analyze(a),
+        Command::Report(a) => report(a),
         Command::Evaluate(a) => evaluate(a),
         Command::Stats(a) => stats(a),
         Command::Train(a) => train(a),

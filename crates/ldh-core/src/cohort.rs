@@ -451,7 +451,7 @@ pub fn table3(c: &Cohort) -> Vec<ParameterStats> {
     rows
 }
 
-fn fmt_p(p: Option<f64>) -> String {
+pub(crate) fn fmt_p(p: Option<f64>) -> String {
     match p {
         Some(p) if p < 0.001 => "<0.001".into(),
         Some(p) => format!("{p:.3}"),
@@ -459,7 +459,7 @@ fn fmt_p(p: Option<f64>) -> String {
     }
 }
 
-fn fmt_ms(s: &Summary) -> String {
+pub(crate) fn fmt_ms(s: &Summary) -> String {
     match (s.mean, s.sd) {
         (Some(m), Some(sd)) => format!("{m:.3} (±{sd:.3})"),
         (Some(m), None) => format!("{m:.3}"),

@@ -30,6 +30,7 @@ pub mod pipeline;
 pub mod plots;
 pub mod preprocess;
 pub mod recording;
+pub mod report;
 pub mod simulate;
 pub mod stats;
 

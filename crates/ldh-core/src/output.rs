@@ -9,6 +9,7 @@
 //! `sta_per_stride`, WQK `wqk_deg`, PBI `pbi_deg`, BDK `bdk_deg`.
 
 use serde::{Deserialize, Serialize};
+use std::io::Write;
 
 use crate::error::{LdhError, Result};
 use crate::pipeline::SubjectResult;
@@ -350,3 +351,109 @@ pub const STRIDE_COLUMNS: [&str; 18] = [
     "valid",
     "reason",
 ];
+
+/// A table written row by row to `<stem>.csv` (and `<stem>.json` as one array when asked), each
+/// through an [`AtomicFile`]: a batch streams its rows out instead of holding them, and an
+/// interrupted run leaves the previous files whole.
+pub struct TableSink {
+    csv: csv::Writer<crate::io::AtomicFile>,
+    json: Option<crate::io::AtomicFile>,
+    header: Vec<String>,
+    rows: usize,
+}
+
+impl TableSink {
+    /// Start `<dir>/<stem>.csv` (and `.json`); `header` is written when no row comes.
+    pub fn create(
+        dir: &std::path::Path,
+        stem: &str,
+        header: &[&str],
+        json: bool,
+    ) -> Result<TableSink> {
+        let f = crate::io::AtomicFile::create(dir.join(format!("{stem}.csv")))?;
+        let json = if json {
+            let mut j = crate::io::AtomicFile::create(dir.join(format!("{stem}.json")))?;
+            j.write_all(b"[")
+                .map_err(|e| LdhError::signal("json", e.to_string()))?;
+            Some(j)
+        } else {
+            None
+        };
+        Ok(TableSink {
+            csv: csv::WriterBuilder::new().has_headers(true).from_writer(f),
+            json,
+            header: header.iter().map(|s| s.to_string()).collect(),
+            rows: 0,
+        })
+    }
+
+    /// Append rows.
+    pub fn push<T: Serialize>(&mut self, rows: &[T]) -> Result<()> {
+        for r in rows {
+            self.csv
+                .serialize(r)
+                .map_err(|e| LdhError::signal("csv", e.to_string()))?;
+            if let Some(j) = self.json.as_mut() {
+                let text = serde_json::to_string_pretty(r)
+                    .map_err(|e| LdhError::signal("json", e.to_string()))?;
+                let sep = if self.rows == 0 { "\n  " } else { ",\n  " };
+                j.write_all(sep.as_bytes())
+                    .and_then(|_| j.write_all(text.replace('\n', "\n  ").as_bytes()))
+                    .map_err(|e| LdhError::signal("json", e.to_string()))?;
+            }
+            self.rows += 1;
+        }
+        Ok(())
+    }
+
+    /// Rows written so far.
+    pub fn rows(&self) -> usize {
+        self.rows
+    }
+
+    /// Close both files and rename them into place.
+    pub fn finish(mut self) -> Result<()> {
+        if self.rows == 0 {
+            self.csv
+                .write_record(&self.header)
+                .map_err(|e| LdhError::signal("csv", e.to_string()))?;
+        }
+        let f = self
+            .csv
+            .into_inner()
+            .map_err(|e| LdhError::signal("csv", e.to_string()))?;
+        f.finish()?;
+        if let Some(mut j) = self.json.take() {
+            j.write_all(if self.rows == 0 { b"]" } else { b"\n]" })
+                .map_err(|e| LdhError::signal("json", e.to_string()))?;
+            j.finish()?;
+        }
+        Ok(())
+    }
+}
+
+/// Read a per-stride table (`strides.csv`) as runs of consecutive rows of the same subject,
+/// one run at a time (what `ldh analyze` writes: each subject's rows together).
+pub fn stride_groups(
+    path: &std::path::Path,
+) -> Result<impl Iterator<Item = Result<(String, Vec<StrideRow>)>>> {
+    let rdr = csv::Reader::from_path(path)
+        .map_err(|e| LdhError::signal(path.display().to_string(), e.to_string()))?;
+    let origin = path.display().to_string();
+    let mut it = rdr.into_deserialize::<StrideRow>().peekable();
+    Ok(std::iter::from_fn(move || {
+        let first = match it.next()? {
+            Ok(r) => r,
+            Err(e) => return Some(Err(LdhError::signal(origin.clone(), e.to_string()))),
+        };
+        let id = first.subject_id.clone();
+        let mut rows = vec![first];
+        while let Some(Ok(next)) = it.peek() {
+            if next.subject_id != id {
+                break;
+            }
+            rows.push(it.next().expect("peeked").expect("peeked ok"));
+        }
+        Some(Ok((id, rows)))
+    }))
+}

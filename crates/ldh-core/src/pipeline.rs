@@ -8,7 +8,7 @@
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
-use crate::align::{align, AlignParams, Alignment};
+use crate::align::{align, AlignParams, Aligned, Alignment};
 use crate::attitude::{estimate, Attitude, AttitudeModel, AttitudeParams};
 use crate::error::{LdhError, Result};
 use crate::events::{detect, EventParams, Events};
@@ -412,6 +412,11 @@ pub struct LegResult {
     /// The attitude over time (kept for reports and evaluation; not serialised).
     #[serde(skip)]
     pub attitude: Option<Attitude>,
+    /// The preprocessed signals in the anatomical frame (kept for the report's signal plots;
+    /// not serialised). Dropped with the result, so a batch never holds more than the subjects
+    /// in flight.
+    #[serde(skip)]
+    pub signals: Option<Aligned>,
 }
 
 /// Kind of a gait event.
@@ -576,6 +581,7 @@ pub fn analyze_leg(
             strides: st,
             parameters,
             attitude: Some(att),
+            signals: Some(al),
         },
         hs,
     ))

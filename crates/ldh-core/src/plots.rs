@@ -14,6 +14,13 @@ const COLORS: [RGBColor; 4] = [
     RGBColor(148, 103, 189),
 ];
 
+/// The scale label of [`radar_svg`] (drawn under the chart).
+pub const RADAR_SCALE_LABEL: &str = "z-score (SD from the healthy mean)";
+/// The x-axis label of [`boxplot_svg`].
+pub const BOX_GROUP_LABEL: &str = "group (LDHH, LDHE, H)";
+/// The axis labels of [`confusion_svg`].
+pub const CONFUSION_LABELS: [&str; 2] = ["predicted class (count, % of row)", "true class (rows)"];
+
 fn perr<E: std::fmt::Display>(e: E) -> LdhError {
     LdhError::signal("plot", e.to_string())
 }
@@ -102,7 +109,7 @@ pub fn radar_svg(title: &str, codes: &[String], series: &[(String, Vec<f64>)]) -
             .map_err(perr)?;
         }
         root.draw(&Text::new(
-            "z-score against the healthy baseline (eq. 18): (x − mean_H) / SD_H".to_string(),
+            format!("{RADAR_SCALE_LABEL}: (x − mean_H) / SD_H, eq. 18"),
             (20, 690),
             ("sans-serif", 14).into_font(),
         ))
@@ -146,7 +153,7 @@ pub fn boxplot_svg(title: &str, y_label: &str, groups: &[(String, Vec<f64>)]) ->
             .map_err(perr)?;
         chart
             .configure_mesh()
-            .x_desc("group")
+            .x_desc(BOX_GROUP_LABEL)
             .x_label_formatter(&|v| match v {
                 SegmentValue::CenterOf(s) | SegmentValue::Exact(s) => s.to_string(),
                 SegmentValue::Last => String::new(),
@@ -230,13 +237,13 @@ pub fn confusion_svg(title: &str, classes: &[String], m: &[Vec<usize>]) -> Resul
         ))
         .map_err(perr)?;
         root.draw(&Text::new(
-            "predicted class".to_string(),
+            CONFUSION_LABELS[0].to_string(),
             (left, top - 45),
             ("sans-serif", 15).into_font(),
         ))
         .map_err(perr)?;
         root.draw(&Text::new(
-            "true class".to_string(),
+            CONFUSION_LABELS[1].to_string(),
             (10, top + cell * k as i32 / 2),
             ("sans-serif", 15).into_font(),
         ))
@@ -280,6 +287,237 @@ pub fn confusion_svg(title: &str, classes: &[String], m: &[Vec<usize>]) -> Resul
                 .map_err(perr)?;
             }
         }
+        root.present().map_err(perr)?;
+    }
+    Ok(buf)
+}
+
+/// The series legend in the upper right corner of a chart.
+fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
+    chart: &mut ChartContext<'a, DB, CT>,
+) -> Result<()> {
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(180, 180, 180))
+        .label_font(("sans-serif", 13))
+        .draw()
+        .map_err(perr)
+}
+
+/// One panel of [`signals_svg`]: a y-axis label with its unit and named series sampled on the
+/// common time axis.
+#[derive(Debug, Clone)]
+pub struct Panel {
+    /// y-axis label with the unit, e.g. `acceleration (g)`.
+    pub y_label: String,
+    /// (name, samples) per series.
+    pub series: Vec<(String, Vec<f64>)>,
+}
+
+/// Gait events drawn on every panel of [`signals_svg`], s on the plot's time axis.
+#[derive(Debug, Clone, Default)]
+pub struct EventMarks {
+    /// Heel strikes (solid red lines).
+    pub hs_s: Vec<f64>,
+    /// Toe offs (blue lines).
+    pub to_s: Vec<f64>,
+    /// Stance phases (HS → TO), shaded grey.
+    pub stance_s: Vec<(f64, f64)>,
+}
+
+/// Stacked time-series panels on a shared time axis `t0_s + i / fs_hz` (paper Figs. 3–4), with
+/// HS/TO lines and stance shading when `marks` is given. The x axis is `time (s)`.
+pub fn signals_svg(
+    title: &str,
+    t0_s: f64,
+    fs_hz: f64,
+    panels: &[Panel],
+    marks: Option<&EventMarks>,
+) -> Result<String> {
+    if panels.is_empty() || !(fs_hz > 0.0) {
+        return Err(LdhError::signal(
+            "plot",
+            format!("{title}: nothing to plot"),
+        ));
+    }
+    let n = panels
+        .iter()
+        .flat_map(|p| p.series.iter().map(|s| s.1.len()))
+        .max()
+        .unwrap_or(0);
+    if n < 2 {
+        return Err(LdhError::signal(
+            "plot",
+            format!("{title}: nothing to plot"),
+        ));
+    }
+    let (t_lo, t_hi) = (t0_s, t0_s + (n - 1) as f64 / fs_hz);
+    let height = 70 + 230 * panels.len() as u32;
+    let mut buf = String::new();
+    {
+        let root = SVGBackend::with_string(&mut buf, (800, height)).into_drawing_area();
+        root.fill(&WHITE).map_err(perr)?;
+        let root = root.titled(title, ("sans-serif", 20)).map_err(perr)?;
+        let areas = root.split_evenly((panels.len(), 1));
+        for (k, (area, p)) in areas.iter().zip(panels).enumerate() {
+            let vals = p
+                .series
+                .iter()
+                .flat_map(|s| s.1.iter())
+                .filter(|v| v.is_finite());
+            let (lo, hi) = vals.fold((f64::MAX, f64::MIN), |(a, b), &v| (a.min(v), b.max(v)));
+            let (lo, hi) = if lo <= hi { (lo, hi) } else { (-1.0, 1.0) };
+            let pad = ((hi - lo) * 0.08).max(1e-3);
+            let (y_lo, y_hi) = (lo - pad, hi + pad);
+            let last = k + 1 == panels.len();
+            let mut chart = ChartBuilder::on(area)
+                .margin(8)
+                .x_label_area_size(if last { 40 } else { 22 })
+                .y_label_area_size(70)
+                .build_cartesian_2d(t_lo..t_hi, y_lo..y_hi)
+                .map_err(perr)?;
+            let mut mesh = chart.configure_mesh();
+            mesh.y_desc(p.y_label.as_str())
+                .axis_desc_style(("sans-serif", 15))
+                .label_style(("sans-serif", 13))
+                .light_line_style(RGBColor(235, 235, 235));
+            if last {
+                mesh.x_desc("time (s)");
+            }
+            mesh.draw().map_err(perr)?;
+            if let Some(m) = marks {
+                chart
+                    .draw_series(m.stance_s.iter().map(|&(a, b)| {
+                        Rectangle::new(
+                            [(a.max(t_lo), y_lo), (b.min(t_hi), y_hi)],
+                            RGBColor(225, 225, 225).filled(),
+                        )
+                    }))
+                    .map_err(perr)?;
+                for (times, color) in [
+                    (&m.hs_s, RGBColor(200, 30, 30)),
+                    (&m.to_s, RGBColor(30, 60, 200)),
+                ] {
+                    chart
+                        .draw_series(times.iter().filter(|t| (t_lo..=t_hi).contains(*t)).map(
+                            |&t| {
+                                PathElement::new(vec![(t, y_lo), (t, y_hi)], color.stroke_width(1))
+                            },
+                        ))
+                        .map_err(perr)?;
+                }
+            }
+            for (j, (name, v)) in p.series.iter().enumerate() {
+                let c = COLORS[j % COLORS.len()];
+                // Break the line at non-finite samples.
+                let mut seg: Vec<(f64, f64)> = Vec::new();
+                let mut first = true;
+                let mut flush =
+                    |seg: &mut Vec<(f64, f64)>, chart: &mut ChartContext<_, _>| -> Result<()> {
+                        if seg.len() > 1 {
+                            let s = chart
+                                .draw_series(LineSeries::new(seg.drain(..), c.stroke_width(1)))
+                                .map_err(perr)?;
+                            if first {
+                                s.label(name.clone()).legend(move |(x, y)| {
+                                    PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(3))
+                                });
+                                first = false;
+                            }
+                        }
+                        seg.clear();
+                        Ok(())
+                    };
+                for (i, &y) in v.iter().enumerate() {
+                    if y.is_finite() {
+                        seg.push((t0_s + i as f64 / fs_hz, y));
+                    } else {
+                        flush(&mut seg, &mut chart)?;
+                    }
+                }
+                flush(&mut seg, &mut chart)?;
+            }
+            legend(&mut chart)?;
+        }
+        root.present().map_err(perr)?;
+    }
+    Ok(buf)
+}
+
+/// A parameter stride by stride: x = heel-strike time (s), one series per side; strides
+/// excluded from the parameters are drawn as hollow circles, used ones filled.
+pub fn stride_series_svg(
+    title: &str,
+    y_label: &str,
+    series: &[(String, Vec<(f64, f64, bool)>)],
+) -> Result<String> {
+    let pts: Vec<(f64, f64)> = series
+        .iter()
+        .flat_map(|s| s.1.iter().map(|p| (p.0, p.1)))
+        .filter(|p| p.0.is_finite() && p.1.is_finite())
+        .collect();
+    if pts.is_empty() {
+        return Err(LdhError::signal(
+            "plot",
+            format!("{title}: no strides to plot"),
+        ));
+    }
+    let (x_lo, x_hi, y_lo, y_hi) = pts.iter().fold(
+        (f64::MAX, f64::MIN, f64::MAX, f64::MIN),
+        |(a, b, c, d), &(x, y)| (a.min(x), b.max(x), c.min(y), d.max(y)),
+    );
+    let xp = ((x_hi - x_lo) * 0.03).max(0.5);
+    let yp = ((y_hi - y_lo) * 0.1).max(1e-3 * y_hi.abs().max(1e-3));
+    let mut buf = String::new();
+    {
+        let root = SVGBackend::with_string(&mut buf, (800, 300)).into_drawing_area();
+        root.fill(&WHITE).map_err(perr)?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 18))
+            .margin(10)
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x_lo - xp..x_hi + xp, y_lo - yp..y_hi + yp)
+            .map_err(perr)?;
+        chart
+            .configure_mesh()
+            .x_desc("heel-strike time (s)")
+            .y_desc(y_label)
+            .axis_desc_style(("sans-serif", 15))
+            .label_style(("sans-serif", 13))
+            .light_line_style(RGBColor(235, 235, 235))
+            .draw()
+            .map_err(perr)?;
+        for (k, (name, v)) in series.iter().enumerate() {
+            let c = COLORS[k % COLORS.len()];
+            let ok: Vec<(f64, f64)> = v
+                .iter()
+                .filter(|p| p.0.is_finite() && p.1.is_finite())
+                .map(|p| (p.0, p.1))
+                .collect();
+            if ok.is_empty() {
+                continue;
+            }
+            chart
+                .draw_series(LineSeries::new(
+                    ok.iter().copied(),
+                    c.mix(0.5).stroke_width(1),
+                ))
+                .map_err(perr)?
+                .label(name.clone())
+                .legend(move |(x, y)| Circle::new((x + 8, y), 4, c.filled()));
+            chart
+                .draw_series(v.iter().filter(|p| p.0.is_finite() && p.1.is_finite()).map(
+                    |&(x, y, valid)| {
+                        let style = if valid { c.filled() } else { c.stroke_width(1) };
+                        Circle::new((x, y), 4, style)
+                    },
+                ))
+                .map_err(perr)?;
+        }
+        legend(&mut chart)?;
         root.present().map_err(perr)?;
     }
     Ok(buf)

@@ -38,6 +38,75 @@ pub fn write_atomic(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
     })
 }
 
+/// A file written through a temporary file beside it and renamed into place by
+/// [`AtomicFile::finish`] (after a flush and an fsync), for outputs streamed row by row. Dropped
+/// without `finish` (an error, a panic, a kill), it leaves the old file untouched and removes
+/// its temporary file where it still can.
+#[derive(Debug)]
+pub struct AtomicFile {
+    path: std::path::PathBuf,
+    tmp: std::path::PathBuf,
+    file: Option<std::io::BufWriter<std::fs::File>>,
+}
+
+impl AtomicFile {
+    /// Start writing `path` (its folder is created).
+    pub fn create(path: impl AsRef<Path>) -> Result<AtomicFile> {
+        let path = path.as_ref().to_path_buf();
+        let werr = |e: std::io::Error| LdhError::Write {
+            path: path.clone(),
+            reason: e.to_string(),
+        };
+        let dir = path
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."))
+            .to_path_buf();
+        std::fs::create_dir_all(&dir).map_err(werr)?;
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy().to_string())
+            .unwrap_or_default();
+        let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
+        let f = std::fs::File::create(&tmp).map_err(werr)?;
+        Ok(AtomicFile {
+            path,
+            tmp,
+            file: Some(std::io::BufWriter::with_capacity(1 << 16, f)),
+        })
+    }
+
+    /// Flush, fsync and rename over the target.
+    pub fn finish(mut self) -> Result<()> {
+        let werr = |e: std::io::Error| LdhError::Write {
+            path: self.path.clone(),
+            reason: e.to_string(),
+        };
+        let f = self.file.take().expect("not finished");
+        let f = f.into_inner().map_err(|e| werr(e.into_error()))?;
+        f.sync_all().map_err(werr)?;
+        drop(f);
+        std::fs::rename(&self.tmp, &self.path).map_err(werr)
+    }
+}
+
+impl Write for AtomicFile {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.file.as_mut().expect("not finished").write(buf)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.file.as_mut().expect("not finished").flush()
+    }
+}
+
+impl Drop for AtomicFile {
+    fn drop(&mut self) {
+        if self.file.take().is_some() {
+            let _ = std::fs::remove_file(&self.tmp);
+        }
+    }
+}
+
 /// Options of the writer.
 #[derive(Debug, Clone, PartialEq)]
 pub struct WriteOptions {

@@ -23,6 +23,16 @@ pub enum CvKind {
     Stratified,
 }
 
+impl CvKind {
+    /// `grouped` or `stratified` (file names and tables).
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            CvKind::Grouped => "grouped",
+            CvKind::Stratified => "stratified",
+        }
+    }
+}
+
 /// Cross-validation parameters.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]

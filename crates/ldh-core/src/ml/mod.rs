@@ -27,7 +27,7 @@ pub mod tree;
 
 pub use cv::{cross_validate, cross_validate_with_folds, CvKind, CvParams, CvReport};
 pub use dataset::{Dataset, Task};
-pub use model::{Classifier, FittedModel, ModelFile};
+pub use model::{Classifier, FittedModel, ModelFile, Prediction};
 
 #[cfg(test)]
 mod tests;

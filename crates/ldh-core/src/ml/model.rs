@@ -246,3 +246,79 @@ impl ModelFile {
         ))
     }
 }
+
+/// The prediction for one per-recording row (what `ldh predict` writes and the report shows).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Prediction {
+    /// Subject.
+    pub subject_id: String,
+    /// `left` or `right`.
+    pub side: String,
+    /// The predicted class, or `None` when the row could not be classified (see `note`).
+    pub predicted_class: Option<String>,
+    /// Probability per class (in [`ModelFile::class_names`] order), when the model has them.
+    pub probabilities: Option<Vec<f64>>,
+    /// Why there is no prediction, or that the model gives no probabilities; else empty.
+    pub note: String,
+}
+
+impl ModelFile {
+    /// Classify per-recording rows one by one. A row that failed or lacks a feature gets no
+    /// class and a note naming what is missing (the STA status when STA is the missing one);
+    /// rows of another attitude model are an error for the whole call.
+    pub fn predict_rows(&self, rows: &[crate::output::RecordingRow]) -> Result<Vec<Prediction>> {
+        if let Some(r) = rows.iter().find(|r| r.model != self.attitude_model) {
+            return Err(LdhError::param(
+                "model",
+                &r.model,
+                format!(
+                    "the model was trained on features of the '{}' attitude model but the input has '{}' (subject {}): analyse with --model {}",
+                    self.attitude_model, r.model, r.subject_id, self.attitude_model
+                ),
+            ));
+        }
+        let mut out = Vec::with_capacity(rows.len());
+        for r in rows {
+            let vals: Option<Vec<f64>> = self
+                .feature_names
+                .iter()
+                .map(|f| crate::cohort::value(r, f))
+                .collect();
+            let mut p = Prediction {
+                subject_id: r.subject_id.clone(),
+                side: r.side.clone(),
+                predicted_class: None,
+                probabilities: None,
+                note: String::new(),
+            };
+            match (r.status.as_str(), vals) {
+                ("ok", Some(v)) => {
+                    let x = Array2::from_shape_vec((1, v.len()), v)
+                        .map_err(|e| LdhError::signal("model", e.to_string()))?;
+                    let (label, proba) = self.predict(&x)?;
+                    p.predicted_class = Some(self.class_names[label[0]].clone());
+                    p.probabilities = proba.map(|a| a.row(0).to_vec());
+                    if p.probabilities.is_none() {
+                        p.note = "no probabilities for this model".into();
+                    }
+                }
+                _ if r.status != "ok" => p.note = r.error.clone(),
+                _ => {
+                    let missing: Vec<&String> = self
+                        .feature_names
+                        .iter()
+                        .filter(|f| crate::cohort::value(r, f).is_none())
+                        .collect();
+                    let sta = if r.sta_status.is_empty() {
+                        String::new()
+                    } else {
+                        format!(" (STA: {})", r.sta_status)
+                    };
+                    p.note = format!("missing {missing:?}{sta}");
+                }
+            }
+            out.push(p);
+        }
+        Ok(out)
+    }
+}

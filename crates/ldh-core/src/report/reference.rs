@@ -1,0 +1,198 @@
+//! Healthy reference ranges for the per-subject report.
+//!
+//! From the cohort's healthy subjects when there are at least
+//! [`ReportParams::min_healthy_subjects`] (each healthy subject counts once, the mean of both
+//! legs, as in the paper's Table 3), as mean ± `reference_z`·SD; otherwise from published
+//! normal values of healthy adults walking at a comfortable speed, cited in the report. The
+//! published ranges are approximate (they pool ages and studies, and sensors differ): the
+//! cohort's own healthy subjects, measured with the same devices and protocol, are always
+//! preferred. STA and the shank angles (WQK, PBI, BDK) depend on the method and the sensor
+//! placement, so no published range is used for them.
+
+use serde::{Deserialize, Serialize};
+
+use super::ValidReportParams;
+use crate::cohort::{value, PARAMETERS};
+use crate::output::RecordingRow;
+
+/// Where a reference range comes from.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum ReferenceSource {
+    /// The cohort's healthy subjects.
+    Cohort {
+        /// Healthy subjects with this parameter.
+        n_subjects: usize,
+    },
+    /// Published normal values (the citation).
+    Published(String),
+    /// None available.
+    None,
+}
+
+/// The reference of one parameter.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ReferenceRange {
+    /// Parameter code (Table 3).
+    pub code: String,
+    /// Column of the per-recording table.
+    pub column: String,
+    /// Name.
+    pub name: String,
+    /// Unit.
+    pub unit: String,
+    /// Lower bound, in the parameter's unit.
+    pub low: Option<f64>,
+    /// Upper bound.
+    pub high: Option<f64>,
+    /// Centre for z-scores.
+    pub mean: Option<f64>,
+    /// Spread for z-scores (SD; for a published range, its width / (2 · z)).
+    pub sd: Option<f64>,
+    /// Where it comes from.
+    pub source: ReferenceSource,
+}
+
+impl ReferenceRange {
+    /// The z-score of `v` against this reference, when it has a spread.
+    pub fn z(&self, v: f64) -> Option<f64> {
+        match (self.mean, self.sd) {
+            (Some(m), Some(s)) if s > 0.0 && v.is_finite() => Some((v - m) / s),
+            _ => None,
+        }
+    }
+    /// Whether `v` lies outside [low, high] (`None` without a range).
+    pub fn outside(&self, v: f64) -> Option<bool> {
+        match (self.low, self.high) {
+            (Some(l), Some(h)) => Some(v < l || v > h),
+            _ => None,
+        }
+    }
+}
+
+/// Reference ranges for all parameters.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Reference {
+    /// One per parameter of [`PARAMETERS`], in that order.
+    pub ranges: Vec<ReferenceRange>,
+    /// One sentence on how the ranges were made, for the report.
+    pub description: String,
+}
+
+/// Published ranges: (column, low, high, citation). Approximate ranges for healthy adults
+/// (about 20–79 years) walking at a self-selected speed.
+pub const PUBLISHED: [(&str, f64, f64, &str); 9] = [
+    ("step_frequency_steps_per_s", 1.6, 2.1, HOLLMAN),
+    ("stride_length_m", 1.1, 1.6, OBERG),
+    ("speed_mps", 1.0, 1.6, BOHANNON),
+    ("step_time_s", 0.48, 0.63, HOLLMAN),
+    ("stride_time_s", 0.95, 1.25, HOLLMAN),
+    ("stance_ratio", 0.57, 0.65, PERRY),
+    ("swing_ratio", 0.35, 0.43, PERRY),
+    ("stride_length_cv", 0.0, 0.05, HAUSDORFF),
+    ("stride_time_cv", 0.0, 0.04, HAUSDORFF),
+];
+
+/// Citation.
+pub const HOLLMAN: &str = "Hollman JH, McDade EM, Petersen RC. Normative spatiotemporal gait parameters in older people. Gait Posture 2011;34(1):111–118";
+/// Citation.
+pub const OBERG: &str = "Öberg T, Karsznia A, Öberg K. Basic gait parameters: reference data for normal subjects, 10–79 years of age. J Rehabil Res Dev 1993;30(2):210–223";
+/// Citation.
+pub const BOHANNON: &str = "Bohannon RW, Williams Andrews A. Normal walking speed: a descriptive meta-analysis. Physiotherapy 2011;97(3):182–189";
+/// Citation.
+pub const PERRY: &str =
+    "Perry J, Burnfield JM. Gait Analysis: Normal and Pathological Function, 2nd ed. SLACK, 2010";
+/// Citation.
+pub const HAUSDORFF: &str =
+    "Hausdorff JM. Gait variability: methods, modeling and meaning. J NeuroEng Rehabil 2005;2:19";
+
+impl Reference {
+    /// Published ranges only (see [`PUBLISHED`]); parameters without one have no range.
+    pub fn published(p: &ValidReportParams) -> Reference {
+        let z = p.0.reference_z;
+        let ranges = PARAMETERS
+            .iter()
+            .map(|par| {
+                let mut r = ReferenceRange {
+                    code: par.code.into(),
+                    column: par.column.into(),
+                    name: par.name.into(),
+                    unit: par.unit.into(),
+                    low: None,
+                    high: None,
+                    mean: None,
+                    sd: None,
+                    source: ReferenceSource::None,
+                };
+                if let Some(&(_, lo, hi, cite)) = PUBLISHED.iter().find(|x| x.0 == par.column) {
+                    r.low = Some(lo);
+                    r.high = Some(hi);
+                    r.mean = Some(0.5 * (lo + hi));
+                    r.sd = Some((hi - lo) / (2.0 * z));
+                    r.source = ReferenceSource::Published(cite.into());
+                }
+                r
+            })
+            .collect();
+        Reference {
+            ranges,
+            description: "Published normal values for healthy adults (approximate; see the references): the cohort has too few healthy subjects for its own range.".into(),
+        }
+    }
+
+    /// From the healthy subjects among `rows` (one attitude model) when at least
+    /// `min_healthy_subjects` have the parameter; published values for the other parameters.
+    pub fn from_rows(rows: &[RecordingRow], p: &ValidReportParams) -> Reference {
+        let z = p.0.reference_z;
+        let mut out = Reference::published(p);
+        // One value per healthy subject: the mean of its analysed legs.
+        let mut subjects: Vec<&str> = rows
+            .iter()
+            .filter(|r| r.group == "healthy" && r.status == "ok")
+            .map(|r| r.subject_id.as_str())
+            .collect();
+        subjects.sort_unstable();
+        subjects.dedup();
+        let mut any_cohort = 0usize;
+        for r in out.ranges.iter_mut() {
+            let vals: Vec<f64> = subjects
+                .iter()
+                .filter_map(|s| {
+                    let v: Vec<f64> = rows
+                        .iter()
+                        .filter(|x| x.subject_id == *s && x.status == "ok")
+                        .filter_map(|x| value(x, &r.column))
+                        .collect();
+                    (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+                })
+                .collect();
+            if vals.len() < p.0.min_healthy_subjects {
+                continue;
+            }
+            let (Ok(m), Ok(sd)) = (crate::stats::mean(&vals), crate::stats::std_dev(&vals)) else {
+                continue;
+            };
+            if !(sd > 0.0) {
+                continue;
+            }
+            r.mean = Some(m);
+            r.sd = Some(sd);
+            r.low = Some(m - z * sd);
+            r.high = Some(m + z * sd);
+            r.source = ReferenceSource::Cohort {
+                n_subjects: vals.len(),
+            };
+            any_cohort = any_cohort.max(vals.len());
+        }
+        if any_cohort > 0 {
+            out.description = format!(
+                "Healthy subjects of this cohort (n = {any_cohort}, mean of both legs): mean ± {z:.2} SD; parameters where the cohort has too few values fall back to published normal values."
+            );
+        } else {
+            out.description = format!(
+                "Published normal values for healthy adults (approximate; see the references): the cohort has fewer than {} healthy subjects.",
+                p.0.min_healthy_subjects
+            );
+        }
+        out
+    }
+}

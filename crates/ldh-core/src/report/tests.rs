@@ -1,0 +1,103 @@
+//! Report building blocks: escaping, file names, symmetry index, reference ranges, params.
+
+use super::*;
+use crate::output::RecordingRow;
+
+fn row(id: &str, group: &str, side: &str, speed: f64) -> RecordingRow {
+    let mut r: RecordingRow = serde_json::from_value(serde_json::json!({
+        "subject_id": id, "side": side, "model": "fusion", "group": group, "affected_side": "",
+        "side_role": "", "source": "", "status": "ok", "error": "", "fs_hz": 100.0,
+        "duration_s": 20.0, "strides_total": 10, "strides_valid": 8, "stride_time_s": null,
+        "step_time_s": null, "step_frequency_steps_per_s": null, "stance_ratio": null,
+        "swing_ratio": null, "stride_length_m": null, "speed_mps": null,
+        "stride_length_cv": null, "stride_time_cv": null, "sta_per_s": null,
+        "sta_per_stride": null, "sta_status": "", "wqk_deg": null, "pbi_deg": null,
+        "bdk_deg": null, "mirrored": false, "axial_rotation_deg": 0.0,
+        "outliers_replaced": 0, "clipped_samples": 0
+    }))
+    .unwrap();
+    r.speed_mps = Some(speed);
+    r
+}
+
+#[test]
+fn escaping_file_names_and_symmetry() {
+    assert_eq!(
+        esc("a<b & \"c\" 'd'>"),
+        "a&lt;b &amp; &quot;c&quot; &#39;d&#39;&gt;"
+    );
+    assert_eq!(file_stem("S 01/../x"), "S_01_.._x");
+    assert_eq!(file_stem(".hidden"), "_hidden");
+    assert_eq!(file_stem(""), "_");
+    assert!((symmetry_index_pct(1.1, 0.9).unwrap() - 20.0).abs() < 1e-12);
+    assert_eq!(symmetry_index_pct(1.0, -1.0), None);
+    assert_eq!(symmetry_index_pct(f64::NAN, 1.0), None);
+}
+
+#[test]
+fn reference_from_the_cohort_needs_enough_healthy_subjects() {
+    let p = ReportParams::default()
+        .min_healthy_subjects(4)
+        .check()
+        .unwrap();
+    // Four healthy subjects, speeds (mean of both legs) 1.0, 1.1, 1.2, 1.3 m/s.
+    let mut rows = Vec::new();
+    for (i, v) in [1.0, 1.1, 1.2, 1.3].iter().enumerate() {
+        rows.push(row(&format!("H{i}"), "healthy", "left", v - 0.05));
+        rows.push(row(&format!("H{i}"), "healthy", "right", v + 0.05));
+    }
+    rows.push(row("L1", "ldh", "left", 0.3));
+    let r = Reference::from_rows(&rows, &p);
+    let s = r.ranges.iter().find(|x| x.column == "speed_mps").unwrap();
+    assert_eq!(s.source, ReferenceSource::Cohort { n_subjects: 4 });
+    let sd = (0.05f64 * 0.05 * 2.0 + 0.15 * 0.15 * 2.0) / 3.0;
+    assert!((s.mean.unwrap() - 1.15).abs() < 1e-12);
+    assert!((s.sd.unwrap() - sd.sqrt()).abs() < 1e-12);
+    assert!((s.low.unwrap() - (1.15 - 1.96 * sd.sqrt())).abs() < 1e-12);
+    assert_eq!(s.outside(0.3), Some(true));
+    assert_eq!(s.outside(1.15), Some(false));
+    // Parameters the cohort lacks fall back to the published ranges.
+    let st = r
+        .ranges
+        .iter()
+        .find(|x| x.column == "stride_time_s")
+        .unwrap();
+    assert!(matches!(st.source, ReferenceSource::Published(_)));
+    // Too few healthy subjects: published everywhere, and STA has no range at all.
+    let r = Reference::from_rows(&rows[..6], &p);
+    let s = r.ranges.iter().find(|x| x.column == "speed_mps").unwrap();
+    assert_eq!((s.low, s.high), (Some(1.0), Some(1.6)));
+    let sta = r.ranges.iter().find(|x| x.code == "STA").unwrap();
+    assert_eq!(sta.source, ReferenceSource::None);
+    assert_eq!(sta.z(1.0), None);
+}
+
+#[test]
+fn params_are_checked() {
+    assert!(ReportParams::default().check().is_ok());
+    assert!(ReportParams::default()
+        .min_healthy_subjects(2)
+        .check()
+        .is_err());
+    let mut p = ReportParams::default();
+    p.reference_z = 0.0;
+    assert!(p.check().is_err());
+    let mut p = ReportParams::default();
+    p.trace = TraceParams::default().window_s(0.5);
+    assert!(p.check().is_err());
+}
+
+#[test]
+fn a_subject_without_anything_still_renders() {
+    let p = ReportParams::default().check().unwrap();
+    let s = SubjectReport {
+        subject_id: "X<1>".into(),
+        ..Default::default()
+    };
+    let html = subject_html(&s, &Reference::published(&p), &p).unwrap();
+    assert!(html.contains("Gait report: subject X&lt;1&gt;"));
+    assert!(html.contains("No left recording was given."));
+    assert!(html.contains("No strides were detected."));
+    let c = cohort_html(&CohortReport::default()).unwrap();
+    assert!(c.contains("No group statistics"));
+}

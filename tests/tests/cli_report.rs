@@ -1,0 +1,371 @@
+//! `ldh report` and `ldh analyze --report`: the HTML is well-formed, self-contained, every
+//! figure draws its axis labels with units, a subject with a failed side still gets a report,
+//! and headless Chromium renders every page (not blank, no load errors) and prints it to A4.
+
+mod common;
+use common::{ldh, text};
+use std::path::{Path, PathBuf};
+
+fn html_files(dir: &Path) -> Vec<PathBuf> {
+    let mut v = vec![dir.join("index.html")];
+    let mut s: Vec<PathBuf> = std::fs::read_dir(dir.join("subjects"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    s.sort();
+    v.extend(s);
+    v
+}
+
+/// Parse as XML, check self-containment and every figure's declared axis labels.
+fn check_page(path: &Path) -> usize {
+    let src = std::fs::read_to_string(path).unwrap();
+    let opt = roxmltree::ParsingOptions {
+        allow_dtd: true,
+        ..Default::default()
+    };
+    let doc = roxmltree::Document::parse_with_options(&src, opt)
+        .unwrap_or_else(|e| panic!("{} is not well-formed: {e}", path.display()));
+    let root = doc.root_element();
+    assert_eq!(root.tag_name().name(), "html");
+    assert!(
+        root.descendants().any(|n| n.has_tag_name("title")),
+        "{}: no title",
+        path.display()
+    );
+    for n in root.descendants().filter(|n| n.is_element()) {
+        let t = n.tag_name().name();
+        assert!(
+            !matches!(t, "script" | "link" | "iframe" | "img"),
+            "{}: <{t}> makes the page depend on something else",
+            path.display()
+        );
+        for a in n.attributes() {
+            assert!(
+                !(a.name() == "src" || (a.name() == "href" && a.value().contains("://"))),
+                "{}: external reference {}={}",
+                path.display(),
+                a.name(),
+                a.value()
+            );
+        }
+    }
+    let mut figures = 0;
+    for f in root
+        .descendants()
+        .filter(|n| n.has_tag_name("figure") && n.attribute("class") == Some("plot"))
+    {
+        figures += 1;
+        let svg = f
+            .children()
+            .find(|c| c.tag_name().name() == "svg")
+            .unwrap_or_else(|| panic!("{}: figure without svg", path.display()));
+        let texts: Vec<String> = svg
+            .descendants()
+            .filter(|n| n.tag_name().name() == "text")
+            .map(|n| n.descendants().filter_map(|t| t.text()).collect::<String>())
+            .collect();
+        let labels: Vec<&str> = f
+            .attribute("data-axis-labels")
+            .unwrap_or("")
+            .split('|')
+            .filter(|s| !s.is_empty())
+            .collect();
+        assert!(
+            !labels.is_empty(),
+            "{}: a figure declares no axis label",
+            path.display()
+        );
+        for l in labels {
+            let unit = l
+                .find('(')
+                .zip(l.rfind(')'))
+                .is_some_and(|(a, b)| b > a + 1);
+            assert!(unit, "{}: axis label '{l}' has no unit", path.display());
+            assert!(
+                texts.iter().any(|t| t.contains(l)),
+                "{}: axis label '{l}' is not drawn in its figure (texts: {:?})",
+                path.display(),
+                &texts[..texts.len().min(8)]
+            );
+        }
+    }
+    figures
+}
+
+fn demo_with_reports(out: &Path) {
+    let o = ldh(&["analyze", "--out", out.to_str().unwrap(), "--report"]);
+    assert!(o.status.success(), "{}", text(&o));
+}
+
+/// A simulated cohort large enough for group statistics, with stats and train outputs.
+fn cohort_with_everything(tmp: &Path) -> PathBuf {
+    let c = tmp.join("cohort");
+    let o = ldh(&[
+        "simulate",
+        "--out",
+        c.to_str().unwrap(),
+        "--healthy",
+        "6",
+        "--ldh",
+        "6",
+        "--seconds",
+        "20",
+        "--seed",
+        "5",
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let res = tmp.join("res");
+    let o = ldh(&[
+        "analyze",
+        c.to_str().unwrap(),
+        "--out",
+        res.to_str().unwrap(),
+        "--report",
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let train = tmp.join("train");
+    let o = ldh(&[
+        "train",
+        "--results",
+        res.to_str().unwrap(),
+        "--out",
+        train.to_str().unwrap(),
+        "--k",
+        "3",
+        "--repeats",
+        "1",
+        "--classifiers",
+        "rf",
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let stats = tmp.join("stats");
+    let o = ldh(&[
+        "stats",
+        "--results",
+        res.to_str().unwrap(),
+        "--out",
+        stats.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let rep = tmp.join("rep");
+    let o = ldh(&[
+        "report",
+        res.to_str().unwrap(),
+        "--out",
+        rep.to_str().unwrap(),
+        "--model",
+        train.join("model_rf.json").to_str().unwrap(),
+        "--stats",
+        stats.to_str().unwrap(),
+        "--train",
+        train.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    rep
+}
+
+/// One subject whose right file is unreadable.
+fn failed_side(tmp: &Path) -> PathBuf {
+    let demo = tmp.join("demo");
+    let o = ldh(&["demo", "--out", demo.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", text(&o));
+    let s = tmp.join("S1");
+    std::fs::create_dir_all(&s).unwrap();
+    std::fs::copy(demo.join("H01").join("left.csv"), s.join("left.csv")).unwrap();
+    std::fs::write(s.join("right.csv"), "this is not,a sensor file\n1,2\n").unwrap();
+    let out = tmp.join("failed");
+    let o = ldh(&[
+        "analyze",
+        s.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--report",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    out.join("reports")
+}
+
+#[test]
+fn reports_are_well_formed_self_contained_and_label_every_axis() {
+    let tmp = tempfile::tempdir().unwrap();
+    let demo = tmp.path().join("demo-out");
+    demo_with_reports(&demo);
+    let pages = html_files(&demo.join("reports"));
+    assert_eq!(pages.len(), 5, "cohort + 4 demo subjects");
+    for p in &pages[1..] {
+        // Fig. 3 and 4 per leg (4), radar, 4 stride-by-stride plots.
+        assert!(check_page(p) >= 9, "{}: figures missing", p.display());
+        let s = std::fs::read_to_string(p).unwrap();
+        for must in [
+            "1. Recordings",
+            "2. Gait parameters",
+            "reference range",
+            "SI (%)",
+            "Fig. 4",
+        ] {
+            assert!(s.contains(must), "{}: no '{must}'", p.display());
+        }
+    }
+    check_page(&pages[0]);
+
+    let rep = cohort_with_everything(tmp.path());
+    let pages = html_files(&rep);
+    assert_eq!(pages.len(), 13);
+    let index = std::fs::read_to_string(&pages[0]).unwrap();
+    for must in [
+        "Table 3",
+        "Table 4",
+        "Fig. 7",
+        "Tables 6–7",
+        "grouped 3-fold",
+        "subjects/H01.html",
+    ] {
+        assert!(index.contains(must), "cohort report: no '{must}'");
+    }
+    // Radar, 13 box plots, confusion matrix.
+    assert!(check_page(&pages[0]) >= 15);
+    let subj = std::fs::read_to_string(&pages[1]).unwrap();
+    assert!(subj.contains("Decision support, not a diagnosis") && subj.contains("<th>p("));
+    assert!(subj.contains("cohort healthy, n = 6") || subj.contains("published ["));
+    for p in &pages[1..] {
+        check_page(p);
+    }
+
+    let failed = failed_side(tmp.path());
+    let pages = html_files(&failed);
+    for p in &pages {
+        check_page(p);
+    }
+    let s = std::fs::read_to_string(&pages[1]).unwrap();
+    assert!(s.contains("Missing from this report"), "{s}");
+    assert!(s.contains("The right recording could not be analysed"));
+    assert!(
+        s.contains("left shank: attitude with gait events"),
+        "the good side still plots"
+    );
+}
+
+fn chromium() -> Option<PathBuf> {
+    for c in ["chromium", "chromium-browser", "google-chrome"] {
+        if let Ok(o) = std::process::Command::new("which").arg(c).output() {
+            if o.status.success() {
+                return Some(PathBuf::from(String::from_utf8_lossy(&o.stdout).trim()));
+            }
+        }
+    }
+    None
+}
+
+/// Screenshot → share of pixels that are not (near) white, and the number of distinct colours.
+fn ink(png_path: &Path) -> (f64, usize) {
+    let dec = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(png_path).unwrap(),
+    ));
+    let mut r = dec.read_info().unwrap();
+    let mut buf = vec![0; r.output_buffer_size().unwrap()];
+    let info = r.next_frame(&mut buf).unwrap();
+    let ch = info.color_type.samples();
+    let px = &buf[..info.buffer_size()];
+    let (mut dark, mut n) = (0usize, 0usize);
+    let mut colours = std::collections::HashSet::new();
+    for p in px.chunks(ch) {
+        n += 1;
+        if p[..3.min(ch)].iter().any(|&v| v < 230) {
+            dark += 1;
+        }
+        if colours.len() < 1000 {
+            colours.insert(p[..3.min(ch)].to_vec());
+        }
+    }
+    (dark as f64 / n as f64, colours.len())
+}
+
+/// Headless Chromium on a page, killed after 120 s.
+fn run_chromium(chrome: &Path, args: &[&str], page: &Path) -> std::process::Output {
+    std::process::Command::new("timeout")
+        .arg("120")
+        .arg(chrome)
+        .args(["--headless", "--no-sandbox", "--disable-gpu"])
+        .args(args)
+        .arg(format!("file://{}", page.display()))
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn chromium_renders_every_report() {
+    let Some(chrome) = chromium() else {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "CI must install chromium (.ci/run does)"
+        );
+        eprintln!("SKIPPED: no chromium on this machine (apt-get install chromium)");
+        return;
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    let demo = tmp.path().join("demo-out");
+    demo_with_reports(&demo);
+    let mut pages = html_files(&demo.join("reports"));
+    pages.extend(html_files(&failed_side(tmp.path())));
+    for (i, p) in pages.iter().enumerate() {
+        let shot = tmp.path().join(format!("shot{i}.png"));
+        let o = run_chromium(
+            &chrome,
+            &[
+                "--hide-scrollbars",
+                "--enable-logging=stderr",
+                "--v=0",
+                "--window-size=1000,1400",
+                &format!("--screenshot={}", shot.display()),
+            ],
+            p,
+        );
+        let log = text(&o);
+        assert!(
+            o.status.success(),
+            "{}: chromium failed: {log}",
+            p.display()
+        );
+        for bad in [
+            "CONSOLE",
+            "Uncaught",
+            "net::ERR_",
+            "Failed to load",
+            "Not allowed to load",
+        ] {
+            assert!(
+                !log.contains(bad),
+                "{}: the page logged '{bad}': {log}",
+                p.display()
+            );
+        }
+        let (share, colours) = ink(&shot);
+        assert!(
+            share > 0.02 && colours > 8,
+            "{}: the screenshot looks blank ({:.3} inked, {colours} colours)",
+            p.display(),
+            share
+        );
+        // Printing to A4 gives pages of A4 size (595 × 842 pt).
+        if i == 1 {
+            let pdf = tmp.path().join("print.pdf");
+            let o = run_chromium(
+                &chrome,
+                &[
+                    "--no-pdf-header-footer",
+                    &format!("--print-to-pdf={}", pdf.display()),
+                ],
+                p,
+            );
+            assert!(o.status.success(), "{}", text(&o));
+            let bytes = std::fs::read(&pdf).unwrap();
+            let s = String::from_utf8_lossy(&bytes);
+            assert!(s.starts_with("%PDF"));
+            assert!(
+                s.contains("MediaBox [0 0 594.9") || s.contains("MediaBox [0 0 595"),
+                "not A4"
+            );
+        }
+    }
+}
