@@ -487,6 +487,13 @@ fn analyze(a: AnalyzeArgs) -> Result<ExitCode> {
         );
     }
     let pool = thread_pool(a.jobs)?;
+    let stale = ldh_core::io::remove_stale_temp_files(&a.out)?;
+    if stale > 0 {
+        eprintln!(
+            "removed {stale} temporary file(s) of an interrupted earlier run in {}",
+            a.out.display()
+        );
+    }
     // Checked before the analysis so a bad model file fails fast.
     let classifier = a.classifier.as_deref().map(read_model).transpose()?;
     let report_params = ldh_core::report::ReportParams::default().check()?;
@@ -729,6 +736,7 @@ fn report(a: ReportArgs) -> Result<ExitCode> {
     let model = a.model.as_deref().map(read_model).transpose()?;
     let out = a.out.clone().unwrap_or_else(|| a.results.join("reports"));
     let pool = thread_pool(a.jobs)?;
+    ldh_core::io::remove_stale_temp_files(&out)?;
     let n = build_reports(
         &a.results,
         &out,

@@ -9,7 +9,10 @@ pub use format::{FormatSpec, BUILTIN_FORMATS};
 pub use reader::{
     read_recording, read_recording_bytes, GapPolicy, ReadParams, ReadReport, ValidReadParams,
 };
-pub use writer::{recording_to_csv, write_atomic, write_recording, AtomicFile, WriteOptions};
+pub use writer::{
+    recording_to_csv, remove_stale_temp_files, write_atomic, write_recording, AtomicFile,
+    WriteOptions,
+};
 
 #[cfg(test)]
 mod tests;

@@ -107,6 +107,45 @@ impl Drop for AtomicFile {
     }
 }
 
+/// Remove the temporary files that killed runs left in `dir` and its sub-folders
+/// (`.<name>.tmp-<pid>` of [`write_atomic`] and [`AtomicFile`] whose process no longer runs),
+/// so a re-run into the same folder leaves only whole outputs. Files of a process that is still
+/// running (per `/proc`) are kept; where `/proc` does not exist none is removed. Returns how
+/// many were removed.
+pub fn remove_stale_temp_files(dir: &Path) -> Result<usize> {
+    let proc_fs = Path::new("/proc/self").exists();
+    let me = std::process::id();
+    let mut removed = 0;
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(0);
+    };
+    for e in entries.flatten() {
+        let path = e.path();
+        let Ok(ft) = e.file_type() else { continue };
+        if ft.is_dir() {
+            removed += remove_stale_temp_files(&path)?;
+            continue;
+        }
+        let name = e.file_name().to_string_lossy().to_string();
+        let Some(pid) = name
+            .strip_prefix('.')
+            .and_then(|n| n.rsplit_once(".tmp-"))
+            .and_then(|(_, pid)| pid.parse::<u32>().ok())
+        else {
+            continue;
+        };
+        if !proc_fs || pid == me || Path::new("/proc").join(pid.to_string()).exists() {
+            continue;
+        }
+        std::fs::remove_file(&path).map_err(|err| LdhError::Write {
+            path: path.clone(),
+            reason: err.to_string(),
+        })?;
+        removed += 1;
+    }
+    Ok(removed)
+}
+
 /// Options of the writer.
 #[derive(Debug, Clone, PartialEq)]
 pub struct WriteOptions {
