@@ -403,6 +403,17 @@ fn inspect(a: InspectArgs) -> Result<ExitCode> {
             }
         }
     }
+    for (f, r) in &outcomes {
+        if let Ok(v) = r {
+            for w in v["read"]["warnings"].as_array().into_iter().flatten() {
+                eprintln!(
+                    "warning: {}: {}",
+                    f.display(),
+                    w.as_str().unwrap_or_default()
+                );
+            }
+        }
+    }
     if failed > 0 {
         eprintln!("{failed} of {} file(s) failed", outcomes.len());
         return Ok(ExitCode::from(1));
@@ -494,6 +505,9 @@ fn analyze(a: AnalyzeArgs) -> Result<ExitCode> {
         strides.len(),
         a.out.display()
     );
+    for r in recordings.iter().filter(|r| !r.warnings.is_empty()) {
+        eprintln!("warning: {} {}: {}", r.subject_id, r.side, r.warnings);
+    }
     for f in &failed {
         eprintln!("error: {} {}: {}", f.subject_id, f.side, f.error);
     }
