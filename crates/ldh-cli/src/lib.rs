@@ -442,6 +442,17 @@ fn inspect(a: InspectArgs) -> Result<ExitCode> {
             }
         }
     }
+    for (f, r) in &outcomes {
+        if let Ok(v) = r {
+            for w in v["read"]["warnings"].as_array().into_iter().flatten() {
+                eprintln!(
+                    "warning: {}: {}",
+                    f.display(),
+                    w.as_str().unwrap_or_default()
+                );
+            }
+        }
+    }
     if failed > 0 {
         eprintln!("{failed} of {} file(s) failed", outcomes.len());
         return Ok(ExitCode::from(1));
@@ -579,6 +590,9 @@ fn analyze(a: AnalyzeArgs) -> Result<ExitCode> {
         params.attitude.model.as_str(),
         a.out.display()
     );
+    for r in recordings.iter().filter(|r| !r.warnings.is_empty()) {
+        eprintln!("warning: {} {}: {}", r.subject_id, r.side, r.warnings);
+    }
     for f in &failed {
         eprintln!("error: {} {}: {}", f.subject_id, f.side, f.error);
     }

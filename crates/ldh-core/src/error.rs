@@ -139,7 +139,7 @@ pub enum LdhError {
         header: Vec<String>,
     },
     /// A row has fewer or more fields than the header.
-    #[error("{loc}: row has {found} fields, the header has {expected}")]
+    #[error("{loc}: row has {found} fields, the header has {expected}{hint}")]
     FieldCount {
         /// Where.
         loc: Location,
@@ -147,6 +147,8 @@ pub enum LdhError {
         found: usize,
         /// Fields in the header.
         expected: usize,
+        /// Extra advice (e.g. about decimal commas), empty or starting with "; ".
+        hint: String,
     },
     /// A cell that must hold a number does not.
     #[error("{loc}: column '{column}': '{value}' is not a number{hint}")]

@@ -85,6 +85,11 @@ pub struct RecordingRow {
     pub status: String,
     /// The error, when status is `error`.
     pub error: String,
+    /// Problems that did not stop the analysis, `; `-separated: the reader's (a gap, a
+    /// constant or frozen channel), the leg's (upside-down mounting, running, few strides) and
+    /// the pair's (different clocks, rates or lengths; left and right possibly swapped).
+    #[serde(default)]
+    pub warnings: String,
     /// Sampling rate, Hz.
     pub fs_hz: Option<f64>,
     /// Duration, s.
@@ -191,6 +196,7 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
                 source: String::new(),
                 status: "ok".into(),
                 error: String::new(),
+                warnings: String::new(),
                 fs_hz: None,
                 duration_s: None,
                 strides_total: None,
@@ -222,6 +228,15 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
                 }
                 Ok(l) => {
                     let p = &l.parameters;
+                    row.warnings = l
+                        .read
+                        .warnings
+                        .iter()
+                        .chain(&l.warnings)
+                        .chain(&r.warnings)
+                        .map(String::as_str)
+                        .collect::<Vec<_>>()
+                        .join("; ");
                     row.source = l.source.clone();
                     row.fs_hz = num(l.read.fs_hz, 4);
                     row.duration_s = num(l.read.duration_s, 3);

@@ -7,7 +7,8 @@ pub mod writer;
 
 pub use format::{FormatSpec, BUILTIN_FORMATS};
 pub use reader::{
-    read_recording, read_recording_bytes, GapPolicy, ReadParams, ReadReport, ValidReadParams,
+    flat_channel_warnings, read_recording, read_recording_bytes, GapPolicy, ReadParams, ReadReport,
+    ValidReadParams,
 };
 pub use writer::{
     recording_to_csv, remove_stale_temp_files, write_atomic, write_recording, AtomicFile,

@@ -170,6 +170,10 @@ pub struct ReadReport {
     pub duration_s: f64,
     /// Assumptions and findings, one sentence each.
     pub notes: Vec<String>,
+    /// Problems that did not stop the reading but need the user's attention (data dropped at a
+    /// gap, a constant channel, a sensor that froze), one sentence each.
+    #[serde(default)]
+    pub warnings: Vec<String>,
 }
 
 /// Read a sensor CSV with a known format (`Some`) or by detecting a built-in one (`None`).
@@ -201,6 +205,7 @@ pub fn read_recording_bytes(
     let text = decode_text(bytes, path)?;
     let bom = text.len() + 3 == bytes.len() && bytes.starts_with(&[0xEF, 0xBB, 0xBF]);
     let mut notes = Vec::new();
+    let mut warnings = Vec::new();
     if bom {
         notes.push("UTF-8 byte-order mark found and ignored".to_string());
     }
@@ -378,10 +383,29 @@ pub fn read_recording_bytes(
             let trailing_empty =
                 fields.len() == expected + 1 && fields.last().is_some_and(|f| f.is_empty());
             if !trailing_empty {
+                // Decimal commas in a comma-separated file double the fields.
+                let hint = if delim == b','
+                    && fields.len() > expected
+                    && !line.contains('.')
+                    && fields.iter().all(|f| f.parse::<f64>().is_ok())
+                {
+                    "; the row has no '.' but more commas than the header: decimal commas in a comma-separated file? Export with '.' as decimal separator or ';' as delimiter".to_string()
+                } else if fields.len() < expected
+                    && lines
+                        .iter()
+                        .rev()
+                        .find(|(_, l)| !l.trim().is_empty())
+                        .is_some_and(|(n, _)| *n == lineno)
+                {
+                    "; it is the last line: the file looks truncated (an interrupted export or copy?)".to_string()
+                } else {
+                    String::new()
+                };
                 return Err(LdhError::FieldCount {
                     loc: Location::line(path, lineno),
                     found: fields.len(),
                     expected,
+                    hint,
                 });
             }
         }
@@ -477,6 +501,26 @@ pub fn read_recording_bytes(
         }
     }
 
+    // A median interval outside the plausible rates is a time-unit problem, not a series of
+    // gaps (e.g. milliseconds written into a seconds column).
+    if times.len() >= 3 {
+        let mut dts: Vec<f64> = times.windows(2).map(|w| w[1] - w[0]).collect();
+        dts.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+        let rate = 1.0 / dts[dts.len() / 2];
+        if !(rate >= params.min_rate_hz && rate <= params.max_rate_hz) {
+            return Err(LdhError::SamplingRate {
+                path: path.to_path_buf(),
+                reason: format!(
+                    "the median interval between timestamps is {:.6} s ({rate:.3} Hz), outside the plausible {}–{} Hz; check the time unit ({:?} declared: milliseconds written as seconds?)",
+                    dts[dts.len() / 2],
+                    params.min_rate_hz,
+                    params.max_rate_hz,
+                    spec.time.unit
+                ),
+            });
+        }
+    }
+
     // Gaps → segments.
     let mut gaps = Vec::new();
     let mut cuts = vec![0usize];
@@ -517,7 +561,7 @@ pub fn read_recording_bytes(
         .map(|w| (times[w[0]], times[w[1] - 1]))
         .collect();
     if !gaps.is_empty() {
-        notes.push(format!(
+        warnings.push(format!(
             "{} gap(s) longer than {} s: kept the longest segment {:.2}–{:.2} s, dropped {}",
             gaps.len(),
             params.max_gap_s,
@@ -592,6 +636,13 @@ pub fn read_recording_bytes(
         .fold(0.0f64, f64::max);
     let consecutive = index.last().is_some_and(|&k| k as usize + 1 == n_seg);
     let uniform = consecutive && max_jitter <= 0.1 / fs;
+    if max_jitter > 0.5 / fs {
+        warnings.push(format!(
+            "timestamps deviate from the fitted {fs:.3} Hz grid by up to {:.1} ms ({:.1} sample periods): the jitter is too large to place every row on the grid, so the sampling rate and the resampled signals may be wrong; check the device's timestamps",
+            max_jitter * 1e3,
+            max_jitter * fs
+        ));
+    }
     let mut channels: [Vec<f64>; 6] = Default::default();
     let n_out;
     if uniform {
@@ -687,6 +738,8 @@ pub fn read_recording_bytes(
         });
     }
 
+    warnings.extend(flat_channel_warnings(&acc_g, &gyro_dps, fs, t0));
+
     let mut rec = Recording::new(fs, acc_g, gyro_dps, saturated).map_err(|e| LdhError::Signal {
         context: path.display().to_string(),
         reason: e.to_string(),
@@ -715,8 +768,80 @@ pub fn read_recording_bytes(
         samples: n_out,
         duration_s,
         notes,
+        warnings,
     };
     Ok((rec, report))
+}
+
+/// Warnings about channels that do not measure: a channel constant over the whole recording
+/// (a dead axis or a disconnected sensor), and runs of at least one second in which all six
+/// channels repeat the same values exactly (a sensor that stalled or lost its connection and
+/// was padded by the logger). Real sensor noise never repeats six channels bit for bit.
+pub fn flat_channel_warnings(
+    acc_g: &[Vec<f64>; 3],
+    gyro_dps: &[Vec<f64>; 3],
+    fs: f64,
+    t0: f64,
+) -> Vec<String> {
+    const NAMES: [&str; 6] = ["acc_x", "acc_y", "acc_z", "gyro_x", "gyro_y", "gyro_z"];
+    let ch: Vec<&Vec<f64>> = acc_g.iter().chain(gyro_dps.iter()).collect();
+    let n = ch[0].len();
+    let mut out = Vec::new();
+    if n < 2 {
+        return out;
+    }
+    let constant: Vec<usize> = (0..6)
+        .filter(|&k| ch[k].iter().all(|&v| v == ch[k][0]))
+        .collect();
+    if constant.len() == 6 {
+        out.push(format!(
+            "all six channels are constant over the whole recording (acc {:.3}, {:.3}, {:.3} g; gyro {:.2}, {:.2}, {:.2} deg/s): the sensor did not measure — disconnected, switched off, or a placeholder export?",
+            ch[0][0], ch[1][0], ch[2][0], ch[3][0], ch[4][0], ch[5][0]
+        ));
+        return out;
+    }
+    if !constant.is_empty() {
+        out.push(format!(
+            "channel(s) {} constant over all {n} samples (at {}): a dead axis or a disconnected sensor?",
+            constant.iter().map(|&k| NAMES[k]).collect::<Vec<_>>().join(", "),
+            constant
+                .iter()
+                .map(|&k| format!("{}", ch[k][0]))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    let min_run = ((fs.round() as usize).max(10)).min(n);
+    let same = |i: usize| (0..6).all(|k| ch[k][i] == ch[k][i - 1]);
+    let mut runs: Vec<(usize, usize)> = Vec::new();
+    let mut i = 1;
+    while i < n {
+        if same(i) {
+            let s = i - 1;
+            while i < n && same(i) {
+                i += 1;
+            }
+            if i - s >= min_run {
+                runs.push((s, i));
+            }
+        } else {
+            i += 1;
+        }
+    }
+    if let Some(&(a, b)) = runs.iter().max_by_key(|(a, b)| b - a) {
+        let total: usize = runs.iter().map(|(a, b)| b - a).sum();
+        out.push(format!(
+            "all six channels frozen at the same values in {} run(s), {:.2} s in all (longest {:.2}–{:.2} s, acc {:.3}, {:.3}, {:.3} g): the sensor stopped measuring (disconnected or stalled) and those samples are not measurements",
+            runs.len(),
+            total as f64 / fs,
+            t0 + a as f64 / fs,
+            t0 + (b - 1) as f64 / fs,
+            ch[0][a],
+            ch[1][a],
+            ch[2][a]
+        ));
+    }
+    out
 }
 
 /// Refuse empty, binary and non-UTF-8 content; strip a BOM.
@@ -990,6 +1115,16 @@ pub fn check_units_plausible(rec: &Recording, spec: &FormatSpec, path: &Path) ->
         .iter()
         .flat_map(|c| c.iter())
         .fold(0.0f64, |m, v| m.max(v.abs()));
+    let gyro_constant = rec.gyro_dps.iter().all(|c| c.iter().all(|&v| v == c[0]));
+    if sd > 0.05 && gyro_constant {
+        return Err(LdhError::Implausible {
+            path: path.to_path_buf(),
+            reason: format!(
+                "the accelerometer shows movement (SD {sd:.2} g) but the gyroscope reads a constant ({:.2}, {:.2}, {:.2}) deg/s on all three axes over the whole recording: is the gyroscope switched on and connected?",
+                rec.gyro_dps[0][0], rec.gyro_dps[1][0], rec.gyro_dps[2][0]
+            ),
+        });
+    }
     if sd > 0.05 && gyro_peak < 20.0 {
         return Err(LdhError::Implausible {
             path: path.to_path_buf(),

@@ -282,6 +282,16 @@ pub fn subject_html(
     if s.traces.is_none() {
         missing.push("Signal plots are not available: this report was built from result tables without signal traces (run `ldh analyze --report` to include them).".into());
     }
+    let warned: Vec<&&RecordingRow> = sides.iter().filter(|r| !r.warnings.is_empty()).collect();
+    if !warned.is_empty() {
+        b.push_str("<div class=\"missing\"><b>Check before reading the numbers.</b><ul>");
+        for r in warned {
+            for w in r.warnings.split("; ") {
+                b.push_str(&format!("<li>{}: {}</li>", esc(&r.side), esc(w)));
+            }
+        }
+        b.push_str("</ul></div>\n");
+    }
     if !missing.is_empty() {
         b.push_str("<div class=\"missing\"><b>Missing from this report.</b><ul>");
         for m in &missing {
@@ -310,6 +320,13 @@ pub fn subject_html(
             "analysed".into()
         } else {
             format!("failed: {}", r.error)
+        }
+    }));
+    b.push_str(&fact("warnings", &|r| {
+        if r.warnings.is_empty() {
+            "none".into()
+        } else {
+            r.warnings.clone()
         }
     }));
     b.push_str(&fact("duration (s)", &|r| fmt(r.duration_s, 1)));
@@ -863,7 +880,7 @@ pub fn cohort_html(c: &CohortReport) -> Result<String> {
         }
     }
     // Recordings.
-    b.push_str("<h2>5. Recordings</h2>\n<table><tr><th>subject</th><th>group</th><th>side</th><th>status</th><th>strides used</th><th>duration (s)</th></tr>\n");
+    b.push_str("<h2>5. Recordings</h2>\n<table><tr><th>subject</th><th>group</th><th>side</th><th>status</th><th>strides used</th><th>duration (s)</th><th>warnings</th></tr>\n");
     for r in &c.recordings {
         let link = c
             .subject_links
@@ -872,12 +889,13 @@ pub fn cohort_html(c: &CohortReport) -> Result<String> {
             .map(|l| format!("<a href=\"{}\">{}</a>", esc(&l.1), esc(&r.subject_id)))
             .unwrap_or_else(|| esc(&r.subject_id));
         b.push_str(&format!(
-            "<tr><td>{link}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td></tr>\n",
+            "<tr><td>{link}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td>{}</td></tr>\n",
             esc(&r.group),
             esc(&side_label(r)),
             esc(if r.status == "ok" { "analysed" } else { &r.error }),
             r.strides_valid.map(|v| v.to_string()).unwrap_or("–".into()),
-            fmt(r.duration_s, 1)
+            fmt(r.duration_s, 1),
+            esc(&r.warnings)
         ));
     }
     b.push_str("</table>\n");

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import os
+import warnings
 from typing import Any, Dict, List, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -18,6 +19,7 @@ from ._errors import (
     LdhFileNotFoundError,
     LdhOSError,
     LdhParamError,
+    LdhWarning,
 )
 
 __version__ = _ldh.__version__
@@ -27,6 +29,7 @@ __all__ = [
     "LdhParamError",
     "LdhFileNotFoundError",
     "LdhOSError",
+    "LdhWarning",
     "read_recording",
     "butter_filtfilt",
     "preprocess",
@@ -96,7 +99,10 @@ def read_recording(
         ``fs_hz``, ``t0_s``, ``time_s`` and the channels ``acc_x_g`` ... ``gyro_z_dps`` as
         float64 arrays, plus the boolean ``saturated`` mask.
     report : dict
-        What the reader detected and assumed (format, delimiter, rate, gaps, clipping, notes).
+        What the reader detected and assumed (format, delimiter, rate, gaps, clipping, notes),
+        and ``warnings``: problems that did not stop it (data dropped at a gap, a constant or
+        frozen channel, too much timestamp jitter). Each warning is also issued as an
+        :class:`LdhWarning`.
 
     Raises
     ------
@@ -109,7 +115,10 @@ def read_recording(
     rec, report = _ldh.read_recording(
         os.fspath(path), format, max_gap_s, gap_policy, min_duration_s, check_units
     )
-    return rec, json.loads(report)
+    report = json.loads(report)
+    for w in report.get("warnings", []):
+        warnings.warn(f"{report['file']}: {w}", LdhWarning, stacklevel=2)
+    return rec, report
 
 
 def butter_filtfilt(x: Any, cutoff_hz: float, fs_hz: float, order: int = 4) -> np.ndarray:
@@ -276,7 +285,9 @@ def analyze(
         ``{"strides": ..., "recordings": ..., "events": ...}``, each a dict of columns
         (float64 arrays with NaN for missing values, lists for text) that
         ``pandas.DataFrame`` accepts as it is. A recording that failed has ``status ==
-        "error"`` and its ``error``; nothing is raised for it.
+        "error"`` and its ``error``; nothing is raised for it. Problems that did not stop a
+        recording (different clocks of the two files, upside-down mounting, running, a frozen
+        channel...) are in the ``warnings`` column (``"; "``-separated, empty when none).
     """
     if inputs is None:
         paths: list = []

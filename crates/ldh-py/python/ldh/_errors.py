@@ -24,3 +24,8 @@ class LdhFileNotFoundError(LdhError, FileNotFoundError):
 
 class LdhOSError(LdhError, OSError):
     """Any other operating-system error while reading or writing."""
+
+
+class LdhWarning(UserWarning):
+    """A problem in the input that did not stop ldh (a gap, a constant or frozen channel, too
+    much timestamp jitter...); the same text is in the report's ``warnings``."""

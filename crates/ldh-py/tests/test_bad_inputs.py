@@ -1,0 +1,152 @@
+"""The bad-input corpus (data-fixtures/bad/, see its README.md) through the Python API: every
+case gives the outcome its expected.toml documents — the typed exception, or a result with its
+warnings — and never a crash. The Rust twin is tests/tests/bad_inputs.rs."""
+import os
+import pathlib
+import shutil
+import warnings
+
+import pytest
+
+import ldh
+
+try:
+    import tomllib
+except ImportError:  # Python < 3.11: the corpus' TOML is flat key = literal
+    tomllib = None
+
+ROOT = pathlib.Path(__file__).resolve().parents[3]
+CORPUS = ROOT / "data-fixtures" / "bad"
+EXCEPTIONS = {"data": ldh.LdhDataError, "io": ldh.LdhOSError, "not_found": ldh.LdhFileNotFoundError}
+
+
+def _load(path):
+    text = path.read_text(encoding="utf-8")
+    if tomllib is not None:
+        return tomllib.loads(text)
+    import ast
+    out = {}
+    for line in text.splitlines():
+        if line.strip() and not line.startswith("#"):
+            k, v = line.split("=", 1)
+            v = v.strip().replace("true", "True").replace("false", "False")
+            out[k.strip()] = ast.literal_eval(v)
+    return out
+
+
+CASES = sorted(p.name for p in CORPUS.iterdir() if (p / "expected.toml").is_file())
+
+
+def write_two_hour(src, out):
+    """baseline_ok repeated back to back with continuous time until 7200 s are covered."""
+    for side in ("left.csv", "right.csv"):
+        lines = (src / side).read_text().splitlines()
+        header, rows = lines[0], [l.split(",", 1) for l in lines[1:]]
+        times = [float(t) for t, _ in rows]
+        span = times[-1] - times[0] + (times[1] - times[0])
+        tiles = int(-(-7200 // span))
+        with open(out / side, "w", newline="\n") as fh:
+            fh.write(header + "\n")
+            for k in range(tiles):
+                off = k * span
+                fh.write("".join(f"{t + off:.2f},{rest}\n" for t, (_, rest) in zip(times, rows)))
+
+
+def generate(kind, d):
+    """Make a generated case's input in d; returns a skip reason or None."""
+    if kind == "missing":
+        pass
+    elif kind == "zero_byte":
+        (d / "data.csv").write_bytes(b"")
+    elif kind == "directory":
+        (d / "data.csv").mkdir()
+    elif kind == "unreadable":
+        f = d / "data.csv"
+        shutil.copy(CORPUS / "single_spike" / "data.csv", f)
+        f.chmod(0)
+        try:
+            f.read_bytes()
+            return "running as root (or without file permissions): chmod 000 does not stop reading"
+        except PermissionError:
+            pass
+    elif kind == "symlink_loop":
+        os.symlink(d / "loop.csv", d / "data.csv")
+        os.symlink(d / "data.csv", d / "loop.csv")
+    elif kind == "two_hour":
+        write_two_hour(CORPUS / "baseline_ok", d)
+    else:
+        raise AssertionError(f"unknown generator {kind}")
+    return None
+
+
+def test_the_corpus_is_complete():
+    assert len(CASES) >= 40
+    readme = (CORPUS / "README.md").read_text(encoding="utf-8")
+    for name in CASES:
+        assert f"`{name}`" in readme, name
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_bad_input(name, tmp_path):
+    exp = _load(CORPUS / name / "expected.toml")
+    if exp.get("generated"):
+        d = tmp_path / name
+        d.mkdir()
+        reason = generate(exp["generate"], d)
+        if reason:
+            pytest.skip(reason)
+    else:
+        d = CORPUS / name
+    files = [d / f for f in exp["files"]]
+    outcome = exp["outcome"]
+    if exp["command"] == "inspect":
+        (path,) = files
+        if outcome == "error":
+            cls = EXCEPTIONS[exp["kind"]]
+            with pytest.raises(cls) as e:
+                ldh.read_recording(path)
+            assert isinstance(e.value, ldh.LdhError)
+            for m in exp.get("message_contains", []):
+                assert m in str(e.value), (m, str(e.value))
+            return
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            rec, report = ldh.read_recording(path)
+        issued = [str(w.message) for w in caught if issubclass(w.category, ldh.LdhWarning)]
+        assert len(issued) == len(report["warnings"])
+        if outcome == "ok":
+            assert report["warnings"] == []
+        else:
+            assert report["warnings"], "expected warnings"
+        joined = " | ".join(report["warnings"])
+        for m in exp.get("warnings_contain", []):
+            assert m in joined, (m, joined)
+        notes = " | ".join(report["notes"])
+        for m in exp.get("notes_contain", []):
+            assert m in notes, (m, notes)
+        assert len(rec["time_s"]) == report["samples"]
+        return
+    # analyze
+    compute_sta = False if "--no-sta" in exp.get("args", []) else None
+    res = ldh.analyze([str(f) for f in files], compute_sta=compute_sta)
+    r = res["recordings"]
+    idx = [i for i, s in enumerate(r["side"]) if not exp.get("side") or s == exp["side"]]
+    assert idx
+    if outcome == "error":
+        errors = " | ".join(r["error"][i] for i in idx if r["status"][i] == "error")
+        assert errors, "expected a failed recording"
+        for m in exp.get("message_contains", []):
+            assert m in errors, (m, errors)
+        return
+    for i in idx:
+        assert r["status"][i] == "ok", r["error"][i]
+        w = r["warnings"][i]
+        if outcome == "ok":
+            assert w == "", w
+        else:
+            for m in exp.get("warnings_contain", []):
+                assert m in w, (m, w)
+        if "min_valid_strides" in exp:
+            assert r["strides_valid"][i] >= exp["min_valid_strides"]
+        if "fs_hz" in exp:
+            assert abs(r["fs_hz"][i] - exp["fs_hz"]) < 1e-6

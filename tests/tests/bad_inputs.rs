@@ -1,0 +1,272 @@
+//! The bad-input corpus (`data-fixtures/bad/`, documented in its README.md): every case through
+//! the command line, with the outcome its `expected.toml` documents and never a panic.
+//!
+//! `inspect` cases run `ldh inspect --json FILE`; `analyze` cases run `ldh analyze FILES --out
+//! TMP` and read `recordings.json`. Cases with `generated = true` are made here at run time (a
+//! 0-byte file, a directory, an unreadable file, a symlink loop, a missing file, a 2-hour
+//! recording), because git cannot hold them portably or they would be too large.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+mod common;
+use common::*;
+
+fn corpus() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../data-fixtures/bad")
+}
+
+fn strs(v: &toml::Value, key: &str) -> Vec<String> {
+    v.get(key)
+        .and_then(|x| x.as_array())
+        .map(|a| a.iter().map(|s| s.as_str().unwrap().to_string()).collect())
+        .unwrap_or_default()
+}
+
+fn s<'a>(v: &'a toml::Value, key: &str) -> &'a str {
+    v.get(key).and_then(|x| x.as_str()).unwrap_or("")
+}
+
+/// A 2-hour pair: `baseline_ok` (standing at both ends) repeated back to back with continuous
+/// time until 7200 s are covered.
+pub fn write_two_hour(src: &Path, out: &Path) {
+    for side in ["left.csv", "right.csv"] {
+        let text = std::fs::read_to_string(src.join(side)).unwrap();
+        let mut lines = text.lines();
+        let header = lines.next().unwrap();
+        let rows: Vec<(f64, &str)> = lines
+            .map(|l| {
+                let (t, rest) = l.split_once(',').unwrap();
+                (t.parse::<f64>().unwrap(), rest)
+            })
+            .collect();
+        let period = rows[1].0 - rows[0].0;
+        let span = rows.last().unwrap().0 - rows[0].0 + period;
+        let tiles = (7200.0 / span).ceil() as usize;
+        let mut out_text = String::with_capacity(text.len() * tiles + 64);
+        out_text.push_str(header);
+        out_text.push('\n');
+        for k in 0..tiles {
+            for (t, rest) in &rows {
+                out_text.push_str(&format!("{:.2},{rest}\n", t + k as f64 * span));
+            }
+        }
+        std::fs::write(out.join(side), out_text).unwrap();
+    }
+}
+
+/// Make a generated case's input in `dir`; `None` when it cannot be checked here (with the
+/// reason printed).
+fn generate(kind: &str, dir: &Path) -> Option<()> {
+    match kind {
+        "missing" => {}
+        "zero_byte" => std::fs::write(dir.join("data.csv"), b"").unwrap(),
+        "directory" => std::fs::create_dir(dir.join("data.csv")).unwrap(),
+        "unreadable" => {
+            use std::os::unix::fs::PermissionsExt;
+            let f = dir.join("data.csv");
+            std::fs::copy(corpus().join("single_spike/data.csv"), &f).unwrap();
+            std::fs::set_permissions(&f, std::fs::Permissions::from_mode(0o000)).unwrap();
+            if std::fs::read(&f).is_ok() {
+                println!("unreadable_file: skipped — running as root (or on a file system without permissions), so chmod 000 does not stop reading");
+                return None;
+            }
+        }
+        "symlink_loop" => {
+            std::os::unix::fs::symlink(dir.join("loop.csv"), dir.join("data.csv")).unwrap();
+            std::os::unix::fs::symlink(dir.join("data.csv"), dir.join("loop.csv")).unwrap();
+        }
+        "two_hour" => write_two_hour(&corpus().join("baseline_ok"), dir),
+        other => panic!("unknown generator {other}"),
+    }
+    Some(())
+}
+
+fn check_case(name: &str, exp: &toml::Value) -> Result<(), String> {
+    let tmp = tempfile::tempdir().unwrap();
+    let generated = exp
+        .get("generated")
+        .and_then(|x| x.as_bool())
+        .unwrap_or(false);
+    let dir = if generated {
+        let d = tmp.path().join(name);
+        std::fs::create_dir(&d).unwrap();
+        if generate(s(exp, "generate"), &d).is_none() {
+            return Ok(());
+        }
+        d
+    } else {
+        corpus().join(name)
+    };
+    let files: Vec<String> = strs(exp, "files")
+        .iter()
+        .map(|f| dir.join(f).display().to_string())
+        .collect();
+    let outcome = s(exp, "outcome");
+    let out_dir = tmp.path().join("out");
+    let mut args: Vec<String> = match s(exp, "command") {
+        "inspect" => vec!["inspect".into(), "--json".into()],
+        "analyze" => vec![
+            "analyze".into(),
+            "--out".into(),
+            out_dir.display().to_string(),
+            "--jobs".into(),
+            "1".into(),
+        ],
+        c => return Err(format!("unknown command {c}")),
+    };
+    args.extend(strs(exp, "args"));
+    args.extend(files);
+    let argv: Vec<&str> = args.iter().map(String::as_str).collect();
+    let o = ldh(&argv);
+    let all = text(&o);
+    if all.contains("panicked") {
+        return Err(format!("panicked: {all}"));
+    }
+    let code = o.status.code();
+    let want = exp
+        .get("exit_code")
+        .and_then(|x| x.as_integer())
+        .unwrap_or(0) as i32;
+    if code != Some(want) {
+        return Err(format!("exit code {code:?}, expected {want}: {all}"));
+    }
+    let has = |hay: &str, needles: &[String], what: &str| -> Result<(), String> {
+        for n in needles {
+            if !hay.contains(n.as_str()) {
+                return Err(format!("{what} lacks {n:?}: {hay}"));
+            }
+        }
+        Ok(())
+    };
+    if s(exp, "command") == "inspect" {
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout)
+            .map_err(|e| format!("inspect --json output is not JSON ({e}): {all}"))?;
+        let r = &v[0];
+        match outcome {
+            "error" => {
+                let e = r["error"]
+                    .as_str()
+                    .ok_or_else(|| format!("expected an error: {r}"))?;
+                has(e, &strs(exp, "message_contains"), "error")?;
+            }
+            _ => {
+                if r.get("error").is_some() {
+                    return Err(format!("unexpected error: {r}"));
+                }
+                let w: Vec<String> = r["read"]["warnings"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|x| x.as_str().unwrap().to_string())
+                    .collect();
+                if outcome == "ok" && !w.is_empty() {
+                    return Err(format!("unexpected warnings: {w:?}"));
+                }
+                if outcome == "warning" && w.is_empty() {
+                    return Err("expected warnings, got none".into());
+                }
+                has(&w.join(" | "), &strs(exp, "warnings_contain"), "warnings")?;
+                has(
+                    &r["read"]["notes"].to_string(),
+                    &strs(exp, "notes_contain"),
+                    "notes",
+                )?;
+                if let Some(n) = exp.get("outliers_min").and_then(|x| x.as_integer()) {
+                    let got = r["preprocess"]["outliers_replaced"].as_i64().unwrap();
+                    if got < n {
+                        return Err(format!("{got} outliers replaced, expected ≥ {n}"));
+                    }
+                }
+            }
+        }
+    } else {
+        let rows = json(&out_dir.join("recordings.json"));
+        let rows: Vec<&serde_json::Value> = rows
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|r| s(exp, "side").is_empty() || r["side"] == s(exp, "side"))
+            .collect();
+        if rows.is_empty() {
+            return Err("no recording rows".into());
+        }
+        match outcome {
+            "error" => {
+                let errs: Vec<&str> = rows
+                    .iter()
+                    .filter(|r| r["status"] == "error")
+                    .map(|r| r["error"].as_str().unwrap())
+                    .collect();
+                if errs.is_empty() {
+                    return Err(format!("expected a failed recording: {rows:?}"));
+                }
+                has(&errs.join(" | "), &strs(exp, "message_contains"), "error")?;
+            }
+            _ => {
+                for r in &rows {
+                    if r["status"] != "ok" {
+                        return Err(format!("recording failed: {r}"));
+                    }
+                    let w = r["warnings"].as_str().unwrap();
+                    if outcome == "ok" && !w.is_empty() {
+                        return Err(format!("unexpected warnings: {w}"));
+                    }
+                    if outcome == "warning" {
+                        has(w, &strs(exp, "warnings_contain"), "warnings")?;
+                    }
+                    if let Some(n) = exp.get("min_valid_strides").and_then(|x| x.as_integer()) {
+                        if r["strides_valid"].as_i64().unwrap() < n {
+                            return Err(format!("fewer than {n} valid strides: {r}"));
+                        }
+                    }
+                    if let Some(f) = exp.get("fs_hz").and_then(|x| x.as_float()) {
+                        if (r["fs_hz"].as_f64().unwrap() - f).abs() > 1e-6 {
+                            return Err(format!("fs_hz {} instead of {f}", r["fs_hz"]));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+#[test]
+fn every_bad_input_gives_its_documented_outcome_and_never_panics() {
+    let mut names: Vec<String> = std::fs::read_dir(corpus())
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.path().join("expected.toml").is_file())
+        .map(|e| e.file_name().to_string_lossy().to_string())
+        .collect();
+    names.sort();
+    assert!(names.len() >= 40, "only {} cases", names.len());
+    let readme = std::fs::read_to_string(corpus().join("README.md")).unwrap();
+    let mut failures = Vec::new();
+    for name in &names {
+        let exp: toml::Value = toml::from_str(
+            &std::fs::read_to_string(corpus().join(name).join("expected.toml")).unwrap(),
+        )
+        .unwrap_or_else(|e| panic!("{name}/expected.toml: {e}"));
+        assert!(
+            readme.contains(&format!("`{name}`")),
+            "{name} is not listed in data-fixtures/bad/README.md"
+        );
+        let t = Instant::now();
+        let r = check_case(name, &exp);
+        println!(
+            "{name}: {:?} in {:.1} s",
+            r.as_ref().map(|_| "ok"),
+            t.elapsed().as_secs_f64()
+        );
+        if let Err(e) = r {
+            failures.push(format!("{name}: {e}"));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} case(s) failed:\n{}",
+        failures.len(),
+        failures.join("\n\n")
+    );
+}
