@@ -519,8 +519,10 @@ fn analyze(a: AnalyzeArgs) -> Result<ExitCode> {
         &["subject_id", "time_s", "side", "event", "order"],
         false,
     )?;
-    let mut recordings: Vec<output::RecordingRow> = Vec::new();
-    let mut valid = 0usize;
+    let mut recordings = output::TableSink::create(&a.out, "recordings", &[], true)?;
+    // Only the rows with something to say are kept for the summary.
+    let mut flagged: Vec<output::RecordingRow> = Vec::new();
+    let (mut n_rows, mut n_failed, mut valid) = (0usize, 0usize, 0usize);
     let chunk = (pool.current_num_threads() * 8).max(8);
     for part in subjects.chunks(chunk) {
         let done: Vec<ldh_core::Result<output::Tables>> = pool.install(|| {
@@ -549,21 +551,25 @@ fn analyze(a: AnalyzeArgs) -> Result<ExitCode> {
             valid += t.strides.iter().filter(|s| s.valid).count();
             strides.push(&t.strides)?;
             events.push(&t.events)?;
-            recordings.extend(t.recordings);
+            recordings.push(&t.recordings)?;
+            n_rows += t.recordings.len();
+            n_failed += t.recordings.iter().filter(|r| r.status != "ok").count();
+            flagged.extend(
+                t.recordings
+                    .into_iter()
+                    .filter(|r| r.status != "ok" || !r.warnings.is_empty()),
+            );
         }
     }
     pb.finish_and_clear();
     let n_strides = strides.rows();
     strides.finish()?;
     events.finish()?;
-    let w =
-        |name: &str, text: String| ldh_core::io::write_atomic(a.out.join(name), text.as_bytes());
-    w("recordings.csv", output::to_csv(&recordings, &[])?)?;
-    w(
-        "recordings.json",
-        serde_json::to_string_pretty(&recordings)?,
+    recordings.finish()?;
+    ldh_core::io::write_atomic(
+        a.out.join("params.json"),
+        serde_json::to_string_pretty(&params)?.as_bytes(),
     )?;
-    w("params.json", serde_json::to_string_pretty(&params)?)?;
     if a.report {
         let dir = a.out.join("reports");
         let n = build_reports(
@@ -580,23 +586,20 @@ fn analyze(a: AnalyzeArgs) -> Result<ExitCode> {
             dir.display()
         );
     }
-    let failed: Vec<&output::RecordingRow> =
-        recordings.iter().filter(|r| r.status != "ok").collect();
-    let ok = recordings.len() - failed.len();
     eprintln!(
-        "analysed {ok} of {} recordings ({} subjects, model {}): {n_strides} strides, {valid} valid; results in {}",
-        recordings.len(),
+        "analysed {} of {n_rows} recordings ({} subjects, model {}): {n_strides} strides, {valid} valid; results in {}",
+        n_rows - n_failed,
         subjects.len(),
         params.attitude.model.as_str(),
         a.out.display()
     );
-    for r in recordings.iter().filter(|r| !r.warnings.is_empty()) {
+    for r in flagged.iter().filter(|r| !r.warnings.is_empty()) {
         eprintln!("warning: {} {}: {}", r.subject_id, r.side, r.warnings);
     }
-    for f in &failed {
+    for f in flagged.iter().filter(|r| r.status != "ok") {
         eprintln!("error: {} {}: {}", f.subject_id, f.side, f.error);
     }
-    Ok(if failed.is_empty() {
+    Ok(if n_failed == 0 {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)

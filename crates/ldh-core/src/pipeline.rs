@@ -37,6 +37,12 @@ pub struct AnalysisParams {
     pub sta: GaitStaParams,
     /// Compute STA. Default true.
     pub compute_sta: bool,
+    /// Most strides STA is computed over: the first `sta_max_strides` of the longest run of
+    /// valid strides. Default 150. The exponent depends on the length of the series, so a fixed
+    /// number of strides keeps recordings of different lengths comparable (Bruijn et al., J
+    /// Neurosci Methods 2009;178:327–333, who advise ≥ 150 strides and equal numbers across
+    /// subjects), and it bounds the cost of a 2-hour recording. 0 = no limit.
+    pub sta_max_strides: usize,
 }
 
 impl Default for AnalysisParams {
@@ -49,6 +55,7 @@ impl Default for AnalysisParams {
             strides: StrideParams::default(),
             sta: GaitStaParams::default(),
             compute_sta: true,
+            sta_max_strides: 150,
         }
     }
 }
@@ -574,7 +581,14 @@ pub fn analyze_leg(
     let st = strides(side, &al, &att, &ev, &sp.check()?)?;
     let mut parameters = side_parameters(&st, None);
     if params.compute_sta {
-        fill_sta(&mut parameters, &st, &omega, fs, &params.sta);
+        fill_sta(
+            &mut parameters,
+            &st,
+            &omega,
+            fs,
+            &params.sta,
+            params.sta_max_strides,
+        );
     }
     let hs = ev.hs_s.clone();
     let warnings = leg_warnings(&al.alignment, &st, &parameters);
@@ -680,8 +694,16 @@ pub fn pair_warnings(l: &LegResult, r: &LegResult) -> (Vec<String>, bool) {
     (w, overlapping)
 }
 
-/// STA over the longest run of consecutive valid strides.
-fn fill_sta(p: &mut SideParameters, st: &[Stride], omega: &[f64], fs: f64, params: &GaitStaParams) {
+/// STA over the longest run of consecutive valid strides (its first `max_strides` when that is
+/// not 0).
+fn fill_sta(
+    p: &mut SideParameters,
+    st: &[Stride],
+    omega: &[f64],
+    fs: f64,
+    params: &GaitStaParams,
+    max_strides: usize,
+) {
     let mut best: Option<(usize, usize)> = None;
     let mut i = 0;
     while i < st.len() {
@@ -701,10 +723,13 @@ fn fill_sta(p: &mut SideParameters, st: &[Stride], omega: &[f64], fs: f64, param
         }
         i += 1;
     }
-    let Some((a, b)) = best else {
+    let Some((a, mut b)) = best else {
         p.sta_status = "no valid strides".into();
         return;
     };
+    if max_strides > 0 && b - a + 1 > max_strides {
+        b = a + max_strides - 1;
+    }
     let (i0, i1) = (
         (st[a].hs_time_s * fs).round() as usize,
         ((st[b].next_hs_time_s * fs).round() as usize).min(omega.len()),
