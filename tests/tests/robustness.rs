@@ -41,14 +41,15 @@ fn simulate(dir: &Path, healthy: &str, ldh_n: &str, seconds: &str) {
 }
 
 /// analyze (with reports and traces), stats and train write the same bytes with 1, 2 and 3
-/// worker threads; 20 subjects cross the analysis chunks (8, 16 and 24 subjects) differently.
+/// worker threads and batches of 1, 7 and 64 subjects (20 subjects: batches end at different
+/// subjects).
 #[test]
 fn every_output_is_byte_identical_whatever_the_jobs() {
     let d = tempfile::tempdir().unwrap();
     let c = d.path().join("cohort");
     simulate(&c, "10", "10", "20");
     let mut trees = Vec::new();
-    for jobs in ["1", "2", "3"] {
+    for (jobs, batch) in [("1", "1"), ("2", "7"), ("3", "64")] {
         let out = d.path().join(format!("out{jobs}"));
         let res = out.join("res");
         let o = ldh(&[
@@ -59,6 +60,8 @@ fn every_output_is_byte_identical_whatever_the_jobs() {
             "--report",
             "--jobs",
             jobs,
+            "--batch",
+            batch,
         ]);
         assert!(o.status.success(), "{}", text(&o));
         let o = ldh(&[

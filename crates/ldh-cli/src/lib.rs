@@ -126,6 +126,10 @@ struct AnalyzeArgs {
     /// With --report: a model saved by `ldh train` whose output the subject reports show.
     #[arg(long, requires = "report")]
     classifier: Option<PathBuf>,
+    /// Subjects analysed between two writes of the output (default 32 per worker thread).
+    /// Memory grows with it, not with the number of subjects; the output does not depend on it.
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    batch: Option<u64>,
     /// Worker threads (default: all cores).
     #[arg(long)]
     jobs: Option<usize>,
@@ -523,7 +527,10 @@ fn analyze(a: AnalyzeArgs) -> Result<ExitCode> {
     // Only the rows with something to say are kept for the summary.
     let mut flagged: Vec<output::RecordingRow> = Vec::new();
     let (mut n_rows, mut n_failed, mut valid) = (0usize, 0usize, 0usize);
-    let chunk = (pool.current_num_threads() * 8).max(8);
+    let chunk = a
+        .batch
+        .map(|b| b as usize)
+        .unwrap_or((pool.current_num_threads() * 32).max(32));
     for part in subjects.chunks(chunk) {
         let done: Vec<ldh_core::Result<output::Tables>> = pool.install(|| {
             part.par_iter()
@@ -659,7 +666,7 @@ fn build_reports(
     }
     let mut groups = output::stride_groups(&results.join("strides.csv"))?.peekable();
     let pb = progress(ids.len() as u64, "report");
-    let chunk = (pool.current_num_threads() * 8).max(8);
+    let chunk = (pool.current_num_threads() * 32).max(32);
     for part in ids.chunks(chunk) {
         // Strides of this chunk's subjects (the file has each subject's rows together, in the
         // order of recordings.json).
