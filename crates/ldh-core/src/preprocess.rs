@@ -299,6 +299,7 @@ pub fn butter_filtfilt(x: &[f64], order: usize, cutoff_hz: f64, fs_hz: f64) -> R
 
 /// Run the preprocessing stage on a recording.
 pub fn preprocess(rec: &Recording, params: &ValidPreprocessParams) -> Result<Preprocessed> {
+    rec.validate()?;
     if (params.fs_hz - rec.fs_hz).abs() > 1e-9 * rec.fs_hz {
         return Err(LdhError::param(
             "fs_hz",
