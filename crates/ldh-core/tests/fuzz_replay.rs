@@ -1,0 +1,96 @@
+//! Replays the fuzz seeds and every committed crash reproducer through the bodies of the
+//! `cargo fuzz` targets (`ldh_core::fuzz_targets`), on the stable toolchain: a crash found once
+//! stays fixed even where nightly and libFuzzer are not available (docs/fuzzing.md).
+
+use std::path::{Path, PathBuf};
+
+use ldh_core::fuzz_targets;
+use ldh_core::io::read_recording_bytes;
+
+fn fuzz_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fuzz")
+}
+
+/// The files of `fuzz/<kind>/<target>`, sorted (none when the folder does not exist).
+fn inputs(kind: &str, target: &str) -> Vec<(PathBuf, Vec<u8>)> {
+    let dir = fuzz_dir().join(kind).join(target);
+    let mut files: Vec<PathBuf> = match std::fs::read_dir(&dir) {
+        Ok(rd) => rd
+            .map(|e| e.expect("readable folder").path())
+            .filter(|p| p.is_file() && p.file_name().is_some_and(|n| n != ".gitkeep"))
+            .collect(),
+        Err(_) => Vec::new(),
+    };
+    files.sort();
+    files
+        .into_iter()
+        .map(|p| {
+            let b = std::fs::read(&p).expect("readable file");
+            (p, b)
+        })
+        .collect()
+}
+
+/// Run `f` on each input, naming the file of any panic.
+fn replay(kind: &str, target: &str, f: fn(&[u8])) -> usize {
+    let files = inputs(kind, target);
+    for (path, bytes) in &files {
+        if std::panic::catch_unwind(|| f(bytes)).is_err() {
+            panic!("fuzz input {} panics", path.display());
+        }
+    }
+    files.len()
+}
+
+#[test]
+fn read_csv_seeds_and_regressions() {
+    assert!(replay("seeds", "read_csv", fuzz_targets::read_csv) >= 5);
+    replay("regressions", "read_csv", fuzz_targets::read_csv);
+}
+
+#[test]
+fn pipeline_seeds_and_regressions() {
+    assert!(replay("seeds", "pipeline", fuzz_targets::pipeline) >= 5);
+    replay("regressions", "pipeline", fuzz_targets::pipeline);
+}
+
+/// The realistic CSV seeds are read by the format their length selects, so the fuzzer starts
+/// from inputs that reach the whole reader.
+#[test]
+fn csv_seeds_are_readable_recordings() {
+    let formats = fuzz_targets::read_formats();
+    let params = ldh_core::io::ReadParams::default().check().unwrap();
+    let mut n = 0;
+    for (path, bytes) in inputs("seeds", "read_csv") {
+        if bytes.len() < 1000 {
+            continue;
+        }
+        let f = &formats[bytes.len() % formats.len()];
+        let r = read_recording_bytes(&bytes, &path, Some(f), &params);
+        assert!(r.is_ok(), "{}: {}", path.display(), r.unwrap_err());
+        n += 1;
+    }
+    assert!(n >= formats.len(), "one realistic seed per format");
+}
+
+/// The gait-like pipeline seeds reach strides.
+#[test]
+fn pipeline_seeds_reach_strides() {
+    for (path, bytes) in inputs("seeds", "pipeline") {
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        if name.contains("hand-built") || name.starts_with("raw") {
+            continue;
+        }
+        let case = fuzz_targets::decode_pipeline(&bytes).expect("a valid recording");
+        let r = ldh_core::pipeline::analyze_leg(
+            &case.recording,
+            case.side,
+            &case.params,
+            case.sensor_height_m,
+        );
+        match r {
+            Ok((leg, _)) => assert!(!leg.strides.is_empty(), "{name}: no strides"),
+            Err(e) => panic!("{name}: {e}"),
+        }
+    }
+}
