@@ -94,3 +94,31 @@ fn pipeline_seeds_reach_strides() {
         }
     }
 }
+
+/// Crash 1 (pipeline target): a recording claiming ~1e74 Hz or ~1e257 Hz made sci-rs's
+/// Butterworth design panic (`assertion failed: p.len() == z.len()` in zpk2sos). Now the
+/// preprocessing parameters are refused with a message naming the cut-off and the rate.
+#[test]
+fn regression_butterworth_huge_rate() {
+    for name in ["butterworth-huge-rate-raw", "butterworth-huge-rate-gait"] {
+        let bytes = std::fs::read(fuzz_dir().join("regressions/pipeline").join(name)).unwrap();
+        let case = fuzz_targets::decode_pipeline(&bytes).expect("decodes");
+        assert!(
+            case.recording.fs_hz > 1e70,
+            "{name}: {}",
+            case.recording.fs_hz
+        );
+        let e = ldh_core::pipeline::analyze_leg(
+            &case.recording,
+            case.side,
+            &case.params,
+            case.sensor_height_m,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("cutoff_hz") && e.contains("Nyquist"),
+            "{name}: {e}"
+        );
+    }
+}
