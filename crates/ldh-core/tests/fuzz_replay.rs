@@ -122,3 +122,22 @@ fn regression_butterworth_huge_rate() {
         );
     }
 }
+
+/// Crash 2 (read_csv target, found by review of what the fuzzer had not reached): an ISO 8601
+/// timestamp with a 17-digit year overflowed the day count (a panic with overflow checks,
+/// a silently wrong time without). Now the cell is refused as not a timestamp.
+#[test]
+fn regression_iso_huge_year() {
+    let bytes = std::fs::read(fuzz_dir().join("regressions/read_csv/iso-huge-year")).unwrap();
+    let formats = fuzz_targets::read_formats();
+    let f = &formats[bytes.len() % formats.len()];
+    assert_eq!(f.name, "fuzz-iso");
+    let params = ldh_core::io::ReadParams::default().check().unwrap();
+    let e = read_recording_bytes(&bytes, Path::new("iso-huge-year"), Some(f), &params)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("iso-huge-year:2:1") && e.contains("ISO 8601"),
+        "{e}"
+    );
+}
