@@ -21,6 +21,8 @@ pub mod demo;
 pub mod error;
 pub mod evaluate;
 pub mod events;
+#[doc(hidden)]
+pub mod fuzz_targets;
 pub mod gait;
 pub mod io;
 pub mod ml;

@@ -564,6 +564,8 @@ pub fn analyze_leg(
     params: &AnalysisParams,
     sensor_height_m: Option<f64>,
 ) -> Result<(LegResult, Vec<f64>)> {
+    // The fields are public: a recording built by hand may break the invariants.
+    rec.validate()?;
     let pp = params.preprocess.check(rec.fs_hz)?;
     let pre = preprocess(rec, &pp)?;
     let al = align(&pre, &params.align.check()?)?;

@@ -123,7 +123,7 @@ impl PreprocessParams {
                 "must be > 0",
             ));
         }
-        let sos = butterworth_lowpass_sos(self.filter_order, self.cutoff_hz, fs_hz);
+        let sos = butterworth_lowpass_sos(self.filter_order, self.cutoff_hz, fs_hz)?;
         Ok(ValidPreprocessParams {
             params: self.clone(),
             fs_hz,
@@ -247,9 +247,36 @@ pub fn interpolate_over(v: &mut [f64], bad: &[usize]) {
     }
 }
 
+/// Smallest and largest cut-off as a fraction of the Nyquist frequency `fs/2` that
+/// [`butterworth_lowpass_sos`] accepts. Beyond about 1e-13 from either end sci-rs's design
+/// panics (found by fuzzing: a recording claiming 1e74 Hz); well before that the sections lose
+/// their precision, and no IMU analysis filters that close to 0 or to Nyquist.
+pub const BUTTERWORTH_WN_RANGE: (f64, f64) = (1e-6, 1.0 - 1e-6);
+
 /// Second-order sections of a Butterworth low-pass (scipy `butter(order, cutoff_hz,
 /// output='sos', fs=fs_hz)`).
-pub fn butterworth_lowpass_sos(order: usize, cutoff_hz: f64, fs_hz: f64) -> Vec<Sos<f64>> {
+///
+/// Errors unless `fs_hz` and `cutoff_hz` are finite and positive, `order` is 1–20 and the
+/// normalised cut-off `cutoff_hz / (fs_hz / 2)` lies in [`BUTTERWORTH_WN_RANGE`].
+pub fn butterworth_lowpass_sos(order: usize, cutoff_hz: f64, fs_hz: f64) -> Result<Vec<Sos<f64>>> {
+    if !(fs_hz.is_finite() && fs_hz > 0.0) {
+        return Err(LdhError::param("fs_hz", fs_hz, "must be finite and > 0"));
+    }
+    if !(1..=20).contains(&order) {
+        return Err(LdhError::param("filter_order", order, "must be 1–20"));
+    }
+    let wn = cutoff_hz / (fs_hz / 2.0);
+    let (lo, hi) = BUTTERWORTH_WN_RANGE;
+    if !(cutoff_hz.is_finite() && wn >= lo && wn <= hi) {
+        return Err(LdhError::param(
+            "cutoff_hz",
+            cutoff_hz,
+            format!(
+                "is {wn:e} of the Nyquist frequency fs/2 = {} Hz; the Butterworth design needs {lo:e}–{hi} of it (is the sampling rate right?)",
+                fs_hz / 2.0
+            ),
+        ));
+    }
     match butter_dyn(
         order,
         vec![cutoff_hz],
@@ -258,7 +285,7 @@ pub fn butterworth_lowpass_sos(order: usize, cutoff_hz: f64, fs_hz: f64) -> Vec<
         Some(FilterOutputType::Sos),
         Some(fs_hz),
     ) {
-        DigitalFilter::Sos(s) => s.sos,
+        DigitalFilter::Sos(s) => Ok(s.sos),
         _ => unreachable!("butter_dyn returns SOS when asked for SOS"),
     }
 }
@@ -299,6 +326,7 @@ pub fn butter_filtfilt(x: &[f64], order: usize, cutoff_hz: f64, fs_hz: f64) -> R
 
 /// Run the preprocessing stage on a recording.
 pub fn preprocess(rec: &Recording, params: &ValidPreprocessParams) -> Result<Preprocessed> {
+    rec.validate()?;
     if (params.fs_hz - rec.fs_hz).abs() > 1e-9 * rec.fs_hz {
         return Err(LdhError::param(
             "fs_hz",
@@ -490,6 +518,19 @@ mod tests {
             "{e}"
         );
         assert!(butter_filtfilt(&[f64::NAN; 40], 4, 10.0, 100.0).is_err());
+        // Found by fuzzing: a recording claiming 9.3e74 Hz made sci-rs's design panic
+        // (fuzz/regressions/pipeline/butterworth-huge-rate). Now a parameter error.
+        for (fs, fc) in [(9.3e74, 10.0), (1e300, 10.0), (100.0, 49.999_999_999_9)] {
+            let e = PreprocessParams::default()
+                .cutoff_hz(fc)
+                .check(fs)
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains("cutoff_hz") && e.contains("Nyquist"), "{e}");
+            assert!(butterworth_lowpass_sos(4, fc, fs).is_err());
+        }
+        assert!(butterworth_lowpass_sos(4, 10.0, 100.0).is_ok());
+        assert!(butterworth_lowpass_sos(0, 10.0, 100.0).is_err());
         let rec = Recording::new(
             100.0,
             [vec![1.0; 10], vec![0.0; 10], vec![0.0; 10]],

@@ -91,12 +91,45 @@ impl Recording {
         gyro_dps: [Vec<f64>; 3],
         saturated: Vec<bool>,
     ) -> Result<Self> {
+        let n = acc_g[0].len();
+        let saturated = if saturated.is_empty() {
+            vec![false; n]
+        } else {
+            saturated
+        };
+        let rec = Recording {
+            source: None,
+            side: None,
+            fs_hz,
+            t0_s: 0.0,
+            acc_g,
+            gyro_dps,
+            saturated,
+        };
+        rec.validate()?;
+        Ok(rec)
+    }
+
+    /// Check the invariants of [`Recording::new`] on a recording whose public fields may have
+    /// been set directly: `fs_hz` finite and > 0, `t0_s` finite, six channels of one length ≥ 2,
+    /// every value finite, and a saturation mask of the same length.
+    ///
+    /// The pipeline ([`crate::pipeline::analyze_leg`]) calls this first, so a hand-built
+    /// recording that breaks them is refused with an error rather than reaching the algorithms.
+    pub fn validate(&self) -> Result<()> {
+        let fs_hz = self.fs_hz;
         if !(fs_hz.is_finite() && fs_hz > 0.0) {
             return Err(LdhError::param("fs_hz", fs_hz, "must be finite and > 0"));
         }
-        let n = acc_g[0].len();
+        if !self.t0_s.is_finite() {
+            return Err(LdhError::param("t0_s", self.t0_s, "must be finite"));
+        }
+        let n = self.acc_g[0].len();
         let names = ["acc_x", "acc_y", "acc_z", "gyro_x", "gyro_y", "gyro_z"];
-        for (name, ch) in names.iter().zip(acc_g.iter().chain(gyro_dps.iter())) {
+        for (name, ch) in names
+            .iter()
+            .zip(self.acc_g.iter().chain(self.gyro_dps.iter()))
+        {
             if ch.len() != n {
                 return Err(LdhError::signal(
                     "recording",
@@ -116,28 +149,16 @@ impl Recording {
                 format!("{n} samples: at least 2 are needed"),
             ));
         }
-        let saturated = if saturated.is_empty() {
-            vec![false; n]
-        } else if saturated.len() == n {
-            saturated
-        } else {
+        if self.saturated.len() != n {
             return Err(LdhError::signal(
                 "recording",
                 format!(
                     "saturation mask has {} entries for {n} samples",
-                    saturated.len()
+                    self.saturated.len()
                 ),
             ));
-        };
-        Ok(Recording {
-            source: None,
-            side: None,
-            fs_hz,
-            t0_s: 0.0,
-            acc_g,
-            gyro_dps,
-            saturated,
-        })
+        }
+        Ok(())
     }
 
     /// Number of samples.
@@ -200,5 +221,48 @@ impl Recording {
     pub fn with_side(mut self, side: Side) -> Self {
         self.side = Some(side);
         self
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pipeline::{analyze_leg, AnalysisParams};
+
+    fn ok() -> Recording {
+        let n = 500;
+        let acc = [vec![1.0; n], vec![0.0; n], vec![0.0; n]];
+        let gyro = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+        Recording::new(100.0, acc, gyro, vec![]).unwrap()
+    }
+
+    /// The public fields can break the invariants; `validate` and the pipeline refuse that.
+    #[test]
+    fn hand_built_recordings_are_refused() {
+        let mut bad = Vec::new();
+        let mut r = ok();
+        r.gyro_dps[2].pop();
+        bad.push((r, "gyro_z has 499 samples"));
+        let mut r = ok();
+        r.saturated.truncate(10);
+        bad.push((r, "saturation mask has 10 entries"));
+        let mut r = ok();
+        r.acc_g[1][7] = f64::NAN;
+        bad.push((r, "acc_y has a non-finite value at sample 7"));
+        let mut r = ok();
+        r.fs_hz = f64::INFINITY;
+        bad.push((r, "fs_hz"));
+        let mut r = ok();
+        r.t0_s = f64::NAN;
+        bad.push((r, "t0_s"));
+        for (r, msg) in bad {
+            let e = r.validate().unwrap_err().to_string();
+            assert!(e.contains(msg), "{e}");
+            let e = analyze_leg(&r, Side::Left, &AnalysisParams::default(), None)
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(msg), "{e}");
+        }
+        assert!(ok().validate().is_ok());
     }
 }

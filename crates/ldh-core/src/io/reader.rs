@@ -975,7 +975,13 @@ pub fn parse_iso8601(s: &str) -> Option<f64> {
     let y: i64 = d.next()?.parse().ok()?;
     let m: i64 = d.next()?.parse().ok()?;
     let day: i64 = d.next()?.parse().ok()?;
-    if d.next().is_some() || !(1..=12).contains(&m) || !(1..=31).contains(&day) {
+    // Four-digit years only (ISO 8601 without expansion): a longer year overflowed the day
+    // count below (found while fuzzing the reader, fuzz/regressions/read_csv/iso-huge-year).
+    if d.next().is_some()
+        || !(0..=9999).contains(&y)
+        || !(1..=12).contains(&m)
+        || !(1..=31).contains(&day)
+    {
         return None;
     }
     let mut t = time.split(':');

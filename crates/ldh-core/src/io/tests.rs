@@ -478,6 +478,10 @@ fn iso8601_parser_and_formatter_agree() {
     );
     assert!(parse_iso8601("2024-13-01T00:00:00").is_none());
     assert!(parse_iso8601("yesterday").is_none());
+    // A year of more than four digits overflowed the day count (a panic with overflow checks).
+    assert!(parse_iso8601("99999999999999999-01-01T00:00:00").is_none());
+    assert!(parse_iso8601("10000-01-01T00:00:00").is_none());
+    assert!(parse_iso8601("9999-12-31T23:59:59").is_some());
 }
 
 #[test]
