@@ -15,6 +15,7 @@ Classifiers (ldh's defaults): RandomForestClassifier(n_estimators=100, max_featu
 SVC(kernel="rbf", C=1, gamma="scale"), MLPClassifier() (hidden layer 100, Adam, max_iter 200).
 
 Run from the repository root:  python3 data-fixtures/scripts/sklearn_cv.py
+For timing against `ldh train` (one model seed, as ldh fits): --seeds 1 --no-write.
 """
 import json
 import platform
@@ -54,6 +55,12 @@ def make(name, seed):
 
 
 def main():
+    import argparse
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--seeds", type=int, default=len(SEEDS), help="model seeds of RF and MLP (default 3)")
+    ap.add_argument("--no-write", action="store_true", help="do not rewrite the golden JSON (timing runs)")
+    a = ap.parse_args()
+    seeds = list(range(a.seeds))
     warnings.simplefilter("ignore", ConvergenceWarning)
     out = {"versions": {"python": platform.python_version(), "numpy": np.__version__, "sklearn": sklearn.__version__}, "results": {}}
     for task in ["three_class", "binary"]:
@@ -62,7 +69,7 @@ def main():
             cols = [c for c in folds.dtype.names if c.startswith(kind + "_r")]
             for name in ["rf", "svm", "mlp"]:
                 accs = []
-                for seed in (SEEDS if name != "svm" else SEEDS[:1]):
+                for seed in (seeds if name != "svm" else seeds[:1]):
                     for r, col in enumerate(cols):
                         fid = folds[col].astype(int)
                         pred = np.empty_like(y)
@@ -75,8 +82,9 @@ def main():
                 key = f"{task}/{kind}/{name}"
                 out["results"][key] = {"accuracy_mean": float(np.mean(accs)), "accuracy_sd": float(np.std(accs, ddof=1)), "per_repeat": accs}
                 print(f"{key}: {np.mean(accs):.3f} ± {np.std(accs, ddof=1):.3f}")
-    OUT.parent.mkdir(parents=True, exist_ok=True)
-    OUT.write_text(json.dumps(out, indent=1))
+    if not a.no_write:
+        OUT.parent.mkdir(parents=True, exist_ok=True)
+        OUT.write_text(json.dumps(out, indent=1))
 
 
 if __name__ == "__main__":
