@@ -3,7 +3,7 @@
 //! and headless Chromium renders every page (not blank, no load errors) and prints it to A4.
 
 mod common;
-use common::{ldh, text};
+use common::{ldh, ldh_ok, text};
 use std::path::{Path, PathBuf};
 
 fn html_files(dir: &Path) -> Vec<PathBuf> {
@@ -94,14 +94,13 @@ fn check_page(path: &Path) -> usize {
 }
 
 fn demo_with_reports(out: &Path) {
-    let o = ldh(&["analyze", "--out", out.to_str().unwrap(), "--report"]);
-    assert!(o.status.success(), "{}", text(&o));
+    ldh_ok(&["analyze", "--out", out.to_str().unwrap(), "--report"]);
 }
 
 /// A simulated cohort large enough for group statistics, with stats and train outputs.
 fn cohort_with_everything(tmp: &Path) -> PathBuf {
     let c = tmp.join("cohort");
-    let o = ldh(&[
+    ldh_ok(&[
         "simulate",
         "--out",
         c.to_str().unwrap(),
@@ -114,18 +113,16 @@ fn cohort_with_everything(tmp: &Path) -> PathBuf {
         "--seed",
         "5",
     ]);
-    assert!(o.status.success(), "{}", text(&o));
     let res = tmp.join("res");
-    let o = ldh(&[
+    ldh_ok(&[
         "analyze",
         c.to_str().unwrap(),
         "--out",
         res.to_str().unwrap(),
         "--report",
     ]);
-    assert!(o.status.success(), "{}", text(&o));
     let train = tmp.join("train");
-    let o = ldh(&[
+    ldh_ok(&[
         "train",
         "--results",
         res.to_str().unwrap(),
@@ -138,18 +135,16 @@ fn cohort_with_everything(tmp: &Path) -> PathBuf {
         "--classifiers",
         "rf",
     ]);
-    assert!(o.status.success(), "{}", text(&o));
     let stats = tmp.join("stats");
-    let o = ldh(&[
+    ldh_ok(&[
         "stats",
         "--results",
         res.to_str().unwrap(),
         "--out",
         stats.to_str().unwrap(),
     ]);
-    assert!(o.status.success(), "{}", text(&o));
     let rep = tmp.join("rep");
-    let o = ldh(&[
+    ldh_ok(&[
         "report",
         res.to_str().unwrap(),
         "--out",
@@ -161,15 +156,13 @@ fn cohort_with_everything(tmp: &Path) -> PathBuf {
         "--train",
         train.to_str().unwrap(),
     ]);
-    assert!(o.status.success(), "{}", text(&o));
     rep
 }
 
 /// One subject whose right file is unreadable.
 fn failed_side(tmp: &Path) -> PathBuf {
     let demo = tmp.join("demo");
-    let o = ldh(&["demo", "--out", demo.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", text(&o));
+    ldh_ok(&["demo", "--out", demo.to_str().unwrap()]);
     let s = tmp.join("S1");
     std::fs::create_dir_all(&s).unwrap();
     std::fs::copy(demo.join("H01").join("left.csv"), s.join("left.csv")).unwrap();

@@ -1,7 +1,7 @@
 //! Issue 9: determinism whatever `--jobs` is, and no half-written output when a run is killed.
 
 mod common;
-use common::{ldh, text};
+use common::ldh_ok;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -24,7 +24,7 @@ fn tree(dir: &Path) -> BTreeMap<String, Vec<u8>> {
 }
 
 fn simulate(dir: &Path, healthy: &str, ldh_n: &str, seconds: &str) {
-    let o = ldh(&[
+    ldh_ok(&[
         "simulate",
         "--out",
         dir.to_str().unwrap(),
@@ -37,7 +37,6 @@ fn simulate(dir: &Path, healthy: &str, ldh_n: &str, seconds: &str) {
         "--seed",
         "21",
     ]);
-    assert!(o.status.success(), "{}", text(&o));
 }
 
 /// analyze (with reports and traces), stats and train write the same bytes with 1, 2 and 3
@@ -52,7 +51,7 @@ fn every_output_is_byte_identical_whatever_the_jobs() {
     for (jobs, batch) in [("1", "1"), ("2", "7"), ("3", "64")] {
         let out = d.path().join(format!("out{jobs}"));
         let res = out.join("res");
-        let o = ldh(&[
+        ldh_ok(&[
             "analyze",
             c.to_str().unwrap(),
             "--out",
@@ -63,8 +62,7 @@ fn every_output_is_byte_identical_whatever_the_jobs() {
             "--batch",
             batch,
         ]);
-        assert!(o.status.success(), "{}", text(&o));
-        let o = ldh(&[
+        ldh_ok(&[
             "stats",
             "--results",
             res.to_str().unwrap(),
@@ -73,8 +71,7 @@ fn every_output_is_byte_identical_whatever_the_jobs() {
             "--jobs",
             jobs,
         ]);
-        assert!(o.status.success(), "{}", text(&o));
-        let o = ldh(&[
+        ldh_ok(&[
             "train",
             "--results",
             res.to_str().unwrap(),
@@ -87,7 +84,6 @@ fn every_output_is_byte_identical_whatever_the_jobs() {
             "--jobs",
             jobs,
         ]);
-        assert!(o.status.success(), "{}", text(&o));
         trees.push(tree(&out));
     }
     assert!(trees[0].len() > 40, "{:?}", trees[0].keys());
@@ -119,8 +115,7 @@ fn a_killed_run_leaves_old_or_new_files_and_a_rerun_completes() {
             out.to_str().unwrap(),
         ];
         args.extend_from_slice(extra);
-        let o = ldh(&args);
-        assert!(o.status.success(), "{}", text(&o));
+        ldh_ok(&args);
         tree(out)
     };
     // "Old": the ACC-only model without STA; "new": the default analysis with reports.
@@ -174,7 +169,7 @@ fn a_killed_run_leaves_old_or_new_files_and_a_rerun_completes() {
             _ => outcomes.2 += 1,
         }
         // Re-run: exactly the uninterrupted result, and no temporary file left.
-        let o = ldh(&[
+        ldh_ok(&[
             "analyze",
             c.to_str().unwrap(),
             "--out",
@@ -183,7 +178,6 @@ fn a_killed_run_leaves_old_or_new_files_and_a_rerun_completes() {
             "--jobs",
             "2",
         ]);
-        assert!(o.status.success(), "{}", text(&o));
         let again = tree(&out);
         for (k, v) in &new {
             assert!(again.get(k) == Some(v), "{k} differs after the re-run");

@@ -24,3 +24,10 @@ pub fn text(o: &Output) -> String {
 pub fn json(path: &std::path::Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
+
+/// Run `ldh` and require success (the output is shown when it fails).
+pub fn ldh_ok(args: &[&str]) -> Output {
+    let o = ldh(args);
+    assert!(o.status.success(), "ldh {args:?}: {}", text(&o));
+    o
+}
