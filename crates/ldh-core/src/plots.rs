@@ -382,7 +382,8 @@ pub fn signals_svg(
             mesh.y_desc(p.y_label.as_str())
                 .axis_desc_style(("sans-serif", 15))
                 .label_style(("sans-serif", 13))
-                .light_line_style(RGBColor(235, 235, 235));
+                .light_line_style(RGBColor(235, 235, 235))
+                .max_light_lines(2);
             if last {
                 mesh.x_desc("time (s)");
             }
@@ -488,6 +489,7 @@ pub fn stride_series_svg(
             .axis_desc_style(("sans-serif", 15))
             .label_style(("sans-serif", 13))
             .light_line_style(RGBColor(235, 235, 235))
+            .max_light_lines(2)
             .draw()
             .map_err(perr)?;
         for (k, (name, v)) in series.iter().enumerate() {
