@@ -194,20 +194,7 @@ fn results_are_byte_identical_whatever_the_jobs() {
 fn evaluate_reports_accuracy_within_the_issue_targets() {
     let d = tempfile::tempdir().unwrap();
     let c = d.path().join("cohort");
-    let o = ldh(&[
-        "simulate",
-        "--out",
-        c.to_str().unwrap(),
-        "--healthy",
-        "3",
-        "--ldh",
-        "3",
-        "--seconds",
-        "30",
-        "--seed",
-        "300",
-    ]);
-    assert!(o.status.success(), "{}", text(&o));
+    simulate_cohort(&c, 3, 3, 30, 300);
     let j = d.path().join("acc.json");
     let o = ldh(&[
         "evaluate",

@@ -3,7 +3,7 @@
 //! and headless Chromium renders every page (not blank, no load errors) and prints it to A4.
 
 mod common;
-use common::{ldh, ldh_ok, text};
+use common::{ldh, ldh_ok, simulate_cohort, text};
 use std::path::{Path, PathBuf};
 
 fn html_files(dir: &Path) -> Vec<PathBuf> {
@@ -100,19 +100,7 @@ fn demo_with_reports(out: &Path) {
 /// A simulated cohort large enough for group statistics, with stats and train outputs.
 fn cohort_with_everything(tmp: &Path) -> PathBuf {
     let c = tmp.join("cohort");
-    ldh_ok(&[
-        "simulate",
-        "--out",
-        c.to_str().unwrap(),
-        "--healthy",
-        "6",
-        "--ldh",
-        "6",
-        "--seconds",
-        "20",
-        "--seed",
-        "5",
-    ]);
+    simulate_cohort(&c, 6, 6, 20, 5);
     let res = tmp.join("res");
     ldh_ok(&[
         "analyze",

@@ -7,20 +7,7 @@ use common::*;
 fn stats_on_a_simulated_cohort_finds_the_simulated_effects() {
     let d = tempfile::tempdir().unwrap();
     let c = d.path().join("cohort");
-    let o = ldh(&[
-        "simulate",
-        "--out",
-        c.to_str().unwrap(),
-        "--healthy",
-        "15",
-        "--ldh",
-        "20",
-        "--seconds",
-        "30",
-        "--seed",
-        "11",
-    ]);
-    assert!(o.status.success(), "{}", text(&o));
+    simulate_cohort(&c, 15, 20, 30, 11);
     let out = d.path().join("stats");
     let o = ldh(&[
         "stats",

@@ -1,7 +1,7 @@
 //! Issue 9: determinism whatever `--jobs` is, and no half-written output when a run is killed.
 
 mod common;
-use common::ldh_ok;
+use common::{ldh_ok, simulate_cohort};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -23,22 +23,6 @@ fn tree(dir: &Path) -> BTreeMap<String, Vec<u8>> {
     out
 }
 
-fn simulate(dir: &Path, healthy: &str, ldh_n: &str, seconds: &str) {
-    ldh_ok(&[
-        "simulate",
-        "--out",
-        dir.to_str().unwrap(),
-        "--healthy",
-        healthy,
-        "--ldh",
-        ldh_n,
-        "--seconds",
-        seconds,
-        "--seed",
-        "21",
-    ]);
-}
-
 /// analyze (with reports and traces), stats and train write the same bytes with 1, 2 and 3
 /// worker threads and batches of 1, 7 and 64 subjects (20 subjects: batches end at different
 /// subjects).
@@ -46,7 +30,7 @@ fn simulate(dir: &Path, healthy: &str, ldh_n: &str, seconds: &str) {
 fn every_output_is_byte_identical_whatever_the_jobs() {
     let d = tempfile::tempdir().unwrap();
     let c = d.path().join("cohort");
-    simulate(&c, "10", "10", "20");
+    simulate_cohort(&c, 10, 10, 20, 21);
     let mut trees = Vec::new();
     for (jobs, batch) in [("1", "1"), ("2", "7"), ("3", "64")] {
         let out = d.path().join(format!("out{jobs}"));
@@ -106,7 +90,7 @@ fn every_output_is_byte_identical_whatever_the_jobs() {
 fn a_killed_run_leaves_old_or_new_files_and_a_rerun_completes() {
     let d = tempfile::tempdir().unwrap();
     let c = d.path().join("cohort");
-    simulate(&c, "12", "12", "30");
+    simulate_cohort(&c, 12, 12, 30, 21);
     let run = |out: &Path, extra: &[&str]| {
         let mut args = vec![
             "analyze",

@@ -645,33 +645,25 @@ fn build_reports(
     let rows = read_results(results)?;
     let reference = Reference::from_rows(&rows, params);
     let predictions = model.map(|m| m.predict_rows(&rows)).transpose()?;
-    let model_desc = model.map(|m| {
-        format!(
-            "{} classifier, task {}, trained on {} rows per class",
-            m.classifier.name(),
-            m.task.as_str(),
-            m.trained_rows_per_class
-                .iter()
-                .zip(&m.class_names)
-                .map(|(n, c)| format!("{n} {c}"))
-                .collect::<Vec<_>>()
-                .join(", ")
-        )
-    });
-    let mut ids: Vec<String> = Vec::new();
-    for r in &rows {
-        if ids.last() != Some(&r.subject_id) && !ids.contains(&r.subject_id) {
-            ids.push(r.subject_id.clone());
-        }
+    let model_desc = model.map(|m| m.describe()).unwrap_or_default();
+    let mut preds_by: std::collections::HashMap<&str, Vec<ldh_core::ml::Prediction>> =
+        std::collections::HashMap::new();
+    for p in predictions.iter().flatten() {
+        preds_by
+            .entry(p.subject_id.as_str())
+            .or_default()
+            .push(p.clone());
     }
+    let subjects = output::rows_by_subject(&rows);
+    let ids: Vec<String> = subjects.iter().map(|(id, _)| id.to_string()).collect();
     let mut groups = output::stride_groups(&results.join("strides.csv"))?.peekable();
     let pb = progress(ids.len() as u64, "report");
     let chunk = (pool.current_num_threads() * 32).max(32);
-    for part in ids.chunks(chunk) {
+    for part in subjects.chunks(chunk) {
         // Strides of this chunk's subjects (the file has each subject's rows together, in the
         // order of recordings.json).
         let mut jobs: Vec<SubjectReport> = Vec::with_capacity(part.len());
-        for id in part {
+        for (id, recs) in part {
             let mut strides = Vec::new();
             if let Some(Ok((gid, _))) = groups.peek() {
                 if gid == id {
@@ -681,19 +673,15 @@ fn build_reports(
                 groups.next().expect("peeked")?;
             }
             jobs.push(SubjectReport {
-                subject_id: id.clone(),
-                recordings: rows
-                    .iter()
-                    .filter(|r| &r.subject_id == id)
-                    .cloned()
-                    .collect(),
+                subject_id: id.to_string(),
+                recordings: recs.iter().map(|r| (*r).clone()).collect(),
                 strides,
                 traces: None,
-                predictions: predictions.as_ref().map(|p| {
+                predictions: model.map(|m| {
                     (
-                        p.iter().filter(|x| &x.subject_id == id).cloned().collect(),
-                        model.map(|m| m.class_names.clone()).unwrap_or_default(),
-                        model_desc.clone().unwrap_or_default(),
+                        preds_by.remove(*id).unwrap_or_default(),
+                        m.class_names.clone(),
+                        model_desc.clone(),
                     )
                 }),
             });

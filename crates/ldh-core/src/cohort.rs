@@ -173,17 +173,16 @@ impl Cohort {
     /// [`MIN_GROUP_SIZE`] usable subjects, naming what is missing.
     pub fn from_rows(rows: &[RecordingRow]) -> Result<Cohort> {
         let model = rows.first().map(|r| r.model.clone()).unwrap_or_default();
-        let mut ids: Vec<&str> = rows.iter().map(|r| r.subject_id.as_str()).collect();
-        ids.sort_unstable();
-        ids.dedup();
+        let mut subjects = crate::output::rows_by_subject(rows);
+        subjects.sort_unstable_by(|a, b| a.0.cmp(b.0));
         let mut c = Cohort {
             model,
             ldh: vec![],
             healthy: vec![],
             excluded: vec![],
         };
-        for id in ids {
-            let of = |side: &str| rows.iter().find(|r| r.subject_id == id && r.side == side);
+        for (id, rows) in subjects {
+            let of = |side: &str| rows.iter().copied().find(|r| r.side == side);
             let (l, r) = (of("left"), of("right"));
             let group = l.or(r).map(|x| x.group.clone()).unwrap_or_default();
             let problem = |x: Option<&RecordingRow>, side: &str| -> Option<String> {

@@ -284,6 +284,21 @@ pub struct EventRow {
     pub order: String,
 }
 
+/// Rows grouped by subject in one pass, subjects in the order they first appear (a batch of
+/// 10 000 recordings is grouped in linear time, not by a search per subject).
+pub fn rows_by_subject(rows: &[RecordingRow]) -> Vec<(&str, Vec<&RecordingRow>)> {
+    let mut index: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+    let mut out: Vec<(&str, Vec<&RecordingRow>)> = Vec::new();
+    for r in rows {
+        let i = *index.entry(r.subject_id.as_str()).or_insert_with(|| {
+            out.push((r.subject_id.as_str(), Vec::new()));
+            out.len() - 1
+        });
+        out[i].1.push(r);
+    }
+    out
+}
+
 /// The bilateral event rows of a set of results, per subject in time order.
 pub fn event_rows(results: &[SubjectResult]) -> Vec<EventRow> {
     let mut out = Vec::new();

@@ -509,6 +509,7 @@ fn analyze_recording<'py>(
                     "strides": leg.strides,
                     "parameters": leg.parameters,
                     "outliers_replaced": leg.outliers_replaced,
+                    "warnings": leg.warnings,
                 })
                 .to_string();
                 Ok((json, att))

@@ -31,3 +31,20 @@ pub fn ldh_ok(args: &[&str]) -> Output {
     assert!(o.status.success(), "ldh {args:?}: {}", text(&o));
     o
 }
+
+/// `ldh simulate` a cohort of `healthy` + `ldh_n` subjects of `seconds` s into `dir`.
+pub fn simulate_cohort(dir: &std::path::Path, healthy: u32, ldh_n: u32, seconds: u32, seed: u64) {
+    ldh_ok(&[
+        "simulate",
+        "--out",
+        dir.to_str().unwrap(),
+        "--healthy",
+        &healthy.to_string(),
+        "--ldh",
+        &ldh_n.to_string(),
+        "--seconds",
+        &seconds.to_string(),
+        "--seed",
+        &seed.to_string(),
+    ]);
+}

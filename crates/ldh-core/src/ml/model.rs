@@ -263,6 +263,21 @@ pub struct Prediction {
 }
 
 impl ModelFile {
+    /// One line for reports: classifier, task and training rows per class.
+    pub fn describe(&self) -> String {
+        format!(
+            "{} classifier, task {}, trained on {} rows",
+            self.classifier.name(),
+            self.task.as_str(),
+            self.trained_rows_per_class
+                .iter()
+                .zip(&self.class_names)
+                .map(|(n, c)| format!("{n} {c}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    }
+
     /// Classify per-recording rows one by one. A row that failed or lacks a feature gets no
     /// class and a note naming what is missing (the STA status when STA is the missing one);
     /// rows of another attitude model are an error for the whole call.

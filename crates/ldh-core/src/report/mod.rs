@@ -881,11 +881,15 @@ pub fn cohort_html(c: &CohortReport) -> Result<String> {
     }
     // Recordings.
     b.push_str("<h2>5. Recordings</h2>\n<table><tr><th>subject</th><th>group</th><th>side</th><th>status</th><th>strides used</th><th>duration (s)</th><th>warnings</th></tr>\n");
+    let links: std::collections::HashMap<&str, &str> = c
+        .subject_links
+        .iter()
+        .map(|(id, href)| (id.as_str(), href.as_str()))
+        .collect();
     for r in &c.recordings {
-        let link = c
-            .subject_links
-            .iter()
-            .find(|l| l.0 == r.subject_id)
+        let link = links
+            .get(r.subject_id.as_str())
+            .map(|href| (r.subject_id.as_str(), *href))
             .map(|l| format!("<a href=\"{}\">{}</a>", esc(&l.1), esc(&r.subject_id)))
             .unwrap_or_else(|| esc(&r.subject_id));
         b.push_str(&format!(

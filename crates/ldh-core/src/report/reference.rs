@@ -145,23 +145,21 @@ impl Reference {
         let z = p.0.reference_z;
         let mut out = Reference::published(p);
         // One value per healthy subject: the mean of its analysed legs.
-        let mut subjects: Vec<&str> = rows
-            .iter()
-            .filter(|r| r.group == "healthy" && r.status == "ok")
-            .map(|r| r.subject_id.as_str())
+        let healthy: Vec<Vec<&RecordingRow>> = crate::output::rows_by_subject(rows)
+            .into_iter()
+            .map(|(_, v)| {
+                v.into_iter()
+                    .filter(|x| x.group == "healthy" && x.status == "ok")
+                    .collect::<Vec<_>>()
+            })
+            .filter(|v| !v.is_empty())
             .collect();
-        subjects.sort_unstable();
-        subjects.dedup();
         let mut any_cohort = 0usize;
         for r in out.ranges.iter_mut() {
-            let vals: Vec<f64> = subjects
+            let vals: Vec<f64> = healthy
                 .iter()
-                .filter_map(|s| {
-                    let v: Vec<f64> = rows
-                        .iter()
-                        .filter(|x| x.subject_id == *s && x.status == "ok")
-                        .filter_map(|x| value(x, &r.column))
-                        .collect();
+                .filter_map(|legs| {
+                    let v: Vec<f64> = legs.iter().filter_map(|x| value(x, &r.column)).collect();
                     (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
                 })
                 .collect();

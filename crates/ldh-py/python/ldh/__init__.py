@@ -398,7 +398,9 @@ def analyze_recording(
     dict
         ``alignment`` (dict), ``events`` (``hs_s``, ``to_s``, ``midswing_s`` arrays),
         ``strides`` (columns), ``parameters`` (dict), ``attitude`` (``pitch_deg``,
-        ``roll_deg``, ``yaw_deg`` arrays), ``outliers_replaced``.
+        ``roll_deg``, ``yaw_deg`` arrays), ``outliers_replaced``, ``warnings`` (list of str:
+        problems that did not stop the analysis, e.g. an upside-down mounting or too few
+        valid strides).
     """
     acc = [_vec(c, f"acc_g[{i}]") for i, c in enumerate(acc_g)]
     gyro = [_vec(c, f"gyro_dps[{i}]") for i, c in enumerate(gyro_dps)]
