@@ -1,0 +1,192 @@
+//! The analysis of one leg: recording → preprocessed → aligned → attitude → events → strides
+//! → parameters (SPEC §3).
+
+use super::*;
+use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
+
+use crate::align::{align, Aligned, Alignment};
+use crate::attitude::{estimate, Attitude};
+use crate::error::Result;
+use crate::events::{detect, Events};
+use crate::gait::{side_parameters, strides, SideParameters, Stride};
+use crate::io::ReadReport;
+use crate::nonlinear::{gait_sta, GaitStaParams};
+use crate::preprocess::preprocess;
+use crate::recording::{Recording, Side};
+
+/// The analysis of one leg.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LegResult {
+    /// The leg.
+    pub side: Side,
+    /// The file.
+    pub source: String,
+    /// Time of the first sample in the file's own clock, s (event times count from it; the two
+    /// legs are paired on this common clock).
+    pub t0_s: f64,
+    /// What the reader found.
+    pub read: ReadReport,
+    /// Samples replaced as outliers or clipped.
+    pub outliers_replaced: usize,
+    /// What the alignment found.
+    pub alignment: Alignment,
+    /// Detected events.
+    pub events: Events,
+    /// Strides.
+    pub strides: Vec<Stride>,
+    /// Per-side parameters.
+    pub parameters: SideParameters,
+    /// The attitude over time (kept for reports and evaluation; not serialised).
+    #[serde(skip)]
+    pub attitude: Option<Attitude>,
+    /// The preprocessed signals in the anatomical frame (kept for the report's signal plots;
+    /// not serialised). Dropped with the result, so a batch never holds more than the subjects
+    /// in flight.
+    #[serde(skip)]
+    pub signals: Option<Aligned>,
+    /// Problems the analysis found that did not stop it (the reader's are in `read.warnings`):
+    /// a device mounted upside down, gait that looks like running, too few valid strides.
+    #[serde(default)]
+    pub warnings: Vec<String>,
+}
+
+/// Analyse one recording up to its strides (no bilateral parameters yet).
+pub fn analyze_leg(
+    rec: &Recording,
+    side: Side,
+    params: &AnalysisParams,
+    sensor_height_m: Option<f64>,
+) -> Result<(LegResult, Vec<f64>)> {
+    // The fields are public: a recording built by hand may break the invariants.
+    rec.validate()?;
+    let pp = params.preprocess.check(rec.fs_hz)?;
+    let pre = preprocess(rec, &pp)?;
+    let al = align(&pre, &params.align.check()?)?;
+    let att = estimate(&al, &params.attitude.check()?)?;
+    let fs = rec.fs_hz;
+    // Events come from the gyroscope's sagittal rate in both models (the ACC-only model replaces
+    // the attitude only, so the comparison isolates it; SPEC §3.7).
+    let omega = al.gyro_dps[1].clone();
+    let ev_params = params.events.clone();
+    let ev = detect(&att.pitch_deg, &omega, fs, &ev_params.check()?)?;
+    let mut sp = params.strides.clone();
+    if let Some(h) = sensor_height_m {
+        sp.sensor_height_m = h;
+    }
+    let st = strides(side, &al, &att, &ev, &sp.check()?)?;
+    let mut parameters = side_parameters(&st, None);
+    if params.compute_sta {
+        fill_sta(
+            &mut parameters,
+            &st,
+            &omega,
+            fs,
+            &params.sta,
+            params.sta_max_strides,
+        );
+    }
+    let hs = ev.hs_s.clone();
+    let warnings = leg_warnings(&al.alignment, &st, &parameters);
+    Ok((
+        LegResult {
+            side,
+            source: rec.label(),
+            t0_s: rec.t0_s,
+            read: memory_report(rec),
+            outliers_replaced: pre.replaced.len(),
+            alignment: al.alignment.clone(),
+            events: ev,
+            strides: st,
+            parameters,
+            attitude: Some(att),
+            signals: Some(al),
+            warnings,
+        },
+        hs,
+    ))
+}
+
+/// STA over the longest run of consecutive valid strides (its first `max_strides` when that is
+/// not 0).
+fn fill_sta(
+    p: &mut SideParameters,
+    st: &[Stride],
+    omega: &[f64],
+    fs: f64,
+    params: &GaitStaParams,
+    max_strides: usize,
+) {
+    let mut best: Option<(usize, usize)> = None;
+    let mut i = 0;
+    while i < st.len() {
+        if !st[i].valid {
+            i += 1;
+            continue;
+        }
+        let s = i;
+        while i + 1 < st.len()
+            && st[i + 1].valid
+            && (st[i + 1].hs_time_s - st[i].next_hs_time_s).abs() < 1e-9
+        {
+            i += 1;
+        }
+        if best.is_none_or(|(a, b)| i - s > b - a) {
+            best = Some((s, i));
+        }
+        i += 1;
+    }
+    let Some((a, mut b)) = best else {
+        p.sta_status = "no valid strides".into();
+        return;
+    };
+    if max_strides > 0 && b - a + 1 > max_strides {
+        b = a + max_strides - 1;
+    }
+    let (i0, i1) = (
+        (st[a].hs_time_s * fs).round() as usize,
+        ((st[b].next_hs_time_s * fs).round() as usize).min(omega.len()),
+    );
+    let mean_st = p.stride_time_s;
+    match gait_sta(&omega[i0..i1], fs, mean_st, params) {
+        Ok(r) => {
+            p.sta_per_s = r.lambda_per_s;
+            p.sta_per_stride = r.lambda_per_stride;
+            p.sta_status = String::new();
+        }
+        Err(e) => {
+            p.sta_status = format!(
+                "{} strides ({:.1} s): {e}",
+                b - a + 1,
+                (i1 - i0) as f64 / fs
+            )
+        }
+    }
+}
+
+/// The read report of a recording that came from memory (no file).
+pub fn memory_report(rec: &Recording) -> ReadReport {
+    ReadReport {
+        file: rec
+            .source
+            .clone()
+            .unwrap_or_else(|| PathBuf::from("<memory>")),
+        format: "memory".into(),
+        format_detected: false,
+        delimiter: String::new(),
+        bom: false,
+        header_line: 0,
+        rows: rec.len(),
+        fs_hz: rec.fs_hz,
+        max_jitter_ms: 0.0,
+        resampled: false,
+        gaps: vec![],
+        dropped_segments: vec![],
+        saturated_per_channel: [0; 6],
+        saturated_samples: rec.saturated_count(),
+        samples: rec.len(),
+        duration_s: rec.duration_s(),
+        notes: vec![],
+        warnings: crate::io::flat_channel_warnings(&rec.acc_g, &rec.gyro_dps, rec.fs_hz, rec.t0_s),
+    }
+}

@@ -1,0 +1,112 @@
+//! The per-recording pipeline (SPEC §3): recording → preprocessed → aligned → attitude →
+//! events → strides → parameters, for one subject's two legs, and the discovery of inputs
+//! (a pair of files, a subject folder, a cohort folder, a manifest, or the embedded demo).
+//!
+//! One bad recording never stops the other leg or the other subjects: each side's outcome is a
+//! `Result`, with the error message naming the file.
+
+mod bilateral;
+mod inputs;
+mod leg;
+mod quality;
+mod subject;
+#[cfg(test)]
+mod tests;
+
+pub use bilateral::{bilateral_events, bilateral_events_on_clock, BilateralEvent, EventKind};
+pub use inputs::{demo_inputs, discover, read_manifest, Source, SubjectInput};
+pub use leg::{analyze_leg, memory_report, LegResult};
+pub use quality::{leg_warnings, pair_warnings, RUNNING_STRIDE_TIME_S};
+pub use subject::{analyze_pair, analyze_simulated, analyze_subject, LoadedLeg, SubjectResult};
+
+use serde::{Deserialize, Serialize};
+
+use crate::align::AlignParams;
+use crate::attitude::{AttitudeModel, AttitudeParams};
+use crate::error::Result;
+use crate::events::EventParams;
+use crate::gait::StrideParams;
+use crate::nonlinear::GaitStaParams;
+use crate::preprocess::PreprocessParams;
+
+/// All analysis parameters (each stage's own type; validated by [`AnalysisParams::check`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct AnalysisParams {
+    /// Preprocessing (paper §3.1).
+    pub preprocess: PreprocessParams,
+    /// Sensor-to-segment alignment.
+    pub align: AlignParams,
+    /// Attitude model and filter.
+    pub attitude: AttitudeParams,
+    /// Event detection.
+    pub events: EventParams,
+    /// Strides and stride length. `sensor_height_m` is overridden per subject by the manifest.
+    pub strides: StrideParams,
+    /// Gait stability (STA).
+    pub sta: GaitStaParams,
+    /// Compute STA. Default true.
+    pub compute_sta: bool,
+    /// Most strides STA is computed over: the first `sta_max_strides` of the longest run of
+    /// valid strides. Default 150. The exponent depends on the length of the series, so a fixed
+    /// number of strides keeps recordings of different lengths comparable (Bruijn et al., J
+    /// Neurosci Methods 2009;178:327–333, who advise ≥ 150 strides and equal numbers across
+    /// subjects), and it bounds the cost of a 2-hour recording. 0 = no limit.
+    pub sta_max_strides: usize,
+}
+
+impl Default for AnalysisParams {
+    fn default() -> Self {
+        AnalysisParams {
+            preprocess: PreprocessParams::default(),
+            align: AlignParams::default(),
+            attitude: AttitudeParams::default(),
+            events: EventParams::default(),
+            strides: StrideParams::default(),
+            sta: GaitStaParams::default(),
+            compute_sta: true,
+            sta_max_strides: 150,
+        }
+    }
+}
+
+impl AnalysisParams {
+    /// With another attitude model.
+    pub fn model(mut self, m: AttitudeModel) -> Self {
+        self.attitude.model = m;
+        self
+    }
+    /// These parameters with the options of a command line or an API call applied (each `None`
+    /// keeps the current value), then checked. One place for the CLI and the Python binding.
+    pub fn with_options(
+        mut self,
+        model: Option<&str>,
+        detector: Option<&str>,
+        sensor_height_m: Option<f64>,
+        compute_sta: Option<bool>,
+    ) -> Result<Self> {
+        if let Some(m) = model {
+            self.attitude.model = m.parse()?;
+        }
+        if let Some(d) = detector {
+            self.events.detector = d.parse()?;
+        }
+        if let Some(h) = sensor_height_m {
+            self.strides.sensor_height_m = h;
+        }
+        if let Some(c) = compute_sta {
+            self.compute_sta = c;
+        }
+        self.check()?;
+        Ok(self)
+    }
+
+    /// Validate every stage's parameters that do not depend on the recording.
+    pub fn check(&self) -> Result<()> {
+        self.align.check()?;
+        self.attitude.check()?;
+        self.events.check()?;
+        self.strides.check()?;
+        Ok(())
+    }
+}

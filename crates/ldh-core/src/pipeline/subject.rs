@@ -1,0 +1,169 @@
+//! One subject: both legs analysed and paired for step time and frequency.
+
+use super::*;
+use serde::{Deserialize, Serialize};
+
+use crate::attitude::AttitudeModel;
+use crate::gait::side_parameters;
+use crate::io::{FormatSpec, ReadReport, ValidReadParams};
+use crate::recording::{Recording, Side};
+use crate::simulate::Group;
+
+impl SubjectResult {
+    /// The bilateral event sequence of this subject (see [`bilateral_events`]).
+    pub fn bilateral_events(&self) -> Vec<BilateralEvent> {
+        bilateral_events(
+            self.left.as_ref().ok().map(|l| &l.events),
+            self.right.as_ref().ok().map(|r| &r.events),
+        )
+    }
+}
+
+/// The analysis of one subject.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SubjectResult {
+    /// Identifier.
+    pub subject_id: String,
+    /// Group (from the manifest).
+    pub group: Option<Group>,
+    /// Affected side (from the manifest).
+    pub affected_side: Option<Side>,
+    /// Attitude model used.
+    pub model: AttitudeModel,
+    /// Left leg, or the error that stopped it.
+    pub left: std::result::Result<LegResult, String>,
+    /// Right leg, or the error that stopped it.
+    pub right: std::result::Result<LegResult, String>,
+    /// Problems of the pair (different clocks, rates or lengths; left and right possibly
+    /// swapped); see [`pair_warnings`].
+    #[serde(default)]
+    pub warnings: Vec<String>,
+}
+
+impl SubjectResult {
+    /// Both legs' results or errors, left first.
+    pub fn legs(&self) -> [(Side, &std::result::Result<LegResult, String>); 2] {
+        [(Side::Left, &self.left), (Side::Right, &self.right)]
+    }
+}
+
+/// Analyse one subject: read both legs, run the pipeline, pair the legs for step time and
+/// frequency. Errors are per leg and name the file.
+pub fn analyze_subject(
+    input: &SubjectInput,
+    params: &AnalysisParams,
+    format: Option<&FormatSpec>,
+    read: &ValidReadParams,
+) -> SubjectResult {
+    let load = |src: &Option<Source>,
+                side: Side|
+     -> std::result::Result<(Recording, ReadReport, String), String> {
+        let src = src
+            .as_ref()
+            .ok_or_else(|| format!("no {side} recording given"))?;
+        let (rec, report) = src.read(format, read).map_err(|e| e.to_string())?;
+        Ok((rec, report, src.label()))
+    };
+    analyze_pair(
+        input,
+        load(&input.left, Side::Left),
+        load(&input.right, Side::Right),
+        params,
+    )
+}
+
+/// The read outcome of one leg: the recording, what the reader found and a label, or the error.
+pub type LoadedLeg = std::result::Result<(Recording, ReadReport, String), String>;
+
+/// Analyse one subject from recordings already read (or their read errors).
+pub fn analyze_pair(
+    input: &SubjectInput,
+    left: LoadedLeg,
+    right: LoadedLeg,
+    params: &AnalysisParams,
+) -> SubjectResult {
+    let run =
+        |loaded: LoadedLeg, side: Side| -> std::result::Result<(LegResult, Vec<f64>), String> {
+            let (rec, report, label) = loaded?;
+            let (mut leg, hs) = analyze_leg(&rec, side, params, input.sensor_height_m)
+                .map_err(|e| format!("{label}: {e}"))?;
+            leg.read = report;
+            leg.source = label;
+            Ok((leg, hs))
+        };
+    let l = run(left, Side::Left);
+    let r = run(right, Side::Right);
+    // The other leg's heel strikes on this leg's clock: event times count from each file's own
+    // first sample, and the two files may start at different times.
+    let t0 = |x: &std::result::Result<(LegResult, Vec<f64>), String>| {
+        x.as_ref().ok().map(|(leg, _)| leg.t0_s)
+    };
+    let shifted = |x: &std::result::Result<(LegResult, Vec<f64>), String>, to: Option<f64>| {
+        x.as_ref().ok().map(|(leg, hs)| {
+            hs.iter()
+                .map(|t| t + leg.t0_s - to.unwrap_or(leg.t0_s))
+                .collect::<Vec<f64>>()
+        })
+    };
+    let (lt0, rt0) = (t0(&l), t0(&r));
+    let (warnings, overlapping) = match (&l, &r) {
+        (Ok((ll, _)), Ok((rl, _))) => pair_warnings(ll, rl),
+        _ => (Vec::new(), true),
+    };
+    let (lhs, rhs) = if overlapping {
+        (shifted(&l, rt0), shifted(&r, lt0))
+    } else {
+        (None, None)
+    };
+    let finish = |x: std::result::Result<(LegResult, Vec<f64>), String>,
+                  other: Option<Vec<f64>>| {
+        x.map(|(mut leg, _)| {
+            let sta = (
+                leg.parameters.sta_per_s,
+                leg.parameters.sta_per_stride,
+                leg.parameters.sta_status.clone(),
+            );
+            leg.parameters = side_parameters(&leg.strides, other.as_deref());
+            (
+                leg.parameters.sta_per_s,
+                leg.parameters.sta_per_stride,
+                leg.parameters.sta_status,
+            ) = sta;
+            leg
+        })
+    };
+    SubjectResult {
+        subject_id: input.subject_id.clone(),
+        group: input.group,
+        affected_side: input.affected_side,
+        model: params.attitude.model,
+        left: finish(l, rhs),
+        right: finish(r, lhs),
+        warnings,
+    }
+}
+
+/// Analyse a simulated subject in memory (for evaluation and tests).
+pub fn analyze_simulated(
+    s: &crate::simulate::SimSubject,
+    params: &AnalysisParams,
+) -> SubjectResult {
+    let input = SubjectInput {
+        subject_id: s.params.subject_id.clone(),
+        group: Some(s.params.group),
+        affected_side: s.params.affected_side,
+        left: None,
+        right: None,
+        sensor_height_m: Some((s.left.truth.sensor_height_m + s.right.truth.sensor_height_m) / 2.0),
+    };
+    let leg = |l: &crate::simulate::SimLeg| -> LoadedLeg {
+        let rec = l.recording.clone();
+        let report = memory_report(&rec);
+        Ok((
+            rec,
+            report,
+            format!("{}/{}", s.params.subject_id, l.truth.side),
+        ))
+    };
+    analyze_pair(&input, leg(&s.left), leg(&s.right), params)
+}

@@ -1,0 +1,111 @@
+use super::*;
+use crate::recording::Side;
+use crate::simulate::CohortParams;
+use crate::simulate::Group;
+use proptest::prelude::*;
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
+    /// Detected events alternate HS/TO and increase, on any simulated subject.
+    #[test]
+    fn events_alternate_and_increase(seed in 0u64..10_000, ldh in any::<bool>()) {
+        let c = CohortParams { healthy: usize::from(!ldh), ldh: usize::from(ldh), duration_s: 20.0, seed, ..CohortParams::default() };
+        let r = analyze_simulated(&c.simulate(0).unwrap(), &AnalysisParams { compute_sta: false, ..AnalysisParams::default() });
+        for (_, leg) in r.legs() {
+            let leg = leg.as_ref().unwrap();
+            let mut ev: Vec<(f64, u8)> = leg.events.hs_s.iter().map(|&t| (t, 0)).chain(leg.events.to_s.iter().map(|&t| (t, 1))).collect();
+            ev.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap());
+            prop_assert!(ev.len() >= 16);
+            for w in ev.windows(2) {
+                prop_assert!(w[1].0 > w[0].0);
+                prop_assert_ne!(w[0].1, w[1].1, "two {} in a row at {} s", if w[0].1 == 0 { "HS" } else { "TO" }, w[1].0);
+            }
+            for s in &leg.strides {
+                prop_assert!(s.hs_time_s < s.to_time_s || !s.to_time_s.is_finite());
+                prop_assert!(s.valid == s.reason.is_empty());
+            }
+        }
+    }
+}
+
+#[test]
+fn bilateral_sequence_alternates_in_steady_walking() {
+    let c = CohortParams {
+        healthy: 0,
+        ldh: 1,
+        duration_s: 30.0,
+        seed: 5,
+        turn: false,
+        ..CohortParams::default()
+    };
+    let r = analyze_simulated(
+        &c.simulate(0).unwrap(),
+        &AnalysisParams {
+            compute_sta: false,
+            ..AnalysisParams::default()
+        },
+    );
+    let seq = r.bilateral_events();
+    assert!(seq.len() > 60);
+    let breaks: Vec<&BilateralEvent> = seq.iter().filter(|e| !e.order.is_empty()).collect();
+    // Only where gait starts (the first leg's TO has no HS before it) may it break.
+    assert!(breaks.len() <= 2, "{breaks:?}");
+    assert!(
+        seq.iter()
+            .filter(|e| e.event == EventKind::HeelStrike)
+            .count()
+            > 30
+    );
+    // With one leg, every TO lacks the other leg's HS before it.
+    let one = bilateral_events(r.left.as_ref().ok().map(|l| &l.events), None);
+    assert!(one
+        .iter()
+        .skip(1)
+        .filter(|e| e.event == EventKind::ToeOff)
+        .all(|e| e.order.contains("expected right HS")));
+}
+
+#[test]
+fn manifests_are_parsed_and_bad_rows_named() {
+    let d = tempfile::tempdir().unwrap();
+    let m = d.path().join("manifest.csv");
+    std::fs::write(&m, "subject_id,group,affected_side,left,right,sensor_height_m\nS1,ldh,right,a/l.csv,a/r.csv,0.12\nS2,healthy,none,b/l.csv,b/r.csv,\n").unwrap();
+    let v = read_manifest(&m).unwrap();
+    assert_eq!(v.len(), 2);
+    assert_eq!(v[0].affected_side, Some(Side::Right));
+    assert_eq!(v[0].sensor_height_m, Some(0.12));
+    assert_eq!(v[0].left, Some(Source::Path(d.path().join("a/l.csv"))));
+    assert_eq!(v[1].group, Some(Group::Healthy));
+    std::fs::write(
+        &m,
+        "subject_id,group,affected_side,left,right\nS1,sick,right,a,b\n",
+    )
+    .unwrap();
+    let e = read_manifest(&m).unwrap_err().to_string();
+    assert!(
+        e.contains("manifest.csv:2:2") && e.contains("'sick'"),
+        "{e}"
+    );
+    std::fs::write(&m, "subject_id,group,left,right\n").unwrap();
+    assert!(read_manifest(&m)
+        .unwrap_err()
+        .to_string()
+        .contains("affected_side"));
+    assert_eq!(discover(&[]).unwrap().len(), 4);
+    // A missing file is kept as an input: reading it fails per recording, naming it.
+    let v = discover(&[d.path().join("nothing-here.csv")]).unwrap();
+    let r = analyze_subject(
+        &v[0],
+        &AnalysisParams::default(),
+        None,
+        &crate::io::ReadParams::default().check().unwrap(),
+    );
+    assert!(r
+        .left
+        .unwrap_err()
+        .contains("nothing-here.csv: cannot read"));
+    assert!(r.right.unwrap_err().contains("no right recording"));
+    std::fs::create_dir(d.path().join("empty")).unwrap();
+    let e = discover(&[d.path().join("empty")]).unwrap_err().to_string();
+    assert!(e.contains("empty") && e.contains("no manifest.csv"), "{e}");
+}
