@@ -175,6 +175,11 @@ pub struct SideParameters {
     pub pbi_deg: f64,
     /// BDK, mean roll excursion in swing, deg.
     pub bdk_deg: f64,
+    /// Parameters withheld by a quality check: column name (as in recordings.csv, e.g.
+    /// `stride_length_m`) → reason. A withheld parameter's value is NaN and must be shown as
+    /// "not measured: <reason>", never as a number. Empty when every parameter is vouched for.
+    #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub withheld: std::collections::BTreeMap<String, String>,
 }
 
 fn mean(v: &[f64]) -> f64 {
@@ -488,5 +493,6 @@ pub fn side_parameters(strides: &[Stride], other_hs_s: Option<&[f64]>) -> SidePa
         wqk_deg: mean(&col(|s| s.wqk_deg)),
         pbi_deg: mean(&col(|s| s.pbi_deg)),
         bdk_deg: mean(&col(|s| s.bdk_deg)),
+        withheld: Default::default(),
     }
 }

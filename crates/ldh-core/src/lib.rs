@@ -37,4 +37,4 @@ pub mod simulate;
 pub mod stats;
 
 pub use error::{ErrorKind, LdhError, Location, Result};
-pub use recording::{Recording, Side};
+pub use recording::{Recording, Setting, Side};

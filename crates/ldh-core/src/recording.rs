@@ -58,6 +58,49 @@ impl std::str::FromStr for Side {
     }
 }
 
+/// Where the walk happened. It decides whether a stride can be a turn: on a treadmill no stride
+/// is (yaw drift is not a turn). Default overground.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Setting {
+    /// Walking over the ground: turns happen and are detected.
+    #[default]
+    Overground,
+    /// Walking on a treadmill: no turns.
+    Treadmill,
+}
+
+impl Setting {
+    /// `"overground"` or `"treadmill"`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Setting::Overground => "overground",
+            Setting::Treadmill => "treadmill",
+        }
+    }
+}
+
+impl std::fmt::Display for Setting {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl std::str::FromStr for Setting {
+    type Err = LdhError;
+    fn from_str(s: &str) -> Result<Self> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "overground" => Ok(Setting::Overground),
+            "treadmill" => Ok(Setting::Treadmill),
+            other => Err(LdhError::param(
+                "setting",
+                other,
+                "expected 'overground' or 'treadmill'",
+            )),
+        }
+    }
+}
+
 /// One shank IMU recording on a uniform time grid.
 ///
 /// Invariants (checked by [`Recording::new`]): all six channels have the same length ≥ 2, every

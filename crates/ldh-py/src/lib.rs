@@ -559,6 +559,7 @@ fn analyze_pair<'py>(
             Ok((rec, report, format!("<{side} arrays>")))
         };
         let input = SubjectInput {
+            setting: None,
             subject_id: id,
             group: None,
             affected_side: None,

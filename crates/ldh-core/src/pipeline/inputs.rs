@@ -58,6 +58,9 @@ pub struct SubjectInput {
     pub right: Option<Source>,
     /// Sensor height above the ankle, m (manifest column `sensor_height_m`).
     pub sensor_height_m: Option<f64>,
+    /// Where the walk happened (`None`: not said, treated as overground).
+    #[serde(default)]
+    pub setting: Option<crate::recording::Setting>,
 }
 
 /// Parse a cohort manifest (SPEC §2): `subject_id, group, affected_side, left, right` and the
@@ -167,6 +170,7 @@ fn parse_manifest(
             });
         }
         out.push(SubjectInput {
+            setting: None,
             subject_id: id.to_string(),
             group: Some(group),
             affected_side,
@@ -209,6 +213,7 @@ pub fn discover(inputs: &[PathBuf]) -> Result<Vec<SubjectInput>> {
     let subject_dir = |d: &Path| -> Option<SubjectInput> {
         let (l, r) = (d.join("left.csv"), d.join("right.csv"));
         (l.exists() || r.exists()).then(|| SubjectInput {
+            setting: None,
             subject_id: d
                 .file_name()
                 .map(|n| n.to_string_lossy().to_string())
@@ -282,6 +287,7 @@ pub fn discover(inputs: &[PathBuf]) -> Result<Vec<SubjectInput>> {
             .filter(|s| !s.is_empty())
             .unwrap_or_else(|| "subject".into());
         out.push(SubjectInput {
+            setting: None,
             subject_id: id,
             group: None,
             affected_side: None,

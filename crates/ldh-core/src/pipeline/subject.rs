@@ -149,6 +149,7 @@ pub fn analyze_simulated(
     params: &AnalysisParams,
 ) -> SubjectResult {
     let input = SubjectInput {
+        setting: None,
         subject_id: s.params.subject_id.clone(),
         group: Some(s.params.group),
         affected_side: s.params.affected_side,
