@@ -1,4 +1,4 @@
-//! Report building blocks: escaping, file names, symmetry index, reference ranges, params.
+//! Report building blocks: escaping by construction, file names, symmetry index, reference ranges, params.
 
 use super::*;
 use crate::output::RecordingRow;
@@ -22,10 +22,6 @@ fn row(id: &str, group: &str, side: &str, speed: f64) -> RecordingRow {
 
 #[test]
 fn escaping_file_names_and_symmetry() {
-    assert_eq!(
-        esc("a<b & \"c\" 'd'>"),
-        "a&lt;b &amp; &quot;c&quot; &#39;d&#39;&gt;"
-    );
     assert_eq!(file_stem("S 01/../x"), "S_01_.._x");
     assert_eq!(file_stem(".hidden"), "_hidden");
     assert_eq!(file_stem(""), "_");
@@ -96,8 +92,35 @@ fn a_subject_without_anything_still_renders() {
     };
     let html = subject_html(&s, &Reference::published(&p), &p).unwrap();
     assert!(html.contains("Gait report: subject X&lt;1&gt;"));
+    assert!(html.contains("<title>Gait report — X&lt;1&gt;</title>"));
     assert!(html.contains("No left recording was given."));
     assert!(html.contains("No strides were detected."));
     let c = cohort_html(&CohortReport::default()).unwrap();
     assert!(c.contains("No group statistics"));
+}
+
+#[test]
+fn text_from_files_is_escaped_and_control_characters_dropped() {
+    let p = ReportParams::default().check().unwrap();
+    let mut bad = row("S<1>&\"x\"", "ldh", "left", 1.0);
+    bad.status = "error".into();
+    bad.error = "bad value \u{1}<script>alert('x')</script> at line 3".into();
+    let s = SubjectReport {
+        subject_id: bad.subject_id.clone(),
+        recordings: vec![bad.clone()],
+        ..Default::default()
+    };
+    let html = subject_html(&s, &Reference::published(&p), &p).unwrap();
+    assert!(!html.contains("<script>"), "{html}");
+    assert!(html.contains("&lt;script&gt;alert('x')&lt;/script&gt;"));
+    assert!(html.contains("subject S&lt;1&gt;&amp;&quot;x&quot;"));
+    assert!(!html.contains('\u{1}'));
+    let c = cohort_html(&CohortReport {
+        recordings: vec![bad],
+        subject_links: vec![("S<1>&\"x\"".into(), "subjects/a\"b.html".into())],
+        ..Default::default()
+    })
+    .unwrap();
+    assert!(c.contains("<a href=\"subjects/a&quot;b.html\">"), "{c}");
+    assert!(!c.contains("<script>") && !c.contains('\u{1}'));
 }

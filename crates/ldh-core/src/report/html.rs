@@ -1,0 +1,131 @@
+//! The page frame and the small pieces every report section uses: the HTML skeleton with its
+//! CSS, figures, number formatting.
+//!
+//! Markup is written with [`maud`]: every spliced value is escaped by construction (`&`, `<`,
+//! `>`, `"`), only the fixed CSS, the `<head>` boilerplate and the SVG drawn by
+//! [`crate::plots`] are inserted raw ([`PreEscaped`]). The page stays well-formed XML: void
+//! elements are only in the fixed head (written `<meta …/>`), and [`page`] replaces control
+//! characters (which XML 1.0 forbids) by spaces once for the whole document, so a hostile file
+//! name or error message cannot break the page.
+
+use maud::{html, Markup, PreEscaped, DOCTYPE};
+
+use crate::output::RecordingRow;
+
+/// The ldh version written into every page.
+pub(crate) const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+pub(crate) const CSS: &str = r#"
+body { font-family: "DejaVu Sans", Arial, Helvetica, sans-serif; color: #111; margin: 24px auto; max-width: 860px; line-height: 1.35; font-size: 14px; }
+h1 { font-size: 22px; margin: 0 0 4px 0; } h2 { font-size: 17px; border-bottom: 1px solid #999; margin-top: 22px; padding-bottom: 2px; } h3 { font-size: 15px; margin: 14px 0 6px; }
+table { border-collapse: collapse; margin: 6px 0 10px; width: 100%; font-size: 12.5px; }
+th, td { border: 1px solid #bbb; padding: 3px 5px; text-align: left; vertical-align: top; }
+th { background: #eee; } td.num { text-align: right; font-variant-numeric: tabular-nums; }
+.out { background: #fde2e2; font-weight: bold; } .flag { background: #fff1c2; }
+.note { background: #f3f3f3; border-left: 4px solid #888; padding: 6px 10px; margin: 8px 0; }
+.missing { background: #fde2e2; border-left: 4px solid #c00; padding: 6px 10px; margin: 8px 0; }
+.support { background: #e8f0fe; border-left: 4px solid #1a56c4; padding: 6px 10px; margin: 8px 0; }
+.meta { color: #444; font-size: 12.5px; }
+figure { margin: 10px 0; page-break-inside: avoid; break-inside: avoid; }
+figure svg { width: 100%; height: auto; display: block; }
+figcaption { font-size: 12px; color: #333; margin-top: 3px; }
+ol.refs { font-size: 11.5px; }
+@page { size: A4; margin: 14mm; }
+@media print { body { margin: 0; max-width: none; font-size: 11pt; } h2 { page-break-after: avoid; break-after: avoid; } table, .note, .missing, .support { page-break-inside: avoid; break-inside: avoid; } .out, .flag, th { -webkit-print-color-adjust: exact; print-color-adjust: exact; } }
+"#;
+
+/// The whole page around `body`: doctype, head (charset, viewport, generator, title, CSS).
+pub(crate) fn page(title: &str, body: Markup) -> String {
+    let head = format!(
+        "\n<meta charset=\"utf-8\"/>\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"/>\n<meta name=\"generator\" content=\"ldh {VERSION}\"/>\n"
+    );
+    let m = html! {
+        (DOCTYPE) "\n"
+        html lang="en" {
+            "\n"
+            head {
+                (PreEscaped(head))
+                title { (title) } "\n"
+                style { (PreEscaped(CSS)) } "\n"
+            }
+            "\n"
+            body { "\n" (body) }
+            "\n"
+        }
+        "\n"
+    };
+    without_control_chars(m.into_string())
+}
+
+/// Control characters other than tab, line feed and carriage return are not allowed in XML 1.0;
+/// a carriage return is replaced too (as the old hand-written escaping did).
+fn without_control_chars(s: String) -> String {
+    if s.chars()
+        .any(|c| (c as u32) < 0x20 && c != '\n' && c != '\t')
+    {
+        s.chars()
+            .map(|c| {
+                if (c as u32) < 0x20 && c != '\n' && c != '\t' {
+                    ' '
+                } else {
+                    c
+                }
+            })
+            .collect()
+    } else {
+        s
+    }
+}
+
+/// A figure: the SVG inline, its caption, and the axis labels it draws (each with its unit), so
+/// a checker can verify them (`data-axis-labels`, separated by `|`).
+pub(crate) fn figure(svg: &str, caption: &str, axis_labels: &[&str]) -> Markup {
+    let svg = svg
+        .trim_start_matches("<?xml version=\"1.0\" encoding=\"UTF-8\"?>")
+        .trim();
+    html! {
+        figure.plot data-axis-labels=(axis_labels.join("|")) {
+            "\n" (PreEscaped(svg)) "\n"
+            figcaption { (caption) } "\n"
+        }
+        "\n"
+    }
+}
+
+/// `v` with `dec` decimals, an en dash when missing or not finite.
+pub(crate) fn fmt(v: Option<f64>, dec: usize) -> String {
+    match v {
+        Some(x) if x.is_finite() => format!("{x:.dec$}"),
+        _ => "–".into(),
+    }
+}
+
+/// An optional count, an en dash when missing.
+pub(crate) fn count(v: Option<usize>) -> String {
+    v.map(|v| v.to_string()).unwrap_or("–".into())
+}
+
+/// Decimals shown for a parameter of this unit.
+pub(crate) fn decimals(unit: &str) -> usize {
+    match unit {
+        "deg" => 1,
+        _ => 3,
+    }
+}
+
+/// `left` or `right`, with the manifest's role when there is one (`right (affected)`).
+pub(crate) fn side_label(r: &RecordingRow) -> String {
+    match r.side_role.as_str() {
+        "" | "healthy" => r.side.clone(),
+        role => format!("{} ({role})", r.side),
+    }
+}
+
+/// A red box with a bold title and one bullet per item (nothing when there are no items).
+pub(crate) fn red_box(title: &str, items: &[String]) -> Markup {
+    html! {
+        @if !items.is_empty() {
+            div.missing { b { (title) } ul { @for i in items { li { (i) } } } } "\n"
+        }
+    }
+}
