@@ -24,6 +24,7 @@
 //! template engine would add a build dependency without removing any logic. All text from
 //! files (ids, paths, error messages) goes through [`esc`].
 
+mod build;
 pub mod reference;
 pub mod trace;
 
@@ -34,6 +35,7 @@ use crate::error::{LdhError, Result};
 use crate::ml::{CvKind, CvReport, Prediction};
 use crate::output::{RecordingRow, StrideRow};
 use crate::plots::{self, EventMarks, Panel};
+pub use build::{build, read_recordings, BuildSources};
 pub use reference::{Reference, ReferenceRange, ReferenceSource};
 pub use trace::{LegTrace, SubjectTraces, TraceParams, ValidTraceParams};
 
