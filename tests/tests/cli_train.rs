@@ -195,7 +195,11 @@ fn train_refuses_what_it_cannot_do() {
         "rf,knn",
     ]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(text(&o).contains("expected rf, svm or mlp"));
+    assert!(
+        text(&o).contains("possible values: rf, svm, mlp"),
+        "{}",
+        text(&o)
+    );
     let o = ldh(&[
         "train",
         c.to_str().unwrap(),

@@ -41,11 +41,13 @@ use crate::preprocess::butter_filtfilt;
 /// Which attitude model.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "lowercase")]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum AttitudeModel {
     /// Adaptive Kalman fusion of gyroscope and accelerometer (the paper's model).
     #[default]
     Fusion,
     /// Accelerometer tilt alone (the paper's comparison model).
+    #[cfg_attr(feature = "clap", value(alias = "acc-only"))]
     Acc,
 }
 

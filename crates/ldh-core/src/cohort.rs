@@ -25,6 +25,9 @@ use crate::error::{LdhError, Result};
 use crate::output::RecordingRow;
 use crate::stats;
 
+mod outcome;
+pub use outcome::{stats, StatsOutcome};
+
 /// A gait parameter of the cohort tables.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub struct Parameter {

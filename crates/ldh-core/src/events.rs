@@ -30,6 +30,7 @@ use crate::error::{LdhError, Result};
 /// Event detection method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "kebab-case")]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum EventDetector {
     /// The paper's plain peak picker on the pitch angle.
     PitchPeaks,

@@ -2,10 +2,12 @@
 //! and the writer ([`writer`]).
 
 pub mod format;
+mod inspect;
 pub mod reader;
 pub mod writer;
 
 pub use format::{FormatSpec, BUILTIN_FORMATS};
+pub use inspect::{inspect, Inspection, PreprocessSummary};
 pub use reader::{
     flat_channel_warnings, read_recording, read_recording_bytes, GapPolicy, ReadParams, ReadReport,
     ValidReadParams,

@@ -27,6 +27,7 @@ use crate::recording::{Recording, STANDARD_GRAVITY_MPS2};
 /// What to do with a gap in the timestamps longer than `max_gap_s`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "lowercase")]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum GapPolicy {
     /// Split at the gap and keep the longest segment (the others are listed in the report).
     #[default]

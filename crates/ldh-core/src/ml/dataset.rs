@@ -13,10 +13,13 @@ use crate::output::RecordingRow;
 /// Classification task.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum Task {
     /// LDHH (0) / LDHE (1) / H (2).
+    #[cfg_attr(feature = "clap", value(alias = "3"))]
     ThreeClass,
     /// H (0) / LDHE (1).
+    #[cfg_attr(feature = "clap", value(alias = "2"))]
     Binary,
 }
 

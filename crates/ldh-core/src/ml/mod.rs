@@ -22,12 +22,16 @@ pub mod dataset;
 pub mod forest;
 pub mod mlp;
 pub mod model;
+mod predict;
 pub mod svm;
+mod train;
 pub mod tree;
 
 pub use cv::{cross_validate, cross_validate_with_folds, CvKind, CvParams, CvReport};
 pub use dataset::{Dataset, Task};
 pub use model::{Classifier, FittedModel, ModelFile, Prediction};
+pub use predict::{predict, read_model, PredictOutcome};
+pub use train::{train, ClassifierKind, TrainOutcome, TrainParams};
 
 #[cfg(test)]
 mod tests;

@@ -8,6 +8,7 @@
 mod bilateral;
 mod inputs;
 mod leg;
+mod many;
 mod quality;
 mod subject;
 #[cfg(test)]
@@ -16,6 +17,9 @@ mod tests;
 pub use bilateral::{bilateral_events, bilateral_events_on_clock, BilateralEvent, EventKind};
 pub use inputs::{demo_inputs, discover, read_manifest, Source, SubjectInput};
 pub use leg::{analyze_leg, memory_report, LegResult};
+pub use many::{
+    analyze_many, analyze_to_folder, recording_rows_many, FolderOptions, FolderSummary,
+};
 pub use quality::{leg_warnings, pair_warnings, RUNNING_STRIDE_TIME_S};
 pub use subject::{analyze_pair, analyze_simulated, analyze_subject, LoadedLeg, SubjectResult};
 

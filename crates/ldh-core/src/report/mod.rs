@@ -24,6 +24,7 @@
 //! a page is escaped by construction. One file per page ([`subject`], [`cohort`]), one function
 //! per section.
 
+mod build;
 mod cohort;
 mod html;
 pub mod reference;
@@ -36,6 +37,7 @@ use crate::cohort::ModelOffsets;
 use crate::error::{LdhError, Result};
 use crate::ml::{CvReport, Prediction};
 use crate::output::{RecordingRow, StrideRow};
+pub use build::{build, read_recordings, BuildSources};
 pub use cohort::cohort_html;
 pub use reference::{Reference, ReferenceRange, ReferenceSource};
 pub use subject::subject_html;

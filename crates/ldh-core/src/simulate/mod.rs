@@ -19,6 +19,7 @@
 pub mod curves;
 pub mod jet;
 pub mod model;
+mod write;
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -32,6 +33,7 @@ use model::normal_clamped;
 pub use model::{
     simulate_subject, DenseTruth, LegTruth, SensorTruth, SimLeg, SimSubject, StrideTruth,
 };
+pub use write::write_cohort;
 
 /// Version tag of the ground-truth JSON.
 pub const TRUTH_SCHEMA: &str = "ldh-sim-truth/1";

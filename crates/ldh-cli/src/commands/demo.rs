@@ -3,7 +3,8 @@
 use std::path::Path;
 use std::process::ExitCode;
 
-pub fn write_demo(out: &Path) -> anyhow::Result<ExitCode> {
+/// Run `ldh demo`.
+pub fn run(out: &Path) -> anyhow::Result<ExitCode> {
     let n = ldh_core::demo::write_to(out)?;
     eprintln!("wrote the demo cohort ({n} files) to {}", out.display());
     Ok(ExitCode::SUCCESS)

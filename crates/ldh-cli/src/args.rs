@@ -1,0 +1,306 @@
+//! The command line's arguments (clap derive): one struct per command. Choices are the core's
+//! enums (`clap::ValueEnum` behind ldh-core's `clap` feature), never strings parsed here.
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand};
+use ldh_core::attitude::AttitudeModel;
+use ldh_core::events::EventDetector;
+use ldh_core::ml::{ClassifierKind, Task};
+
+/// Gait assessment for lumbar disc herniation from two shank-worn IMUs.
+///
+/// Typical use: `ldh simulate --out demo` to make a cohort, `ldh inspect FILE` to check
+/// that a vendor export is read correctly.
+#[derive(Debug, Parser)]
+#[command(name = "ldh", version, about, long_about = None, propagate_version = true)]
+pub struct Cli {
+    /// The command.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Analyse recordings: events, strides and the 12 gait parameters per side.
+    ///
+    /// INPUT is a manifest CSV, a cohort folder (with manifest.csv or subject folders), a
+    /// subject folder with left.csv and right.csv, or a subject's two files. Without INPUT the
+    /// embedded demo cohort is analysed. Writes strides.csv/.json, recordings.csv/.json and
+    /// events.csv (both legs' HS and TO in one time-ordered sequence) to
+    /// --out; a recording that fails is listed with its reason, the others are still written,
+    /// and the exit code is 1.
+    Analyze(AnalyzeArgs),
+    /// Score the pipeline against simulator ground truth: `ldh simulate` output (with
+    /// truth.json per subject) is analysed with both attitude models and the event and
+    /// stride accuracy is printed as a Markdown table.
+    Evaluate(EvaluateArgs),
+    /// Cohort statistics like the paper's Tables 3 and 4, with radar charts and box plots.
+    ///
+    /// Analyses INPUT (a manifest or cohort folder with groups; see `analyze`) — or reads the
+    /// per-recording table of an earlier `ldh analyze` with --results — and compares the LDH
+    /// subjects' unaffected (LDHH) and affected (LDHE) sides with healthy subjects (H) and
+    /// healthy left vs right (LR). With --compare acc the ACC-only model is analysed from the
+    /// same recordings and Table 4 (z-normalised offsets OFF0/OFF1) compares the two models.
+    Stats(StatsArgs),
+    /// Rank features and cross-validate RF, SVM and MLP classifiers; save trained models.
+    ///
+    /// Subject-grouped cross-validation is the default: both sides of a subject always fall on
+    /// the same side of a split (the paper's plain stratified folds let a subject's unaffected
+    /// side train the model that tests its affected side). Stratified folds are run beside it
+    /// for comparison with the paper, and the report shows the gap.
+    Train(TrainArgs),
+    /// Predict the class of recordings with a model saved by `ldh train`.
+    Predict(PredictArgs),
+    /// HTML reports a clinician opens offline: one per subject and one for the cohort.
+    ///
+    /// Reads the output folder of `ldh analyze` (recordings.json, strides.csv and, when
+    /// `analyze --report` kept them, the signal traces in traces/) and writes
+    /// <OUT>/index.html (the cohort) and <OUT>/subjects/<subject>.html. With --model the
+    /// classifier's output is added to each subject's report as decision support; --stats and
+    /// --train add Table 4 and the classifier results to the cohort report.
+    Report(ReportArgs),
+    /// Simulate a cohort of healthy and LDH subjects with two shank IMUs and exact ground truth.
+    ///
+    /// Writes <OUT>/<subject>/left.csv, right.csv, truth.json and <OUT>/manifest.csv. The same
+    /// seed gives byte-identical files whatever --jobs is.
+    Simulate(SimulateArgs),
+    /// Read sensor files, say what was detected (format, delimiter, rate, gaps, clipping) and
+    /// run the preprocessing; one line per file, or JSON.
+    Inspect(InspectArgs),
+    /// List the built-in vendor formats, or print one as TOML to adapt for your device.
+    Formats {
+        /// A format's name; omit to list them all.
+        name: Option<String>,
+    },
+    /// Write the embedded demo cohort (the default data of `ldh analyze`) to a folder.
+    Demo {
+        /// Output folder.
+        #[arg(long, default_value = "ldh-demo")]
+        out: PathBuf,
+    },
+}
+
+#[derive(Debug, Args)]
+pub struct AnalyzeArgs {
+    /// Inputs (see above); none: the embedded demo cohort.
+    pub inputs: Vec<PathBuf>,
+    /// Output folder.
+    #[arg(long, default_value = "ldh-out")]
+    pub out: PathBuf,
+    /// Attitude model: fusion (adaptive Kalman; default) or acc (accelerometer tilt only).
+    #[arg(long, value_enum)]
+    pub model: Option<AttitudeModel>,
+    /// Event detector: gyro-landmarks (default), gyro-zero-crossing, salarian or pitch-peaks (the
+    /// paper's).
+    #[arg(long, value_enum)]
+    pub detector: Option<EventDetector>,
+    /// Sensor format: a built-in name or a TOML column map; default: detect.
+    #[arg(long)]
+    pub format: Option<String>,
+    /// Sensor height above the ankle when the manifest has none, m (default 0.10).
+    #[arg(long)]
+    pub sensor_height_m: Option<f64>,
+    /// All analysis parameters as a TOML file (docs/parameters.md); the flags above, when given,
+    /// override it.
+    #[arg(long)]
+    pub params: Option<PathBuf>,
+    /// Skip the Lyapunov exponent (STA).
+    #[arg(long)]
+    pub no_sta: bool,
+    /// Also write the HTML reports (as `ldh report`) to <OUT>/reports, and the signal traces
+    /// they plot to <OUT>/traces.
+    #[arg(long)]
+    pub report: bool,
+    /// With --report: a model saved by `ldh train` whose output the subject reports show.
+    #[arg(long, requires = "report")]
+    pub classifier: Option<PathBuf>,
+    /// Subjects analysed between two writes of the output (default 32 per worker thread).
+    /// Memory grows with it, not with the number of subjects; the output does not depend on it.
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    pub batch: Option<u64>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub jobs: Option<usize>,
+}
+
+#[derive(Debug, Args)]
+pub struct ReportArgs {
+    /// Output folder of `ldh analyze`.
+    pub results: PathBuf,
+    /// Where to write the reports (default: <RESULTS>/reports).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// A model saved by `ldh train`: its output goes into each subject's report.
+    #[arg(long)]
+    pub model: Option<PathBuf>,
+    /// Output folder of `ldh stats` (table4.json) for the cohort report.
+    #[arg(long)]
+    pub stats: Option<PathBuf>,
+    /// Output folder of `ldh train` (cv_results.json) for the cohort report.
+    #[arg(long)]
+    pub train: Option<PathBuf>,
+    /// Report parameters as TOML (docs/reports.md).
+    #[arg(long)]
+    pub params: Option<PathBuf>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub jobs: Option<usize>,
+}
+
+#[derive(Debug, Args)]
+pub struct StatsArgs {
+    /// Inputs as for `analyze` (they need groups: a manifest or `ldh simulate` output).
+    pub inputs: Vec<PathBuf>,
+    /// Read recordings.json from an `ldh analyze` output folder instead of analysing.
+    #[arg(long, conflicts_with = "inputs")]
+    pub results: Option<PathBuf>,
+    /// Also analyse with this model and compare (Table 4): `acc`.
+    #[arg(long, value_enum, conflicts_with = "results")]
+    pub compare: Option<CompareModel>,
+    /// Output folder.
+    #[arg(long, default_value = "ldh-stats")]
+    pub out: PathBuf,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub jobs: Option<usize>,
+}
+
+#[derive(Debug, Args)]
+pub struct TrainArgs {
+    /// Inputs as for `analyze` (they need groups: a manifest or `ldh simulate` output).
+    pub inputs: Vec<PathBuf>,
+    /// Read recordings.json from an `ldh analyze` output folder instead of analysing.
+    #[arg(long, conflicts_with = "inputs")]
+    pub results: Option<PathBuf>,
+    /// Task: three-class (LDHH / LDHE / H) or binary (LDHE vs H).
+    #[arg(long, value_enum, default_value = "three-class")]
+    pub task: Task,
+    /// Classifiers, comma-separated: rf, svm, mlp.
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "rf,svm,mlp")]
+    pub classifiers: Vec<ClassifierKind>,
+    /// Folds.
+    #[arg(long, default_value_t = 10)]
+    pub k: usize,
+    /// Repeats of the k-fold split.
+    #[arg(long, default_value_t = 10)]
+    pub repeats: usize,
+    /// Seed of folds and models.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Keep the k features with the largest |Pearson r| inside each training fold.
+    #[arg(long)]
+    pub top_k: Option<usize>,
+    /// Features (comma-separated columns of recordings.csv); default: the 13 parameters.
+    #[arg(long, value_delimiter = ',')]
+    pub features: Option<Vec<String>>,
+    /// Output folder.
+    #[arg(long, default_value = "ldh-train")]
+    pub out: PathBuf,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub jobs: Option<usize>,
+}
+
+#[derive(Debug, Args)]
+pub struct PredictArgs {
+    /// A model file written by `ldh train`.
+    #[arg(long)]
+    pub model: PathBuf,
+    /// Inputs as for `analyze`; or --results.
+    pub inputs: Vec<PathBuf>,
+    /// Read recordings.json from an `ldh analyze` output folder instead of analysing.
+    #[arg(long, conflicts_with = "inputs")]
+    pub results: Option<PathBuf>,
+    /// Output folder.
+    #[arg(long, default_value = "ldh-predict")]
+    pub out: PathBuf,
+}
+
+#[derive(Debug, Args)]
+pub struct EvaluateArgs {
+    /// A folder written by `ldh simulate` (manifest.csv and truth.json per subject).
+    #[arg(long)]
+    pub truth: PathBuf,
+    /// Event detector to score.
+    #[arg(long, value_enum, default_value = "gyro-landmarks")]
+    pub detector: EventDetector,
+    /// Also write the accuracy as JSON here.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub jobs: Option<usize>,
+}
+
+#[derive(Debug, Args)]
+pub struct SimulateArgs {
+    /// Output folder (created if missing).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Number of healthy subjects.
+    #[arg(long, default_value_t = 2)]
+    pub healthy: usize,
+    /// Number of LDH subjects.
+    #[arg(long, default_value_t = 2)]
+    pub ldh: usize,
+    /// Recording length per subject, seconds.
+    #[arg(long, default_value_t = 25.0)]
+    pub seconds: f64,
+    /// Random seed.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Sampling rate of the simulated sensors, Hz.
+    #[arg(long, default_value_t = 100.0)]
+    pub rate_hz: f64,
+    /// Walk straight only (no 180° turn in the middle).
+    #[arg(long)]
+    pub no_turn: bool,
+    /// Noise-free sensors without bias, quantisation or misalignment.
+    #[arg(long)]
+    pub ideal: bool,
+    /// Lowest LDH severity (0–1): each LDH subject's effects are scaled by a severity drawn in
+    /// [this, 1]; 1 (default) makes every LDH subject fully affected.
+    #[arg(long, default_value_t = 1.0)]
+    pub ldh_severity_min: f64,
+    /// Output format: a built-in format name or a TOML file.
+    #[arg(long, default_value = "ldh")]
+    pub format: String,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub jobs: Option<usize>,
+}
+
+#[derive(Debug, Args)]
+pub struct InspectArgs {
+    /// Sensor CSV files.
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
+    /// Format: a built-in name or a TOML column map; default: detect a built-in format.
+    #[arg(long)]
+    pub format: Option<String>,
+    /// Longest gap in the timestamps bridged by interpolation, s.
+    #[arg(long, default_value_t = 0.2)]
+    pub max_gap_s: f64,
+    /// Refuse recordings with longer gaps instead of keeping the longest segment.
+    #[arg(long)]
+    pub reject_gaps: bool,
+    /// Print JSON instead of one line per file.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// The model `ldh stats --compare` analyses beside fusion.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum CompareModel {
+    /// The accelerometer-only attitude model.
+    Acc,
+}
+
+impl From<CompareModel> for AttitudeModel {
+    fn from(c: CompareModel) -> AttitudeModel {
+        match c {
+            CompareModel::Acc => AttitudeModel::Acc,
+        }
+    }
+}

@@ -1,0 +1,112 @@
+//! `ldh analyze`: analyse inputs into an output folder ([`ldh_core::pipeline::analyze_to_folder`])
+//! and, with `--report`, write the reports ([`ldh_core::report::build`]).
+
+use std::process::ExitCode;
+
+use anyhow::Result;
+use ldh_core::io::ReadParams;
+use ldh_core::pipeline::{analyze_to_folder, discover, FolderOptions};
+use ldh_core::report::{BuildSources, ReportParams};
+
+use super::{analysis_params, progress, resolve_format, thread_pool};
+use crate::args::AnalyzeArgs;
+
+/// Run `ldh analyze`.
+pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
+    let params = analysis_params(
+        a.params.as_deref(),
+        a.model,
+        a.detector,
+        a.sensor_height_m,
+        a.no_sta,
+    )?;
+    let format = a.format.as_deref().map(resolve_format).transpose()?;
+    let read = ReadParams::default().check()?;
+    let subjects = discover(&a.inputs)?;
+    anyhow::ensure!(!subjects.is_empty(), "no subjects found in the inputs");
+    if a.inputs.is_empty() {
+        eprintln!(
+            "no input given: analysing the embedded demo cohort ({} subjects)",
+            subjects.len()
+        );
+    }
+    let pool = thread_pool(a.jobs)?;
+    let stale = ldh_core::io::remove_stale_temp_files(&a.out)?;
+    if stale > 0 {
+        eprintln!(
+            "removed {stale} temporary file(s) of an interrupted earlier run in {}",
+            a.out.display()
+        );
+    }
+    // Checked before the analysis so a bad model file fails fast.
+    let classifier = a
+        .classifier
+        .as_deref()
+        .map(ldh_core::ml::read_model)
+        .transpose()?;
+    let report_params = ReportParams::default().check()?;
+    let pb = progress(subjects.len() as u64, "analyze");
+    let opts = FolderOptions {
+        chunk: a
+            .batch
+            .map(|b| b as usize)
+            .unwrap_or((pool.current_num_threads() * 32).max(32)),
+        traces: a.report.then(|| report_params.trace()),
+    };
+    let sum = pool.install(|| {
+        analyze_to_folder(
+            &subjects,
+            &params,
+            format.as_ref(),
+            &read,
+            &a.out,
+            opts,
+            &|| pb.inc(1),
+        )
+    })?;
+    pb.finish_and_clear();
+    ldh_core::io::write_atomic(
+        a.out.join("params.json"),
+        serde_json::to_string_pretty(&params)?.as_bytes(),
+    )?;
+    if a.report {
+        let dir = a.out.join("reports");
+        let src = BuildSources {
+            model: classifier.as_ref(),
+            ..BuildSources::default()
+        };
+        let pb = progress(0, "report");
+        let n = pool.install(|| {
+            ldh_core::report::build(&a.out, &dir, src, &report_params, &|n| {
+                pb.set_length(n as u64);
+                pb.inc(1)
+            })
+        })?;
+        pb.finish_and_clear();
+        eprintln!(
+            "{n} subject reports and the cohort report (index.html) in {}",
+            dir.display()
+        );
+    }
+    eprintln!(
+        "analysed {} of {} recordings ({} subjects, model {}): {} strides, {} valid; results in {}",
+        sum.recordings - sum.failed,
+        sum.recordings,
+        subjects.len(),
+        params.attitude.model.as_str(),
+        sum.strides,
+        sum.valid_strides,
+        a.out.display()
+    );
+    for r in sum.warned() {
+        eprintln!("warning: {} {}: {}", r.subject_id, r.side, r.warnings);
+    }
+    for f in sum.failures() {
+        eprintln!("error: {} {}: {}", f.subject_id, f.side, f.error);
+    }
+    Ok(if sum.failed == 0 {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}

@@ -1,0 +1,40 @@
+//! `ldh evaluate`: score the pipeline against simulator ground truth
+//! ([`ldh_core::evaluate::evaluate`]).
+
+use std::process::ExitCode;
+
+use anyhow::Result;
+use ldh_core::attitude::AttitudeModel;
+use ldh_core::io::ReadParams;
+use ldh_core::pipeline::{analyze_many, discover};
+
+use super::{analysis_params, thread_pool};
+use crate::args::EvaluateArgs;
+
+/// Run `ldh evaluate`.
+pub fn run(a: EvaluateArgs) -> Result<ExitCode> {
+    let subjects = discover(std::slice::from_ref(&a.truth))?;
+    let truths: Vec<ldh_core::simulate::SubjectTruth> = subjects
+        .iter()
+        .map(|s| ldh_core::simulate::read_truth(a.truth.join(&s.subject_id).join("truth.json")))
+        .collect::<ldh_core::Result<_>>()?;
+    let read = ReadParams::default().check()?;
+    let pool = thread_pool(a.jobs)?;
+    let mut accs = Vec::new();
+    for model in [AttitudeModel::Fusion, AttitudeModel::Acc] {
+        let params = analysis_params(None, Some(model), Some(a.detector), None, true)?;
+        let results = pool.install(|| analyze_many(&subjects, &params, None, &read));
+        accs.push(ldh_core::evaluate::evaluate(&results, &truths));
+    }
+    println!(
+        "Accuracy against ground truth: {} subjects in {}, detector {}\n",
+        subjects.len(),
+        a.truth.display(),
+        a.detector.as_str()
+    );
+    println!("{}", ldh_core::evaluate::markdown(&accs));
+    if let Some(j) = a.json {
+        ldh_core::io::write_atomic(&j, serde_json::to_string_pretty(&accs)?.as_bytes())?;
+    }
+    Ok(ExitCode::SUCCESS)
+}

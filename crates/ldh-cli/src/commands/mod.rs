@@ -1,0 +1,114 @@
+//! One file per command: each reads its arguments, calls into `ldh_core` and writes what the
+//! core returned. Shared here: thread pool, progress bar, parameter files, reading inputs.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+use indicatif::{ProgressBar, ProgressStyle};
+
+use ldh_core::attitude::AttitudeModel;
+use ldh_core::events::EventDetector;
+use ldh_core::io::{FormatSpec, ReadParams};
+use ldh_core::output::RecordingRow;
+use ldh_core::pipeline::{discover, recording_rows_many, AnalysisParams};
+
+pub mod analyze;
+pub mod demo;
+pub mod evaluate;
+pub mod formats;
+pub mod inspect;
+pub mod predict;
+pub mod report;
+pub mod simulate;
+pub mod stats;
+pub mod train;
+
+/// Resolve `--format`: a built-in name or a path to a TOML file.
+pub fn resolve_format(name: &str) -> Result<FormatSpec> {
+    Ok(FormatSpec::resolve(name)?)
+}
+
+/// A progress bar on stderr when it is a terminal, hidden otherwise.
+pub fn progress(len: u64, what: &str) -> ProgressBar {
+    let pb = if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
+        ProgressBar::new(len)
+    } else {
+        ProgressBar::hidden()
+    };
+    pb.set_style(
+        ProgressStyle::with_template("{prefix} [{bar:30}] {pos}/{len} {elapsed_precise} {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    pb.set_prefix(what.to_string());
+    pb
+}
+
+/// The worker pool of `--jobs` (default: all cores).
+pub fn thread_pool(jobs: Option<usize>) -> Result<rayon::ThreadPool> {
+    let mut b = rayon::ThreadPoolBuilder::new();
+    if let Some(j) = jobs {
+        anyhow::ensure!(j >= 1, "--jobs must be at least 1");
+        b = b.num_threads(j);
+    }
+    Ok(b.build()?)
+}
+
+/// Read a TOML parameter file into `T`.
+pub fn read_toml<T: serde::de::DeserializeOwned>(f: &Path, what: &str) -> Result<T> {
+    let text = std::fs::read_to_string(f).with_context(|| format!("reading {}", f.display()))?;
+    toml::from_str::<T>(&text).with_context(|| format!("{what} in {}", f.display()))
+}
+
+/// Analysis parameters: the `--params` file (or the defaults) with the flags on top.
+pub fn analysis_params(
+    params: Option<&Path>,
+    model: Option<AttitudeModel>,
+    detector: Option<EventDetector>,
+    sensor_height_m: Option<f64>,
+    no_sta: bool,
+) -> Result<AnalysisParams> {
+    let base = match params {
+        Some(f) => read_toml::<AnalysisParams>(f, "parameters")?,
+        None => AnalysisParams::default(),
+    };
+    Ok(base.with_options(
+        model.map(|m| m.as_str()),
+        detector.map(|d| d.as_str()),
+        sensor_height_m,
+        no_sta.then_some(false),
+    )?)
+}
+
+/// Per-recording rows of `inputs` analysed with `model` (default parameters otherwise).
+pub fn rows_for(
+    inputs: &[PathBuf],
+    model: AttitudeModel,
+    pool: &rayon::ThreadPool,
+) -> Result<Vec<RecordingRow>> {
+    let params = analysis_params(None, Some(model), None, None, false)?;
+    let read = ReadParams::default().check()?;
+    let subjects = discover(inputs)?;
+    Ok(pool.install(|| recording_rows_many(&subjects, &params, &read)))
+}
+
+/// Per-recording rows from `--results` (an `ldh analyze` folder) or else from the inputs.
+pub fn rows_from(
+    results: Option<&Path>,
+    inputs: &[PathBuf],
+    model: AttitudeModel,
+    pool: &rayon::ThreadPool,
+) -> Result<Vec<RecordingRow>> {
+    match results {
+        Some(d) => Ok(ldh_core::report::read_recordings(d)?),
+        None => rows_for(inputs, model, pool),
+    }
+}
+
+/// Write `(name, content)` files into `dir`.
+pub fn write_files(dir: &Path, files: &[(String, String)]) -> Result<()> {
+    for (name, text) in files {
+        ldh_core::io::write_atomic(dir.join(name), text.as_bytes())?;
+    }
+    Ok(())
+}

@@ -1,0 +1,45 @@
+//! `ldh report`: HTML reports of an `ldh analyze` output folder ([`ldh_core::report::build`]).
+
+use std::process::ExitCode;
+
+use anyhow::Result;
+use ldh_core::report::{BuildSources, ReportParams};
+
+use super::{progress, read_toml, thread_pool};
+use crate::args::ReportArgs;
+
+/// Run `ldh report`.
+pub fn run(a: ReportArgs) -> Result<ExitCode> {
+    let params = match &a.params {
+        Some(f) => read_toml::<ReportParams>(f, "report parameters")?,
+        None => ReportParams::default(),
+    }
+    .check()?;
+    let model = a
+        .model
+        .as_deref()
+        .map(ldh_core::ml::read_model)
+        .transpose()?;
+    let out = a.out.clone().unwrap_or_else(|| a.results.join("reports"));
+    let pool = thread_pool(a.jobs)?;
+    ldh_core::io::remove_stale_temp_files(&out)?;
+    let src = BuildSources {
+        model: model.as_ref(),
+        stats: a.stats.as_deref(),
+        train: a.train.as_deref(),
+    };
+    let pb = progress(0, "report");
+    let n = pool.install(|| {
+        ldh_core::report::build(&a.results, &out, src, &params, &|n| {
+            pb.set_length(n as u64);
+            pb.inc(1)
+        })
+    })?;
+    pb.finish_and_clear();
+    eprintln!(
+        "{n} subject reports in {} and the cohort report {}",
+        out.join("subjects").display(),
+        out.join("index.html").display()
+    );
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,37 @@
+//! `ldh train`: cross-validate and save classifiers ([`ldh_core::ml::train`]).
+
+use std::process::ExitCode;
+
+use anyhow::Result;
+use ldh_core::attitude::AttitudeModel;
+use ldh_core::ml::TrainParams;
+
+use super::{rows_from, thread_pool, write_files};
+use crate::args::TrainArgs;
+
+/// Run `ldh train`.
+pub fn run(a: TrainArgs) -> Result<ExitCode> {
+    let pool = thread_pool(a.jobs)?;
+    let rows = rows_from(
+        a.results.as_deref(),
+        &a.inputs,
+        AttitudeModel::Fusion,
+        &pool,
+    )?;
+    let params = TrainParams {
+        task: a.task,
+        classifiers: a.classifiers,
+        k: a.k,
+        repeats: a.repeats,
+        seed: a.seed,
+        top_k: a.top_k,
+        features: a
+            .features
+            .map(|f| f.iter().map(|s| s.trim().to_string()).collect()),
+    };
+    let outcome = pool.install(|| ldh_core::ml::train(&rows, &params))?;
+    write_files(&a.out, &outcome.files)?;
+    println!("{}", outcome.markdown);
+    eprintln!("report, models and figures in {}", a.out.display());
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,64 @@
+//! `ldh predict` as one call: classify per-recording rows with a saved model and render the
+//! predictions table.
+
+use super::{ModelFile, Prediction};
+use crate::error::Result;
+use crate::output::RecordingRow;
+
+/// Predictions of a model for per-recording rows, and their CSV.
+#[derive(Debug, Clone)]
+pub struct PredictOutcome {
+    /// One per row, in row order.
+    pub predictions: Vec<Prediction>,
+    /// Rows that got no class (see each prediction's note).
+    pub failed: usize,
+    /// `predictions.csv`: subject_id, side, status (`ok` or `error`), predicted_class, one
+    /// `p_<class>` column per class (4 decimals, empty without probabilities), note (commas
+    /// replaced by semicolons).
+    pub csv: String,
+}
+
+/// Classify `rows` with `model` (see [`ModelFile::predict_rows`]).
+pub fn predict(model: &ModelFile, rows: &[RecordingRow]) -> Result<PredictOutcome> {
+    let predictions = model.predict_rows(rows)?;
+    let mut csv = String::from("subject_id,side,status,predicted_class");
+    for c in &model.class_names {
+        csv.push_str(&format!(",p_{c}"));
+    }
+    csv.push_str(",note\n");
+    let mut failed = 0;
+    for p in &predictions {
+        let probs: Vec<String> = match &p.probabilities {
+            Some(v) => v.iter().map(|x| format!("{x:.4}")).collect(),
+            None => vec![String::new(); model.class_names.len()],
+        };
+        let status = if p.predicted_class.is_some() {
+            "ok"
+        } else {
+            failed += 1;
+            "error"
+        };
+        csv.push_str(&format!(
+            "{},{},{status},{},{},{}\n",
+            p.subject_id,
+            p.side,
+            p.predicted_class.as_deref().unwrap_or(""),
+            probs.join(","),
+            p.note.replace(',', ";")
+        ));
+    }
+    Ok(PredictOutcome {
+        predictions,
+        failed,
+        csv,
+    })
+}
+
+/// Read a model file written by `ldh train` (see [`ModelFile::from_json`]).
+pub fn read_model(path: &std::path::Path) -> Result<ModelFile> {
+    let text = std::fs::read_to_string(path).map_err(|source| crate::error::LdhError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    ModelFile::from_json(&text, &path.display().to_string())
+}

@@ -1,0 +1,139 @@
+//! Many subjects at once: the read-inputs-and-analyse loop of `ldh analyze`, `stats`, `train`,
+//! `predict` and `evaluate`, in parallel on the current rayon pool.
+//!
+//! [`analyze_to_folder`] streams: subjects are analysed a chunk at a time and their rows appended
+//! to the output tables, so memory stays flat however many subjects there are; chunks keep the
+//! input order, so the files are the same whatever the thread count.
+
+use std::path::Path;
+
+use rayon::prelude::*;
+
+use super::{analyze_subject, AnalysisParams, SubjectInput, SubjectResult};
+use crate::error::{LdhError, Result};
+use crate::io::{FormatSpec, ValidReadParams};
+use crate::output::{self, RecordingRow, TableSink};
+use crate::report::{file_stem, SubjectTraces, ValidTraceParams};
+
+/// Analyse every subject (in parallel, results in input order).
+pub fn analyze_many(
+    subjects: &[SubjectInput],
+    params: &AnalysisParams,
+    format: Option<&FormatSpec>,
+    read: &ValidReadParams,
+) -> Vec<SubjectResult> {
+    subjects
+        .par_iter()
+        .map(|s| analyze_subject(s, params, format, read))
+        .collect()
+}
+
+/// The per-recording rows of every subject (see [`analyze_many`]).
+pub fn recording_rows_many(
+    subjects: &[SubjectInput],
+    params: &AnalysisParams,
+    read: &ValidReadParams,
+) -> Vec<RecordingRow> {
+    output::recording_rows(&analyze_many(subjects, params, None, read))
+}
+
+/// Options of [`analyze_to_folder`].
+#[derive(Debug, Clone, Copy)]
+pub struct FolderOptions<'a> {
+    /// Subjects analysed between two writes of the output (memory grows with it, the output does
+    /// not depend on it).
+    pub chunk: usize,
+    /// Also write each subject's signal traces to `<out>/traces/<subject>.json` (for reports).
+    pub traces: Option<&'a ValidTraceParams>,
+}
+
+/// What [`analyze_to_folder`] wrote.
+#[derive(Debug, Clone, Default)]
+pub struct FolderSummary {
+    /// Recordings (rows of `recordings.csv`).
+    pub recordings: usize,
+    /// Recordings whose analysis failed.
+    pub failed: usize,
+    /// Strides (rows of `strides.csv`).
+    pub strides: usize,
+    /// Valid strides.
+    pub valid_strides: usize,
+    /// Rows with something to say: failed or with warnings, in output order.
+    pub flagged: Vec<RecordingRow>,
+}
+
+/// Analyse `subjects` and write `strides.csv/.json`, `events.csv` and `recordings.csv/.json` to
+/// `out` (and traces, see [`FolderOptions`]); `done` is called once per subject (progress).
+/// A recording that fails is a row with its error; only a write failure stops the run.
+pub fn analyze_to_folder(
+    subjects: &[SubjectInput],
+    params: &AnalysisParams,
+    format: Option<&FormatSpec>,
+    read: &ValidReadParams,
+    out: &Path,
+    opts: FolderOptions<'_>,
+    done: &(dyn Fn() + Sync),
+) -> Result<FolderSummary> {
+    let mut strides = TableSink::create(out, "strides", &output::STRIDE_COLUMNS, true)?;
+    let mut events = TableSink::create(
+        out,
+        "events",
+        &["subject_id", "time_s", "side", "event", "order"],
+        false,
+    )?;
+    let mut recordings = TableSink::create(out, "recordings", &[], true)?;
+    let mut sum = FolderSummary::default();
+    for part in subjects.chunks(opts.chunk.max(1)) {
+        let tables: Vec<Result<output::Tables>> = part
+            .par_iter()
+            .map(|s| {
+                let r = analyze_subject(s, params, format, read);
+                if let Some(tp) = opts.traces {
+                    write_traces(out, &r, tp)?;
+                }
+                done();
+                Ok(output::Tables::of(std::slice::from_ref(&r)))
+            })
+            .collect();
+        for t in tables {
+            let t = t?;
+            sum.valid_strides += t.strides.iter().filter(|s| s.valid).count();
+            strides.push(&t.strides)?;
+            events.push(&t.events)?;
+            recordings.push(&t.recordings)?;
+            sum.recordings += t.recordings.len();
+            sum.failed += t.recordings.iter().filter(|r| r.status != "ok").count();
+            sum.flagged.extend(
+                t.recordings
+                    .into_iter()
+                    .filter(|r| r.status != "ok" || !r.warnings.is_empty()),
+            );
+        }
+    }
+    sum.strides = strides.rows();
+    strides.finish()?;
+    events.finish()?;
+    recordings.finish()?;
+    Ok(sum)
+}
+
+impl FolderSummary {
+    /// Recordings with warnings, in output order.
+    pub fn warned(&self) -> impl Iterator<Item = &RecordingRow> {
+        self.flagged.iter().filter(|r| !r.warnings.is_empty())
+    }
+    /// Recordings whose analysis failed, in output order.
+    pub fn failures(&self) -> impl Iterator<Item = &RecordingRow> {
+        self.flagged.iter().filter(|r| r.status != "ok")
+    }
+}
+
+fn write_traces(out: &Path, r: &SubjectResult, p: &ValidTraceParams) -> Result<()> {
+    let t = SubjectTraces::of(r, p);
+    let json = serde_json::to_string(&t).map_err(|e| LdhError::signal("trace", e.to_string()))?;
+    crate::io::write_atomic(
+        out.join("traces")
+            .join(format!("{}.json", file_stem(&r.subject_id))),
+        json.as_bytes(),
+    )
+}
