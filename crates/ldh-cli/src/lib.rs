@@ -495,6 +495,8 @@ fn analyze(a: AnalyzeArgs) -> Result<ExitCode> {
     let read = ReadParams::default().check()?;
     let subjects = discover(&a.inputs)?;
     anyhow::ensure!(!subjects.is_empty(), "no subjects found in the inputs");
+    // One report/trace file per subject id, checked before any work (issue 19).
+    output::names::check_unique(subjects.iter().map(|s| s.subject_id.as_str()))?;
     if a.inputs.is_empty() {
         eprintln!(
             "no input given: analysing the embedded demo cohort ({} subjects)",
@@ -656,6 +658,7 @@ fn build_reports(
     }
     let subjects = output::rows_by_subject(&rows);
     let ids: Vec<String> = subjects.iter().map(|(id, _)| id.to_string()).collect();
+    output::names::check_unique(ids.iter().map(String::as_str))?;
     let mut groups = output::stride_groups(&results.join("strides.csv"))?.peekable();
     let pb = progress(ids.len() as u64, "report");
     let chunk = (pool.current_num_threads() * 32).max(32);
@@ -929,10 +932,7 @@ fn train(a: TrainArgs) -> Result<ExitCode> {
             None => ds.clone(),
         };
         let m = ModelFile::train(&final_ds, c, &attitude_model)?;
-        w(
-            &format!("model_{}.json", c.name()),
-            &serde_json::to_string(&m)?,
-        )?;
+        w(&format!("model_{}.json", c.name()), &serde_json::to_string(&m)?)?;
     }
     w("cv_results.json", &serde_json::to_string_pretty(&reports)?)?;
     w("report.md", &md)?;
