@@ -932,7 +932,7 @@ fn train(a: TrainArgs) -> Result<ExitCode> {
             None => ds.clone(),
         };
         let m = ModelFile::train(&final_ds, c, &attitude_model)?;
-        w(&format!("model_{}.json", c.name()), &serde_json::to_string(&m)?)?;
+        w(&format!("model_{}.json", c.name()), &m.to_json()?)?;
     }
     w("cv_results.json", &serde_json::to_string_pretty(&reports)?)?;
     w("report.md", &md)?;

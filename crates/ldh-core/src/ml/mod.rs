@@ -22,12 +22,15 @@ pub mod dataset;
 pub mod forest;
 pub mod mlp;
 pub mod model;
+pub mod model_check;
 pub mod svm;
 pub mod tree;
 
 pub use cv::{cross_validate, cross_validate_with_folds, CvKind, CvParams, CvReport};
 pub use dataset::{Dataset, Task};
-pub use model::{Classifier, FittedModel, ModelFile, Prediction};
+pub use model::{Classifier, FittedModel, ModelError, ModelFile, Prediction};
 
+#[cfg(test)]
+mod model_tests;
 #[cfg(test)]
 mod tests;
