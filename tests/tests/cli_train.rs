@@ -108,7 +108,7 @@ fn train_reports_grouped_and_stratified_cv_and_predict_uses_the_model() {
     // A model from another schema, or with features the input lacks, is refused.
     let m = std::fs::read_to_string(out.join("model_rf.json")).unwrap();
     let old = d.path().join("old.json");
-    std::fs::write(&old, m.replace("ldh-model/1", "ldh-model/0")).unwrap();
+    std::fs::write(&old, m.replace("ldh-model/2", "ldh-model/0")).unwrap();
     let o = ldh(&[
         "predict",
         "--model",

@@ -260,6 +260,9 @@ pub enum LdhError {
         /// What is wrong.
         reason: String,
     },
+    /// A model file is damaged, edited or does not fit the input (see [`crate::ml::model_check`]).
+    #[error(transparent)]
+    Model(Box<crate::ml::ModelError>),
     /// A statistical test is undefined for its input (see [`crate::stats`]).
     #[error(transparent)]
     Stats(#[from] crate::stats::StatsError),
@@ -309,5 +312,11 @@ impl LdhError {
             context: context.into(),
             reason: reason.into(),
         }
+    }
+}
+
+impl From<crate::ml::ModelError> for LdhError {
+    fn from(e: crate::ml::ModelError) -> Self {
+        LdhError::Model(Box::new(e))
     }
 }

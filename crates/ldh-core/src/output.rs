@@ -14,6 +14,8 @@ use std::io::Write;
 use crate::error::{LdhError, Result};
 use crate::pipeline::SubjectResult;
 
+pub mod names;
+
 fn num(x: f64, decimals: i32) -> Option<f64> {
     if x.is_finite() {
         let k = 10f64.powi(decimals);

@@ -710,7 +710,7 @@ fn train(
     py.detach(move || -> Result<String, LdhError> {
         let c = ldh_core::ml::Classifier::from_name(&clf, seed)?;
         let m = ldh_core::ml::ModelFile::train(&ds, &c, &am)?;
-        serde_json::to_string(&m).map_err(|e| LdhError::signal("json", e.to_string()))
+        m.to_json()
     })
     .map_err(|e| to_py(py, e))
 }

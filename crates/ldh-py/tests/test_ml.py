@@ -44,7 +44,7 @@ def test_train_predict_and_model_refusals(tmp_path):
     with pytest.raises(ValueError, match="missing"):
         ldh.predict(model, X[:, :-1], names[:-1])
     with pytest.raises(ldh.LdhDataError, match="schema"):
-        ldh.predict(model.replace("ldh-model/1", "ldh-model/9"), X)
+        ldh.predict(model.replace("ldh-model/2", "ldh-model/9"), X)
     svm = ldh.train(X, y, names, classifier="svm", task="binary")
     _, p = ldh.predict(svm, X)
     assert p is None

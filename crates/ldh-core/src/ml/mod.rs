@@ -22,6 +22,7 @@ pub mod dataset;
 pub mod forest;
 pub mod mlp;
 pub mod model;
+pub mod model_check;
 mod predict;
 pub mod svm;
 mod train;
@@ -29,9 +30,11 @@ pub mod tree;
 
 pub use cv::{cross_validate, cross_validate_with_folds, CvKind, CvParams, CvReport};
 pub use dataset::{Dataset, Task};
-pub use model::{Classifier, FittedModel, ModelFile, Prediction};
+pub use model::{Classifier, FittedModel, ModelError, ModelFile, Prediction};
 pub use predict::{predict, read_model, PredictOutcome};
 pub use train::{train, ClassifierKind, TrainOutcome, TrainParams};
 
+#[cfg(test)]
+mod model_tests;
 #[cfg(test)]
 mod tests;

@@ -1,9 +1,10 @@
 //! Classifiers behind one interface, and the saved model file.
 //!
-//! The model file is JSON with a schema version, the task, the feature names (with units in
-//! them), the class names, the training-set scaling, the fitted model and training metadata.
-//! [`ModelFile::check_features`] refuses a model whose version or features do not match the
-//! input, naming the difference.
+//! The model file is JSON with a schema version, a checksum, the task, the feature names (with
+//! units in them), the class names, the training-set scaling, the fitted model and training
+//! metadata. [`ModelFile::from_json`] refuses another version, a checksum that does not match
+//! and arrays whose sizes do not fit together ([`super::model_check`]);
+//! [`ModelFile::check_features`] refuses an input whose features differ by name or order.
 
 use ndarray::{Array2, Axis};
 use serde::{Deserialize, Serialize};
@@ -11,11 +12,13 @@ use serde::{Deserialize, Serialize};
 use super::dataset::{Dataset, MinMax, Task};
 use super::forest::{Forest, ForestParams};
 use super::mlp::{Mlp, MlpParams};
+pub use super::model_check::ModelError;
 use super::svm::{SvmModel, SvmParams};
 use crate::error::{LdhError, Result};
+use serde_json::Value;
 
-/// Version tag of the model file.
-pub const MODEL_SCHEMA: &str = "ldh-model/1";
+/// Version tag of the model file (2: with a checksum, validated on load).
+pub const MODEL_SCHEMA: &str = "ldh-model/2";
 
 /// A classifier and its parameters.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -185,46 +188,93 @@ impl ModelFile {
         })
     }
 
-    /// Parse a model file, refusing other schema versions.
-    pub fn from_json(text: &str, origin: &str) -> Result<ModelFile> {
-        let v: serde_json::Value = serde_json::from_str(text).map_err(|e| LdhError::Format {
-            name: origin.into(),
-            reason: format!("not JSON: {e}"),
+    /// The model file's JSON text, with its checksum.
+    pub fn to_json(&self) -> Result<String> {
+        let mut v =
+            serde_json::to_value(self).map_err(|e| LdhError::signal("model", e.to_string()))?;
+        let sum = super::model_check::checksum(&v);
+        if let Value::Object(m) = &mut v {
+            m.insert("checksum".into(), Value::String(sum));
+        }
+        serde_json::to_string(&v).map_err(|e| LdhError::signal("model", e.to_string()))
+    }
+
+    /// Parse a model file: the schema version, the checksum, then every array's size against
+    /// the declared features and classes ([`super::model_check::validate`]). `origin` names the
+    /// file in the messages.
+    pub fn from_json(text: &str, origin: &str) -> std::result::Result<ModelFile, ModelError> {
+        let v: Value = serde_json::from_str(text).map_err(|e| ModelError::NotJson {
+            origin: origin.into(),
+            reason: e.to_string(),
         })?;
         match v.get("schema").and_then(|s| s.as_str()) {
             Some(MODEL_SCHEMA) => {}
             Some(other) => {
-                return Err(LdhError::Format {
-                    name: origin.into(),
-                    reason: format!("model schema '{other}' is not supported by this ldh (expects '{MODEL_SCHEMA}'): retrain with ldh train"),
+                return Err(ModelError::Schema {
+                    origin: origin.into(),
+                    found: other.into(),
                 })
             }
-            None => return Err(LdhError::Format { name: origin.into(), reason: "not an ldh model file (no schema field)".into() }),
+            None => {
+                return Err(ModelError::NoSchema {
+                    origin: origin.into(),
+                })
+            }
         }
-        serde_json::from_value(v).map_err(|e| LdhError::Format {
-            name: origin.into(),
-            reason: format!("damaged model file: {e}"),
-        })
+        let computed = super::model_check::checksum(&v);
+        let found = v
+            .get("checksum")
+            .and_then(|c| c.as_str())
+            .unwrap_or("missing");
+        if found != computed {
+            return Err(ModelError::Checksum {
+                origin: origin.into(),
+                found: found.into(),
+                computed,
+            });
+        }
+        let m: ModelFile = serde_json::from_value(v).map_err(|e| ModelError::Damaged {
+            origin: origin.into(),
+            reason: e.to_string(),
+        })?;
+        super::model_check::validate(&m, origin)?;
+        Ok(m)
     }
 
     /// Check an input's features against the model's, by name and order.
-    pub fn check_features(&self, names: &[String]) -> Result<()> {
-        if names != self.feature_names.as_slice() {
-            let missing: Vec<&String> = self
-                .feature_names
-                .iter()
-                .filter(|f| !names.contains(f))
-                .collect();
-            let extra: Vec<&String> = names
-                .iter()
-                .filter(|f| !self.feature_names.contains(f))
-                .collect();
-            return Err(LdhError::signal(
-                "model",
-                format!("the input's features do not match the model's: missing {missing:?}, unexpected {extra:?} (the model was trained on {:?})", self.feature_names),
-            ));
+    pub fn check_features(&self, names: &[String]) -> std::result::Result<(), ModelError> {
+        if names == self.feature_names.as_slice() {
+            return Ok(());
         }
-        Ok(())
+        let missing: Vec<&String> = self
+            .feature_names
+            .iter()
+            .filter(|f| !names.contains(f))
+            .collect();
+        let extra: Vec<&String> = names
+            .iter()
+            .filter(|f| !self.feature_names.contains(f))
+            .collect();
+        let detail =
+            if missing.is_empty() && extra.is_empty() && names.len() == self.feature_names.len() {
+                let i = names
+                    .iter()
+                    .zip(&self.feature_names)
+                    .position(|(a, b)| a != b)
+                    .unwrap_or(0);
+                format!(
+                "the same features in another order (column {} is {:?}, the model expects {:?})",
+                i + 1,
+                names[i],
+                self.feature_names[i]
+            )
+            } else {
+                format!("missing {missing:?}, unexpected {extra:?}")
+            };
+        Err(ModelError::Features {
+            detail,
+            expected: self.feature_names.clone(),
+        })
     }
 
     /// Predict (labels and probabilities where the model has them) for unscaled rows.

@@ -60,5 +60,5 @@ pub fn read_model(path: &std::path::Path) -> Result<ModelFile> {
         path: path.to_path_buf(),
         source,
     })?;
-    ModelFile::from_json(&text, &path.display().to_string())
+    Ok(ModelFile::from_json(&text, &path.display().to_string())?)
 }

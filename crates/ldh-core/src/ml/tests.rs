@@ -200,7 +200,7 @@ fn model_files_round_trip_and_refuse_mismatches() {
     let ds = Dataset::from_csv(THREE, Task::ThreeClass, "t").unwrap();
     for name in ["rf", "svm", "mlp"] {
         let m = ModelFile::train(&ds, &Classifier::from_name(name, 3).unwrap(), "fusion").unwrap();
-        let text = serde_json::to_string(&m).unwrap();
+        let text = m.to_json().unwrap();
         let back = ModelFile::from_json(&text, "m.json").unwrap();
         let (a, pa) = m.predict(&ds.x).unwrap();
         let (b, _) = back.predict(&ds.x).unwrap();

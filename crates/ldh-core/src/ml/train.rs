@@ -137,7 +137,7 @@ pub fn train(rows: &[RecordingRow], p: &TrainParams) -> Result<TrainOutcome> {
     };
     for c in &clfs {
         let m = ModelFile::train(&final_ds, c, &attitude_model)?;
-        let json = serde_json::to_string(&m).map_err(|e| json_err("model", e))?;
+        let json = m.to_json()?;
         files.push((format!("model_{}.json", c.name()), json));
     }
     let cv_json = serde_json::to_string_pretty(&reports).map_err(|e| json_err("cv", e))?;

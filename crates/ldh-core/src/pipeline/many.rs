@@ -74,6 +74,8 @@ pub fn analyze_to_folder(
     opts: FolderOptions<'_>,
     done: &(dyn Fn() + Sync),
 ) -> Result<FolderSummary> {
+    // One report/trace file per subject id, checked before any work (issue 19).
+    output::names::check_unique(subjects.iter().map(|s| s.subject_id.as_str()))?;
     let mut strides = TableSink::create(out, "strides", &output::STRIDE_COLUMNS, true)?;
     let mut events = TableSink::create(
         out,

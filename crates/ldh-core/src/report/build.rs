@@ -63,6 +63,7 @@ pub fn build(
     let model_desc = src.model.map(|m| m.describe()).unwrap_or_default();
     let subjects = output::rows_by_subject(&rows);
     let ids: Vec<String> = subjects.iter().map(|(id, _)| id.to_string()).collect();
+    output::names::check_unique(ids.iter().map(String::as_str))?;
     let mut groups = output::stride_groups(&results.join("strides.csv"))?.peekable();
     let chunk = (rayon::current_num_threads() * 32).max(32);
     for part in subjects.chunks(chunk) {

@@ -114,26 +114,9 @@ impl ValidReportParams {
     }
 }
 
-/// A file name for a subject's report and trace: the id with every character other than
-/// ASCII letters, digits, `-`, `_` and `.` replaced by `_` (and a leading `.` too).
-pub fn file_stem(subject_id: &str) -> String {
-    let s: String = subject_id
-        .chars()
-        .enumerate()
-        .map(|(i, c)| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' || (c == '.' && i > 0) {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    if s.is_empty() {
-        "_".into()
-    } else {
-        s
-    }
-}
+/// A file name for a subject's report and trace: see [`crate::output::names`] (sanitised and,
+/// when the id had to change, disambiguated by a stable suffix).
+pub use crate::output::names::file_stem;
 
 /// Everything the per-subject report shows.
 #[derive(Debug, Clone, Default)]

@@ -1,0 +1,89 @@
+//! Issue 19 (hostile inputs): output names, model files, odd inputs, concurrent runs.
+
+mod common;
+use common::{ldh, ldh_ok, simulate_cohort, text};
+
+/// Subjects `P 1`, `P_1` and `P/1` (one manifest, three different recordings) get three report
+/// and trace files, each showing its own subject's recordings and numbers, and the cohort index
+/// links each id to its own file.
+#[test]
+fn similar_subject_ids_get_distinct_reports_with_their_own_data() {
+    let d = tempfile::tempdir().unwrap();
+    let c = d.path().join("c");
+    simulate_cohort(&c, 3, 0, 20, 5);
+    let ids = ["P 1", "P_1", "P/1"];
+    let mut m = String::from("subject_id,group,affected_side,left,right\n");
+    for (id, h) in ids.iter().zip(["H01", "H02", "H03"]) {
+        m += &format!("{id},healthy,none,{h}/left.csv,{h}/right.csv\n");
+    }
+    std::fs::write(c.join("names.csv"), m).unwrap();
+    let out = d.path().join("out");
+    ldh_ok(&[
+        "analyze",
+        c.join("names.csv").to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--report",
+    ]);
+    let rows = common::json(&out.join("recordings.json"));
+    let subjects = out.join("reports").join("subjects");
+    let mut files: Vec<String> = std::fs::read_dir(&subjects)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
+        .collect();
+    files.sort();
+    assert_eq!(files.len(), 3, "{files:?}");
+    assert_eq!(std::fs::read_dir(out.join("traces")).unwrap().count(), 3);
+    let index = std::fs::read_to_string(out.join("reports").join("index.html")).unwrap();
+    for (id, h) in ids.iter().zip(["H01", "H02", "H03"]) {
+        let stem = ldh_core::report::file_stem(id);
+        let html = std::fs::read_to_string(subjects.join(format!("{stem}.html"))).unwrap();
+        assert!(html.contains(&format!("Gait report — {id}")), "{stem}");
+        // The recordings shown are this subject's files, not another's.
+        assert!(html.contains(&format!("{h}/left.csv")), "{stem} lacks {h}");
+        for other in ["H01", "H02", "H03"].iter().filter(|o| *o != &h) {
+            assert!(
+                !html.contains(&format!("{other}/left.csv")),
+                "{stem} shows {other}"
+            );
+        }
+        // Its stride time is the one in recordings.json for this id.
+        let row = rows
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["subject_id"] == *id && r["side"] == "left")
+            .unwrap();
+        let st = format!("{:.3}", row["stride_time_s"].as_f64().unwrap());
+        assert!(html.contains(&st), "{stem}: stride time {st} not shown");
+        assert!(
+            index.contains(&format!("subjects/{stem}.html\">{}</a>", id)),
+            "index link of {id}"
+        );
+    }
+}
+
+/// Ids that would share a file on a case-insensitive file system are refused before any work.
+#[test]
+fn ids_equal_ignoring_case_are_refused_before_any_work() {
+    let d = tempfile::tempdir().unwrap();
+    let c = d.path().join("c");
+    simulate_cohort(&c, 2, 0, 20, 5);
+    std::fs::write(
+        c.join("case.csv"),
+        "subject_id,group,affected_side,left,right\n\
+         p1,healthy,none,H01/left.csv,H01/right.csv\n\
+         P1,healthy,none,H02/left.csv,H02/right.csv\n",
+    )
+    .unwrap();
+    let out = d.path().join("out");
+    let o = ldh(&[
+        "analyze",
+        c.join("case.csv").to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(text(&o).contains("\"p1\" and \"P1\""), "{}", text(&o));
+    assert!(!out.join("recordings.csv").exists());
+}
