@@ -5,6 +5,7 @@
 //! The CLI prints these messages as they are; the Python binding maps them onto `ValueError`,
 //! `FileNotFoundError`/`OSError` and the `ldh.LdhError` family by [`LdhError::kind`].
 
+use std::num::{NonZeroU32, NonZeroU64};
 use std::path::{Path, PathBuf};
 
 /// Result alias used throughout ldh-core.
@@ -18,9 +19,9 @@ pub struct Location {
     /// The file (or a label such as `<memory>` for in-memory input).
     pub file: PathBuf,
     /// 1-based line number in the file, if known.
-    pub line: Option<u64>,
+    pub line: Option<NonZeroU64>,
     /// 1-based field (column) number, if known.
-    pub column: Option<usize>,
+    pub column: Option<NonZeroU32>,
 }
 
 impl Location {
@@ -35,15 +36,15 @@ impl Location {
     /// A location naming file and line.
     pub fn line(file: impl AsRef<Path>, line: u64) -> Self {
         Location {
-            line: Some(line),
+            line: NonZeroU64::new(line),
             ..Location::file(file)
         }
     }
     /// A location naming file, line and column.
     pub fn cell(file: impl AsRef<Path>, line: u64, column: usize) -> Self {
         Location {
-            line: Some(line),
-            column: Some(column),
+            line: NonZeroU64::new(line),
+            column: NonZeroU32::new(u32::try_from(column).unwrap_or(u32::MAX)),
             ..Location::file(file)
         }
     }
@@ -269,6 +270,15 @@ pub enum LdhError {
     /// A nonlinear-dynamics computation is undefined for its input (see [`crate::nonlinear`]).
     #[error(transparent)]
     Nonlinear(#[from] crate::nonlinear::NonlinearError),
+    /// A table could not be read or written as CSV.
+    #[error("csv: {0}")]
+    Csv(#[from] csv::Error),
+    /// A value could not be read or written as JSON.
+    #[error("json: {0}")]
+    Json(#[from] serde_json::Error),
+    /// The MLP classifier refused its parameters or data.
+    #[error("mlp: {0}")]
+    Mlp(#[from] crate::ml::mlp::MlpError),
     /// Writing output failed.
     #[error("{}: cannot write: {reason}", path.display())]
     Write {
@@ -318,5 +328,34 @@ impl LdhError {
 impl From<crate::ml::ModelError> for LdhError {
     fn from(e: crate::ml::ModelError) -> Self {
         LdhError::Model(Box::new(e))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_error_is_small_enough_to_return_by_value() {
+        // clippy's result_large_err threshold is 128 bytes; every `Result` carries this.
+        assert!(
+            std::mem::size_of::<LdhError>() < 128,
+            "{}",
+            std::mem::size_of::<LdhError>()
+        );
+    }
+
+    #[test]
+    fn locations_print_as_an_editor_shows_them() {
+        assert_eq!(Location::cell("a.csv", 3, 2).to_string(), "a.csv:3:2");
+        assert_eq!(Location::line("a.csv", 7).to_string(), "a.csv:7");
+        assert_eq!(Location::file("a.csv").to_string(), "a.csv");
+    }
+
+    #[test]
+    fn library_errors_convert_with_their_context() {
+        let e: LdhError = serde_json::from_str::<u32>("x").unwrap_err().into();
+        assert!(e.to_string().starts_with("json: "), "{e}");
+        assert_eq!(e.kind(), ErrorKind::Data);
     }
 }

@@ -349,12 +349,10 @@ pub fn to_csv<T: Serialize>(rows: &[T], header_if_empty: &[&str]) -> Result<Stri
         .has_headers(true)
         .from_writer(Vec::new());
     if rows.is_empty() {
-        w.write_record(header_if_empty)
-            .map_err(|e| LdhError::signal("csv", e.to_string()))?;
+        w.write_record(header_if_empty)?;
     }
     for r in rows {
-        w.serialize(r)
-            .map_err(|e| LdhError::signal("csv", e.to_string()))?;
+        w.serialize(r)?;
     }
     let bytes = w
         .into_inner()
@@ -422,12 +420,9 @@ impl TableSink {
     /// Append rows.
     pub fn push<T: Serialize>(&mut self, rows: &[T]) -> Result<()> {
         for r in rows {
-            self.csv
-                .serialize(r)
-                .map_err(|e| LdhError::signal("csv", e.to_string()))?;
+            self.csv.serialize(r)?;
             if let Some(j) = self.json.as_mut() {
-                let text = serde_json::to_string_pretty(r)
-                    .map_err(|e| LdhError::signal("json", e.to_string()))?;
+                let text = serde_json::to_string_pretty(r)?;
                 let sep = if self.rows == 0 { "\n  " } else { ",\n  " };
                 j.write_all(sep.as_bytes())
                     .and_then(|_| j.write_all(text.replace('\n', "\n  ").as_bytes()))
@@ -446,9 +441,7 @@ impl TableSink {
     /// Close both files and rename them into place.
     pub fn finish(mut self) -> Result<()> {
         if self.rows == 0 {
-            self.csv
-                .write_record(&self.header)
-                .map_err(|e| LdhError::signal("csv", e.to_string()))?;
+            self.csv.write_record(&self.header)?;
         }
         let f = self
             .csv

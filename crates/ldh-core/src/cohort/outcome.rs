@@ -3,7 +3,7 @@
 
 use super::{offsets, table3, table3_markdown, table3_rows, table4_markdown, Cohort, PARAMETERS};
 use crate::attitude::AttitudeModel;
-use crate::error::{LdhError, Result};
+use crate::error::Result;
 use crate::output::{self, RecordingRow};
 use crate::plots;
 
@@ -16,10 +16,6 @@ pub struct StatsOutcome {
     pub offsets: Vec<super::ModelOffsets>,
     /// `(file name, content)` of every output file, in writing order.
     pub files: Vec<(String, String)>,
-}
-
-fn json<T: serde::Serialize>(name: &str, v: &T) -> Result<String> {
-    serde_json::to_string_pretty(v).map_err(|e| LdhError::signal(name, e.to_string()))
 }
 
 /// Cohort statistics of per-recording tables, one table per attitude model (the first is the
@@ -60,8 +56,11 @@ pub fn stats(models: &[Vec<RecordingRow>]) -> Result<StatsOutcome> {
         table4_markdown(&offs)
     ));
     files.push(("table3.csv".into(), output::to_csv(&all_rows, &[])?));
-    files.push(("table3.json".into(), json("table3", &all_rows)?));
-    files.push(("table4.json".into(), json("table4", &offs)?));
+    files.push((
+        "table3.json".into(),
+        serde_json::to_string_pretty(&all_rows)?,
+    ));
+    files.push(("table4.json".into(), serde_json::to_string_pretty(&offs)?));
     files.push(("stats.md".into(), md.clone()));
     Ok(StatsOutcome {
         markdown: md,

@@ -74,7 +74,6 @@ impl Inspection {
 
     /// As JSON with the keys sorted (the `ldh inspect --json` layout).
     pub fn to_json(&self) -> Result<serde_json::Value> {
-        serde_json::to_value(self)
-            .map_err(|e| crate::error::LdhError::signal("inspect", e.to_string()))
+        Ok(serde_json::to_value(self)?)
     }
 }

@@ -75,10 +75,7 @@ impl Classifier {
                     .clone()
                     .check()
                     .map_err(|e| LdhError::param("mlp", "", e.to_string()))?;
-                FittedModel::Mlp(
-                    Mlp::fit(&v, x.view(), y)
-                        .map_err(|e| LdhError::signal("mlp", e.to_string()))?,
-                )
+                FittedModel::Mlp(Mlp::fit(&v, x.view(), y)?)
             }
         })
     }
@@ -102,10 +99,7 @@ impl FittedModel {
         Ok(match self {
             FittedModel::RandomForest(f) => argmax_rows(&f.predict_proba(x)),
             FittedModel::Svm(s) => s.predict(x),
-            FittedModel::Mlp(m) => m
-                .predict(x)
-                .map_err(|e| LdhError::signal("mlp", e.to_string()))?
-                .to_vec(),
+            FittedModel::Mlp(m) => m.predict(x)?.to_vec(),
         })
     }
     /// Class probabilities where the model has them (forest: vote shares; MLP: softmax; SVM:
@@ -115,9 +109,7 @@ impl FittedModel {
             FittedModel::RandomForest(f) => Some(f.predict_proba(x)),
             FittedModel::Svm(_) => None,
             FittedModel::Mlp(m) => {
-                let p = m
-                    .predict_proba(x)
-                    .map_err(|e| LdhError::signal("mlp", e.to_string()))?;
+                let p = m.predict_proba(x)?;
                 // The MLP's columns are the classes it saw in training; map them to all classes.
                 let mut full = Array2::<f64>::zeros((x.nrows(), n_classes));
                 for (j, &c) in m.classes().iter().enumerate() {

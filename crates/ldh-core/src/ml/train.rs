@@ -93,10 +93,6 @@ pub struct TrainOutcome {
     pub files: Vec<(String, String)>,
 }
 
-fn json_err(what: &str, e: serde_json::Error) -> LdhError {
-    LdhError::signal(what, e.to_string())
-}
-
 /// Cross-validate and train on the per-recording rows (one attitude model). Runs in parallel on
 /// the current rayon pool; the result does not depend on the thread count.
 pub fn train(rows: &[RecordingRow], p: &TrainParams) -> Result<TrainOutcome> {
@@ -140,7 +136,7 @@ pub fn train(rows: &[RecordingRow], p: &TrainParams) -> Result<TrainOutcome> {
         let json = m.to_json()?;
         files.push((format!("model_{}.json", c.name()), json));
     }
-    let cv_json = serde_json::to_string_pretty(&reports).map_err(|e| json_err("cv", e))?;
+    let cv_json = serde_json::to_string_pretty(&reports)?;
     files.push(("cv_results.json".into(), cv_json));
     files.push(("report.md".into(), markdown.clone()));
     Ok(TrainOutcome {

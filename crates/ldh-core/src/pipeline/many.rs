@@ -10,7 +10,7 @@ use std::path::Path;
 use rayon::prelude::*;
 
 use super::{analyze_subject, AnalysisParams, SubjectInput, SubjectResult};
-use crate::error::{LdhError, Result};
+use crate::error::Result;
 use crate::io::{FormatSpec, ValidReadParams};
 use crate::output::{self, RecordingRow, TableSink};
 use crate::report::{file_stem, SubjectTraces, ValidTraceParams};
@@ -132,7 +132,7 @@ impl FolderSummary {
 
 fn write_traces(out: &Path, r: &SubjectResult, p: &ValidTraceParams) -> Result<()> {
     let t = SubjectTraces::of(r, p);
-    let json = serde_json::to_string(&t).map_err(|e| LdhError::signal("trace", e.to_string()))?;
+    let json = serde_json::to_string(&t)?;
     crate::io::write_atomic(
         out.join("traces")
             .join(format!("{}.json", file_stem(&r.subject_id))),
