@@ -1,3 +1,6 @@
+// pyfunction signatures mirror the Python keyword arguments and return tuples of numpy
+// arrays; splitting them into structs would change the Python API.
+#![allow(clippy::too_many_arguments, clippy::type_complexity)]
 //! Python bindings of ldh-core: the native module `ldh._ldh`.
 //!
 //! Conversion only: numpy arrays in and out, errors mapped onto the `ldh` exception classes

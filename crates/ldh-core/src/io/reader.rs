@@ -950,8 +950,6 @@ fn parse_number(
                 && cell.replace(',', ".").parse::<f64>().is_ok()
             {
                 "; this looks like a decimal comma: set decimal = \",\" in the format".to_string()
-            } else if cell.eq_ignore_ascii_case("nan") {
-                String::new()
             } else {
                 String::new()
             };

@@ -220,8 +220,8 @@ pub fn discover(inputs: &[PathBuf]) -> Result<Vec<SubjectInput>> {
                 .unwrap_or_else(|| "subject".into()),
             group: None,
             affected_side: None,
-            left: l.exists().then(|| Source::Path(l)),
-            right: r.exists().then(|| Source::Path(r)),
+            left: l.exists().then_some(Source::Path(l)),
+            right: r.exists().then_some(Source::Path(r)),
             sensor_height_m: None,
         })
     };
