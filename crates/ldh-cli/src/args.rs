@@ -15,10 +15,27 @@ use ldh_core::ml::{ClassifierKind, Task};
 #[derive(Debug, Parser)]
 #[command(name = "ldh", version, about, long_about = None, propagate_version = true)]
 pub struct Cli {
+    /// How much to print (`-q`, `-v`), for every command.
+    #[command(flatten)]
+    pub verbosity: Verbosity,
     /// The command.
     #[command(subcommand)]
     pub command: Command,
 }
+
+/// `-q` / `-v`, accepted before or after the command.
+#[derive(Debug, Clone, Copy, Default, Args)]
+pub struct Verbosity {
+    /// Print only errors (no progress, no summary, no warnings).
+    #[arg(short, long, global = true, conflicts_with = "verbose")]
+    pub quiet: bool,
+    /// Also print every recording's warnings and the reader's notes.
+    #[arg(short, long, global = true)]
+    pub verbose: bool,
+}
+
+/// Shells `ldh completions` writes a completion script for.
+pub use clap_complete::Shell;
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
@@ -76,9 +93,17 @@ pub enum Command {
     /// Write the embedded demo cohort (the default data of `ldh analyze`) to a folder.
     Demo {
         /// Output folder.
-        #[arg(long, default_value = "ldh-demo")]
+        #[arg(short, long, default_value = "ldh-demo")]
         out: PathBuf,
     },
+    /// Print a shell completion script: `ldh completions bash > ~/.local/share/bash-completion/completions/ldh`.
+    Completions {
+        /// The shell.
+        #[arg(value_enum)]
+        shell: Shell,
+    },
+    /// Print the manual page (roff): `ldh man > ldh.1 && man ./ldh.1`.
+    Man,
 }
 
 #[derive(Debug, Args)]
@@ -86,7 +111,7 @@ pub struct AnalyzeArgs {
     /// Inputs (see above); none: the embedded demo cohort.
     pub inputs: Vec<PathBuf>,
     /// Output folder.
-    #[arg(long, default_value = "ldh-out")]
+    #[arg(short, long, default_value = "ldh-out")]
     pub out: PathBuf,
     /// Attitude model: fusion (adaptive Kalman; default) or acc (accelerometer tilt only).
     #[arg(long, value_enum)]
@@ -95,8 +120,9 @@ pub struct AnalyzeArgs {
     /// paper's).
     #[arg(long, value_enum)]
     pub detector: Option<EventDetector>,
-    /// Sensor format: a built-in name or a TOML column map; default: detect.
-    #[arg(long)]
+    /// Input sensor format: a built-in name or a TOML column map; default: detect.
+    /// (`--format` is accepted as an alias for one release.)
+    #[arg(long = "input-format", alias = "format", value_name = "FORMAT")]
     pub format: Option<String>,
     /// Sensor height above the ankle when the manifest has none, m (default 0.10).
     #[arg(long)]
@@ -120,8 +146,11 @@ pub struct AnalyzeArgs {
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
     pub batch: Option<u64>,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(short, long)]
     pub jobs: Option<usize>,
+    /// Print the end-of-run summary on stdout as JSON (for scripts) instead of a sentence.
+    #[arg(long)]
+    pub json: bool,
 }
 
 #[derive(Debug, Args)]
@@ -129,7 +158,7 @@ pub struct ReportArgs {
     /// Output folder of `ldh analyze`.
     pub results: PathBuf,
     /// Where to write the reports (default: <RESULTS>/reports).
-    #[arg(long)]
+    #[arg(short, long)]
     pub out: Option<PathBuf>,
     /// A model saved by `ldh train`: its output goes into each subject's report.
     #[arg(long)]
@@ -144,7 +173,7 @@ pub struct ReportArgs {
     #[arg(long)]
     pub params: Option<PathBuf>,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(short, long)]
     pub jobs: Option<usize>,
 }
 
@@ -159,10 +188,10 @@ pub struct StatsArgs {
     #[arg(long, value_enum, conflicts_with = "results")]
     pub compare: Option<CompareModel>,
     /// Output folder.
-    #[arg(long, default_value = "ldh-stats")]
+    #[arg(short, long, default_value = "ldh-stats")]
     pub out: PathBuf,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(short, long)]
     pub jobs: Option<usize>,
 }
 
@@ -195,10 +224,10 @@ pub struct TrainArgs {
     #[arg(long, value_delimiter = ',')]
     pub features: Option<Vec<String>>,
     /// Output folder.
-    #[arg(long, default_value = "ldh-train")]
+    #[arg(short, long, default_value = "ldh-train")]
     pub out: PathBuf,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(short, long)]
     pub jobs: Option<usize>,
 }
 
@@ -213,7 +242,7 @@ pub struct PredictArgs {
     #[arg(long, conflicts_with = "inputs")]
     pub results: Option<PathBuf>,
     /// Output folder.
-    #[arg(long, default_value = "ldh-predict")]
+    #[arg(short, long, default_value = "ldh-predict")]
     pub out: PathBuf,
 }
 
@@ -229,14 +258,14 @@ pub struct EvaluateArgs {
     #[arg(long)]
     pub json: Option<PathBuf>,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(short, long)]
     pub jobs: Option<usize>,
 }
 
 #[derive(Debug, Args)]
 pub struct SimulateArgs {
     /// Output folder (created if missing).
-    #[arg(long)]
+    #[arg(short, long)]
     pub out: PathBuf,
     /// Number of healthy subjects.
     #[arg(long, default_value_t = 2)]
@@ -267,7 +296,7 @@ pub struct SimulateArgs {
     #[arg(long, default_value = "ldh")]
     pub format: String,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(short, long)]
     pub jobs: Option<usize>,
 }
 
@@ -276,8 +305,9 @@ pub struct InspectArgs {
     /// Sensor CSV files.
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
-    /// Format: a built-in name or a TOML column map; default: detect a built-in format.
-    #[arg(long)]
+    /// Input sensor format: a built-in name or a TOML column map; default: detect a built-in
+    /// format. (`--format` is accepted as an alias for one release.)
+    #[arg(long = "input-format", alias = "format", value_name = "FORMAT")]
     pub format: Option<String>,
     /// Longest gap in the timestamps bridged by interpolation, s.
     #[arg(long, default_value_t = 0.2)]

@@ -10,6 +10,7 @@ use crate::args::SimulateArgs;
 
 /// Run `ldh simulate`.
 pub fn run(a: SimulateArgs) -> Result<ExitCode> {
+    super::check_out_dir(&a.out)?;
     let format = resolve_format(&a.format)?;
     let params = CohortParams {
         healthy: a.healthy,
@@ -30,7 +31,7 @@ pub fn run(a: SimulateArgs) -> Result<ExitCode> {
     let pb = progress(params.len() as u64, "simulate");
     let rows = pool.install(|| write_cohort(&params, &a.out, &format, &|| pb.inc(1)))?;
     pb.finish_and_clear();
-    eprintln!(
+    super::note!(
         "wrote {} subjects ({} healthy, {} LDH) to {}",
         rows.len(),
         a.healthy,

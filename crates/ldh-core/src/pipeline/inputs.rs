@@ -197,6 +197,13 @@ pub fn discover(inputs: &[PathBuf]) -> Result<Vec<SubjectInput>> {
     if inputs.is_empty() {
         return demo_inputs();
     }
+    // A misspelt path is refused before any work (and before an output folder is made).
+    if let Some(p) = inputs.iter().find(|p| !p.exists()) {
+        return Err(LdhError::Io {
+            path: p.clone(),
+            source: std::io::Error::new(std::io::ErrorKind::NotFound, "no such file or folder"),
+        });
+    }
     let is_manifest = |p: &Path| {
         p.is_file()
             && std::fs::read_to_string(p)
