@@ -23,7 +23,12 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
         a.no_sta,
     )?;
     let format = a.format.as_deref().map(resolve_format).transpose()?;
-    let read = ReadParams::default().check()?;
+    let defaults = ReadParams::default();
+    let read = ReadParams {
+        max_file_size_mb: a.max_file_size_mb.unwrap_or(defaults.max_file_size_mb),
+        ..defaults
+    }
+    .check()?;
     let subjects = discover(&a.inputs)?;
     anyhow::ensure!(!subjects.is_empty(), "no subjects found in the inputs");
     if a.inputs.is_empty() {
