@@ -5,6 +5,7 @@
 //! One bad recording never stops the other leg or the other subjects: each side's outcome is a
 //! `Result`, with the error message naming the file.
 
+mod batch;
 mod bilateral;
 mod inputs;
 mod leg;
@@ -14,6 +15,7 @@ mod subject;
 #[cfg(test)]
 mod tests;
 
+pub use batch::{analyze_many_on, bare_subject, leg_from_arrays};
 pub use bilateral::{bilateral_events, bilateral_events_on_clock, BilateralEvent, EventKind};
 pub use inputs::{demo_inputs, discover, read_manifest, Source, SubjectInput};
 pub use leg::{analyze_leg, memory_report, LegResult};
