@@ -99,7 +99,16 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
         a.out.display()
     );
     for r in sum.warned() {
-        eprintln!("warning: {} {}: {}", r.subject_id, r.side, r.warnings);
+        for w in r.warnings.iter() {
+            eprintln!(
+                "{}: {} {}: {}: {}",
+                w.severity.as_str(),
+                r.subject_id,
+                r.side,
+                w.code,
+                w.message
+            );
+        }
     }
     for f in sum.failures() {
         eprintln!("error: {} {}: {}", f.subject_id, f.side, f.error);
