@@ -28,30 +28,29 @@ pub const MAX_BDK_DEG: f64 = 45.0;
 pub const OUT_OF_BOUNDS_SHARE: f64 = 0.10;
 
 /// Largest spread (10th to 90th percentile) of the mid-stance pitch over valid strides, deg:
-/// the shank is near vertical at mid-stance in every stride (a few degrees of natural
-/// variation); 20° means the attitude drifts.
+/// the shank is near vertical at mid-stance in every stride (stride-to-stride SD of sagittal
+/// segment angles in steady walking is 1-3°; Winter, Biomechanics and Motor Control of Human
+/// Movement, 2009), so a 10-90 % spread of 20° (≈ 8 SD) means the attitude drifts.
 pub const STANCE_PITCH_SPREAD_DEG: f64 = 20.0;
 
 /// Largest |median mid-stance pitch|, deg: the shank at foot flat leans 0-15° forward.
 pub const STANCE_PITCH_MAX_DEG: f64 = 30.0;
 
-/// Mid-stance samples (least sagittal angular velocity between HS and TO) of the valid strides.
+/// Pitch at mid-stance of the valid strides: the mean over the middle fifth of HS–TO (the
+/// shank passes the vertical there, at a phase that does not depend on where |ω| happens to be
+/// least: the shank rotates over the ankle through all of stance).
 fn stance_pitch(al: &Aligned, att: &Attitude, st: &[Stride]) -> Vec<f64> {
     let n = att.pitch_deg.len();
     let fs = al.fs_hz;
     let idx = |t: f64| ((t * fs).round().max(0.0) as usize).min(n.saturating_sub(1));
     st.iter()
-        .filter(|s| s.valid && s.to_time_s.is_finite())
+        .filter(|s| s.valid && s.to_time_s.is_finite() && s.to_time_s > s.hs_time_s)
         .filter_map(|s| {
-            let (a, b) = (idx(s.hs_time_s), idx(s.to_time_s));
-            (a..b)
-                .min_by(|&x, &y| {
-                    al.gyro_dps[1][x]
-                        .abs()
-                        .partial_cmp(&al.gyro_dps[1][y].abs())
-                        .unwrap_or(std::cmp::Ordering::Equal)
-                })
-                .map(|i| att.pitch_deg[i])
+            let d = s.to_time_s - s.hs_time_s;
+            let (a, b) = (idx(s.hs_time_s + 0.4 * d), idx(s.hs_time_s + 0.6 * d));
+            let w = &att.pitch_deg[a..=b.max(a)];
+            let m = w.iter().sum::<f64>() / w.len() as f64;
+            m.is_finite().then_some(m)
         })
         .collect()
 }

@@ -206,3 +206,125 @@ fn hugadb_faulty_gyroscopes_are_flagged_and_clean_legs_analysed() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// Both devices turned by `deg` about the shank axis (the device x axis): the mounting of real
+/// sensors strapped on at any angle (stroke trials: 50-70°).
+fn rotated_about_shank(rec: &crate::recording::Recording, deg: f64) -> crate::recording::Recording {
+    let (s, c) = deg.to_radians().sin_cos();
+    let rot = |v: &[Vec<f64>; 3]| -> [Vec<f64>; 3] {
+        let y = v[1].iter().zip(&v[2]).map(|(y, z)| c * y - s * z).collect();
+        let z = v[1].iter().zip(&v[2]).map(|(y, z)| s * y + c * z).collect();
+        [v[0].clone(), y, z]
+    };
+    let mut out = rec.clone();
+    out.acc_g = rot(&rec.acc_g);
+    out.gyro_dps = rot(&rec.gyro_dps);
+    out
+}
+
+#[test]
+fn sensors_rotated_about_the_shank_never_look_swapped() {
+    let c = crate::simulate::CohortParams {
+        healthy: 1,
+        ldh: 0,
+        duration_s: 25.0,
+        seed: 11,
+        ..crate::simulate::CohortParams::default()
+    };
+    let mut sub = c.simulate(0).unwrap();
+    let (l0, r0) = (sub.left.recording.clone(), sub.right.recording.clone());
+    let params = AnalysisParams {
+        compute_sta: false,
+        ..AnalysisParams::default()
+    };
+    let mut failures = Vec::new();
+    for k in 0..12 {
+        let deg = 30.0 * k as f64;
+        sub.left.recording = rotated_about_shank(&l0, deg);
+        sub.right.recording = rotated_about_shank(&r0, deg);
+        let res = crate::pipeline::analyze_simulated(&sub, &params);
+        let mut all: Vec<Warning> = res.warnings.clone();
+        for (side, leg) in res.legs() {
+            let Ok(leg) = leg else {
+                failures.push(format!("{deg} deg {side}: failed"));
+                continue;
+            };
+            if leg.parameters.strides_valid < 5 || !leg.parameters.wqk_deg.is_finite() {
+                failures.push(format!(
+                    "{deg} deg {side}: not analysed: {:?}",
+                    leg.warnings
+                ));
+            }
+            all.extend(leg.warnings.iter().cloned());
+        }
+        for w in &all {
+            // A turn of 180° makes identical lateral devices look exchanged: only then may the
+            // mounting note appear, and nothing is ever more than a note.
+            let near_180 = (deg - 180.0).abs() <= CANONICAL_MOUNT_DEG + 15.0;
+            let swap_ok =
+                w.code == codes::POSSIBLE_SWAP && near_180 && w.severity == Severity::Note;
+            if [codes::POSSIBLE_SWAP, codes::RUNNING, codes::UPSIDE_DOWN].contains(&w.code.as_str())
+                && !swap_ok
+            {
+                failures.push(format!("{deg} deg: false {}: {}", w.code, w.message));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+fn stride(i: usize, t: f64, stance: f64) -> crate::gait::Stride {
+    crate::gait::Stride {
+        stride_index: i,
+        hs_time_s: i as f64 * t,
+        to_time_s: i as f64 * t + stance * t,
+        next_hs_time_s: (i + 1) as f64 * t,
+        stride_time_s: t,
+        stance_ratio: stance,
+        stride_length_m: 1.4,
+        speed_mps: 1.4 / t,
+        wqk_deg: 40.0,
+        pbi_deg: 20.0,
+        bdk_deg: 8.0,
+        heading_change_deg: 0.0,
+        bout: 0,
+        valid: true,
+        reason: String::new(),
+    }
+}
+
+fn codes_of(t: f64, stance: f64) -> Vec<String> {
+    let st: Vec<crate::gait::Stride> = (0..20).map(|i| stride(i, t, stance)).collect();
+    let p = crate::gait::side_parameters(&st, None);
+    let al = crate::align::Alignment {
+        r_f_from_device: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        gyro_bias_dps: [0.0; 3],
+        quiet_standing_s: None,
+        still_periods_s: vec![],
+        mirrored: false,
+        axial_rotation_deg: 0.0,
+        shank_axis_tilt_deg: 3.0,
+        sagittal_variance_share: 0.9,
+        notes: vec![],
+    };
+    leg_warnings(&al, &st, &p, 100.0)
+        .into_iter()
+        .map(|w| w.code)
+        .collect()
+}
+
+#[test]
+fn running_needs_a_flight_phase_and_brisk_walking_is_walking() {
+    // Brisk walking: 0.79-0.8 s strides (150 steps/min), 60 % stance.
+    assert!(codes_of(0.8, 0.60).is_empty(), "{:?}", codes_of(0.8, 0.60));
+    assert!(codes_of(0.79, 0.60).is_empty());
+    assert!(codes_of(0.72, 0.58).is_empty());
+    // Running: a flight phase (35 % stance), at any cadence.
+    assert_eq!(codes_of(0.7, 0.35), vec![codes::RUNNING]);
+    assert_eq!(codes_of(0.9, 0.40), vec![codes::RUNNING]);
+    // 0.6 s strides with 60 % stance: no gait; the time base is wrong.
+    assert_eq!(
+        codes_of(0.6, 0.60),
+        vec![codes::IMPLAUSIBLE_CADENCE_FOR_RATE]
+    );
+}
