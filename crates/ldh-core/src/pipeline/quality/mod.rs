@@ -160,8 +160,9 @@ pub fn apply_to_strides(st: &mut [Stride], warnings: &[Warning]) {
         let all = params::ALL.iter().all(|c| has(c));
         for s in st.iter_mut() {
             if all {
+                // What else was found about this stride came from the same faulty signals.
                 s.valid = false;
-                add_reason(s, &w.code.replace('_', " "));
+                s.reason = w.code.replace('_', " ");
             }
             if has("wqk_deg") {
                 s.wqk_deg = f64::NAN;
