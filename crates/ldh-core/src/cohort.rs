@@ -144,6 +144,58 @@ pub fn value(row: &RecordingRow, column: &str) -> Option<f64> {
     .filter(|v| v.is_finite())
 }
 
+/// One person's row for one side: the row itself when the person has one trial; with several
+/// trials (rows sharing `subject_id`), the mean over the trials analysed (`status` ok) of each
+/// parameter of [`PARAMETERS`] that has a value, so a person counts once in every statistic and
+/// classifier whatever the number of trials. When no trial of that side was analysed, the first
+/// failed row (its error says why).
+fn per_person(rows: &[&RecordingRow], side: &str) -> Option<RecordingRow> {
+    let all: Vec<&RecordingRow> = rows.iter().copied().filter(|r| r.side == side).collect();
+    let ok: Vec<&RecordingRow> = all.iter().copied().filter(|r| r.status == "ok").collect();
+    if all.len() <= 1 || ok.is_empty() {
+        return all.first().map(|r| (*r).clone());
+    }
+    if ok.len() == 1 {
+        return Some(ok[0].clone());
+    }
+    let mut out = ok[0].clone();
+    for p in PARAMETERS {
+        let v: Vec<f64> = ok.iter().filter_map(|r| value(r, p.column)).collect();
+        let mean = (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64);
+        set_value(&mut out, p.column, mean);
+    }
+    out.trial_id = format!(
+        "mean of {} trials ({})",
+        ok.len(),
+        ok.iter()
+            .map(|r| r.trial_id.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    Some(out)
+}
+
+/// Set a parameter of [`PARAMETERS`] in a per-recording row.
+fn set_value(row: &mut RecordingRow, column: &str, v: Option<f64>) {
+    let slot = match column {
+        "step_frequency_steps_per_s" => &mut row.step_frequency_steps_per_s,
+        "stride_length_m" => &mut row.stride_length_m,
+        "speed_mps" => &mut row.speed_mps,
+        "step_time_s" => &mut row.step_time_s,
+        "stride_time_s" => &mut row.stride_time_s,
+        "stance_ratio" => &mut row.stance_ratio,
+        "swing_ratio" => &mut row.swing_ratio,
+        "stride_length_cv" => &mut row.stride_length_cv,
+        "stride_time_cv" => &mut row.stride_time_cv,
+        "sta_per_s" => &mut row.sta_per_s,
+        "wqk_deg" => &mut row.wqk_deg,
+        "pbi_deg" => &mut row.pbi_deg,
+        "bdk_deg" => &mut row.bdk_deg,
+        _ => return,
+    };
+    *slot = v;
+}
+
 /// One subject's values for the cohort analysis.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SubjectValues {
@@ -185,8 +237,8 @@ impl Cohort {
             excluded: vec![],
         };
         for (id, rows) in subjects {
-            let of = |side: &str| rows.iter().copied().find(|r| r.side == side);
-            let (l, r) = (of("left"), of("right"));
+            let (l_own, r_own) = (per_person(&rows, "left"), per_person(&rows, "right"));
+            let (l, r) = (l_own.as_ref(), r_own.as_ref());
             let group = l.or(r).map(|x| x.group.clone()).unwrap_or_default();
             let problem = |x: Option<&RecordingRow>, side: &str| -> Option<String> {
                 match x {
@@ -226,7 +278,9 @@ impl Cohort {
                 "" => c.excluded.push(format!(
                     "{id}: no group (give a manifest with group and affected_side)"
                 )),
-                other => c.excluded.push(format!("{id}: unknown group '{other}'")),
+                other => c.excluded.push(format!(
+                    "{id}: group '{other}' is not compared (the statistics compare ldh with healthy)"
+                )),
             }
         }
         for (name, n) in [("LDH", c.ldh.len()), ("healthy", c.healthy.len())] {

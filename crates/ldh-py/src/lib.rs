@@ -559,13 +559,8 @@ fn analyze_pair<'py>(
             Ok((rec, report, format!("<{side} arrays>")))
         };
         let input = SubjectInput {
-            setting: None,
             subject_id: id,
-            group: None,
-            affected_side: None,
-            left: None,
-            right: None,
-            sensor_height_m: None,
+            ..SubjectInput::default()
         };
         let res = vec![core_pair(
             &input,

@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use anyhow::Result;
 use ldh_core::io::ReadParams;
-use ldh_core::pipeline::{analyze_to_folder, discover, FolderOptions};
+use ldh_core::pipeline::{analyze_to_folder, discover_with, FolderOptions, InputOptions};
 use ldh_core::report::{BuildSources, ReportParams};
 
 use super::{analysis_params, progress, resolve_format, thread_pool};
@@ -22,7 +22,13 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
     )?;
     let format = a.format.as_deref().map(resolve_format).transpose()?;
     let read = ReadParams::default().check()?;
-    let subjects = discover(&a.inputs)?;
+    let subjects = discover_with(
+        &a.inputs,
+        &InputOptions {
+            subject_id: a.subject.clone(),
+            setting: a.setting,
+        },
+    )?;
     anyhow::ensure!(!subjects.is_empty(), "no subjects found in the inputs");
     if a.inputs.is_empty() {
         eprintln!(

@@ -8,15 +8,22 @@
 mod bilateral;
 mod inputs;
 mod leg;
+mod manifest;
 mod many;
 mod quality;
 mod subject;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_inputs;
 
 pub use bilateral::{bilateral_events, bilateral_events_on_clock, BilateralEvent, EventKind};
-pub use inputs::{demo_inputs, discover, read_manifest, Source, SubjectInput};
+pub use inputs::{
+    demo_inputs, discover, discover_with, is_manifest, read_manifest, subject_id_from_files,
+    InputOptions, Source, SubjectInput,
+};
 pub use leg::{analyze_leg, memory_report, LegResult};
+pub use manifest::{is_manifest_text, GroupLabel, MANIFEST_COLUMNS};
 pub use many::{
     analyze_many, analyze_to_folder, recording_rows_many, FolderOptions, FolderSummary,
 };
