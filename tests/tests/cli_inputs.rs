@@ -235,6 +235,15 @@ fn manifest_with_trials_labels_and_unknown_sides() {
     assert!(out.join("traces/P1__trial_b.json").is_file());
     let strides = read_csv(&out.join("strides.csv"));
     assert!(strides.iter().any(|s| s["trial_id"] == "b"));
+    // One report per person, its values the mean of the trials, its plots from the first.
+    let page = std::fs::read_to_string(out.join("reports/subjects/P1.html")).unwrap();
+    assert!(
+        page.contains("mean of 2 trials (a, b)") && page.contains("plots: trial a"),
+        "{}",
+        &page[..page.len().min(3000)]
+    );
+    assert!(!page.contains("Signal plots are not available"));
+    assert!(!out.join("reports/subjects/P1__trial_a.html").exists());
     // A typo in the header is refused, naming it.
     std::fs::write(&manifest, "subject_id,left,rigth\nP1,a,b\n").unwrap();
     let o = ldh(&[

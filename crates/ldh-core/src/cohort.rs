@@ -146,10 +146,12 @@ pub fn value(row: &RecordingRow, column: &str) -> Option<f64> {
 
 /// One person's row for one side: the row itself when the person has one trial; with several
 /// trials (rows sharing `subject_id`), the mean over the trials analysed (`status` ok) of each
-/// parameter of [`PARAMETERS`] that has a value, so a person counts once in every statistic and
-/// classifier whatever the number of trials. When no trial of that side was analysed, the first
-/// failed row (its error says why).
-fn per_person(rows: &[&RecordingRow], side: &str) -> Option<RecordingRow> {
+/// parameter of [`PARAMETERS`] (and STA per stride) that has a value, so a person counts once in
+/// every statistic, classifier and report whatever the number of trials. The aggregate's
+/// duration and stride counts are the trials' sums, its `source` and `warnings` each trial's
+/// (`t2: ...`), its `trial_id` says `mean of 2 trials (t1, t2)`. When no trial of that side was
+/// analysed, the first failed row (its error says why).
+pub fn person_row(rows: &[&RecordingRow], side: &str) -> Option<RecordingRow> {
     let all: Vec<&RecordingRow> = rows.iter().copied().filter(|r| r.side == side).collect();
     let ok: Vec<&RecordingRow> = all.iter().copied().filter(|r| r.status == "ok").collect();
     if all.len() <= 1 || ok.is_empty() {
@@ -159,11 +161,33 @@ fn per_person(rows: &[&RecordingRow], side: &str) -> Option<RecordingRow> {
         return Some(ok[0].clone());
     }
     let mut out = ok[0].clone();
+    let mean = |v: Vec<f64>| (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64);
     for p in PARAMETERS {
-        let v: Vec<f64> = ok.iter().filter_map(|r| value(r, p.column)).collect();
-        let mean = (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64);
-        set_value(&mut out, p.column, mean);
+        set_value(
+            &mut out,
+            p.column,
+            mean(ok.iter().filter_map(|r| value(r, p.column)).collect()),
+        );
     }
+    out.sta_per_stride = mean(ok.iter().filter_map(|r| r.sta_per_stride).collect());
+    let sum = |f: fn(&RecordingRow) -> Option<usize>| ok.iter().map(|r| f(r)).sum();
+    out.strides_total = sum(|r| r.strides_total);
+    out.strides_valid = sum(|r| r.strides_valid);
+    out.duration_s = ok.iter().map(|r| r.duration_s).sum();
+    // Each `; `-separated item prefixed by its trial.
+    let each = |f: fn(&RecordingRow) -> &str| -> String {
+        ok.iter()
+            .flat_map(|r| {
+                f(r).split("; ")
+                    .filter(|x| !x.is_empty())
+                    .map(|x| format!("{}: {x}", r.trial_id))
+                    .collect::<Vec<_>>()
+            })
+            .collect::<Vec<_>>()
+            .join("; ")
+    };
+    out.source = each(|r| &r.source);
+    out.warnings = each(|r| &r.warnings);
     out.trial_id = format!(
         "mean of {} trials ({})",
         ok.len(),
@@ -237,7 +261,7 @@ impl Cohort {
             excluded: vec![],
         };
         for (id, rows) in subjects {
-            let (l_own, r_own) = (per_person(&rows, "left"), per_person(&rows, "right"));
+            let (l_own, r_own) = (person_row(&rows, "left"), person_row(&rows, "right"));
             let (l, r) = (l_own.as_ref(), r_own.as_ref());
             let group = l.or(r).map(|x| x.group.clone()).unwrap_or_default();
             let problem = |x: Option<&RecordingRow>, side: &str| -> Option<String> {

@@ -82,6 +82,14 @@ impl Default for AnalysisParams {
 }
 
 impl AnalysisParams {
+    /// These parameters for a walk on a treadmill (manifest `setting`, `--setting`): no stride
+    /// is a turn (`strides.turn_deg` = 180), since the walker cannot turn and a heading change
+    /// is gyroscope drift; every other parameter as given (docs/input.md "Setting").
+    pub fn for_treadmill(&self) -> Self {
+        let mut p = self.clone();
+        p.strides.turn_deg = 180.0;
+        p
+    }
     /// With another attitude model.
     pub fn model(mut self, m: AttitudeModel) -> Self {
         self.attitude.model = m;

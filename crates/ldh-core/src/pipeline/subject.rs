@@ -100,6 +100,14 @@ pub fn analyze_pair(
     right: LoadedLeg,
     params: &AnalysisParams,
 ) -> SubjectResult {
+    let own;
+    let params = match input.setting {
+        Some(crate::recording::Setting::Treadmill) => {
+            own = params.for_treadmill();
+            &own
+        }
+        _ => params,
+    };
     let run =
         |loaded: LoadedLeg, side: Side| -> std::result::Result<(LegResult, Vec<f64>), String> {
             let (rec, report, label) = loaded?;

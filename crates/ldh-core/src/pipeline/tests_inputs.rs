@@ -284,3 +284,53 @@ fn statistics_and_cv_count_each_person_once_whatever_the_trials() {
         assert_eq!(n, per_person, "each person's row predicted once");
     }
 }
+
+/// `setting = treadmill` turns the turn detection off (a walker on a belt cannot turn); the
+/// same recordings overground have their turn's strides flagged.
+#[test]
+fn treadmill_setting_flags_no_stride_as_turning() {
+    let c = crate::simulate::CohortParams {
+        healthy: 1,
+        ldh: 0,
+        duration_s: 40.0,
+        seed: 3,
+        turn: true,
+        ..crate::simulate::CohortParams::default()
+    };
+    let s = c.simulate(0).unwrap();
+    let params = AnalysisParams {
+        compute_sta: false,
+        ..AnalysisParams::default()
+    };
+    let leg = |l: &crate::simulate::SimLeg| -> LoadedLeg {
+        Ok((
+            l.recording.clone(),
+            memory_report(&l.recording),
+            "sim".into(),
+        ))
+    };
+    let turning = |setting: Option<Setting>| -> usize {
+        let input = SubjectInput {
+            subject_id: "T".into(),
+            setting,
+            ..SubjectInput::default()
+        };
+        let r = analyze_pair(&input, leg(&s.left), leg(&s.right), &params);
+        assert_eq!(r.setting, setting);
+        r.legs()
+            .iter()
+            .map(|(_, l)| {
+                let l = l.as_ref().unwrap();
+                l.strides
+                    .iter()
+                    .filter(|x| x.reason.contains("turning"))
+                    .count()
+            })
+            .sum()
+    };
+    assert!(turning(None) >= 2, "the simulated turn is found overground");
+    assert_eq!(turning(Some(Setting::Overground)), turning(None));
+    assert_eq!(turning(Some(Setting::Treadmill)), 0);
+    assert_eq!(params.for_treadmill().strides.turn_deg, 180.0);
+    params.for_treadmill().check().unwrap();
+}
