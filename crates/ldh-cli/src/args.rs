@@ -129,6 +129,13 @@ pub struct AnalyzeArgs {
     /// Sensor height above the ankle when the manifest has none, m (default 0.10).
     #[arg(long)]
     pub sensor_height_m: Option<f64>,
+    /// Subject id of two files given directly (default: the common stem of their names).
+    #[arg(long)]
+    pub subject: Option<String>,
+    /// Where the walks happened, for subjects whose manifest row does not say: overground
+    /// (default; turns are detected) or treadmill (no turns).
+    #[arg(long, value_enum)]
+    pub setting: Option<ldh_core::Setting>,
     /// All analysis parameters as a TOML file (docs/parameters.md); the flags above, when given,
     /// override it.
     #[arg(long)]

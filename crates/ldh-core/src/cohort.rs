@@ -144,6 +144,93 @@ pub fn value(row: &RecordingRow, column: &str) -> Option<f64> {
     .filter(|v| v.is_finite())
 }
 
+/// One person's row for one side: the row itself when the person has one trial; with several
+/// trials (rows sharing `subject_id`), the mean over the trials analysed (`status` ok) of each
+/// parameter of [`PARAMETERS`] (and STA per stride) that has a value, so a person counts once in
+/// every statistic, classifier and report whatever the number of trials. The aggregate's
+/// duration and stride counts are the trials' sums, its `source` and `warnings` each trial's
+/// (`t2: ...`), its `trial_id` says `mean of 2 trials (t1, t2)`. When no trial of that side was
+/// analysed, the first failed row (its error says why).
+pub fn person_row(rows: &[&RecordingRow], side: &str) -> Option<RecordingRow> {
+    let all: Vec<&RecordingRow> = rows.iter().copied().filter(|r| r.side == side).collect();
+    let ok: Vec<&RecordingRow> = all.iter().copied().filter(|r| r.status == "ok").collect();
+    if all.len() <= 1 || ok.is_empty() {
+        return all.first().map(|r| (*r).clone());
+    }
+    if ok.len() == 1 {
+        return Some(ok[0].clone());
+    }
+    let mut out = ok[0].clone();
+    let mean = |v: Vec<f64>| (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64);
+    for p in PARAMETERS {
+        set_value(
+            &mut out,
+            p.column,
+            mean(ok.iter().filter_map(|r| value(r, p.column)).collect()),
+        );
+    }
+    out.sta_per_stride = mean(ok.iter().filter_map(|r| r.sta_per_stride).collect());
+    let sum = |f: fn(&RecordingRow) -> Option<usize>| ok.iter().map(|r| f(r)).sum();
+    out.strides_total = sum(|r| r.strides_total);
+    out.strides_valid = sum(|r| r.strides_valid);
+    out.duration_s = ok.iter().map(|r| r.duration_s).sum();
+    // Each `; `-separated item prefixed by its trial.
+    let each = |f: fn(&RecordingRow) -> &str| -> String {
+        ok.iter()
+            .flat_map(|r| {
+                f(r).split("; ")
+                    .filter(|x| !x.is_empty())
+                    .map(|x| format!("{}: {x}", r.trial_id))
+                    .collect::<Vec<_>>()
+            })
+            .collect::<Vec<_>>()
+            .join("; ")
+    };
+    out.source = each(|r| &r.source);
+    // Each trial's structured warnings, the message prefixed by its trial.
+    out.warnings = crate::pipeline::quality::WarningList(
+        ok.iter()
+            .flat_map(|r| {
+                r.warnings.iter().map(|w| {
+                    let mut w = w.clone();
+                    w.message = format!("{}: {}", r.trial_id, w.message);
+                    w
+                })
+            })
+            .collect(),
+    );
+    out.trial_id = format!(
+        "mean of {} trials ({})",
+        ok.len(),
+        ok.iter()
+            .map(|r| r.trial_id.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    Some(out)
+}
+
+/// Set a parameter of [`PARAMETERS`] in a per-recording row.
+fn set_value(row: &mut RecordingRow, column: &str, v: Option<f64>) {
+    let slot = match column {
+        "step_frequency_steps_per_s" => &mut row.step_frequency_steps_per_s,
+        "stride_length_m" => &mut row.stride_length_m,
+        "speed_mps" => &mut row.speed_mps,
+        "step_time_s" => &mut row.step_time_s,
+        "stride_time_s" => &mut row.stride_time_s,
+        "stance_ratio" => &mut row.stance_ratio,
+        "swing_ratio" => &mut row.swing_ratio,
+        "stride_length_cv" => &mut row.stride_length_cv,
+        "stride_time_cv" => &mut row.stride_time_cv,
+        "sta_per_s" => &mut row.sta_per_s,
+        "wqk_deg" => &mut row.wqk_deg,
+        "pbi_deg" => &mut row.pbi_deg,
+        "bdk_deg" => &mut row.bdk_deg,
+        _ => return,
+    };
+    *slot = v;
+}
+
 /// One subject's values for the cohort analysis.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SubjectValues {
@@ -185,8 +272,8 @@ impl Cohort {
             excluded: vec![],
         };
         for (id, rows) in subjects {
-            let of = |side: &str| rows.iter().copied().find(|r| r.side == side);
-            let (l, r) = (of("left"), of("right"));
+            let (l_own, r_own) = (person_row(&rows, "left"), person_row(&rows, "right"));
+            let (l, r) = (l_own.as_ref(), r_own.as_ref());
             let group = l.or(r).map(|x| x.group.clone()).unwrap_or_default();
             let problem = |x: Option<&RecordingRow>, side: &str| -> Option<String> {
                 match x {
@@ -226,7 +313,9 @@ impl Cohort {
                 "" => c.excluded.push(format!(
                     "{id}: no group (give a manifest with group and affected_side)"
                 )),
-                other => c.excluded.push(format!("{id}: unknown group '{other}'")),
+                other => c.excluded.push(format!(
+                    "{id}: group '{other}' is not compared (the statistics compare ldh with healthy)"
+                )),
             }
         }
         for (name, n) in [("LDH", c.ldh.len()), ("healthy", c.healthy.len())] {

@@ -124,30 +124,51 @@ pub enum LdhError {
         offset: u64,
     },
     /// No header row with the expected columns was found.
-    #[error("{}: no header row with the expected columns; missing {missing:?} (format '{format}'). First row seen: {first_row:?}", path.display())]
+    #[error("{}: no header row with the expected columns; missing {missing:?} (format '{format}'){hint}. First row seen: {first_row:?}", path.display())]
     NoHeader {
         /// The file.
         path: PathBuf,
-        /// The format that was tried.
+        /// The format that was tried (the closest one, when detecting).
         format: String,
         /// The columns that were not found.
         missing: Vec<String>,
+        /// The header's names closest to the missing ones (`; closest in the header: ...`).
+        hint: String,
         /// The first non-comment row of the file, for the message.
         first_row: String,
     },
-    /// A required column is missing from the header.
-    #[error(
-        "{loc}: column '{column}' required by format '{format}' is missing; header has {header:?}"
-    )]
+    /// Required columns are missing from the header.
+    #[error("{loc}: missing column(s) {missing:?} required by {by}")]
     MissingColumn {
         /// Where (the header line).
         loc: Location,
-        /// The column's name.
+        /// The columns not found.
+        missing: Vec<String>,
+        /// What requires them, then the header's closest names or what is accepted
+        /// (`format 'ldh'; closest in the header: acc_x → AccX`).
+        by: String,
+    },
+    /// A header names a column that is not accepted there (a typo would otherwise be ignored).
+    #[error("{loc}: unknown column '{column}' in {what}; accepted: {accepted}")]
+    UnknownColumn {
+        /// Where (the header line and column).
+        loc: Location,
+        /// The column name.
         column: String,
-        /// The format in use.
-        format: String,
-        /// The columns the header does have.
-        header: Vec<String>,
+        /// What the header belongs to (`the cohort manifest`).
+        what: String,
+        /// The accepted names, comma-separated.
+        accepted: String,
+    },
+    /// A column the format reads occurs more than once in the header: neither may silently win.
+    #[error("{loc}: column '{column}' occurs {} times in the header (columns {positions:?}); rename the copies or, for one block of columns per sensor, set [sensor] block in the format", positions.len())]
+    DuplicateColumn {
+        /// Where (the header line).
+        loc: Location,
+        /// The column name.
+        column: String,
+        /// Its 1-based positions.
+        positions: Vec<usize>,
     },
     /// A row has fewer or more fields than the header.
     #[error("{loc}: row has {found} fields, the header has {expected}{hint}")]

@@ -39,7 +39,8 @@ pub struct StrideParams {
     pub min_stride_s: f64,
     /// Longest physiological stride, s. Default 2.5.
     pub max_stride_s: f64,
-    /// Heading change over one stride above which the stride is part of a turn, deg. Default 20.
+    /// Heading change over one stride above which the stride is part of a turn, deg. Default 20;
+    /// 180 turns the detection off (a treadmill: the heading drift of the gyroscope is no turn).
     pub turn_deg: f64,
     /// Height of the sensor above the ankle joint along the shank, m. Default 0.10.
     pub sensor_height_m: f64,
@@ -68,11 +69,11 @@ impl StrideParams {
     /// Validate.
     pub fn check(&self) -> Result<ValidStrideParams> {
         check_stride_range(self.min_stride_s, self.max_stride_s)?;
-        if !(self.turn_deg > 0.0 && self.turn_deg < 180.0) {
+        if !(self.turn_deg > 0.0 && self.turn_deg <= 180.0) {
             return Err(LdhError::param(
                 "turn_deg",
                 self.turn_deg,
-                "must lie in (0, 180)",
+                "must lie in (0, 180] (180: no stride is a turn, as on a treadmill)",
             ));
         }
         if !(self.sensor_height_m.is_finite() && (0.0..=0.5).contains(&self.sensor_height_m)) {

@@ -65,6 +65,9 @@ pub struct StrideRow {
     pub valid: bool,
     /// Why not valid.
     pub reason: String,
+    /// Trial of the person (manifest `trial_id`), empty for a single recording pair.
+    #[serde(default)]
+    pub trial_id: String,
 }
 
 /// A row of the per-recording table (one per subject and side).
@@ -145,6 +148,13 @@ pub struct RecordingRow {
     pub outliers_replaced: Option<usize>,
     /// Clipped samples.
     pub clipped_samples: Option<usize>,
+    /// Trial of the person (manifest `trial_id`), empty for a single recording pair. The
+    /// cohort statistics and classifiers average a person's trials first.
+    #[serde(default)]
+    pub trial_id: String,
+    /// `overground`, `treadmill`, or empty when not said (analysed as overground).
+    #[serde(default)]
+    pub setting: String,
 }
 
 /// The per-stride rows of a set of results.
@@ -173,6 +183,7 @@ pub fn stride_rows(results: &[SubjectResult]) -> Vec<StrideRow> {
                     heading_change_deg: num(s.heading_change_deg, 2),
                     valid: s.valid,
                     reason: s.reason.clone(),
+                    trial_id: r.trial_id.clone().unwrap_or_default(),
                 });
             }
         }
@@ -185,20 +196,25 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
     let mut out = Vec::new();
     for r in results {
         for (side, leg) in r.legs() {
-            let role = match (r.group, r.affected_side) {
-                (Some(crate::simulate::Group::Healthy), _) => "healthy",
-                (Some(crate::simulate::Group::Ldh), Some(a)) if a == side => "affected",
-                (Some(crate::simulate::Group::Ldh), Some(_)) => "unaffected",
+            use crate::pipeline::GroupLabel;
+            let role = match (&r.group, r.affected_side) {
+                (Some(GroupLabel::Healthy), _) => "healthy",
+                (Some(GroupLabel::Ldh), Some(a)) if a == side => "affected",
+                (Some(GroupLabel::Ldh), Some(_)) => "unaffected",
                 _ => "",
             };
             let mut row = RecordingRow {
                 subject_id: r.subject_id.clone(),
                 side: side.as_str().into(),
                 model: r.model.as_str().into(),
-                group: r.group.map(|g| g.as_str().to_string()).unwrap_or_default(),
-                affected_side: match (r.group, r.affected_side) {
+                group: r
+                    .group
+                    .as_ref()
+                    .map(|g| g.as_str().to_string())
+                    .unwrap_or_default(),
+                affected_side: match (&r.group, r.affected_side) {
                     (_, Some(s)) => s.as_str().into(),
-                    (Some(_), None) => "none".into(),
+                    (Some(_), None) if !r.affected_side_unknown => "none".into(),
                     _ => String::new(),
                 },
                 side_role: role.into(),
@@ -230,6 +246,11 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
                 axial_rotation_deg: None,
                 outliers_replaced: None,
                 clipped_samples: None,
+                trial_id: r.trial_id.clone().unwrap_or_default(),
+                setting: r
+                    .setting
+                    .map(|s| s.as_str().to_string())
+                    .unwrap_or_default(),
             };
             match leg {
                 Err(e) => {
@@ -288,6 +309,9 @@ pub struct EventRow {
     pub event: String,
     /// Where the alternation breaks, why; else empty.
     pub order: String,
+    /// Trial of the person (manifest `trial_id`), empty for a single recording pair.
+    #[serde(default)]
+    pub trial_id: String,
 }
 
 /// Rows grouped by subject in one pass, subjects in the order they first appear (a batch of
@@ -319,6 +343,7 @@ pub fn event_rows(results: &[SubjectResult]) -> Vec<EventRow> {
                     crate::pipeline::EventKind::ToeOff => "TO".into(),
                 },
                 order: e.order,
+                trial_id: r.trial_id.clone().unwrap_or_default(),
             });
         }
     }
@@ -365,7 +390,7 @@ pub fn to_csv<T: Serialize>(rows: &[T], header_if_empty: &[&str]) -> Result<Stri
 }
 
 /// Column names of the per-stride table.
-pub const STRIDE_COLUMNS: [&str; 18] = [
+pub const STRIDE_COLUMNS: [&str; 19] = [
     "subject_id",
     "side",
     "model",
@@ -384,7 +409,11 @@ pub const STRIDE_COLUMNS: [&str; 18] = [
     "heading_change_deg",
     "valid",
     "reason",
+    "trial_id",
 ];
+
+/// Column names of the bilateral event table.
+pub const EVENT_COLUMNS: [&str; 6] = ["subject_id", "time_s", "side", "event", "order", "trial_id"];
 
 /// A table written row by row to `<stem>.csv` (and `<stem>.json` as one array when asked), each
 /// through an [`AtomicFile`]: a batch streams its rows out instead of holding them, and an

@@ -6,7 +6,9 @@ use std::process::ExitCode;
 use anyhow::Result;
 use ldh_core::io::ReadParams;
 use ldh_core::output::RecordingRow;
-use ldh_core::pipeline::{analyze_to_folder, discover, FolderOptions, FolderSummary};
+use ldh_core::pipeline::{
+    analyze_to_folder, discover_with, FolderOptions, FolderSummary, InputOptions,
+};
 use ldh_core::report::{BuildSources, ReportParams};
 
 use super::{analysis_params, progress, resolve_format, thread_pool};
@@ -29,7 +31,13 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
         ..defaults
     }
     .check()?;
-    let subjects = discover(&a.inputs)?;
+    let subjects = discover_with(
+        &a.inputs,
+        &InputOptions {
+            subject_id: a.subject.clone(),
+            setting: a.setting,
+        },
+    )?;
     anyhow::ensure!(!subjects.is_empty(), "no subjects found in the inputs");
     if a.inputs.is_empty() {
         super::note!(

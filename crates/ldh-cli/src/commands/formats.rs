@@ -1,4 +1,4 @@
-//! `ldh formats`: list the built-in vendor formats or print one as TOML.
+//! `ldh formats`: list the built-in vendor formats or print one's TOML file (comments included).
 
 use std::process::ExitCode;
 
@@ -12,7 +12,14 @@ pub fn run(name: Option<String>) -> anyhow::Result<ExitCode> {
                 println!("{:<20} {}", f.name, f.description);
             }
         }
-        Some(n) => print!("{}", super::resolve_format(&n)?.to_toml()),
+        // The shipped file's own text, comments on mounting included; a map file as written.
+        Some(n) => match FormatSpec::builtin_text(&n) {
+            Some(text) => print!("{text}"),
+            None => {
+                super::resolve_format(&n)?;
+                print!("{}", std::fs::read_to_string(&n)?)
+            }
+        },
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -118,13 +118,85 @@ pub enum TimeUnit {
     None,
 }
 
+/// Which column of the file holds a value: a name (case-insensitive), alternative names (the
+/// first one present in the header is used: exports that spell a column two ways), or a
+/// 1-based column number.
+///
+/// In TOML: `"Acc_X"`, `["RS_acc_x", "acc_rs_x"]` or `7`.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum ColumnRef {
+    /// A 1-based column number.
+    Index(usize),
+    /// A column name.
+    Name(String),
+    /// Alternative names, in order of preference.
+    AnyOf(Vec<String>),
+}
+
+impl From<&str> for ColumnRef {
+    fn from(s: &str) -> Self {
+        ColumnRef::Name(s.to_string())
+    }
+}
+
+impl From<String> for ColumnRef {
+    fn from(s: String) -> Self {
+        ColumnRef::Name(s)
+    }
+}
+
+impl ColumnRef {
+    /// The names this reference accepts (empty for a column number).
+    pub fn names(&self) -> &[String] {
+        match self {
+            ColumnRef::Index(_) => &[],
+            ColumnRef::Name(n) => std::slice::from_ref(n),
+            ColumnRef::AnyOf(v) => v,
+        }
+    }
+
+    /// How the reference reads in messages: `acc_x`, `RS_acc_x|acc_rs_x` or `#7`.
+    pub fn describe(&self, prefix: &str) -> String {
+        match self {
+            ColumnRef::Index(i) => format!("#{i}"),
+            _ => self
+                .names()
+                .iter()
+                .map(|n| format!("{prefix}{n}"))
+                .collect::<Vec<_>>()
+                .join("|"),
+        }
+    }
+}
+
+/// Where one sensor's columns are in a file that holds several sensors.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct SensorSelect {
+    /// Prefix put before every column name of the map (e.g. `"RS_"` with `columns =
+    /// ["acc_x", ...]`); default none.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub prefix: String,
+    /// For headers that repeat the same column names once per sensor: the 1-based block to
+    /// read (the `block`-th occurrence of each name). Without it a repeated name is refused.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub block: Option<usize>,
+}
+
+impl SensorSelect {
+    fn is_default(&self) -> bool {
+        self == &SensorSelect::default()
+    }
+}
+
 /// Time column description.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 pub struct TimeSpec {
-    /// Column name (case-insensitive); `None` when the file has no time column.
+    /// The time column; `None` when the file has no time column.
     #[serde(default)]
-    pub column: Option<String>,
+    pub column: Option<ColumnRef>,
     /// Unit of the column.
     #[serde(default)]
     pub unit: TimeUnit,
@@ -162,8 +234,8 @@ pub enum GyroUnit {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ChannelSpec<U> {
-    /// Column names of the x, y, z axes (case-insensitive).
-    pub columns: [String; 3],
+    /// Columns of the x, y, z axes: names (case-insensitive), alternatives or 1-based numbers.
+    pub columns: [ColumnRef; 3],
     /// Unit after scaling.
     pub unit: U,
     /// Multiplier from the raw value to `unit` (1 unless the file holds integer counts).
@@ -216,6 +288,10 @@ pub struct FormatSpec {
     /// Rows under the header row to skip (e.g. a row of units).
     #[serde(default)]
     pub skip_rows_after_header: usize,
+    /// Which sensor to read in a file holding several (a column prefix or a block); default:
+    /// the file holds one sensor.
+    #[serde(default, skip_serializing_if = "SensorSelect::is_default")]
+    pub sensor: SensorSelect,
     /// Time column.
     #[serde(default)]
     pub time: TimeSpec,
@@ -265,11 +341,22 @@ impl AxisMap {
     }
 }
 
-/// Names of the formats compiled into ldh, in detection order.
-pub const BUILTIN_FORMATS: [&str; 4] =
+/// Names of the formats compiled into ldh.
+pub const BUILTIN_FORMATS: [&str; 6] = [
+    "ldh",
+    "xsens-mtmanager",
+    "shimmer-consensys",
+    "raw-counts",
+    "hugadb-right-shank",
+    "hugadb-left-shank",
+];
+
+/// The built-in formats tried, in this order, when no format is given. The HuGaDB maps are
+/// not among them: both read the same files (one per leg), so the leg must be chosen.
+pub const DETECTED_FORMATS: [&str; 4] =
     ["ldh", "xsens-mtmanager", "shimmer-consensys", "raw-counts"];
 
-const BUILTIN_TOML: [(&str, &str); 4] = [
+const BUILTIN_TOML: [(&str, &str); 6] = [
     (
         "ldh",
         include_str!("../../../../data-fixtures/formats/ldh.toml"),
@@ -285,6 +372,14 @@ const BUILTIN_TOML: [(&str, &str); 4] = [
     (
         "raw-counts",
         include_str!("../../../../data-fixtures/formats/raw-counts.toml"),
+    ),
+    (
+        "hugadb-right-shank",
+        include_str!("../../../../data-fixtures/formats/hugadb-right-shank.toml"),
+    ),
+    (
+        "hugadb-left-shank",
+        include_str!("../../../../data-fixtures/formats/hugadb-left-shank.toml"),
     ),
 ];
 
@@ -328,6 +423,15 @@ impl FormatSpec {
         }
     }
 
+    /// The shipped TOML text of a built-in format, comments included (what `ldh formats NAME`
+    /// prints), or `None` for an unknown name.
+    pub fn builtin_text(name: &str) -> Option<&'static str> {
+        BUILTIN_TOML
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, t)| *t)
+    }
+
     /// One of the formats shipped with ldh ([`BUILTIN_FORMATS`]).
     pub fn builtin(name: &str) -> Result<Self> {
         let (_, text) = BUILTIN_TOML
@@ -346,6 +450,14 @@ impl FormatSpec {
     /// All built-in formats.
     pub fn builtins() -> Vec<FormatSpec> {
         BUILTIN_FORMATS
+            .iter()
+            .map(|n| FormatSpec::builtin(n).expect("built-in formats parse"))
+            .collect()
+    }
+
+    /// The built-in formats tried when none is given ([`DETECTED_FORMATS`]).
+    pub fn detected() -> Vec<FormatSpec> {
+        DETECTED_FORMATS
             .iter()
             .map(|n| FormatSpec::builtin(n).expect("built-in formats parse"))
             .collect()
@@ -421,6 +533,37 @@ impl FormatSpec {
             }
         }
         self.axis_map()?;
+        self.check_columns()?;
+        Ok(())
+    }
+
+    fn check_columns(&self) -> Result<()> {
+        if self.sensor.block == Some(0) {
+            return Err(self.err("sensor.block counts from 1"));
+        }
+        let refs = self
+            .time
+            .column
+            .iter()
+            .map(|c| ("time.column", c))
+            .chain(self.acc.columns.iter().map(|c| ("acc.columns", c)))
+            .chain(self.gyro.columns.iter().map(|c| ("gyro.columns", c)));
+        for (what, c) in refs {
+            match c {
+                ColumnRef::Index(0) => {
+                    return Err(self.err(format!("{what}: column numbers count from 1, not 0")))
+                }
+                ColumnRef::AnyOf(v) if v.is_empty() || v.iter().any(|n| n.trim().is_empty()) => {
+                    return Err(self.err(format!(
+                        "{what}: a list of alternative names must hold non-empty names"
+                    )))
+                }
+                ColumnRef::Name(n) if n.trim().is_empty() => {
+                    return Err(self.err(format!("{what}: empty column name")))
+                }
+                _ => {}
+            }
+        }
         Ok(())
     }
 
@@ -483,14 +626,35 @@ impl FormatSpec {
         Ok(AxisMap { index, sign })
     }
 
-    /// All column names the format requires, in the order time (if any), acc x y z, gyro x y z.
+    /// The columns the format reads, as written in messages, in the order time (if any), acc
+    /// x y z, gyro x y z (`acc_x`, `RS_acc_x|acc_rs_x`, `#7`).
     pub fn required_columns(&self) -> Vec<String> {
-        let mut v = Vec::with_capacity(7);
-        if let Some(t) = &self.time.column {
-            v.push(t.clone());
-        }
-        v.extend(self.acc.columns.iter().cloned());
-        v.extend(self.gyro.columns.iter().cloned());
-        v
+        let p = self.sensor.prefix.as_str();
+        self.time
+            .column
+            .iter()
+            .chain(self.acc.columns.iter())
+            .chain(self.gyro.columns.iter())
+            .map(|c| c.describe(p))
+            .collect()
+    }
+
+    /// The header a writer gives a file in this format: the prefix and the first name of each
+    /// column (time first, if any). Errors for a map that selects columns by number.
+    pub fn column_names_for_writing(&self) -> Result<Vec<String>> {
+        let p = self.sensor.prefix.as_str();
+        self.time
+            .column
+            .iter()
+            .chain(self.acc.columns.iter())
+            .chain(self.gyro.columns.iter())
+            .map(|c| match c.names().first() {
+                Some(n) => Ok(format!("{p}{n}")),
+                None => Err(self.err(format!(
+                    "column {} is given by number: a file cannot be written in this format",
+                    c.describe(p)
+                ))),
+            })
+            .collect()
     }
 }

@@ -1,12 +1,13 @@
 //! Input and output of recordings: vendor formats ([`format`]), the CSV reader ([`reader`])
 //! and the writer ([`writer`]).
 
+mod columns;
 pub mod format;
 mod inspect;
 pub mod reader;
 pub mod writer;
 
-pub use format::{FormatSpec, BUILTIN_FORMATS};
+pub use format::{ColumnRef, FormatSpec, SensorSelect, BUILTIN_FORMATS, DETECTED_FORMATS};
 pub use inspect::{inspect, Inspection, PreprocessSummary};
 pub use reader::{
     flat_channel_warnings, read_recording, read_recording_bytes, GapPolicy, ReadParams, ReadReport,
@@ -19,3 +20,5 @@ pub use writer::{
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_columns;

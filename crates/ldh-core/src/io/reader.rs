@@ -264,127 +264,17 @@ pub fn read_recording_bytes(
         .map(|(i, l)| (i as u64 + 1, l.strip_suffix('\r').unwrap_or(l)))
         .collect();
 
-    // Find the header row and the format.
-    let builtins;
-    let candidates: Vec<&FormatSpec> = match format {
-        Some(f) => vec![f],
-        None => {
-            builtins = FormatSpec::builtins();
-            builtins.iter().collect()
-        }
-    };
-    let mut sep_line_delim: Option<u8> = None;
-    let mut header: Option<(usize, &FormatSpec, u8, Vec<String>)> = None;
-    let mut first_row = String::new();
-    for (idx, (_, line)) in lines.iter().enumerate() {
-        let trimmed = line.trim();
-        if trimmed.is_empty() {
-            continue;
-        }
-        if let Some(rest) = trimmed
-            .strip_prefix("sep=")
-            .or_else(|| trimmed.strip_prefix("\"sep="))
-        {
-            let rest = rest.trim_end_matches('"');
-            sep_line_delim = match rest {
-                "\\t" | "\t" | "" => Some(b'\t'),
-                r => r
-                    .bytes()
-                    .next()
-                    .filter(|b| Delimiter::from_byte(*b).is_some()),
-            };
-            notes.push(format!(
-                "'sep=' line found: delimiter {:?}",
-                sep_line_delim.map(|b| b as char)
-            ));
-            continue;
-        }
-        if candidates.iter().any(|f| {
-            f.comment_prefixes
-                .iter()
-                .any(|p| trimmed.starts_with(p.as_str()))
-        }) {
-            continue;
-        }
-        if first_row.is_empty() {
-            first_row = trimmed.chars().take(200).collect();
-        }
-        for f in &candidates {
-            let delim = f
-                .delimiter
-                .byte()
-                .or(sep_line_delim)
-                .unwrap_or_else(|| detect_delimiter(line));
-            let fields: Vec<String> = split_header(line, delim);
-            let lower: Vec<String> = fields.iter().map(|s| s.to_ascii_lowercase()).collect();
-            if f.required_columns()
-                .iter()
-                .all(|c| lower.contains(&c.to_ascii_lowercase()))
-            {
-                header = Some((idx, f, delim, fields));
-                break;
-            }
-        }
-        if header.is_some() {
-            break;
-        }
-        // A format was given and this non-comment line is not its header: stop at the first
-        // line that looks like a header (has letters) so the message can name missing columns.
-        if format.is_some() && line.chars().any(|c| c.is_ascii_alphabetic()) {
-            let f = candidates[0];
-            let delim = f
-                .delimiter
-                .byte()
-                .or(sep_line_delim)
-                .unwrap_or_else(|| detect_delimiter(line));
-            let fields = split_header(line, delim);
-            let lower: Vec<String> = fields.iter().map(|s| s.to_ascii_lowercase()).collect();
-            let missing: Vec<String> = f
-                .required_columns()
-                .into_iter()
-                .filter(|c| !lower.contains(&c.to_ascii_lowercase()))
-                .collect();
-            // Only a header-like row (several non-numeric fields) is taken as the header.
-            let texty = fields.iter().filter(|s| s.parse::<f64>().is_err()).count();
-            if texty >= 3 && fields.len() >= 3 {
-                return Err(LdhError::MissingColumn {
-                    loc: Location::line(path, lines[idx].0),
-                    column: missing.first().cloned().unwrap_or_default(),
-                    format: f.name.clone(),
-                    header: fields,
-                });
-            }
-        }
-    }
-    let Some((hidx, spec, delim, header_fields)) = header else {
-        if lines.iter().all(|(_, l)| l.trim().is_empty()) {
-            return Err(LdhError::EmptyFile {
-                path: path.to_path_buf(),
-            });
-        }
-        let f = candidates[0];
-        return Err(LdhError::NoHeader {
-            path: path.to_path_buf(),
-            format: if format.is_some() {
-                f.name.clone()
-            } else {
-                format!(
-                    "any of {}",
-                    candidates
-                        .iter()
-                        .map(|f| f.name.as_str())
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                )
-            },
-            missing: f.required_columns(),
-            first_row,
-        });
-    };
-    let spec = spec.clone();
+    // Find the header row and the format (column resolution: `columns.rs`).
+    let found = super::columns::find_header(&lines, format, path, &mut notes)?;
+    let (hidx, delim, header_fields) = (found.index, found.delim, found.fields);
+    let spec = found.spec;
+    let sep_line_delim = found.sep_line;
     let header_line = lines[hidx].0;
     if format.is_none() {
         notes.push(format!("format detected: {}", spec.name));
+    }
+    if !found.has_row {
+        notes.push("no header row: columns taken by number".to_string());
     }
     let delim_name = Delimiter::from_byte(delim).map(|d| d.name()).unwrap_or("?");
     if spec.delimiter == Delimiter::Auto && sep_line_delim.is_none() {
@@ -392,23 +282,13 @@ pub fn read_recording_bytes(
     }
 
     // Column indices.
-    let lower: Vec<String> = header_fields
-        .iter()
-        .map(|s| s.to_ascii_lowercase())
-        .collect();
-    let col = |name: &str| -> usize {
-        lower
-            .iter()
-            .position(|c| *c == name.to_ascii_lowercase())
-            .expect("checked above")
-    };
-    let time_col = spec.time.column.as_deref().map(col);
-    let acc_cols = spec.acc.columns.clone().map(|c| col(&c));
-    let gyro_cols = spec.gyro.columns.clone().map(|c| col(&c));
+    let time_col = found.cols.time;
+    let acc_cols = found.cols.acc;
+    let gyro_cols = found.cols.gyro;
     let expected = header_fields.len();
 
     // Data rows.
-    let first_data = hidx + 1 + spec.skip_rows_after_header;
+    let first_data = hidx + usize::from(found.has_row) + spec.skip_rows_after_header;
     let mut time_raw: Vec<f64> = Vec::new();
     let mut raw: [Vec<f64>; 6] = Default::default();
     let mut row_lines: Vec<u64> = Vec::new();
@@ -928,7 +808,7 @@ fn decode_text<'a>(bytes: &'a [u8], path: &Path) -> Result<&'a str> {
 }
 
 /// The most frequent of `,` `;` tab in a header line (ties: tab, `;`, `,`).
-fn detect_delimiter(line: &str) -> u8 {
+pub(super) fn detect_delimiter(line: &str) -> u8 {
     let count = |c: char| line.chars().filter(|&x| x == c).count();
     let (t, s, c) = (count('\t'), count(';'), count(','));
     if t >= s && t >= c && t > 0 {
@@ -940,7 +820,7 @@ fn detect_delimiter(line: &str) -> u8 {
     }
 }
 
-fn split_header(line: &str, delim: u8) -> Vec<String> {
+pub(super) fn split_header(line: &str, delim: u8) -> Vec<String> {
     let mut v = Vec::new();
     let mut buf = String::new();
     split_fields(line, delim, &mut v, &mut buf);

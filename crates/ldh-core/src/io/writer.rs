@@ -276,12 +276,7 @@ pub fn recording_to_csv(rec: &Recording, spec: &FormatSpec, opts: &WriteOptions)
             out.push('\n');
         }
     }
-    let mut header: Vec<String> = Vec::new();
-    if let Some(t) = &spec.time.column {
-        header.push(t.clone());
-    }
-    header.extend(spec.acc.columns.iter().cloned());
-    header.extend(spec.gyro.columns.iter().cloned());
+    let header = spec.column_names_for_writing()?;
     out.push_str(&header.join(&delim.to_string()));
     out.push('\n');
     for _ in 0..spec.skip_rows_after_header {

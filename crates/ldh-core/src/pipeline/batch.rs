@@ -40,13 +40,8 @@ pub fn leg_from_arrays(
 /// A subject without a manifest row: only its identifier.
 pub fn bare_subject(subject_id: &str) -> SubjectInput {
     SubjectInput {
-        setting: None,
         subject_id: subject_id.to_string(),
-        group: None,
-        affected_side: None,
-        left: None,
-        right: None,
-        sensor_height_m: None,
+        ..SubjectInput::default()
     }
 }
 

@@ -4,10 +4,10 @@
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
+use super::manifest::{is_manifest_text, parse_manifest, resolve_format_in, GroupLabel};
 use crate::error::{LdhError, Result};
 use crate::io::{read_recording, read_recording_bytes, FormatSpec, ReadReport, ValidReadParams};
 use crate::recording::{Recording, Side};
-use crate::simulate::Group;
 
 /// Where a recording comes from.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -43,15 +43,19 @@ impl Source {
     }
 }
 
-/// One subject to analyse.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// One subject (or one trial of a subject) to analyse.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 pub struct SubjectInput {
-    /// Identifier.
+    /// Identifier (the person: a person's trials share it).
     pub subject_id: String,
     /// Group, when a manifest gives it.
-    pub group: Option<Group>,
-    /// Affected side, when a manifest gives it (`None` for healthy or unknown).
+    pub group: Option<GroupLabel>,
+    /// Affected side, when a manifest gives it (`None` for none or unknown).
     pub affected_side: Option<Side>,
+    /// The manifest left `affected_side` empty for a subject outside the healthy group: the
+    /// side is unknown (said in the results), not "none".
+    #[serde(default)]
+    pub affected_side_unknown: bool,
     /// Left recording.
     pub left: Option<Source>,
     /// Right recording.
@@ -61,142 +65,146 @@ pub struct SubjectInput {
     /// Where the walk happened (`None`: not said, treated as overground).
     #[serde(default)]
     pub setting: Option<crate::recording::Setting>,
+    /// Column map of the left file (manifest `left_format` or `format`); `None`: the one given
+    /// to the analysis, else detected.
+    #[serde(default)]
+    pub left_format: Option<FormatSpec>,
+    /// Column map of the right file (manifest `right_format` or `format`).
+    #[serde(default)]
+    pub right_format: Option<FormatSpec>,
+    /// Trial of the person (manifest `trial_id` or `trial`); `None` for a single recording pair.
+    #[serde(default)]
+    pub trial_id: Option<String>,
 }
 
-/// Parse a cohort manifest (SPEC §2): `subject_id, group, affected_side, left, right` and the
-/// optional `sensor_height_m`; paths relative to the manifest's folder.
+/// Options for inputs given directly on a command line or in an API call.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct InputOptions {
+    /// Subject id for files given directly (default: the common stem of their names).
+    pub subject_id: Option<String>,
+    /// Setting of every subject whose manifest row does not say.
+    pub setting: Option<crate::recording::Setting>,
+}
+
+/// Parse a cohort manifest (SPEC §2; columns in [`super::manifest`]); paths and column maps
+/// relative to the manifest's folder.
 pub fn read_manifest(path: &Path) -> Result<Vec<SubjectInput>> {
     let text = std::fs::read_to_string(path).map_err(|source| LdhError::Io {
         path: path.to_path_buf(),
         source,
     })?;
-    parse_manifest(&text, path, &|rel| {
-        Source::Path(path.parent().unwrap_or(Path::new(".")).join(rel))
+    let dir = path.parent().unwrap_or(Path::new("."));
+    parse_manifest(&text, path, &|rel| Source::Path(dir.join(rel)), &|f| {
+        resolve_format_in(dir, f)
     })
-}
-
-fn parse_manifest(
-    text: &str,
-    path: &Path,
-    resolve: &dyn Fn(&str) -> Source,
-) -> Result<Vec<SubjectInput>> {
-    use crate::error::Location;
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
-    let Some((hl, header)) = lines.next() else {
-        return Err(LdhError::EmptyFile {
-            path: path.to_path_buf(),
-        });
-    };
-    let header = header.trim_start_matches('\u{feff}');
-    let cols: Vec<String> = header
-        .split(',')
-        .map(|c| c.trim().to_ascii_lowercase())
-        .collect();
-    let col = |name: &str| cols.iter().position(|c| c == name);
-    let need = ["subject_id", "group", "affected_side", "left", "right"];
-    for n in need {
-        if col(n).is_none() {
-            return Err(LdhError::MissingColumn {
-                loc: Location::line(path, hl as u64 + 1),
-                column: n.into(),
-                format: "cohort manifest".into(),
-                header: cols.clone(),
-            });
-        }
-    }
-    let mut out = Vec::new();
-    for (i, line) in lines {
-        let f: Vec<&str> = line.split(',').map(|x| x.trim()).collect();
-        let get = |n: &str| col(n).and_then(|c| f.get(c).copied()).unwrap_or("");
-        let lineno = i as u64 + 1;
-        let group = match get("group").to_ascii_lowercase().as_str() {
-            "healthy" | "h" | "control" => Group::Healthy,
-            "ldh" => Group::Ldh,
-            other => {
-                return Err(LdhError::InvalidValue {
-                    loc: Location::cell(path, lineno, col("group").unwrap() + 1),
-                    column: "group".into(),
-                    value: other.into(),
-                    expected: "'healthy' or 'ldh'".into(),
-                })
-            }
-        };
-        let affected_side = match get("affected_side").to_ascii_lowercase().as_str() {
-            "left" => Some(Side::Left),
-            "right" => Some(Side::Right),
-            "none" | "" => None,
-            other => {
-                return Err(LdhError::InvalidValue {
-                    loc: Location::cell(path, lineno, col("affected_side").unwrap() + 1),
-                    column: "affected_side".into(),
-                    value: other.into(),
-                    expected: "'left', 'right' or 'none'".into(),
-                })
-            }
-        };
-        let h = get("sensor_height_m");
-        let sensor_height_m = if h.is_empty() {
-            None
-        } else {
-            Some(h.parse::<f64>().map_err(|_| LdhError::NotANumber {
-                loc: Location::cell(path, lineno, col("sensor_height_m").unwrap() + 1),
-                column: "sensor_height_m".into(),
-                value: h.into(),
-                hint: String::new(),
-            })?)
-        };
-        let side = |n: &str| {
-            let v = get(n);
-            (!v.is_empty()).then(|| resolve(v))
-        };
-        let id = get("subject_id");
-        if id.is_empty() {
-            return Err(LdhError::InvalidValue {
-                loc: Location::cell(path, lineno, col("subject_id").unwrap() + 1),
-                column: "subject_id".into(),
-                value: String::new(),
-                expected: "a non-empty subject id".into(),
-            });
-        }
-        if out.iter().any(|s: &SubjectInput| s.subject_id == id) {
-            return Err(LdhError::InvalidValue {
-                loc: Location::cell(path, lineno, col("subject_id").unwrap() + 1),
-                column: "subject_id".into(),
-                value: id.into(),
-                expected: "a subject id not used on an earlier line".into(),
-            });
-        }
-        out.push(SubjectInput {
-            setting: None,
-            subject_id: id.to_string(),
-            group: Some(group),
-            affected_side,
-            left: side("left"),
-            right: side("right"),
-            sensor_height_m,
-        });
-    }
-    Ok(out)
 }
 
 /// The embedded demo cohort as inputs.
 pub fn demo_inputs() -> Result<Vec<SubjectInput>> {
     let text = crate::demo::file("manifest.csv").expect("embedded manifest");
-    parse_manifest(text, Path::new("<demo>/manifest.csv"), &|rel| {
-        Source::Embedded(rel.to_string())
-    })
+    parse_manifest(
+        text,
+        Path::new("<demo>/manifest.csv"),
+        &|rel| Source::Embedded(rel.to_string()),
+        &FormatSpec::builtin,
+    )
 }
 
 /// Turn command-line inputs into subjects: no input → the embedded demo; a manifest CSV; a
 /// folder with `manifest.csv`; a subject folder with `left.csv` / `right.csv`; a cohort folder
 /// of such subject folders; or files (two files are a left/right pair, by name or in order).
 pub fn discover(inputs: &[PathBuf]) -> Result<Vec<SubjectInput>> {
-    if inputs.is_empty() {
-        return demo_inputs();
+    discover_with(inputs, &InputOptions::default())
+}
+
+/// Whether `p` is a manifest: a file whose header row holds `subject_id` and `left` and/or
+/// `right` (only the first 64 kB are looked at).
+pub fn is_manifest(p: &Path) -> bool {
+    use std::io::Read;
+    if !p.is_file() {
+        return false;
     }
+    let mut head = Vec::new();
+    let ok = std::fs::File::open(p)
+        .and_then(|f| f.take(1 << 16).read_to_end(&mut head))
+        .is_ok();
+    ok && is_manifest_text(&String::from_utf8_lossy(&head))
+}
+
+/// The subject id of files given directly: their names' common stem without side words and
+/// separators (`P07_left.csv` + `P07_right.csv` → `P07`), else the first file's stem; names
+/// that are only side words (`L02/left.csv` + `L02/right.csv`) take the folder's name (`L02`).
+pub fn subject_id_from_files(files: &[&PathBuf]) -> String {
+    let stems: Vec<String> = files
+        .iter()
+        .filter_map(|p| p.file_stem().map(|s| s.to_string_lossy().to_string()))
+        .collect();
+    let seps: &[char] = &['_', '-', '.', ' '];
+    let trim = |s: &str| -> String {
+        let mut t = s.trim_matches(seps);
+        let lower = t.to_ascii_lowercase();
+        for w in ["left", "right"] {
+            let n = t.len();
+            if lower.ends_with(w) && (n == w.len() || lower[..n - w.len()].ends_with(seps)) {
+                t = &t[..n - w.len()];
+                break;
+            }
+            if lower.starts_with(w) && (n == w.len() || lower[w.len()..].starts_with(seps)) {
+                t = &t[w.len()..];
+                break;
+            }
+        }
+        t.trim_matches(seps).to_string()
+    };
+    let stems: Vec<String> = stems.iter().map(|s| trim(s)).collect();
+    let id = match stems.as_slice() {
+        [] => String::new(),
+        [one] => one.clone(),
+        [a, b, ..] if a == b => a.clone(),
+        [a, b, ..] => {
+            let pre: String = a
+                .chars()
+                .zip(b.chars())
+                .take_while(|(x, y)| x == y)
+                .map(|(x, _)| x)
+                .collect();
+            let mut suf: Vec<char> = a
+                .chars()
+                .rev()
+                .zip(b.chars().rev())
+                .take_while(|(x, y)| x == y)
+                .map(|(x, _)| x)
+                .collect();
+            suf.reverse();
+            let (pre, suf) = (trim(&pre), trim(&suf.into_iter().collect::<String>()));
+            if !pre.is_empty() && pre.len() >= suf.len() {
+                pre
+            } else if !suf.is_empty() {
+                suf
+            } else {
+                a.clone()
+            }
+        }
+    };
+    if !id.is_empty() {
+        return id;
+    }
+    // Names that are only side words (`left.csv`, `right.csv`): the folder names the subject.
+    files
+        .first()
+        .and_then(|p| p.canonicalize().ok().or_else(|| Some(p.to_path_buf())))
+        .and_then(|p| {
+            p.parent()
+                .and_then(|d| d.file_name())
+                .map(|n| n.to_string_lossy().to_string())
+        })
+        .filter(|n| !n.is_empty())
+        .unwrap_or_else(|| "subject".into())
+}
+
+/// As [`discover`], with a subject id for files given directly and a setting for subjects
+/// whose manifest row does not say.
+pub fn discover_with(inputs: &[PathBuf], opts: &InputOptions) -> Result<Vec<SubjectInput>> {
     // A misspelt path is refused before any work (and before an output folder is made).
     if let Some(p) = inputs.iter().find(|p| !p.exists()) {
         return Err(LdhError::Io {
@@ -204,23 +212,28 @@ pub fn discover(inputs: &[PathBuf]) -> Result<Vec<SubjectInput>> {
             source: std::io::Error::new(std::io::ErrorKind::NotFound, "no such file or folder"),
         });
     }
-    let is_manifest = |p: &Path| {
-        p.is_file()
-            && std::fs::read_to_string(p)
-                .map(|t| {
-                    t.lines()
-                        .next()
-                        .unwrap_or("")
-                        .trim_start_matches('\u{feff}')
-                        .to_ascii_lowercase()
-                        .starts_with("subject_id,")
-                })
-                .unwrap_or(false)
-    };
+    let mut out = discover_inputs(inputs, opts)?;
+    if let Some(st) = opts.setting {
+        for s in &mut out {
+            s.setting = s.setting.or(Some(st));
+        }
+    }
+    Ok(out)
+}
+
+fn discover_inputs(inputs: &[PathBuf], opts: &InputOptions) -> Result<Vec<SubjectInput>> {
+    if inputs.is_empty() {
+        if opts.subject_id.is_some() {
+            return Err(LdhError::signal(
+                "inputs",
+                "--subject names the subject of files given directly; no file was given",
+            ));
+        }
+        return demo_inputs();
+    }
     let subject_dir = |d: &Path| -> Option<SubjectInput> {
         let (l, r) = (d.join("left.csv"), d.join("right.csv"));
         (l.exists() || r.exists()).then(|| SubjectInput {
-            setting: None,
             subject_id: d
                 .file_name()
                 .map(|n| n.to_string_lossy().to_string())
@@ -229,13 +242,19 @@ pub fn discover(inputs: &[PathBuf]) -> Result<Vec<SubjectInput>> {
             affected_side: None,
             left: l.exists().then_some(Source::Path(l)),
             right: r.exists().then_some(Source::Path(r)),
-            sensor_height_m: None,
+            ..SubjectInput::default()
         })
     };
     let files: Vec<&PathBuf> = inputs
         .iter()
         .filter(|p| !p.is_dir() && !is_manifest(p))
         .collect();
+    if opts.subject_id.is_some() && files.is_empty() {
+        return Err(LdhError::signal(
+            "inputs",
+            "--subject names the subject of files given directly; a manifest or a folder names its own subjects",
+        ));
+    }
     let mut out = Vec::new();
     for p in inputs {
         if p.is_dir() {
@@ -287,25 +306,19 @@ pub fn discover(inputs: &[PathBuf]) -> Result<Vec<SubjectInput>> {
                 left = Some(Source::Path((*f).clone()));
             }
         }
-        let id = files[0]
-            .parent()
-            .and_then(|d| d.file_name())
-            .map(|n| n.to_string_lossy().to_string())
-            .filter(|s| !s.is_empty())
-            .unwrap_or_else(|| "subject".into());
         out.push(SubjectInput {
-            setting: None,
-            subject_id: id,
-            group: None,
-            affected_side: None,
+            subject_id: opts
+                .subject_id
+                .clone()
+                .unwrap_or_else(|| subject_id_from_files(&files)),
             left,
             right,
-            sensor_height_m: None,
+            ..SubjectInput::default()
         });
     }
     let mut seen = std::collections::BTreeSet::new();
     for s in &out {
-        if !seen.insert(s.subject_id.as_str()) {
+        if !seen.insert((s.subject_id.as_str(), s.trial_id.as_deref())) {
             return Err(LdhError::signal(
                 "inputs",
                 format!("subject id '{}' appears twice (two folders or manifests with the same subject): rename one", s.subject_id),

@@ -75,16 +75,18 @@ pub fn analyze_to_folder(
     done: &(dyn Fn() + Sync),
 ) -> Result<FolderSummary> {
     // One report/trace file per subject id, checked before any work (issue 19).
-    output::names::check_unique(subjects.iter().map(|s| s.subject_id.as_str()))?;
+    // A person's several trials (rows sharing the id, each with a trial id) share one report.
+    let mut trials = std::collections::HashSet::new();
+    output::names::check_unique(
+        subjects
+            .iter()
+            .filter(|s| s.trial_id.is_none() || trials.insert(s.subject_id.as_str()))
+            .map(|s| s.subject_id.as_str()),
+    )?;
     // A second run into the same folder is refused instead of interleaving (issue 19).
     let _lock = crate::io::OutputLock::acquire(out)?;
     let mut strides = TableSink::create(out, "strides", &output::STRIDE_COLUMNS, true)?;
-    let mut events = TableSink::create(
-        out,
-        "events",
-        &["subject_id", "time_s", "side", "event", "order"],
-        false,
-    )?;
+    let mut events = TableSink::create(out, "events", &output::EVENT_COLUMNS, false)?;
     let mut recordings = TableSink::create(out, "recordings", &[], true)?;
     let mut sum = FolderSummary::default();
     for part in subjects.chunks(opts.chunk.max(1)) {
@@ -137,7 +139,7 @@ fn write_traces(out: &Path, r: &SubjectResult, p: &ValidTraceParams) -> Result<(
     let json = serde_json::to_string(&t)?;
     crate::io::write_atomic(
         out.join("traces")
-            .join(format!("{}.json", file_stem(&r.subject_id))),
+            .join(format!("{}.json", file_stem(&r.output_key()))),
         json.as_bytes(),
     )
 }

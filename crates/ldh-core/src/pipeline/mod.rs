@@ -9,16 +9,23 @@ mod batch;
 mod bilateral;
 mod inputs;
 mod leg;
+mod manifest;
 mod many;
 pub mod quality;
 mod subject;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_inputs;
 
 pub use batch::{analyze_many_on, bare_subject, leg_from_arrays};
 pub use bilateral::{bilateral_events, bilateral_events_on_clock, BilateralEvent, EventKind};
-pub use inputs::{demo_inputs, discover, read_manifest, Source, SubjectInput};
+pub use inputs::{
+    demo_inputs, discover, discover_with, is_manifest, read_manifest, subject_id_from_files,
+    InputOptions, Source, SubjectInput,
+};
 pub use leg::{analyze_leg, memory_report, LegResult};
+pub use manifest::{is_manifest_text, GroupLabel, MANIFEST_COLUMNS};
 pub use many::{
     analyze_many, analyze_to_folder, bounded_jobs, recording_rows_many, FolderOptions,
     FolderSummary,
@@ -81,6 +88,14 @@ impl Default for AnalysisParams {
 }
 
 impl AnalysisParams {
+    /// These parameters for a walk on a treadmill (manifest `setting`, `--setting`): no stride
+    /// is a turn (`strides.turn_deg` = 180), since the walker cannot turn and a heading change
+    /// is gyroscope drift; every other parameter as given (docs/input.md "Setting").
+    pub fn for_treadmill(&self) -> Self {
+        let mut p = self.clone();
+        p.strides.turn_deg = 180.0;
+        p
+    }
     /// With another attitude model.
     pub fn model(mut self, m: AttitudeModel) -> Self {
         self.attitude.model = m;

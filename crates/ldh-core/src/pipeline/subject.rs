@@ -7,7 +7,6 @@ use crate::attitude::AttitudeModel;
 use crate::gait::side_parameters;
 use crate::io::{FormatSpec, ReadReport, ValidReadParams};
 use crate::recording::{Recording, Side};
-use crate::simulate::Group;
 
 impl SubjectResult {
     /// The bilateral event sequence of this subject (see [`bilateral_events`]).
@@ -24,10 +23,19 @@ impl SubjectResult {
 pub struct SubjectResult {
     /// Identifier.
     pub subject_id: String,
+    /// Trial of the person (from the manifest), if several were given.
+    #[serde(default)]
+    pub trial_id: Option<String>,
     /// Group (from the manifest).
-    pub group: Option<Group>,
+    pub group: Option<GroupLabel>,
     /// Affected side (from the manifest).
     pub affected_side: Option<Side>,
+    /// The manifest left the affected side empty for a subject outside the healthy group.
+    #[serde(default)]
+    pub affected_side_unknown: bool,
+    /// Where the walk happened, as given (`None`: not said, analysed as overground).
+    #[serde(default)]
+    pub setting: Option<crate::recording::Setting>,
     /// Attitude model used.
     pub model: AttitudeModel,
     /// Left leg, or the error that stopped it.
@@ -41,6 +49,15 @@ pub struct SubjectResult {
 }
 
 impl SubjectResult {
+    /// The name of this result's own output files (traces): the subject id, and for one of a
+    /// person's several trials `<subject_id>__trial_<trial_id>`.
+    pub fn output_key(&self) -> String {
+        match &self.trial_id {
+            Some(t) => format!("{}__trial_{t}", self.subject_id),
+            None => self.subject_id.clone(),
+        }
+    }
+
     /// Both legs' results or errors, left first.
     pub fn legs(&self) -> [(Side, &std::result::Result<LegResult, String>); 2] {
         [(Side::Left, &self.left), (Side::Right, &self.right)]
@@ -56,18 +73,19 @@ pub fn analyze_subject(
     read: &ValidReadParams,
 ) -> SubjectResult {
     let load = |src: &Option<Source>,
+                own: Option<&FormatSpec>,
                 side: Side|
      -> std::result::Result<(Recording, ReadReport, String), String> {
         let src = src
             .as_ref()
             .ok_or_else(|| format!("no {side} recording given"))?;
-        let (rec, report) = src.read(format, read).map_err(|e| e.to_string())?;
+        let (rec, report) = src.read(own.or(format), read).map_err(|e| e.to_string())?;
         Ok((rec, report, src.label()))
     };
     analyze_pair(
         input,
-        load(&input.left, Side::Left),
-        load(&input.right, Side::Right),
+        load(&input.left, input.left_format.as_ref(), Side::Left),
+        load(&input.right, input.right_format.as_ref(), Side::Right),
         params,
     )
 }
@@ -82,6 +100,14 @@ pub fn analyze_pair(
     right: LoadedLeg,
     params: &AnalysisParams,
 ) -> SubjectResult {
+    let own;
+    let params = match input.setting {
+        Some(crate::recording::Setting::Treadmill) => {
+            own = params.for_treadmill();
+            &own
+        }
+        _ => params,
+    };
     let run =
         |loaded: LoadedLeg, side: Side| -> std::result::Result<(LegResult, Vec<f64>), String> {
             let (rec, report, label) = loaded?;
@@ -138,10 +164,24 @@ pub fn analyze_pair(
         })
     };
     let (left, right) = (finish(l, rhs), finish(r, lhs));
+    let mut warnings = warnings;
+    if input.affected_side_unknown {
+        warnings.push(quality::Warning::new(
+            "affected_side_unknown",
+            quality::Severity::Note,
+            format!(
+            "affected side unknown (empty in the manifest for group '{}'): no affected/unaffected comparison for this subject",
+            input.group.as_ref().map_or("", |g| g.as_str())
+            ),
+        ));
+    }
     SubjectResult {
         subject_id: input.subject_id.clone(),
-        group: input.group,
+        trial_id: input.trial_id.clone(),
+        group: input.group.clone(),
         affected_side: input.affected_side,
+        affected_side_unknown: input.affected_side_unknown,
+        setting: input.setting,
         model: params.attitude.model,
         left,
         right,
@@ -155,13 +195,11 @@ pub fn analyze_simulated(
     params: &AnalysisParams,
 ) -> SubjectResult {
     let input = SubjectInput {
-        setting: None,
         subject_id: s.params.subject_id.clone(),
-        group: Some(s.params.group),
+        group: Some(s.params.group.into()),
         affected_side: s.params.affected_side,
-        left: None,
-        right: None,
         sensor_height_m: Some((s.left.truth.sensor_height_m + s.right.truth.sensor_height_m) / 2.0),
+        ..SubjectInput::default()
     };
     let leg = |l: &crate::simulate::SimLeg| -> LoadedLeg {
         let rec = l.recording.clone();

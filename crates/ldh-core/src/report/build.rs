@@ -144,7 +144,19 @@ fn write_subject(
     params: &ValidReportParams,
 ) -> Result<()> {
     let stem = file_stem(&job.subject_id);
-    let tf = results.join("traces").join(format!("{stem}.json"));
+    let mut tf = results.join("traces").join(format!("{stem}.json"));
+    // A person's several trials: the plots show the first trial (its traces and strides); the
+    // parameter table averages them all.
+    let first_trial = job.recordings.first().map(|r| r.trial_id.clone());
+    if let Some(t) = first_trial.filter(|t| !t.is_empty()) {
+        if job.recordings.iter().any(|r| r.trial_id != t) {
+            job.strides.retain(|r| r.trial_id == t);
+        }
+        let key = format!("{}__trial_{t}", job.subject_id);
+        tf = results
+            .join("traces")
+            .join(format!("{}.json", file_stem(&key)));
+    }
     if tf.exists() {
         job.traces = Some(SubjectTraces::from_json(
             &read_text(&tf)?,

@@ -120,12 +120,7 @@ fn hugadb_faulty_gyroscopes_are_flagged_and_clean_legs_analysed() {
         };
         let input = SubjectInput {
             subject_id: name.clone(),
-            group: None,
-            affected_side: None,
-            left: None,
-            right: None,
-            sensor_height_m: None,
-            setting: None,
+            ..SubjectInput::default()
         };
         let res = analyze_pair(&input, leg(left, "left"), leg(right, "right"), &params);
         let mut line = format!("{name}:");

@@ -1,0 +1,529 @@
+//! Column resolution: where a format's time, acceleration and angular-velocity columns are in a
+//! header row (docs/input.md, "Column maps").
+//!
+//! A map names a column (case-insensitive), lists alternative names (the first present wins:
+//! exports that spell the same column two ways) or gives its 1-based number. In a file holding
+//! several sensors, `[sensor] prefix` is put before every name, and `[sensor] block = n` reads
+//! the n-th occurrence of names the header repeats once per sensor. A name the map reads that
+//! occurs twice in the header, without `block`, is refused: neither the first nor the last
+//! may silently win.
+//!
+//! The default `ldh` format also accepts unit-suffixed names (`acc_x_g`, `acc_x_mps2`,
+//! `acc_x_m_s2`, `gyro_x_dps`, `gyro_x_deg_s`, `gyro_x_rads`, `gyro_x_rad_s`, `time_s`,
+//! `time_ms`), the names ldh's Python API writes; see [`unit_suffixed`].
+
+use std::path::Path;
+
+use super::format::{AccUnit, ColumnRef, Delimiter, FormatSpec, GyroUnit, TimeUnit};
+use super::reader::{detect_delimiter, split_header};
+use crate::error::{LdhError, Location, Result};
+
+/// Positions (0-based) of the columns a format reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Columns {
+    /// Time column, if the format has one.
+    pub time: Option<usize>,
+    /// Acceleration x, y, z.
+    pub acc: [usize; 3],
+    /// Angular velocity x, y, z.
+    pub gyro: [usize; 3],
+}
+
+/// A column the map wants that the header lacks.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct Missing {
+    /// The column as the map gives it (`acc_x`, `RS_acc_x|acc_rs_x`, `#40`).
+    pub wanted: String,
+    /// The names accepted for it (prefix included), compared with the header for suggestions.
+    pub names: Vec<String>,
+}
+
+/// Why a header row does not fit a format.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) enum Unresolved {
+    /// Columns not found.
+    Missing(Vec<Missing>),
+    /// A column the map reads occurs more than once (1-based positions).
+    Duplicate {
+        /// The column name.
+        column: String,
+        /// Where it occurs.
+        positions: Vec<usize>,
+    },
+}
+
+/// The missing columns and the header's closest names, for messages:
+/// `["acc_x", "gyro_x"]` and `; closest in the header: acc_x → AccX; gyro_x → GyrX, Gyr_X`.
+/// Header names the map itself reads are not suggested.
+pub(crate) fn describe_missing(
+    missing: &[Missing],
+    header: &[String],
+    spec: &FormatSpec,
+) -> (Vec<String>, String) {
+    let prefix = spec.sensor.prefix.as_str();
+    let taken: Vec<String> = spec
+        .time
+        .column
+        .iter()
+        .chain(spec.acc.columns.iter())
+        .chain(spec.gyro.columns.iter())
+        .flat_map(|c| c.names().iter().map(|n| norm(&format!("{prefix}{n}"))))
+        .collect();
+    let free: Vec<String> = header
+        .iter()
+        .filter(|h| !taken.contains(&norm(h)))
+        .cloned()
+        .collect();
+    let names = missing.iter().map(|m| m.wanted.clone()).collect();
+    let close: Vec<String> = missing
+        .iter()
+        .filter_map(|m| {
+            let c = closest(&m.names, &free);
+            (!c.is_empty()).then(|| format!("{} → {}", m.wanted, c.join(", ")))
+        })
+        .collect();
+    let hint = if close.is_empty() {
+        String::new()
+    } else {
+        format!("; closest in the header: {}", close.join("; "))
+    };
+    (names, hint)
+}
+
+fn norm(s: &str) -> String {
+    s.trim().to_ascii_lowercase()
+}
+
+/// Up to three header names closest to any of `wanted` (normalised Levenshtein similarity
+/// ≥ 0.5 after lower-casing; ties keep header order).
+fn closest(wanted: &[String], header: &[String]) -> Vec<String> {
+    let mut scored: Vec<(f64, usize)> = header
+        .iter()
+        .enumerate()
+        .filter(|(_, h)| !h.trim().is_empty())
+        .map(|(i, h)| {
+            let best = wanted
+                .iter()
+                .map(|w| strsim::normalized_levenshtein(&norm(w), &norm(h)))
+                .fold(0.0, f64::max);
+            (best, i)
+        })
+        .filter(|(s, _)| *s >= 0.5)
+        .collect();
+    scored.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+    let mut out: Vec<String> = Vec::new();
+    for (_, i) in scored {
+        if !out.contains(&header[i]) {
+            out.push(header[i].clone());
+        }
+        if out.len() == 3 {
+            break;
+        }
+    }
+    out
+}
+
+/// Find one column reference in the header.
+fn find(
+    r: &ColumnRef,
+    spec: &FormatSpec,
+    header: &[String],
+) -> std::result::Result<usize, Unresolved> {
+    let prefix = spec.sensor.prefix.as_str();
+    if let ColumnRef::Index(i) = r {
+        return if (1..=header.len()).contains(i) {
+            Ok(i - 1)
+        } else {
+            Err(Unresolved::Missing(vec![Missing {
+                wanted: format!("#{i} (the row has {} columns)", header.len()),
+                names: Vec::new(),
+            }]))
+        };
+    }
+    for name in r.names() {
+        let want = norm(&format!("{prefix}{name}"));
+        let at: Vec<usize> = header
+            .iter()
+            .enumerate()
+            .filter(|(_, h)| norm(h) == want)
+            .map(|(i, _)| i)
+            .collect();
+        match (at.len(), spec.sensor.block) {
+            (0, _) => continue,
+            (_, Some(b)) if b >= 1 && at.len() >= b => return Ok(at[b - 1]),
+            (_, Some(_)) => continue,
+            (1, None) => return Ok(at[0]),
+            (_, None) => {
+                return Err(Unresolved::Duplicate {
+                    column: header[at[0]].trim().to_string(),
+                    positions: at.iter().map(|i| i + 1).collect(),
+                })
+            }
+        }
+    }
+    let mut what = r.describe(prefix);
+    if let Some(b) = spec.sensor.block {
+        what.push_str(&format!(" (block {b})"));
+    }
+    Err(Unresolved::Missing(vec![Missing {
+        wanted: what,
+        names: r.names().iter().map(|n| format!("{prefix}{n}")).collect(),
+    }]))
+}
+
+/// Locate every column `spec` reads in `header`. A duplicate is reported before missing
+/// columns (it means the row is the header but cannot be read unambiguously).
+pub(crate) fn resolve(
+    spec: &FormatSpec,
+    header: &[String],
+) -> std::result::Result<Columns, Unresolved> {
+    let mut missing = Vec::new();
+    let mut get = |r: &ColumnRef| -> std::result::Result<usize, Unresolved> {
+        match find(r, spec, header) {
+            Ok(i) => Ok(i),
+            Err(Unresolved::Missing(m)) => {
+                missing.extend(m);
+                Ok(usize::MAX)
+            }
+            Err(d) => Err(d),
+        }
+    };
+    let time = spec.time.column.as_ref().map(&mut get).transpose()?;
+    let mut acc = [0; 3];
+    for (k, r) in spec.acc.columns.iter().enumerate() {
+        acc[k] = get(r)?;
+    }
+    let mut gyro = [0; 3];
+    for (k, r) in spec.gyro.columns.iter().enumerate() {
+        gyro[k] = get(r)?;
+    }
+    if !missing.is_empty() {
+        return Err(Unresolved::Missing(missing));
+    }
+    Ok(Columns { time, acc, gyro })
+}
+
+/// Whether every column of `spec` is given by number (such a map can read files without a
+/// header row).
+pub(crate) fn all_by_index(spec: &FormatSpec) -> bool {
+    spec.time
+        .column
+        .iter()
+        .chain(spec.acc.columns.iter())
+        .chain(spec.gyro.columns.iter())
+        .all(|c| matches!(c, ColumnRef::Index(_)))
+}
+
+const ACC_SUFFIXES: [(&str, AccUnit); 3] = [
+    ("_g", AccUnit::G),
+    ("_mps2", AccUnit::Mps2),
+    ("_m_s2", AccUnit::Mps2),
+];
+const GYRO_SUFFIXES: [(&str, GyroUnit); 4] = [
+    ("_dps", GyroUnit::Dps),
+    ("_deg_s", GyroUnit::Dps),
+    ("_rads", GyroUnit::Rps),
+    ("_rad_s", GyroUnit::Rps),
+];
+
+/// The `ldh` format adapted to a header whose names carry their units (`time_ms`,
+/// `acc_x_mps2`, `gyro_x_rad_s`...): the same map with those columns and units, or `None` when
+/// `spec` is not the default `ldh` map or the header has no complete unit-suffixed set.
+pub(crate) fn unit_suffixed(spec: &FormatSpec, header: &[String]) -> Option<FormatSpec> {
+    if spec.name != "ldh" || spec.acc.columns != ["acc_x", "acc_y", "acc_z"].map(ColumnRef::from) {
+        return None;
+    }
+    let has = |n: &str| header.iter().any(|h| norm(h) == n);
+    let mut out = spec.clone();
+    let mut changed = false;
+    if !has("time_s") && has("time_ms") {
+        out.time.column = Some("time_ms".into());
+        out.time.unit = TimeUnit::Milliseconds;
+        changed = true;
+    }
+    let axes = ["x", "y", "z"];
+    if !axes.iter().all(|a| has(&format!("acc_{a}"))) {
+        let (suf, unit) = ACC_SUFFIXES
+            .iter()
+            .find(|(s, _)| axes.iter().all(|a| has(&format!("acc_{a}{s}"))))?;
+        out.acc.columns = axes.map(|a| ColumnRef::Name(format!("acc_{a}{suf}")));
+        out.acc.unit = *unit;
+        changed = true;
+    }
+    if !axes.iter().all(|a| has(&format!("gyro_{a}"))) {
+        let (suf, unit) = GYRO_SUFFIXES
+            .iter()
+            .find(|(s, _)| axes.iter().all(|a| has(&format!("gyro_{a}{s}"))))?;
+        out.gyro.columns = axes.map(|a| ColumnRef::Name(format!("gyro_{a}{suf}")));
+        out.gyro.unit = *unit;
+        changed = true;
+    }
+    changed.then_some(out)
+}
+
+/// The header row found in a file and the format that reads it.
+#[derive(Debug, Clone)]
+pub(crate) struct Header {
+    /// Index (into the file's lines) of the header row; of the first data row when the file has
+    /// no header row (`has_row` false).
+    pub index: usize,
+    /// The format (a detected built-in, the given one, or `ldh` adapted to unit-suffixed names).
+    pub spec: FormatSpec,
+    /// Field delimiter.
+    pub delim: u8,
+    /// Column names (`column 1`, ... for a file without a header row).
+    pub fields: Vec<String>,
+    /// Where the format's columns are.
+    pub cols: Columns,
+    /// The file has a header row (false only for maps that give every column by number).
+    pub has_row: bool,
+    /// Delimiter named by a `sep=` line.
+    pub sep_line: Option<u8>,
+}
+
+fn is_number(f: &str) -> bool {
+    f.parse::<f64>().is_ok() || f.replace(',', ".").parse::<f64>().is_ok()
+}
+
+/// A row that may be a header: at least three fields, at least three of them not numbers.
+fn header_like(fields: &[String]) -> bool {
+    fields.len() >= 3 && fields.iter().filter(|f| !is_number(f)).count() >= 3
+}
+
+/// Find the header row of `lines` (1-based line number, text) and the format that reads it:
+/// the given format, or the first detected built-in whose columns are all in a row (the `ldh`
+/// map also in its unit-suffixed form). Refuses a row with a duplicated column; with a given
+/// format, the first header-like row missing columns; otherwise says which columns the closest
+/// built-in lacks in the first header-like row.
+pub(crate) fn find_header(
+    lines: &[(u64, &str)],
+    format: Option<&FormatSpec>,
+    path: &Path,
+    notes: &mut Vec<String>,
+) -> Result<Header> {
+    let detected;
+    let candidates: Vec<&FormatSpec> = match format {
+        Some(f) => vec![f],
+        None => {
+            detected = FormatSpec::detected();
+            detected.iter().collect()
+        }
+    };
+    let mut sep_line: Option<u8> = None;
+    let mut first_row = String::new();
+    // Detection mode: the closest format for the first header-like row, for the message.
+    let mut closest: Option<(&FormatSpec, Vec<Missing>, usize)> = None;
+    let mut closest_fields: Vec<String> = Vec::new();
+    for (idx, (lineno, line)) in lines.iter().enumerate() {
+        let trimmed = line.trim();
+        if trimmed.is_empty() {
+            continue;
+        }
+        if let Some(rest) = trimmed
+            .strip_prefix("sep=")
+            .or_else(|| trimmed.strip_prefix("\"sep="))
+        {
+            let rest = rest.trim_end_matches('"');
+            sep_line = match rest {
+                "\\t" | "\t" | "" => Some(b'\t'),
+                r => r
+                    .bytes()
+                    .next()
+                    .filter(|b| Delimiter::from_byte(*b).is_some()),
+            };
+            notes.push(format!(
+                "'sep=' line found: delimiter {:?}",
+                sep_line.map(|b| b as char)
+            ));
+            continue;
+        }
+        if candidates.iter().any(|f| {
+            f.comment_prefixes
+                .iter()
+                .any(|p| trimmed.starts_with(p.as_str()))
+        }) {
+            continue;
+        }
+        if first_row.is_empty() {
+            first_row = trimmed.chars().take(200).collect();
+        }
+        for f in &candidates {
+            let delim = f
+                .delimiter
+                .byte()
+                .or(sep_line)
+                .unwrap_or_else(|| detect_delimiter(line));
+            let fields = split_header(line, delim);
+            let by_index = all_by_index(f);
+            if !by_index && fields.iter().all(|x| x.is_empty() || is_number(x)) {
+                continue; // a data row: names cannot match (and suggestions would cost time)
+            }
+            let attempt = match resolve(f, &fields) {
+                Ok(c) => Ok(((*f).clone(), c)),
+                Err(e) => match unit_suffixed(f, &fields) {
+                    Some(g) => resolve(&g, &fields).map(|c| (g, c)),
+                    None => Err(e),
+                },
+            };
+            match attempt {
+                Ok((spec, cols)) => {
+                    let has_row = !(by_index && fields.iter().all(|x| is_number(x)));
+                    let fields = if has_row {
+                        fields
+                    } else {
+                        (1..=fields.len()).map(|i| format!("column {i}")).collect()
+                    };
+                    if spec.acc.columns != f.acc.columns || spec.gyro.columns != f.gyro.columns {
+                        notes.push(format!(
+                            "unit-suffixed column names: acceleration in {:?}, angular velocity in {:?}, time in {:?}",
+                            spec.acc.unit, spec.gyro.unit, spec.time.unit
+                        ));
+                    }
+                    return Ok(Header {
+                        index: idx,
+                        spec,
+                        delim,
+                        fields,
+                        cols,
+                        has_row,
+                        sep_line,
+                    });
+                }
+                Err(Unresolved::Duplicate { column, positions }) => {
+                    return Err(LdhError::DuplicateColumn {
+                        loc: Location::line(path, *lineno),
+                        column,
+                        positions,
+                    })
+                }
+                Err(Unresolved::Missing(m)) => {
+                    if !header_like(&fields) {
+                        continue;
+                    }
+                    if format.is_some() {
+                        let (missing, hint) = describe_missing(&m, &fields, f);
+                        return Err(LdhError::MissingColumn {
+                            loc: Location::line(path, *lineno),
+                            missing,
+                            by: format!("format '{}'{hint}", f.name),
+                        });
+                    }
+                    // Only the first header-like row is described; among the formats,
+                    // the one missing the fewest columns.
+                    let replace = match &closest {
+                        None => true,
+                        Some((_, prev, at)) => *at == idx && m.len() < prev.len(),
+                    };
+                    if replace {
+                        closest = Some((f, m, idx));
+                        closest_fields = fields;
+                    }
+                }
+            }
+        }
+    }
+    if lines.iter().all(|(_, l)| l.trim().is_empty()) {
+        return Err(LdhError::EmptyFile {
+            path: path.to_path_buf(),
+        });
+    }
+    let (fmt, missing, hint) = match closest {
+        Some((f, m, _)) => {
+            let (missing, hint) = describe_missing(&m, &closest_fields, f);
+            (f.name.clone(), missing, hint)
+        }
+        None => (
+            candidates[0].name.clone(),
+            candidates[0].required_columns(),
+            String::new(),
+        ),
+    };
+    Err(LdhError::NoHeader {
+        path: path.to_path_buf(),
+        format: if format.is_some() || candidates.len() == 1 {
+            fmt
+        } else {
+            format!(
+                "closest of {}: {fmt}",
+                candidates
+                    .iter()
+                    .map(|f| f.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        },
+        missing,
+        hint,
+        first_row,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn h(s: &str) -> Vec<String> {
+        s.split(',').map(String::from).collect()
+    }
+
+    #[test]
+    fn names_alternatives_indices_prefix_and_blocks() {
+        let mut f = FormatSpec::default();
+        let hd = h("time_s,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z");
+        let c = resolve(&f, &hd).unwrap();
+        assert_eq!((c.time, c.acc, c.gyro), (Some(0), [1, 2, 3], [4, 5, 6]));
+        f.acc.columns[0] = ColumnRef::AnyOf(vec!["ax".into(), "ACC_X".into()]);
+        f.gyro.columns[2] = ColumnRef::Index(2);
+        let c = resolve(&f, &hd).unwrap();
+        assert_eq!((c.acc[0], c.gyro[2]), (1, 1));
+        let mut p = FormatSpec::default();
+        p.sensor.prefix = "RS_".into();
+        let hd2 = h("RF_acc_x,RS_time_s,RS_acc_x,RS_acc_y,RS_acc_z,RS_gyro_x,RS_gyro_y,RS_gyro_z");
+        assert_eq!(resolve(&p, &hd2).unwrap().acc, [2, 3, 4]);
+        let hd3 = h(
+            "time_s,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z",
+        );
+        let d = resolve(&FormatSpec::default(), &hd3).unwrap_err();
+        assert_eq!(
+            d,
+            Unresolved::Duplicate {
+                column: "acc_x".into(),
+                positions: vec![2, 8]
+            }
+        );
+        let mut b = FormatSpec::default();
+        b.sensor.block = Some(2);
+        b.time.column = Some(ColumnRef::Index(1));
+        let c = resolve(&b, &hd3).unwrap();
+        assert_eq!((c.acc, c.gyro), ([7, 8, 9], [10, 11, 12]));
+    }
+
+    #[test]
+    fn missing_columns_name_only_what_is_missing_and_the_closest_names() {
+        let hd = h("time_s,AccX,acc_y,acc_z,gyro_x,gyro_y,Gyr_Z,Status");
+        let Unresolved::Missing(m) = resolve(&FormatSpec::default(), &hd).unwrap_err() else {
+            panic!("missing expected")
+        };
+        let (names, hint) = describe_missing(&m, &hd, &FormatSpec::default());
+        assert_eq!(names, vec!["acc_x", "gyro_z"]);
+        assert!(hint.contains("acc_x → AccX;"), "{hint}");
+        assert!(hint.ends_with("gyro_z → Gyr_Z"), "{hint}");
+        assert!(!hint.contains("Status"), "{hint}");
+    }
+
+    #[test]
+    fn unit_suffixed_names_give_the_units() {
+        let hd =
+            h("time_ms,acc_x_mps2,acc_y_mps2,acc_z_mps2,gyro_x_rad_s,gyro_y_rad_s,gyro_z_rad_s");
+        let f = unit_suffixed(&FormatSpec::default(), &hd).unwrap();
+        assert_eq!(f.time.unit, TimeUnit::Milliseconds);
+        assert_eq!((f.acc.unit, f.gyro.unit), (AccUnit::Mps2, GyroUnit::Rps));
+        assert!(resolve(&f, &hd).is_ok());
+        let plain = h("time_s,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z");
+        assert!(unit_suffixed(&FormatSpec::default(), &plain).is_none());
+        let half = h("time_s,acc_x_g,acc_y_g,gyro_x_dps,gyro_y_dps,gyro_z_dps");
+        assert!(unit_suffixed(&FormatSpec::default(), &half).is_none());
+        let xs = FormatSpec::builtin("xsens-mtmanager").unwrap();
+        assert!(unit_suffixed(&xs, &hd).is_none());
+    }
+}

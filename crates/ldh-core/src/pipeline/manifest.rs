@@ -1,0 +1,397 @@
+//! The cohort manifest (SPEC §2; docs/input.md "Cohort manifest"): one CSV row per recording
+//! pair, read with the `csv` crate (quoted fields may hold commas), recognised by its header
+//! (`subject_id` and `left` and/or `right`).
+//!
+//! Columns (case-insensitive, any order; every other name is refused, naming it):
+//! `subject_id` (required), `left`, `right` (paths relative to the manifest), `group` (a free
+//! label; `healthy` is the reference group and `ldh` enables the affected/unaffected analysis),
+//! `affected_side` (`left` | `right` | `none`; empty = unknown, which is said), `sensor_height_m`,
+//! `setting` (`overground` | `treadmill`), `format` / `left_format` / `right_format` (a built-in
+//! format name or a TOML column map relative to the manifest; the side's own column wins), and
+//! `trial_id` (or `trial`): several rows of one `subject_id` are that person's trials, analysed
+//! one by one and averaged per person before any statistic ([`crate::cohort::Cohort`]).
+
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+use std::path::Path;
+
+use super::inputs::{Source, SubjectInput};
+use crate::error::{LdhError, Location, Result};
+use crate::io::FormatSpec;
+use crate::recording::{Setting, Side};
+use crate::simulate::Group;
+
+/// The columns a manifest may have.
+pub const MANIFEST_COLUMNS: [&str; 12] = [
+    "subject_id",
+    "trial_id",
+    "trial",
+    "group",
+    "affected_side",
+    "left",
+    "right",
+    "sensor_height_m",
+    "setting",
+    "format",
+    "left_format",
+    "right_format",
+];
+
+/// A subject's group as a manifest names it: the reference group, the LDH group (whose
+/// affected side is compared with the unaffected one), or any other label (carried into the
+/// tables, not compared).
+#[derive(Debug, Clone, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(from = "String", into = "String")]
+pub enum GroupLabel {
+    /// `healthy` (also written `h` or `control`): the reference group.
+    Healthy,
+    /// `ldh`: lumbar disc herniation, one affected side.
+    Ldh,
+    /// Any other label, as written (e.g. `stroke`).
+    Other(String),
+}
+
+impl GroupLabel {
+    /// `healthy`, `ldh` or the label.
+    pub fn as_str(&self) -> &str {
+        match self {
+            GroupLabel::Healthy => "healthy",
+            GroupLabel::Ldh => "ldh",
+            GroupLabel::Other(s) => s,
+        }
+    }
+}
+
+impl From<String> for GroupLabel {
+    fn from(s: String) -> Self {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "healthy" | "h" | "control" => GroupLabel::Healthy,
+            "ldh" => GroupLabel::Ldh,
+            _ => GroupLabel::Other(s.trim().to_string()),
+        }
+    }
+}
+
+impl From<GroupLabel> for String {
+    fn from(g: GroupLabel) -> String {
+        g.as_str().to_string()
+    }
+}
+
+impl From<Group> for GroupLabel {
+    fn from(g: Group) -> Self {
+        match g {
+            Group::Healthy => GroupLabel::Healthy,
+            Group::Ldh => GroupLabel::Ldh,
+        }
+    }
+}
+
+impl std::fmt::Display for GroupLabel {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// The first row of `text` that is not empty or a `#` comment, split as CSV and lower-cased.
+fn header_of(text: &str) -> Option<Vec<String>> {
+    let line = text
+        .lines()
+        .map(|l| l.trim_start_matches('\u{feff}'))
+        .find(|l| !l.trim().is_empty() && !l.trim_start().starts_with('#'))?;
+    let mut rdr = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .trim(csv::Trim::All)
+        .from_reader(line.as_bytes());
+    let rec = rdr.records().next()?.ok()?;
+    Some(
+        rec.iter()
+            .map(|c| c.trim().trim_matches('"').to_ascii_lowercase())
+            .collect(),
+    )
+}
+
+/// Whether `text` is a manifest: its header holds `subject_id` and `left` or `right`.
+pub fn is_manifest_text(text: &str) -> bool {
+    header_of(text).is_some_and(|h| {
+        h.iter().any(|c| c == "subject_id") && h.iter().any(|c| c == "left" || c == "right")
+    })
+}
+
+/// One manifest row's fields by column name, with their locations for messages.
+struct Row<'a> {
+    rec: &'a csv::StringRecord,
+    cols: &'a [String],
+    path: &'a Path,
+    line: u64,
+}
+
+impl Row<'_> {
+    fn col(&self, name: &str) -> Option<usize> {
+        self.cols.iter().position(|c| c == name)
+    }
+    fn get(&self, name: &str) -> &str {
+        self.col(name)
+            .and_then(|i| self.rec.get(i))
+            .unwrap_or("")
+            .trim()
+    }
+    fn invalid(&self, name: &str, value: &str, expected: &str) -> LdhError {
+        LdhError::InvalidValue {
+            loc: Location::cell(self.path, self.line, self.col(name).map_or(1, |c| c + 1)),
+            column: name.into(),
+            value: value.into(),
+            expected: expected.into(),
+        }
+    }
+}
+
+/// Parse a cohort manifest; `source` turns a path cell into a [`Source`], `format` a format
+/// cell into a [`FormatSpec`] (both relative to the manifest's folder).
+pub(crate) fn parse_manifest(
+    text: &str,
+    path: &Path,
+    source: &dyn Fn(&str) -> Source,
+    format: &dyn Fn(&str) -> Result<FormatSpec>,
+) -> Result<Vec<SubjectInput>> {
+    let text = text.trim_start_matches('\u{feff}');
+    let mut rdr = csv::ReaderBuilder::new()
+        .has_headers(true)
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .from_reader(text.as_bytes());
+    let csv_err = |e: csv::Error| {
+        let line = e.position().map_or(0, |p| p.line());
+        match e.kind() {
+            csv::ErrorKind::UnequalLengths {
+                expected_len, len, ..
+            } => LdhError::FieldCount {
+                loc: Location::line(path, line),
+                found: *len as usize,
+                expected: *expected_len as usize,
+                hint: "; a path or label holding a comma must be in double quotes".into(),
+            },
+            _ => LdhError::signal(path.display().to_string(), e.to_string()),
+        }
+    };
+    let header = rdr.headers().map_err(csv_err)?.clone();
+    let header_line = text
+        .lines()
+        .position(|l| !l.trim().is_empty() && !l.trim_start().starts_with('#'))
+        .map_or(1, |i| i as u64 + 1);
+    if header.is_empty() || header.iter().all(|c| c.is_empty()) {
+        return Err(LdhError::EmptyFile {
+            path: path.to_path_buf(),
+        });
+    }
+    let cols: Vec<String> = header.iter().map(|c| c.to_ascii_lowercase()).collect();
+    check_header(&cols, path, header_line)?;
+    let trial_col = ["trial_id", "trial"]
+        .into_iter()
+        .find(|c| cols.iter().any(|x| x == c));
+    let mut formats: HashMap<String, FormatSpec> = HashMap::new();
+    let mut out: Vec<SubjectInput> = Vec::new();
+    let mut seen: HashMap<(String, String), u64> = HashMap::new();
+    for rec in rdr.records() {
+        let rec = rec.map_err(csv_err)?;
+        let line = rec.position().map_or(0, |p| p.line());
+        let row = Row {
+            rec: &rec,
+            cols: &cols,
+            path,
+            line,
+        };
+        if rec.iter().all(|f| f.is_empty()) {
+            continue;
+        }
+        let mut s = parse_row(&row, &mut formats, source, format)?;
+        s.trial_id = trial_col
+            .map(|c| row.get(c).to_string())
+            .filter(|t| !t.is_empty());
+        let key = (s.subject_id.clone(), s.trial_id.clone().unwrap_or_default());
+        if let Some(first) = seen.insert(key, line) {
+            let expected = match trial_col {
+                None => format!("a subject id not used on line {first}; several trials of one person need a trial_id column"),
+                Some(c) => format!("a ({}, {c}) pair not used on line {first}", "subject_id"),
+            };
+            return Err(row.invalid("subject_id", &s.subject_id, &expected));
+        }
+        if let Some(prev) = out.iter().find(|p| p.subject_id == s.subject_id) {
+            if prev.group != s.group || prev.affected_side != s.affected_side {
+                return Err(row.invalid(
+                    if prev.group != s.group {
+                        "group"
+                    } else {
+                        "affected_side"
+                    },
+                    row.get(if prev.group != s.group {
+                        "group"
+                    } else {
+                        "affected_side"
+                    }),
+                    &format!(
+                        "the same group and affected side as the earlier trials of '{}'",
+                        s.subject_id
+                    ),
+                ));
+            }
+        }
+        out.push(s);
+    }
+    // A person's trials together (first-appearance order of persons kept): the tables then
+    // hold each person's rows in one run.
+    let mut order: Vec<&str> = Vec::new();
+    for s in &out {
+        if !order.contains(&s.subject_id.as_str()) {
+            order.push(&s.subject_id);
+        }
+    }
+    let rank: HashMap<String, usize> = order
+        .iter()
+        .enumerate()
+        .map(|(i, id)| (id.to_string(), i))
+        .collect();
+    out.sort_by_key(|s| rank[&s.subject_id]);
+    Ok(out)
+}
+
+/// Refuse duplicated, unknown and missing columns, naming them.
+fn check_header(cols: &[String], path: &Path, line: u64) -> Result<()> {
+    let loc = || Location::line(path, line);
+    for (i, c) in cols.iter().enumerate() {
+        if let Some(j) = cols[i + 1..].iter().position(|x| x == c) {
+            return Err(LdhError::DuplicateColumn {
+                loc: loc(),
+                column: c.clone(),
+                positions: vec![i + 1, i + j + 2],
+            });
+        }
+        if !MANIFEST_COLUMNS.contains(&c.as_str()) {
+            return Err(LdhError::UnknownColumn {
+                loc: Location::cell(path, line, i + 1),
+                column: c.clone(),
+                what: "the cohort manifest".into(),
+                accepted: MANIFEST_COLUMNS.join(", "),
+            });
+        }
+    }
+    let has = |n: &str| cols.iter().any(|c| c == n);
+    let mut missing = Vec::new();
+    if !has("subject_id") {
+        missing.push("subject_id".to_string());
+    }
+    if !has("left") && !has("right") {
+        missing.push("left".to_string());
+        missing.push("right".to_string());
+    }
+    if !missing.is_empty() {
+        return Err(LdhError::MissingColumn {
+            loc: loc(),
+            missing,
+            by: "the cohort manifest (subject_id and at least one of left, right)".into(),
+        });
+    }
+    if has("trial_id") && has("trial") {
+        return Err(LdhError::InvalidValue {
+            loc: loc(),
+            column: "trial_id, trial".into(),
+            value: "both".into(),
+            expected: "one trial column, trial_id or trial".into(),
+        });
+    }
+    Ok(())
+}
+
+fn parse_row(
+    row: &Row,
+    formats: &mut HashMap<String, FormatSpec>,
+    source: &dyn Fn(&str) -> Source,
+    format: &dyn Fn(&str) -> Result<FormatSpec>,
+) -> Result<SubjectInput> {
+    let id = row.get("subject_id");
+    if id.is_empty() {
+        return Err(row.invalid("subject_id", "", "a non-empty subject id"));
+    }
+    let group = Some(row.get("group"))
+        .filter(|g| !g.is_empty())
+        .map(|g| GroupLabel::from(g.to_string()));
+    let side_cell = row.get("affected_side");
+    let (affected_side, unknown) = match side_cell.to_ascii_lowercase().as_str() {
+        "left" => (Some(Side::Left), false),
+        "right" => (Some(Side::Right), false),
+        "none" => (None, false),
+        // Healthy controls have no affected side: empty is not "unknown" for them.
+        "" => (None, group != Some(GroupLabel::Healthy)),
+        other => {
+            return Err(row.invalid(
+                "affected_side",
+                other,
+                "'left', 'right', 'none' or empty (unknown)",
+            ))
+        }
+    };
+    let h = row.get("sensor_height_m");
+    let sensor_height_m = if h.is_empty() {
+        None
+    } else {
+        match h.parse::<f64>() {
+            Ok(v) if v.is_finite() && v > 0.0 => Some(v),
+            _ => return Err(row.invalid("sensor_height_m", h, "a height in metres > 0")),
+        }
+    };
+    let st = row.get("setting");
+    let setting = if st.is_empty() {
+        None
+    } else {
+        Some(
+            st.parse::<Setting>()
+                .map_err(|_| row.invalid("setting", st, "'overground', 'treadmill' or empty"))?,
+        )
+    };
+    let mut spec = |name: &str| -> Result<Option<FormatSpec>> {
+        let v = row.get(name);
+        if v.is_empty() {
+            return Ok(None);
+        }
+        if let Some(f) = formats.get(v) {
+            return Ok(Some(f.clone()));
+        }
+        let f = format(v).map_err(|e| {
+            row.invalid(
+                name,
+                v,
+                &format!("a built-in format name or a TOML column map ({e})"),
+            )
+        })?;
+        formats.insert(v.to_string(), f.clone());
+        Ok(Some(f))
+    };
+    let both = spec("format")?;
+    let left_format = spec("left_format")?.or_else(|| both.clone());
+    let right_format = spec("right_format")?.or(both);
+    let side = |n: &str| Some(row.get(n)).filter(|v| !v.is_empty()).map(source);
+    Ok(SubjectInput {
+        subject_id: id.to_string(),
+        group,
+        affected_side,
+        affected_side_unknown: unknown,
+        left: side("left"),
+        right: side("right"),
+        sensor_height_m,
+        setting,
+        left_format,
+        right_format,
+        trial_id: None,
+    })
+}
+
+/// A format cell of a manifest in `dir`: a path to a TOML map (a name ending in `.toml`, or an
+/// existing file; relative to `dir`), else a built-in format's name.
+pub(crate) fn resolve_format_in(dir: &Path, name: &str) -> Result<FormatSpec> {
+    let p = dir.join(name);
+    if Path::new(name).extension().is_some_and(|e| e == "toml") || p.is_file() {
+        FormatSpec::from_toml_file(p)
+    } else {
+        FormatSpec::builtin(name)
+    }
+}

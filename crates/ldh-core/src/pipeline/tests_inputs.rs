@@ -1,0 +1,336 @@
+//! Manifests (csv crate, columns, refusals), subject ids of files given directly, and trials
+//! averaged per person before the statistics and the classifiers.
+
+use super::*;
+use crate::output::RecordingRow;
+use crate::recording::Setting;
+
+fn manifest(text: &str) -> (tempfile::TempDir, std::path::PathBuf) {
+    let d = tempfile::tempdir().unwrap();
+    let m = d.path().join("manifest.csv");
+    std::fs::write(&m, text).unwrap();
+    (d, m)
+}
+
+fn err(text: &str) -> String {
+    let (_d, m) = manifest(text);
+    read_manifest(&m).unwrap_err().to_string()
+}
+
+#[test]
+fn manifest_columns_quoting_formats_settings_and_groups() {
+    let (d, m) = manifest(
+        "# a comment line\n\
+         Subject_ID,group,affected_side,left,right,setting,left_format,right_format,format\n\
+         S1,ldh,right,\"a, b/l.csv\",a/r.csv,treadmill,hugadb-left-shank,hugadb-right-shank,\n\
+         S2,healthy,,b/l.csv,b/r.csv,,,,raw-counts\n\
+         S3,stroke,,c/l.csv,c/r.csv,overground,,,\n\
+         S4,stroke,none,d/l.csv,,,,,\n",
+    );
+    std::fs::write(d.path().join("my.toml"), "x").unwrap();
+    let v = read_manifest(&m).unwrap();
+    assert_eq!(v.len(), 4);
+    assert_eq!(v[0].left, Some(Source::Path(d.path().join("a, b/l.csv"))));
+    assert_eq!(v[0].setting, Some(Setting::Treadmill));
+    assert_eq!(v[0].left_format.as_ref().unwrap().name, "hugadb-left-shank");
+    assert_eq!(
+        v[0].right_format.as_ref().unwrap().name,
+        "hugadb-right-shank"
+    );
+    assert_eq!(v[0].group, Some(GroupLabel::Ldh));
+    assert_eq!(v[1].group, Some(GroupLabel::Healthy));
+    assert!(!v[1].affected_side_unknown, "healthy: empty side is none");
+    assert_eq!(v[1].left_format.as_ref().unwrap().name, "raw-counts");
+    assert_eq!(v[1].right_format.as_ref().unwrap().name, "raw-counts");
+    assert_eq!(v[1].setting, None);
+    assert_eq!(v[2].group, Some(GroupLabel::Other("stroke".into())));
+    assert!(v[2].affected_side_unknown);
+    assert!(!v[3].affected_side_unknown);
+    assert_eq!(v[3].right, None);
+    assert!(is_manifest(&m));
+    // The results carry the label, the unknown side (said), and the setting.
+    let r = analyze_subject(
+        &v[2],
+        &AnalysisParams::default(),
+        None,
+        &crate::io::ReadParams::default().check().unwrap(),
+    );
+    let rows = crate::output::recording_rows(&[r]);
+    assert_eq!(rows[0].group, "stroke");
+    assert_eq!(rows[0].affected_side, "");
+    assert_eq!(rows[0].side_role, "");
+    assert_eq!(rows[0].setting, "overground");
+    let opts = InputOptions {
+        setting: Some(Setting::Treadmill),
+        ..InputOptions::default()
+    };
+    let v = discover_with(std::slice::from_ref(&m), &opts).unwrap();
+    assert_eq!(v[0].setting, Some(Setting::Treadmill));
+    assert_eq!(v[2].setting, Some(Setting::Overground), "the row wins");
+    assert_eq!(v[1].setting, Some(Setting::Treadmill));
+}
+
+#[test]
+fn manifest_mistakes_are_refused_naming_the_column() {
+    let e = err("subject_id,group,left,right,notes\nS1,ldh,a,b,x\n");
+    assert!(
+        e.contains("manifest.csv:1:5: unknown column 'notes'") && e.contains("affected_side"),
+        "{e}"
+    );
+    let e = err("subject_id,left,right,Left\nS1,a,b,c\n");
+    assert!(
+        e.contains("'left' occurs 2 times") && e.contains("[2, 4]"),
+        "{e}"
+    );
+    let e = err("subject_id,group,affected_side\nS1,ldh,left\n");
+    assert!(e.contains("[\"left\", \"right\"]"), "{e}");
+    let e = err("subject_id,left,right\nS1,a,b\nS1,c,d\n");
+    assert!(
+        e.contains("manifest.csv:3:1") && e.contains("trial_id"),
+        "{e}"
+    );
+    let e = err("subject_id,trial_id,left,right\nS1,1,a,b\nS1,1,c,d\n");
+    assert!(
+        e.contains("manifest.csv:3:1") && e.contains("line 2"),
+        "{e}"
+    );
+    let e = err("subject_id,trial_id,trial,left,right\nS1,1,1,a,b\n");
+    assert!(e.contains("one trial column"), "{e}");
+    let e = err("subject_id,trial,group,left,right\nS1,1,ldh,a,b\nS1,2,healthy,c,d\n");
+    assert!(
+        e.contains("manifest.csv:3:3") && e.contains("earlier trials"),
+        "{e}"
+    );
+    let e = err("subject_id,affected_side,left,right\nS1,both,a,b\n");
+    assert!(
+        e.contains("manifest.csv:2:2") && e.contains("'both'"),
+        "{e}"
+    );
+    let e = err("subject_id,setting,left,right\nS1,stairs,a,b\n");
+    assert!(
+        e.contains("manifest.csv:2:2") && e.contains("treadmill"),
+        "{e}"
+    );
+    let e = err("subject_id,format,left,right\nS1,nosuch,a,b\n");
+    assert!(
+        e.contains("manifest.csv:2:2") && e.contains("no such built-in format"),
+        "{e}"
+    );
+    let e = err("subject_id,left_format,left,right\nS1,maps/none.toml,a,b\n");
+    assert!(
+        e.contains("manifest.csv:2:2") && e.contains("none.toml"),
+        "{e}"
+    );
+    let e = err("subject_id,left,right\nS1,a,b,c\n");
+    assert!(
+        e.contains("manifest.csv:2") && e.contains("double quotes"),
+        "{e}"
+    );
+    let e = err("subject_id,sensor_height_m,left,right\nS1,-1,a,b\n");
+    assert!(e.contains("manifest.csv:2:2"), "{e}");
+    let e = err("subject_id,left,right\n,a,b\n");
+    assert!(e.contains("non-empty subject id"), "{e}");
+    // Not a manifest: a recording, or a CSV without subject_id.
+    let (d, m) = manifest("time_s,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z\n0,1,0,0,0,0,0\n");
+    assert!(!is_manifest(&m));
+    std::fs::write(
+        d.path().join("m2.csv"),
+        "\"subject_id\" , \"right\"\nS1,x\n",
+    )
+    .unwrap();
+    assert!(is_manifest(&d.path().join("m2.csv")));
+}
+
+#[test]
+fn trials_are_kept_together_and_ids_of_direct_files_come_from_their_names() {
+    let (_d, m) = manifest(
+        "subject_id,trial_id,group,affected_side,left,right\n\
+         P1,t1,ldh,left,a,b\nP2,t1,healthy,none,c,d\nP1,t2,ldh,left,e,f\n",
+    );
+    let v = discover(&[m]).unwrap();
+    let ids: Vec<(&str, Option<&str>)> = v
+        .iter()
+        .map(|s| (s.subject_id.as_str(), s.trial_id.as_deref()))
+        .collect();
+    assert_eq!(
+        ids,
+        [("P1", Some("t1")), ("P1", Some("t2")), ("P2", Some("t1"))]
+    );
+    let d = tempfile::tempdir().unwrap();
+    let p = |n: &str| {
+        let f = d.path().join("exported000").join(n);
+        std::fs::create_dir_all(f.parent().unwrap()).unwrap();
+        std::fs::write(&f, "x").unwrap();
+        f
+    };
+    for (a, b, want) in [
+        ("P07_left.csv", "P07_right.csv", "P07"),
+        ("left-P07.csv", "right-P07.csv", "P07"),
+        (
+            "HuGaDB_v1_walking_01_00.txt",
+            "HuGaDB_v1_walking_01_00.txt",
+            "HuGaDB_v1_walking_01_00",
+        ),
+        ("a.csv", "b.csv", "a"),
+        // Only side words in the names: the folder names the subject.
+        ("left.csv", "right.csv", "exported000"),
+    ] {
+        let v = discover(&[p(a), p(b)]).unwrap();
+        assert_eq!(v[0].subject_id, want, "{a} {b}");
+    }
+    let opts = InputOptions {
+        subject_id: Some("S9".into()),
+        ..InputOptions::default()
+    };
+    let v = discover_with(&[p("a.csv"), p("b.csv")], &opts).unwrap();
+    assert_eq!(v[0].subject_id, "S9");
+    let e = discover_with(&[d.path().join("exported000")], &opts).unwrap_err();
+    assert!(e.to_string().contains("--subject"), "{e}");
+}
+
+/// Rows of a cohort: `n` persons per group, `trials` trials each; every parameter of trial t
+/// is `base + t`, so a person's mean is `base + (trials − 1) / 2`.
+fn cohort_rows(n: usize, trials: usize) -> Vec<RecordingRow> {
+    let mut out = Vec::new();
+    for (g, group) in ["healthy", "ldh"].iter().enumerate() {
+        for i in 0..n {
+            for t in 0..trials {
+                for side in ["left", "right"] {
+                    let base = 1.0
+                        + g as f64 * 0.5
+                        + i as f64 * 0.05
+                        + (side == "right") as u8 as f64 * 0.1;
+                    let v = base + t as f64;
+                    let mut r: RecordingRow = serde_json::from_value(serde_json::json!({
+                        "subject_id": format!("{group}{i}"), "side": side, "model": "fusion",
+                        "group": group, "affected_side": if g == 1 { "right" } else { "none" },
+                        "side_role": "", "source": "", "status": "ok", "error": "",
+                        "fs_hz": 100.0, "duration_s": 60.0, "strides_total": 40,
+                        "strides_valid": 40, "stride_time_s": null, "step_time_s": null,
+                        "step_frequency_steps_per_s": null, "stance_ratio": null,
+                        "swing_ratio": null, "stride_length_m": null, "speed_mps": null,
+                        "stride_length_cv": null, "stride_time_cv": null, "sta_per_s": null,
+                        "sta_per_stride": null, "sta_status": "", "wqk_deg": null,
+                        "pbi_deg": null, "bdk_deg": null, "mirrored": false,
+                        "axial_rotation_deg": 0.0, "outliers_replaced": 0,
+                        "clipped_samples": 0, "trial_id": format!("t{t}")
+                    }))
+                    .unwrap();
+                    for (k, p) in crate::cohort::PARAMETERS.iter().enumerate() {
+                        let x = v * (1.0 + k as f64 * 0.1) + ((i * 7 + k) % 5) as f64 * 0.01;
+                        set(&mut r, p.column, x);
+                    }
+                    out.push(r);
+                }
+            }
+        }
+    }
+    out
+}
+
+fn set(r: &mut RecordingRow, column: &str, x: f64) {
+    let mut j = serde_json::to_value(&*r).unwrap();
+    j[column] = serde_json::json!(x);
+    *r = serde_json::from_value(j).unwrap();
+}
+
+#[test]
+fn statistics_and_cv_count_each_person_once_whatever_the_trials() {
+    use crate::cohort::{table3, value, Cohort};
+    use crate::ml::{cross_validate, Classifier, CvParams, Dataset, Task};
+    let one = cohort_rows(6, 1);
+    let two = cohort_rows(6, 2);
+    assert_eq!(two.len(), 2 * one.len());
+    let (c1, c2) = (
+        Cohort::from_rows(&one).unwrap(),
+        Cohort::from_rows(&two).unwrap(),
+    );
+    assert_eq!((c2.healthy.len(), c2.ldh.len()), (6, 6));
+    assert!(c2.excluded.is_empty(), "{:?}", c2.excluded);
+    // The person's value is the mean of the two trials.
+    for (a, b) in c1.healthy.iter().zip(&c2.healthy) {
+        let (x1, x2) = (
+            value(&a.a, "stride_time_s").unwrap(),
+            value(&b.a, "stride_time_s").unwrap(),
+        );
+        let step = 1.0 + 4.0 * 0.1; // stride_time_s is the 5th parameter: trial t adds t × 1.4
+        assert!((x2 - (x1 + 0.5 * step)).abs() < 1e-9, "{x1} {x2}");
+        assert!(
+            b.a.trial_id.starts_with("mean of 2 trials"),
+            "{}",
+            b.a.trial_id
+        );
+    }
+    for p in table3(&c2) {
+        assert_eq!((p.h.n, p.ldhh.n, p.ldhe.n), (6, 6, 6), "{}", p.code);
+    }
+    for task in [Task::Binary, Task::ThreeClass] {
+        let ds =
+            Dataset::from_recordings(&two, task, &crate::ml::dataset::default_features()).unwrap();
+        let per_person = if task == Task::Binary { 12 } else { 18 };
+        assert_eq!(ds.len(), per_person);
+        let mut g = ds.groups.clone();
+        g.sort();
+        g.dedup();
+        assert_eq!(g.len(), 12, "one subject per person");
+        let p = CvParams {
+            k: 3,
+            repeats: 1,
+            permutation_importance: false,
+            ..CvParams::default()
+        };
+        let rep = cross_validate(&ds, &Classifier::from_name("svm", 1).unwrap(), &p).unwrap();
+        let n: usize = rep.confusion.iter().flatten().sum();
+        assert_eq!(n, per_person, "each person's row predicted once");
+    }
+}
+
+/// `setting = treadmill` turns the turn detection off (a walker on a belt cannot turn); the
+/// same recordings overground have their turn's strides flagged.
+#[test]
+fn treadmill_setting_flags_no_stride_as_turning() {
+    let c = crate::simulate::CohortParams {
+        healthy: 1,
+        ldh: 0,
+        duration_s: 40.0,
+        seed: 3,
+        turn: true,
+        ..crate::simulate::CohortParams::default()
+    };
+    let s = c.simulate(0).unwrap();
+    let params = AnalysisParams {
+        compute_sta: false,
+        ..AnalysisParams::default()
+    };
+    let leg = |l: &crate::simulate::SimLeg| -> LoadedLeg {
+        Ok((
+            l.recording.clone(),
+            memory_report(&l.recording),
+            "sim".into(),
+        ))
+    };
+    let turning = |setting: Option<Setting>| -> usize {
+        let input = SubjectInput {
+            subject_id: "T".into(),
+            setting,
+            ..SubjectInput::default()
+        };
+        let r = analyze_pair(&input, leg(&s.left), leg(&s.right), &params);
+        assert_eq!(r.setting, setting);
+        r.legs()
+            .iter()
+            .map(|(_, l)| {
+                let l = l.as_ref().unwrap();
+                l.strides
+                    .iter()
+                    .filter(|x| x.reason.contains("turning"))
+                    .count()
+            })
+            .sum()
+    };
+    assert!(turning(None) >= 2, "the simulated turn is found overground");
+    assert_eq!(turning(Some(Setting::Overground)), turning(None));
+    assert_eq!(turning(Some(Setting::Treadmill)), 0);
+    assert_eq!(params.for_treadmill().strides.turn_deg, 180.0);
+    params.for_treadmill().check().unwrap();
+}
