@@ -174,19 +174,18 @@ pub fn person_row(rows: &[&RecordingRow], side: &str) -> Option<RecordingRow> {
     out.strides_total = sum(|r| r.strides_total);
     out.strides_valid = sum(|r| r.strides_valid);
     out.duration_s = ok.iter().map(|r| r.duration_s).sum();
-    // Each `; `-separated item prefixed by its trial.
-    let each = |f: fn(&RecordingRow) -> &str| -> String {
-        ok.iter()
-            .flat_map(|r| {
-                f(r).split("; ")
-                    .filter(|x| !x.is_empty())
-                    .map(|x| format!("{}: {x}", r.trial_id))
-                    .collect::<Vec<_>>()
-            })
-            .collect::<Vec<_>>()
-            .join("; ")
-    };
-    out.source = each(|r| &r.source);
+    // Each trial's `; `-separated sources, prefixed by its trial.
+    out.source = ok
+        .iter()
+        .flat_map(|r| {
+            r.source
+                .split("; ")
+                .filter(|x| !x.is_empty())
+                .map(|x| format!("{}: {x}", r.trial_id))
+                .collect::<Vec<_>>()
+        })
+        .collect::<Vec<_>>()
+        .join("; ");
     // Each trial's structured warnings, the message prefixed by its trial.
     out.warnings = crate::pipeline::quality::WarningList(
         ok.iter()
