@@ -151,6 +151,9 @@ pub struct AnalyzeArgs {
     /// Print the end-of-run summary on stdout as JSON (for scripts) instead of a sentence.
     #[arg(long)]
     pub json: bool,
+    /// Largest sensor file read, MB (default 256); larger files are refused before reading.
+    #[arg(long, value_name = "MB")]
+    pub max_file_size_mb: Option<f64>,
 }
 
 #[derive(Debug, Args)]
@@ -315,6 +318,9 @@ pub struct InspectArgs {
     /// Refuse recordings with longer gaps instead of keeping the longest segment.
     #[arg(long)]
     pub reject_gaps: bool,
+    /// Largest sensor file read, MB (default 256); larger files are refused before reading.
+    #[arg(long, value_name = "MB")]
+    pub max_file_size_mb: Option<f64>,
     /// Print JSON instead of one line per file.
     #[arg(long)]
     pub json: bool,

@@ -23,7 +23,12 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
         a.no_sta,
     )?;
     let format = a.format.as_deref().map(resolve_format).transpose()?;
-    let read = ReadParams::default().check()?;
+    let defaults = ReadParams::default();
+    let read = ReadParams {
+        max_file_size_mb: a.max_file_size_mb.unwrap_or(defaults.max_file_size_mb),
+        ..defaults
+    }
+    .check()?;
     let subjects = discover(&a.inputs)?;
     anyhow::ensure!(!subjects.is_empty(), "no subjects found in the inputs");
     if a.inputs.is_empty() {
@@ -109,22 +114,15 @@ fn summary(a: &AnalyzeArgs, sum: &FolderSummary, subjects: usize, model: &str) -
     }
     if v.verbose {
         for r in &warned {
-            eprintln!("warning: {} {}: {}", r.subject_id, r.side, r.warnings);
+            for w in r.warnings.iter() {
+                let (sev, code) = (w.severity.as_str(), &w.code);
+                eprintln!("{sev}: {} {}: {code}: {}", r.subject_id, r.side, w.message);
+            }
         }
     }
     if a.json {
-        let row = |r: &&RecordingRow, what: &str| {
-            let mut m = serde_json::Map::new();
-            m.insert("subject_id".into(), r.subject_id.clone().into());
-            m.insert("side".into(), r.side.clone().into());
-            let text = if what == "error" {
-                &r.error
-            } else {
-                &r.warnings
-            };
-            m.insert(what.into(), text.clone().into());
-            serde_json::Value::Object(m)
-        };
+        let failure = |r: &&RecordingRow| serde_json::json!({"subject_id": r.subject_id, "side": r.side, "error": r.error});
+        let warning = |r: &&RecordingRow| serde_json::json!({"subject_id": r.subject_id, "side": r.side, "warnings": r.warnings});
         let j = serde_json::json!({
             "subjects": subjects,
             "recordings": sum.recordings,
@@ -135,8 +133,8 @@ fn summary(a: &AnalyzeArgs, sum: &FolderSummary, subjects: usize, model: &str) -
             "valid_strides": sum.valid_strides,
             "model": model,
             "out": a.out,
-            "failures": failures.iter().map(|r| row(r, "error")).collect::<Vec<_>>(),
-            "warnings": warned.iter().map(|r| row(r, "warnings")).collect::<Vec<_>>(),
+            "failures": failures.iter().map(failure).collect::<Vec<_>>(),
+            "warnings": warned.iter().map(warning).collect::<Vec<_>>(),
         });
         println!("{}", serde_json::to_string_pretty(&j)?);
     } else if !v.quiet {

@@ -85,6 +85,10 @@ pub fn thread_pool(jobs: Option<usize>) -> Result<rayon::ThreadPool> {
     let mut b = rayon::ThreadPoolBuilder::new();
     if let Some(j) = jobs {
         anyhow::ensure!(j >= 1, "--jobs must be at least 1");
+        let (j, warning) = ldh_core::pipeline::bounded_jobs(j);
+        if let Some(w) = warning {
+            eprintln!("warning: {w}");
+        }
         b = b.num_threads(j);
     }
     Ok(b.build()?)

@@ -10,7 +10,7 @@ mod bilateral;
 mod inputs;
 mod leg;
 mod many;
-mod quality;
+pub mod quality;
 mod subject;
 #[cfg(test)]
 mod tests;
@@ -20,9 +20,13 @@ pub use bilateral::{bilateral_events, bilateral_events_on_clock, BilateralEvent,
 pub use inputs::{demo_inputs, discover, read_manifest, Source, SubjectInput};
 pub use leg::{analyze_leg, memory_report, LegResult};
 pub use many::{
-    analyze_many, analyze_to_folder, recording_rows_many, FolderOptions, FolderSummary,
+    analyze_many, analyze_to_folder, bounded_jobs, recording_rows_many, FolderOptions,
+    FolderSummary,
 };
-pub use quality::{leg_warnings, pair_warnings, RUNNING_STRIDE_TIME_S};
+pub use quality::{
+    all_leg_warnings, codes, leg_checks, leg_warnings, pair_warnings, params as quality_params,
+    withhold, LegChecks, Severity, Warning, WarningList, WithheldList, RUNNING_STRIDE_TIME_S,
+};
 pub use subject::{analyze_pair, analyze_simulated, analyze_subject, LoadedLeg, SubjectResult};
 
 use serde::{Deserialize, Serialize};

@@ -37,7 +37,7 @@ pub struct SubjectResult {
     /// Problems of the pair (different clocks, rates or lengths; left and right possibly
     /// swapped); see [`pair_warnings`].
     #[serde(default)]
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 impl SubjectResult {
@@ -115,6 +115,8 @@ pub fn analyze_pair(
     } else {
         (None, None)
     };
+    // The parameters again with the other leg's heel strikes, then what the checks withhold
+    // (the leg's own findings and the pair's).
     let finish = |x: std::result::Result<(LegResult, Vec<f64>), String>,
                   other: Option<Vec<f64>>| {
         x.map(|(mut leg, _)| {
@@ -123,22 +125,26 @@ pub fn analyze_pair(
                 leg.parameters.sta_per_stride,
                 leg.parameters.sta_status.clone(),
             );
+            quality::apply_to_strides(&mut leg.strides, &warnings);
             leg.parameters = side_parameters(&leg.strides, other.as_deref());
             (
                 leg.parameters.sta_per_s,
                 leg.parameters.sta_per_stride,
                 leg.parameters.sta_status,
             ) = sta;
+            withhold(&mut leg.parameters, &leg.warnings);
+            withhold(&mut leg.parameters, &warnings);
             leg
         })
     };
+    let (left, right) = (finish(l, rhs), finish(r, lhs));
     SubjectResult {
         subject_id: input.subject_id.clone(),
         group: input.group,
         affected_side: input.affected_side,
         model: params.attitude.model,
-        left: finish(l, rhs),
-        right: finish(r, lhs),
+        left,
+        right,
         warnings,
     }
 }
