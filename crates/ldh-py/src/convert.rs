@@ -119,7 +119,8 @@ fn column_order<T: Serialize>(rows: &[T], maps: &[serde_json::Map<String, Value>
     let mut cols: Vec<String> = Vec::new();
     if let Some(first) = rows.first() {
         let mut w = csv::WriterBuilder::new().from_writer(Vec::new());
-        if w.serialize(first).is_ok() {
+        // Lists (warnings, withheld) are one cell in CSV, as `ldh analyze` writes them.
+        if ldh_core::pipeline::quality::flat(|| w.serialize(first)).is_ok() {
             if let Ok(bytes) = w.into_inner() {
                 let mut r = csv::Reader::from_reader(&bytes[..]);
                 if let Ok(h) = r.headers() {

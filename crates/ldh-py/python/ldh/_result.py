@@ -17,10 +17,18 @@ def have_pandas() -> bool:
     return True
 
 
+def _objects(v: Any) -> np.ndarray:
+    """A 1-D object array (elements may themselves be lists or dicts)."""
+    out = np.empty(len(v), dtype=object)
+    for i, x in enumerate(v):
+        out[i] = x
+    return out
+
+
 def _as_arrays(cols: Dict[str, Any]) -> Dict[str, np.ndarray]:
-    """Columns from the core (numpy arrays, or lists for text) as numpy arrays (text as object
-    arrays, ``None`` where a value is missing)."""
-    return {k: v if isinstance(v, np.ndarray) else np.array(v, dtype=object) for k, v in cols.items()}
+    """Columns from the core (numpy arrays, or lists for text and structured cells) as numpy
+    arrays (object arrays for those, ``None`` where a value is missing)."""
+    return {k: v if isinstance(v, np.ndarray) else _objects(v) for k, v in cols.items()}
 
 
 def _table(cols: Dict[str, Any], as_frame: bool) -> Any:
@@ -31,15 +39,23 @@ def _table(cols: Dict[str, Any], as_frame: bool) -> Any:
     return _as_arrays(cols)
 
 
+WARNING_COLUMNS = ("subject_id", "side", "code", "severity", "message", "affects")
+
+
 def _warning_rows(recordings: Dict[str, Any]) -> Dict[str, list]:
-    """One row per warning of a recording (the ``warnings`` column, ``"; "``-separated)."""
-    out: Dict[str, list] = {"subject_id": [], "side": [], "message": []}
-    for s, side, text in zip(recordings.get("subject_id", []), recordings.get("side", []), recordings.get("warnings", [])):
-        for msg in (text or "").split("; "):
-            if msg:
-                out["subject_id"].append(s)
-                out["side"].append(side)
-                out["message"].append(msg)
+    """One row per structured warning of a recording (docs/quality.md: ``code``, ``severity``
+    note/warning/fault, ``message``, ``affects``: the columns it concerns). The recordings
+    table keeps each recording's list in its ``warnings`` cell; this is the only place they are
+    unfolded."""
+    out: Dict[str, list] = {k: [] for k in WARNING_COLUMNS}
+    for s, side, ws in zip(recordings.get("subject_id", []), recordings.get("side", []), recordings.get("warnings", [])):
+        for w in ws or []:
+            if isinstance(w, str):  # a free-text warning
+                w = {"code": "", "severity": "warning", "message": w, "affects": []}
+            out["subject_id"].append(s)
+            out["side"].append(side)
+            for k in WARNING_COLUMNS[2:]:
+                out[k].append(w.get(k))
     return out
 
 
@@ -65,8 +81,11 @@ class Result:
         pandas is importable (or ``as_frame=True``); otherwise dicts of columns: float64 arrays
         with NaN for missing values, bool arrays, object arrays for text.
     warnings : table
-        One row per problem that did not stop a recording: ``subject_id``, ``side``,
-        ``message``.
+        One row per structured warning of a recording that was analysed: ``subject_id``,
+        ``side``, ``code``, ``severity`` (``note``, ``warning``, ``fault``), ``message``,
+        ``affects`` (the parameters it concerns; docs/quality.md). The recordings table keeps
+        each recording's list in its ``warnings`` cell and the withheld parameters (column ->
+        reason; the value is NaN) in its ``withheld`` cell.
     errors : table
         One row per recording that failed: ``subject_id``, ``side``, ``error`` (a file that
         cannot be read, too few strides...); the other recordings are analysed.
