@@ -46,7 +46,7 @@ def test_lyapunov_errors():
 
 
 def _cli():
-    for c in ["target/debug/ldh-under-test", "target/debug/ldh", "target/release/ldh"]:
+    for c in ["target/debug/ldh-under-test", "target/debug/ldh", "target/release/ldh", "target/ci/ldh"]:
         if (ROOT / c).exists():
             return ROOT / c
     return None
