@@ -7,6 +7,8 @@ use clap::{Args, Parser, Subcommand};
 use ldh_core::attitude::AttitudeModel;
 use ldh_core::events::EventDetector;
 use ldh_core::ml::{ClassifierKind, Task};
+use ldh_core::simulate::family_b::Family;
+use ldh_core::Setting;
 
 /// Gait assessment for lumbar disc herniation from two shank-worn IMUs.
 ///
@@ -298,6 +300,17 @@ pub struct SimulateArgs {
     /// Output format: a built-in format name or a TOML file.
     #[arg(long, default_value = "ldh")]
     pub format: String,
+    /// Simulator family: a (default, the original model) or b (the independently written family:
+    /// other published curves, rolling foot, slow hemiparetic gait as the `ldh` group, treadmill
+    /// walks, any sensor rotation, scale faults, clipping; docs/simulator.md).
+    #[arg(long, value_enum, default_value_t = Family::A)]
+    pub family: Family,
+    /// Family b: every subject's mean walking speed, m/s (default: drawn per subject).
+    #[arg(long)]
+    pub speed_mps: Option<f64>,
+    /// Family b: overground or treadmill for every subject (default: about 30 % on a treadmill).
+    #[arg(long)]
+    pub setting: Option<Setting>,
     /// Worker threads (default: all cores).
     #[arg(short, long)]
     pub jobs: Option<usize>,
