@@ -1,39 +1,27 @@
-//! Values in and out of the binding: numpy channels, recordings as dicts, the result tables,
-//! the Python `params` dict. Every conversion of core results to Python goes through here.
+//! Conversion of core values into Python objects: numpy arrays for channels and numeric
+//! columns, dicts and lists for typed records (through their serde form, never JSON text), and
+//! Python values into core parameters. Nothing here decides anything about the data.
 
 use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString};
+use serde::de::DeserializeOwned;
+use serde::Serialize;
+use serde_json::Value;
 
-use ldh_core::io::FormatSpec;
-use ldh_core::{LdhError, Recording};
+use ldh_core::LdhError;
 
-/// A 1-D float64 numpy array owned by Python.
-pub(crate) type Array1<'py> = Bound<'py, PyArray1<f64>>;
-
-/// A vector as a 1-D float64 numpy array.
-pub(crate) fn vec1<'py>(py: Python<'py>, v: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
-    v.into_pyarray(py)
+/// How [`to_py`] maps JSON-like values.
+#[derive(Clone, Copy, Default)]
+pub(crate) struct Opts {
+    /// `None` becomes `nan` (parameters that could not be measured).
+    pub null_as_nan: bool,
+    /// A non-empty list of numbers becomes a float64 numpy array.
+    pub numeric_arrays: bool,
 }
 
-/// Put the six channels into a dict as `acc_x_g` … `gyro_z_dps` numpy arrays.
-pub(crate) fn put_channels(
-    d: &Bound<'_, PyDict>,
-    acc_g: [Vec<f64>; 3],
-    gyro_dps: [Vec<f64>; 3],
-) -> PyResult<()> {
-    let names = [
-        "acc_x_g",
-        "acc_y_g",
-        "acc_z_g",
-        "gyro_x_dps",
-        "gyro_y_dps",
-        "gyro_z_dps",
-    ];
-    for (k, v) in names.into_iter().zip(acc_g.into_iter().chain(gyro_dps)) {
-        d.set_item(k, vec1(d.py(), v))?;
-    }
-    Ok(())
+pub(crate) fn vec1(py: Python<'_>, v: Vec<f64>) -> Bound<'_, PyArray1<f64>> {
+    v.into_pyarray(py)
 }
 
 /// Copy N numpy channels (contiguous float64, as the Python layer passes them) into vectors.
@@ -45,39 +33,157 @@ pub(crate) fn vecs<const N: usize>(a: &[PyReadonlyArray1<'_, f64>; N]) -> PyResu
     Ok(v.try_into().expect("N channels in, N out"))
 }
 
-/// The result tables of `ldh analyze` as one JSON object for the Python layer.
-pub(crate) fn tables_json(
-    results: &[ldh_core::pipeline::SubjectResult],
-) -> Result<String, LdhError> {
-    serde_json::to_string(&ldh_core::output::Tables::of(results))
-        .map_err(|e| LdhError::signal("json", e.to_string()))
+/// The serde form of a core value (a struct becomes a map of its fields).
+pub(crate) fn value_of<T: Serialize>(v: &T) -> Result<Value, LdhError> {
+    serde_json::to_value(v).map_err(|e| LdhError::signal("conversion", e.to_string()))
 }
 
-/// A recording as the dict `ldh.read_recording` returns (channels as numpy arrays).
-pub(crate) fn recording_dict<'py>(py: Python<'py>, rec: Recording) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("fs_hz", rec.fs_hz)?;
-    d.set_item("t0_s", rec.t0_s)?;
-    d.set_item("time_s", vec1(py, rec.times_s()))?;
-    put_channels(&d, rec.acc_g, rec.gyro_dps)?;
-    d.set_item("saturated", rec.saturated.into_pyarray(py))?;
-    Ok(d)
+fn is_number(v: &Value) -> bool {
+    v.is_number() || v.is_null()
 }
 
-/// A `format` argument: a preset name or a column spec (see `ldh formats`).
-pub(crate) fn format_of(format: Option<&str>) -> Result<Option<FormatSpec>, LdhError> {
-    format.map(FormatSpec::resolve).transpose()
+/// A serde value as a Python object (dict, list, float, int, str, bool, None).
+pub(crate) fn to_py<'py>(py: Python<'py>, v: &Value, o: Opts) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match v {
+        Value::Null if o.null_as_nan => PyFloat::new(py, f64::NAN).into_any(),
+        Value::Null => py.None().into_bound(py),
+        Value::Bool(b) => PyBool::new(py, *b).to_owned().into_any(),
+        Value::Number(n) => match (n.as_i64(), n.as_u64()) {
+            (Some(i), _) => i.into_pyobject(py)?.into_any(),
+            (None, Some(u)) => u.into_pyobject(py)?.into_any(),
+            _ => PyFloat::new(py, n.as_f64().unwrap_or(f64::NAN)).into_any(),
+        },
+        Value::String(s) => PyString::new(py, s).into_any(),
+        Value::Array(a) if o.numeric_arrays && !a.is_empty() && a.iter().all(is_number) => {
+            let f: Vec<f64> = a.iter().map(|x| x.as_f64().unwrap_or(f64::NAN)).collect();
+            vec1(py, f).into_any()
+        }
+        Value::Array(a) => {
+            let l = PyList::empty(py);
+            for x in a {
+                l.append(to_py(py, x, o)?)?;
+            }
+            l.into_any()
+        }
+        Value::Object(m) => {
+            let d = PyDict::new(py);
+            for (k, x) in m {
+                d.set_item(k, to_py(py, x, o)?)?;
+            }
+            d.into_any()
+        }
+    })
 }
 
-/// Analysis parameters from an optional JSON object (the Python `params` dict: the same names,
-/// nesting and defaults as the Rust `AnalysisParams`, unknown names refused).
-pub(crate) fn base_params(
-    params_json: Option<&str>,
-) -> Result<ldh_core::pipeline::AnalysisParams, LdhError> {
-    match params_json {
-        None => Ok(ldh_core::pipeline::AnalysisParams::default()),
-        Some(j) => {
-            serde_json::from_str(j).map_err(|e| LdhError::param("params", "dict", e.to_string()))
+/// A Python value (dict, list, str, number, bool, None) as a serde value, to build core
+/// parameters with their own names, defaults and validation (`deny_unknown_fields`).
+pub(crate) fn from_py(v: &Bound<'_, PyAny>) -> PyResult<Value> {
+    Ok(if v.is_none() {
+        Value::Null
+    } else if let Ok(b) = v.cast::<PyBool>() {
+        Value::Bool(b.is_true())
+    } else if v.is_instance_of::<PyInt>() {
+        match v.extract::<i64>() {
+            Ok(i) => Value::from(i),
+            Err(_) => Value::from(v.extract::<u64>()?),
+        }
+    } else if let Ok(f) = v.extract::<f64>() {
+        serde_json::Number::from_f64(f).map_or(Value::Null, Value::Number)
+    } else if let Ok(s) = v.extract::<String>() {
+        Value::String(s)
+    } else if let Ok(d) = v.cast::<PyDict>() {
+        let mut m = serde_json::Map::new();
+        for (k, x) in d.iter() {
+            m.insert(k.str()?.to_string(), from_py(&x)?);
+        }
+        Value::Object(m)
+    } else {
+        let items: Vec<Value> = v
+            .try_iter()?
+            .map(|x| from_py(&x?))
+            .collect::<PyResult<_>>()?;
+        Value::Array(items)
+    })
+}
+
+/// A core choice (an enum with serde names: `"split"`, `"grouped"`…) from its name; the error
+/// lists the valid names.
+pub(crate) fn choice<T: DeserializeOwned>(name: &'static str, s: &str) -> Result<T, LdhError> {
+    serde_json::from_value(Value::String(s.to_string()))
+        .map_err(|e| LdhError::param(name, s, e.to_string()))
+}
+
+/// Column order of a table: the CSV header of its first row (the field order), then any other
+/// key of the rows.
+fn column_order<T: Serialize>(rows: &[T], maps: &[serde_json::Map<String, Value>]) -> Vec<String> {
+    let mut cols: Vec<String> = Vec::new();
+    if let Some(first) = rows.first() {
+        let mut w = csv::WriterBuilder::new().from_writer(Vec::new());
+        // Lists (warnings, withheld) are one cell in CSV, as `ldh analyze` writes them.
+        if ldh_core::pipeline::quality::flat(|| w.serialize(first)).is_ok() {
+            if let Ok(bytes) = w.into_inner() {
+                let mut r = csv::Reader::from_reader(&bytes[..]);
+                if let Ok(h) = r.headers() {
+                    cols = h.iter().map(String::from).collect();
+                }
+            }
         }
     }
+    for m in maps {
+        for k in m.keys() {
+            if !cols.contains(k) {
+                cols.push(k.clone());
+            }
+        }
+    }
+    cols
+}
+
+/// Rows of a table as columns: numbers (with `None` as NaN) as float64 arrays, booleans as bool
+/// arrays, anything else (text, with `None` for missing) as lists. `header` names the columns of
+/// an empty table.
+pub(crate) fn columns<'py, T: Serialize>(
+    py: Python<'py>,
+    rows: &[T],
+    header: &[&str],
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let maps: Vec<serde_json::Map<String, Value>> = rows
+        .iter()
+        .map(|r| match value_of(r) {
+            Ok(Value::Object(m)) => Ok(m),
+            Ok(_) => Ok(serde_json::Map::new()),
+            Err(e) => Err(e),
+        })
+        .collect::<Result<_, _>>()
+        .map_err(|e| crate::errors::to_py(py, e))?;
+    if rows.is_empty() {
+        for h in header {
+            d.set_item(*h, vec1(py, vec![]))?;
+        }
+        return Ok(d);
+    }
+    for c in column_order(rows, &maps) {
+        let vals: Vec<&Value> = maps
+            .iter()
+            .map(|m| m.get(&c).unwrap_or(&Value::Null))
+            .collect();
+        if vals.iter().all(|v| is_number(v)) {
+            let f: Vec<f64> = vals
+                .iter()
+                .map(|v| v.as_f64().unwrap_or(f64::NAN))
+                .collect();
+            d.set_item(&c, vec1(py, f))?;
+        } else if vals.iter().all(|v| v.is_boolean()) {
+            let b: Vec<bool> = vals.iter().map(|v| v.as_bool().unwrap_or(false)).collect();
+            d.set_item(&c, b.into_pyarray(py))?;
+        } else {
+            let l = PyList::empty(py);
+            for v in vals {
+                l.append(to_py(py, v, Opts::default())?)?;
+            }
+            d.set_item(&c, l)?;
+        }
+    }
+    Ok(d)
 }

@@ -1,127 +1,111 @@
-//! Cross-validation, training and prediction on arrays (core `ml`).
+//! Cross-validation, training and prediction on arrays (`ldh.cross_validate`, `ldh.train`,
+//! `ldh.predict`).
 
-use numpy::IntoPyArray;
+use numpy::{IntoPyArray, PyArray2, PyReadonlyArray2};
 use pyo3::prelude::*;
 
+use ldh_core::ml::{Classifier, CvParams, Dataset, ModelFile};
 use ldh_core::LdhError;
 
-use crate::errors::to_py;
+use crate::convert::{choice, to_py, value_of, Opts};
+use crate::errors::OrRaise;
 
-/// Register this module's functions.
-pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(cross_validate, m)?)?;
-    m.add_function(wrap_pyfunction!(train, m)?)?;
-    m.add_function(wrap_pyfunction!(predict, m)?)?;
-    Ok(())
-}
-
-/// The rows of `x` with labels `y` as a core dataset (checks in `Dataset::from_arrays`).
-fn ml_dataset(
-    x: numpy::PyReadonlyArray2<'_, f64>,
-    y: Vec<usize>,
-    groups: Option<Vec<String>>,
-    task: &str,
-    feature_names: Option<Vec<String>>,
-) -> Result<ldh_core::ml::Dataset, LdhError> {
-    let task: ldh_core::ml::Task = task.parse()?;
-    ldh_core::ml::Dataset::from_arrays(x.as_array().to_owned(), y, groups, task, feature_names)
-}
-
-/// Repeated k-fold cross-validation of one classifier on arrays; returns the report as JSON.
+/// Repeated k-fold cross-validation of one classifier; the report as a dict.
 #[pyfunction]
-#[pyo3(signature = (x, y, groups=None, classifier="rf", task="three-class", k=10, repeats=10, seed=1, kind="grouped", folds=None, top_k=None))]
+#[pyo3(signature = (x, y, groups=None, classifier="rf", task="three-class", k=None, repeats=None, seed=None, kind=None, folds=None, top_k=None))]
 #[allow(clippy::too_many_arguments)]
-fn cross_validate(
-    py: Python<'_>,
-    x: numpy::PyReadonlyArray2<'_, f64>,
+pub(crate) fn cross_validate<'py>(
+    py: Python<'py>,
+    x: PyReadonlyArray2<'py, f64>,
     y: Vec<usize>,
     groups: Option<Vec<String>>,
     classifier: &str,
     task: &str,
-    k: usize,
-    repeats: usize,
-    seed: u64,
-    kind: &str,
+    k: Option<usize>,
+    repeats: Option<usize>,
+    seed: Option<u64>,
+    kind: Option<String>,
     folds: Option<Vec<Vec<usize>>>,
     top_k: Option<usize>,
-) -> PyResult<String> {
-    use ldh_core::ml::{CvKind, CvParams};
-    let ds = ml_dataset(x, y, groups, task, None).map_err(|e| to_py(py, e))?;
-    let (clf, kind) = (classifier.to_string(), kind.to_string());
-    py.detach(move || -> Result<String, LdhError> {
-        let kind = match kind.as_str() {
-            "grouped" => CvKind::Grouped,
-            "stratified" => CvKind::Stratified,
-            o => {
-                return Err(LdhError::param(
-                    "kind",
-                    o,
-                    "expected 'grouped' or 'stratified'",
-                ))
-            }
-        };
-        let c = ldh_core::ml::Classifier::from_name(&clf, seed)?;
-        let p = CvParams {
-            k,
-            repeats,
-            seed,
-            kind,
-            top_k,
-            permutation_importance: true,
-        };
-        let r = match folds {
-            Some(f) => ldh_core::ml::cross_validate_with_folds(&ds, &c, &p, &f)?,
-            None => ldh_core::ml::cross_validate(&ds, &c, &p)?,
-        };
-        serde_json::to_string(&r).map_err(|e| LdhError::signal("json", e.to_string()))
-    })
-    .map_err(|e| to_py(py, e))
+) -> PyResult<Bound<'py, PyAny>> {
+    let x = x.as_array().to_owned();
+    let (clf, task) = (classifier.to_string(), task.to_string());
+    let report = py
+        .detach(move || -> Result<_, LdhError> {
+            let ds = Dataset::from_arrays(x, y, groups, task.parse()?, None)?;
+            let d = CvParams::default();
+            let p = CvParams {
+                k: k.unwrap_or(d.k),
+                repeats: repeats.unwrap_or(d.repeats),
+                seed: seed.unwrap_or(d.seed),
+                kind: match kind {
+                    Some(s) => choice("kind", &s)?,
+                    None => d.kind,
+                },
+                top_k: top_k.or(d.top_k),
+                ..d
+            };
+            let c = Classifier::from_name(&clf, p.seed)?;
+            let r = match folds {
+                Some(f) => ldh_core::ml::cross_validate_with_folds(&ds, &c, &p, &f)?,
+                None => ldh_core::ml::cross_validate(&ds, &c, &p)?,
+            };
+            value_of(&r)
+        })
+        .or_raise(py)?;
+    to_py(py, &report, Opts::default())
 }
 
-/// Train a classifier on all rows; returns the model file (JSON) that `ldh predict` reads.
+/// Train a classifier on all rows; the model file (the JSON that `ldh predict` reads).
 #[pyfunction]
-#[pyo3(signature = (x, y, feature_names, classifier="rf", task="three-class", seed=1, attitude_model="fusion"))]
+#[pyo3(signature = (x, y, feature_names, classifier="rf", task="three-class", seed=None, attitude_model="fusion"))]
 #[allow(clippy::too_many_arguments)]
-fn train(
+pub(crate) fn train(
     py: Python<'_>,
-    x: numpy::PyReadonlyArray2<'_, f64>,
+    x: PyReadonlyArray2<'_, f64>,
     y: Vec<usize>,
     feature_names: Vec<String>,
     classifier: &str,
     task: &str,
-    seed: u64,
+    seed: Option<u64>,
     attitude_model: &str,
 ) -> PyResult<String> {
-    let ds = ml_dataset(x, y, None, task, Some(feature_names)).map_err(|e| to_py(py, e))?;
-    let (clf, am) = (classifier.to_string(), attitude_model.to_string());
+    let x = x.as_array().to_owned();
+    let (clf, task, am) = (
+        classifier.to_string(),
+        task.to_string(),
+        attitude_model.to_string(),
+    );
     py.detach(move || -> Result<String, LdhError> {
-        let c = ldh_core::ml::Classifier::from_name(&clf, seed)?;
-        let m = ldh_core::ml::ModelFile::train(&ds, &c, &am)?;
+        let ds = Dataset::from_arrays(x, y, None, task.parse()?, Some(feature_names))?;
+        let c = Classifier::from_name(&clf, seed.unwrap_or(CvParams::default().seed))?;
+        let m = ModelFile::train(&ds, &c, &am)?;
         m.to_json()
     })
-    .map_err(|e| to_py(py, e))
+    .or_raise(py)
 }
 
-/// Predict with a model file's JSON: (labels, probabilities or None).
+type Predicted<'py> = (Vec<usize>, Option<Bound<'py, PyArray2<f64>>>);
+
+/// Predict with a model file's text: (labels, probabilities or None).
 #[pyfunction]
 #[pyo3(signature = (model_json, x, feature_names=None))]
-#[allow(clippy::type_complexity)]
-fn predict<'py>(
+pub(crate) fn predict<'py>(
     py: Python<'py>,
     model_json: &str,
-    x: numpy::PyReadonlyArray2<'py, f64>,
+    x: PyReadonlyArray2<'py, f64>,
     feature_names: Option<Vec<String>>,
-) -> PyResult<(Vec<usize>, Option<Bound<'py, numpy::PyArray2<f64>>>)> {
+) -> PyResult<Predicted<'py>> {
     let x = x.as_array().to_owned();
     let text = model_json.to_string();
     let (labels, proba) = py
         .detach(move || -> Result<_, LdhError> {
-            let m = ldh_core::ml::ModelFile::from_json(&text, "<model>")?;
+            let m = ModelFile::from_json(&text, "<model>")?;
             if let Some(names) = feature_names {
                 m.check_features(&names)?;
             }
             m.predict(&x)
         })
-        .map_err(|e| to_py(py, e))?;
+        .or_raise(py)?;
     Ok((labels, proba.map(|p| p.into_pyarray(py))))
 }

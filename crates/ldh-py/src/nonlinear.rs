@@ -1,65 +1,61 @@
-//! The nolds look-alikes: Rosenstein's and Eckmann's Lyapunov exponents (core `nonlinear`).
+//! Lyapunov exponents with nolds' names (`ldh.lyap_r`, `ldh.lyap_e`); `None` takes the core's
+//! default, which is nolds 0.6.2's.
 
-use numpy::PyReadonlyArray1;
+use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
+use ldh_core::nonlinear::{EckmannParams, RosensteinParams};
 use ldh_core::LdhError;
 
-use crate::convert::{vec1, Array1};
-use crate::errors::to_py;
+use crate::convert::{choice, value_of, vec1};
+use crate::errors::OrRaise;
 
-/// Register this module's functions.
-pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(lyap_r, m)?)?;
-    m.add_function(wrap_pyfunction!(lyap_e, m)?)?;
-    Ok(())
-}
+type LyapR<'py> = (
+    f64,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    (f64, f64),
+);
 
-/// Rosenstein's largest Lyapunov exponent with nolds' parameters (`nolds.lyap_r`, fit="poly").
-/// Returns (exponent, ks, divergence, [slope, intercept]).
+/// Rosenstein's largest Lyapunov exponent (`nolds.lyap_r`): (exponent, ks, divergence,
+/// (slope, intercept)).
 #[pyfunction]
-#[pyo3(signature = (data, emb_dim=10, lag=None, min_tsep=None, tau=1.0, min_neighbors=20, trajectory_len=20, fit="poly", fit_offset=0))]
+#[pyo3(signature = (data, emb_dim=None, lag=None, min_tsep=None, tau=None, min_neighbors=None, trajectory_len=None, fit=None, fit_offset=None))]
 #[allow(clippy::too_many_arguments)]
-fn lyap_r<'py>(
+pub(crate) fn lyap_r<'py>(
     py: Python<'py>,
     data: PyReadonlyArray1<'py, f64>,
-    emb_dim: usize,
+    emb_dim: Option<usize>,
     lag: Option<usize>,
     min_tsep: Option<usize>,
-    tau: f64,
-    min_neighbors: usize,
-    trajectory_len: usize,
-    fit: &str,
-    fit_offset: usize,
-) -> PyResult<(f64, Array1<'py>, Array1<'py>, (f64, f64))> {
-    use ldh_core::nonlinear::{Fit, RosensteinParams};
-    if fit != "poly" {
-        return Err(to_py(
-            py,
-            LdhError::param(
-                "fit",
-                fit,
-                "only 'poly' is supported (nolds' RANSAC fit is random)",
-            ),
-        ));
-    }
+    tau: Option<f64>,
+    min_neighbors: Option<usize>,
+    trajectory_len: Option<usize>,
+    fit: Option<String>,
+    fit_offset: Option<usize>,
+) -> PyResult<LyapR<'py>> {
     let x = data.as_slice()?.to_vec();
-    let params = RosensteinParams {
-        emb_dim,
-        lag,
-        min_tsep,
-        tau,
-        min_neighbors,
-        trajectory_len,
-        fit: Fit::Poly,
-        fit_offset,
-    };
     let r = py
         .detach(move || -> Result<_, LdhError> {
+            let d = RosensteinParams::nolds();
+            let params = RosensteinParams {
+                emb_dim: emb_dim.unwrap_or(d.emb_dim),
+                lag: lag.or(d.lag),
+                min_tsep: min_tsep.or(d.min_tsep),
+                tau: tau.unwrap_or(d.tau),
+                min_neighbors: min_neighbors.unwrap_or(d.min_neighbors),
+                trajectory_len: trajectory_len.unwrap_or(d.trajectory_len),
+                fit: match fit {
+                    Some(f) => choice("fit", &f)?,
+                    None => d.fit,
+                },
+                fit_offset: fit_offset.unwrap_or(d.fit_offset),
+            };
             let p = params.check()?;
             Ok(ldh_core::nonlinear::lyap_r(&x, &p)?)
         })
-        .map_err(|e| to_py(py, e))?;
+        .or_raise(py)?;
     let ks: Vec<f64> = r.ks.iter().map(|&k| k as f64).collect();
     Ok((
         r.exponent,
@@ -69,32 +65,56 @@ fn lyap_r<'py>(
     ))
 }
 
-/// Eckmann's Lyapunov spectrum with nolds' parameters (`nolds.lyap_e`).
+/// Eckmann's Lyapunov spectrum (`nolds.lyap_e`).
 #[pyfunction]
-#[pyo3(signature = (data, emb_dim=10, matrix_dim=4, min_nb=None, min_tsep=0, tau=1.0))]
-fn lyap_e<'py>(
+#[pyo3(signature = (data, emb_dim=None, matrix_dim=None, min_nb=None, min_tsep=None, tau=None))]
+pub(crate) fn lyap_e<'py>(
     py: Python<'py>,
     data: PyReadonlyArray1<'py, f64>,
-    emb_dim: usize,
-    matrix_dim: usize,
+    emb_dim: Option<usize>,
+    matrix_dim: Option<usize>,
     min_nb: Option<usize>,
-    min_tsep: usize,
-    tau: f64,
-) -> PyResult<Array1<'py>> {
-    use ldh_core::nonlinear::EckmannParams;
+    min_tsep: Option<usize>,
+    tau: Option<f64>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let x = data.as_slice()?.to_vec();
-    let params = EckmannParams {
-        emb_dim,
-        matrix_dim,
-        min_nb,
-        min_tsep,
-        tau,
-    };
     let r = py
         .detach(move || -> Result<_, LdhError> {
+            let d = EckmannParams::default();
+            let params = EckmannParams {
+                emb_dim: emb_dim.unwrap_or(d.emb_dim),
+                matrix_dim: matrix_dim.unwrap_or(d.matrix_dim),
+                min_nb: min_nb.or(d.min_nb),
+                min_tsep: min_tsep.unwrap_or(d.min_tsep),
+                tau: tau.unwrap_or(d.tau),
+            };
             let p = params.check()?;
             Ok(ldh_core::nonlinear::lyap_e(&x, &p)?)
         })
-        .map_err(|e| to_py(py, e))?;
+        .or_raise(py)?;
     Ok(vec1(py, r.exponents))
+}
+
+/// The core defaults of `lyap_r` and `lyap_e`, by Python name.
+pub(crate) fn defaults(py: Python<'_>, d: &Bound<'_, PyDict>) -> PyResult<()> {
+    let r = RosensteinParams::nolds();
+    let lr = PyDict::new(py);
+    lr.set_item("emb_dim", r.emb_dim)?;
+    lr.set_item("lag", r.lag)?;
+    lr.set_item("min_tsep", r.min_tsep)?;
+    lr.set_item("tau", r.tau)?;
+    lr.set_item("min_neighbors", r.min_neighbors)?;
+    lr.set_item("trajectory_len", r.trajectory_len)?;
+    lr.set_item("fit", value_of(&r.fit).or_raise(py)?.as_str())?;
+    lr.set_item("fit_offset", r.fit_offset)?;
+    d.set_item("lyap_r", lr)?;
+    let e = EckmannParams::default();
+    let le = PyDict::new(py);
+    le.set_item("emb_dim", e.emb_dim)?;
+    le.set_item("matrix_dim", e.matrix_dim)?;
+    le.set_item("min_nb", e.min_nb)?;
+    le.set_item("min_tsep", e.min_tsep)?;
+    le.set_item("tau", e.tau)?;
+    d.set_item("lyap_e", le)?;
+    Ok(())
 }

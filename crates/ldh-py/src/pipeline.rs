@@ -1,63 +1,161 @@
-//! The analysis of paths or arrays (core `pipeline`): whole subjects as `ldh analyze` does,
-//! a subject's two legs given as arrays, one leg given as arrays.
+//! The analysis (`ldh.analyze`, `ldh.analyze_pair`, `ldh.analyze_recording`): paths or arrays
+//! in, the result tables out as columns (numpy arrays), with the GIL released during the work.
+
+use std::path::PathBuf;
+use std::time::Instant;
 
 use numpy::PyReadonlyArray1;
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 use ldh_core::io::ReadParams;
-use ldh_core::{LdhError, Recording};
+use ldh_core::output::{self, Tables};
+use ldh_core::pipeline::{self as core, AnalysisParams, SubjectResult};
+use ldh_core::{LdhError, Recording, Side};
 
-use crate::convert::{base_params, format_of, tables_json, vec1, vecs, Array1};
-use crate::errors::to_py;
+use crate::convert::{columns, from_py, to_py, value_of, vec1, vecs, Opts};
+use crate::errors::OrRaise;
+use crate::io::format_of;
 
-/// Register this module's functions.
-pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(analyze, m)?)?;
-    m.add_function(wrap_pyfunction!(analyze_pair, m)?)?;
-    m.add_function(wrap_pyfunction!(analyze_recording, m)?)?;
-    Ok(())
-}
+const EVENT_COLUMNS: [&str; 5] = ["subject_id", "time_s", "side", "event", "order"];
 
-/// Analyse subjects as `ldh analyze` does; returns JSON text of
-/// {"strides": [...], "recordings": [...], "events": [...]} rows.
-#[pyfunction]
-#[pyo3(signature = (inputs, model=None, detector=None, format=None, compute_sta=None, sensor_height_m=None, n_jobs=1, params_json=None))]
-#[allow(clippy::too_many_arguments)]
-fn analyze(
-    py: Python<'_>,
-    inputs: Vec<std::path::PathBuf>,
+/// The analysis options of every entry point, converted before the GIL is released.
+struct Options {
     model: Option<String>,
     detector: Option<String>,
-    format: Option<&str>,
+    sensor_height_m: Option<f64>,
+    compute_sta: Option<bool>,
+    params: Option<serde_json::Value>,
+}
+
+impl Options {
+    /// The core's parameters: the `params` dict (the Rust names, nesting and defaults, unknown
+    /// names refused), then the named options on top, checked once.
+    fn params(&self) -> Result<AnalysisParams, LdhError> {
+        let base: AnalysisParams = match &self.params {
+            None => AnalysisParams::default(),
+            Some(v) => serde_json::from_value(v.clone())
+                .map_err(|e| LdhError::param("params", "dict", e.to_string()))?,
+        };
+        base.with_options(
+            self.model.as_deref(),
+            self.detector.as_deref(),
+            self.sensor_height_m,
+            self.compute_sta,
+        )
+    }
+}
+
+fn options(
+    model: Option<String>,
+    detector: Option<String>,
+    sensor_height_m: Option<f64>,
+    compute_sta: Option<bool>,
+    params: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Options> {
+    Ok(Options {
+        model,
+        detector,
+        sensor_height_m,
+        compute_sta,
+        params: params.map(from_py).transpose()?,
+    })
+}
+
+/// The three result tables as a dict of column dicts, plus the wall-clock time.
+fn tables<'py>(
+    py: Python<'py>,
+    results: &[SubjectResult],
+    seconds: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let t = Tables::of(results);
+    let d = PyDict::new(py);
+    d.set_item("strides", columns(py, &t.strides, &output::STRIDE_COLUMNS)?)?;
+    d.set_item("recordings", columns(py, &t.recordings, &[])?)?;
+    d.set_item("events", columns(py, &t.events, &EVENT_COLUMNS)?)?;
+    let timings = PyDict::new(py);
+    timings.set_item("total_s", seconds)?;
+    timings.set_item("subjects", results.len())?;
+    d.set_item("timings", timings)?;
+    Ok(d)
+}
+
+/// Analyse subjects as `ldh analyze` does on `n_jobs` threads (0: one per core). A missing input
+/// path raises before any work; a bad recording is an error row.
+#[pyfunction]
+#[pyo3(signature = (inputs, model=None, detector=None, format=None, compute_sta=None, sensor_height_m=None, n_jobs=1, params=None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn analyze<'py>(
+    py: Python<'py>,
+    inputs: Vec<PathBuf>,
+    model: Option<String>,
+    detector: Option<String>,
+    format: Option<String>,
     compute_sta: Option<bool>,
     sensor_height_m: Option<f64>,
     n_jobs: usize,
-    params_json: Option<String>,
-) -> PyResult<String> {
-    let (model, detector, fmt) = (model, detector, format.map(String::from));
-    py.detach(move || -> Result<String, LdhError> {
-        let p = base_params(params_json.as_deref())?.with_options(
-            model.as_deref(),
-            detector.as_deref(),
-            sensor_height_m,
-            compute_sta,
-        )?;
-        let f = format_of(fmt.as_deref())?;
-        let read = ReadParams::default().check()?;
-        let subjects = ldh_core::pipeline::discover(&inputs)?;
-        let results =
-            ldh_core::pipeline::analyze_many_on(&subjects, &p, f.as_ref(), &read, n_jobs)?;
-        tables_json(&results)
-    })
-    .map_err(|e| to_py(py, e))
+    params: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let o = options(model, detector, sensor_height_m, compute_sta, params)?;
+    let start = Instant::now();
+    let results = py
+        .detach(move || -> Result<Vec<SubjectResult>, LdhError> {
+            let p = o.params()?;
+            let f = format_of(format.as_deref())?;
+            let read = ReadParams::default().check()?;
+            let subjects = core::discover(&inputs)?;
+            core::analyze_many_on(&subjects, &p, f.as_ref(), &read, n_jobs)
+        })
+        .or_raise(py)?;
+    tables(py, &results, start.elapsed().as_secs_f64())
 }
 
-/// Analyse one recording given as arrays; returns JSON text with the alignment, events,
-/// strides and parameters, and the attitude (pitch, roll, yaw in deg) as numpy arrays.
+/// One subject's two legs given as arrays (six channels each, each leg at its own rate: the
+/// core warns when they differ by more than 0.5 %); the same tables as `analyze`.
 #[pyfunction]
-#[pyo3(signature = (acc_g, gyro_dps, fs_hz, side="left", model=None, detector=None, sensor_height_m=None, compute_sta=None, params_json=None))]
+#[pyo3(signature = (left, right, left_fs_hz, right_fs_hz, subject_id="subject", model=None, detector=None, sensor_height_m=None, compute_sta=None, params=None))]
 #[allow(clippy::too_many_arguments)]
-fn analyze_recording<'py>(
+pub(crate) fn analyze_pair<'py>(
+    py: Python<'py>,
+    left: [PyReadonlyArray1<'py, f64>; 6],
+    right: [PyReadonlyArray1<'py, f64>; 6],
+    left_fs_hz: f64,
+    right_fs_hz: f64,
+    subject_id: &str,
+    model: Option<String>,
+    detector: Option<String>,
+    sensor_height_m: Option<f64>,
+    compute_sta: Option<bool>,
+    params: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let o = options(model, detector, sensor_height_m, compute_sta, params)?;
+    let (l, r) = (vecs(&left)?, vecs(&right)?);
+    let id = subject_id.to_string();
+    let start = Instant::now();
+    let result = py
+        .detach(move || -> Result<SubjectResult, LdhError> {
+            let p = o.params()?;
+            let leg = |c: [Vec<f64>; 6], fs: f64, side| {
+                let [a, b, cc, d, e, f] = c;
+                core::leg_from_arrays(fs, [a, b, cc], [d, e, f], side)
+            };
+            Ok(core::analyze_pair(
+                &core::bare_subject(&id),
+                leg(l, left_fs_hz, Side::Left),
+                leg(r, right_fs_hz, Side::Right),
+                &p,
+            ))
+        })
+        .or_raise(py)?;
+    tables(py, &[result], start.elapsed().as_secs_f64())
+}
+
+/// The per-recording pipeline on arrays: alignment, events, strides, parameters, attitude and
+/// warnings of one leg.
+#[pyfunction]
+#[pyo3(signature = (acc_g, gyro_dps, fs_hz, side="left", model=None, detector=None, sensor_height_m=None, compute_sta=None, params=None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn analyze_recording<'py>(
     py: Python<'py>,
     acc_g: [PyReadonlyArray1<'py, f64>; 3],
     gyro_dps: [PyReadonlyArray1<'py, f64>; 3],
@@ -67,88 +165,64 @@ fn analyze_recording<'py>(
     detector: Option<String>,
     sensor_height_m: Option<f64>,
     compute_sta: Option<bool>,
-    params_json: Option<String>,
-) -> PyResult<(String, Array1<'py>, Array1<'py>, Array1<'py>)> {
-    let acc: [Vec<f64>; 3] = vecs(&acc_g)?;
-    let gyro: [Vec<f64>; 3] = vecs(&gyro_dps)?;
+    params: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let o = options(model, detector, sensor_height_m, compute_sta, params)?;
+    let (acc, gyro) = (vecs(&acc_g)?, vecs(&gyro_dps)?);
     let side = side.to_string();
-    let (json, att) = py
-        .detach(
-            move || -> Result<(String, ldh_core::attitude::Attitude), LdhError> {
-                let side: ldh_core::Side = side.parse()?;
-                let p = base_params(params_json.as_deref())?.with_options(
-                    model.as_deref(),
-                    detector.as_deref(),
-                    sensor_height_m,
-                    compute_sta,
-                )?;
-                let rec = Recording::new(fs_hz, acc, gyro, vec![])?.with_side(side);
-                let (leg, _) = ldh_core::pipeline::analyze_leg(&rec, side, &p, None)?;
-                let att = leg
-                    .attitude
-                    .clone()
-                    .expect("analyze_leg keeps the attitude");
-                let json = serde_json::json!({
-                    "alignment": leg.alignment,
-                    "events": leg.events,
-                    "strides": leg.strides,
-                    "parameters": leg.parameters,
-                    "outliers_replaced": leg.outliers_replaced,
-                    "warnings": leg.warnings,
-                })
-                .to_string();
-                Ok((json, att))
-            },
-        )
-        .map_err(|e| to_py(py, e))?;
-    Ok((
-        json,
-        vec1(py, att.pitch_deg),
-        vec1(py, att.roll_deg),
-        vec1(py, att.yaw_deg),
-    ))
+    let leg = py
+        .detach(move || -> Result<core::LegResult, LdhError> {
+            let side: Side = side.parse()?;
+            let p = o.params()?;
+            let rec = Recording::new(fs_hz, acc, gyro, vec![])?.with_side(side);
+            Ok(core::analyze_leg(&rec, side, &p, None)?.0)
+        })
+        .or_raise(py)?;
+    let d = PyDict::new(py);
+    d.set_item(
+        "alignment",
+        to_py(py, &value_of(&leg.alignment).or_raise(py)?, Opts::default())?,
+    )?;
+    let ev = value_of(&leg.events).or_raise(py)?;
+    let arrays = Opts {
+        numeric_arrays: true,
+        ..Opts::default()
+    };
+    d.set_item("events", to_py(py, &ev, arrays)?)?;
+    d.set_item("strides", columns(py, &leg.strides, &[])?)?;
+    let nan = Opts {
+        null_as_nan: true,
+        ..Opts::default()
+    };
+    let params = value_of(&leg.parameters).or_raise(py)?;
+    d.set_item("parameters", to_py(py, &params, nan)?)?;
+    d.set_item("outliers_replaced", leg.outliers_replaced)?;
+    d.set_item(
+        "warnings",
+        to_py(py, &value_of(&leg.warnings).or_raise(py)?, Opts::default())?,
+    )?;
+    let att = leg.attitude.expect("analyze_leg keeps the attitude");
+    let a = PyDict::new(py);
+    a.set_item("pitch_deg", vec1(py, att.pitch_deg))?;
+    a.set_item("roll_deg", vec1(py, att.roll_deg))?;
+    a.set_item("yaw_deg", vec1(py, att.yaw_deg))?;
+    d.set_item("attitude", a)?;
+    Ok(d)
 }
 
-/// Analyse a subject's two recordings given as arrays (6 channels each); returns the JSON of
-/// {"strides", "recordings", "events"} rows as `analyze` does.
-#[pyfunction]
-#[pyo3(signature = (left, right, fs_hz, subject_id="subject", model=None, detector=None, sensor_height_m=None, compute_sta=None, params_json=None))]
-#[allow(clippy::too_many_arguments)]
-fn analyze_pair<'py>(
-    py: Python<'py>,
-    left: [PyReadonlyArray1<'py, f64>; 6],
-    right: [PyReadonlyArray1<'py, f64>; 6],
-    fs_hz: f64,
-    subject_id: &str,
-    model: Option<String>,
-    detector: Option<String>,
-    sensor_height_m: Option<f64>,
-    compute_sta: Option<bool>,
-    params_json: Option<String>,
-) -> PyResult<String> {
-    use ldh_core::pipeline::{analyze_pair as core_pair, bare_subject, leg_from_arrays};
-    use ldh_core::Side;
-    let (l, r): ([Vec<f64>; 6], [Vec<f64>; 6]) = (vecs(&left)?, vecs(&right)?);
-    let (id, model, detector) = (subject_id.to_string(), model, detector);
-    py.detach(move || -> Result<String, LdhError> {
-        let p = base_params(params_json.as_deref())?.with_options(
-            model.as_deref(),
-            detector.as_deref(),
-            sensor_height_m,
-            compute_sta,
-        )?;
-        let leg = |c: [Vec<f64>; 6], side: Side| {
-            let [a, b, cc, d, e, f] = c;
-            leg_from_arrays(fs_hz, [a, b, cc], [d, e, f], side)
-        };
-        let input = bare_subject(&id);
-        let res = [core_pair(
-            &input,
-            leg(l, Side::Left),
-            leg(r, Side::Right),
-            &p,
-        )];
-        tables_json(&res)
-    })
-    .map_err(|e| to_py(py, e))
+/// The core defaults of the analysis (the `params` dict in full, and the named options).
+pub(crate) fn defaults(py: Python<'_>, d: &Bound<'_, PyDict>) -> PyResult<()> {
+    let p = AnalysisParams::default();
+    let v = value_of(&p).or_raise(py)?;
+    d.set_item("analysis_params", to_py(py, &v, Opts::default())?)?;
+    let named = PyDict::new(py);
+    named.set_item("model", value_of(&p.attitude.model).or_raise(py)?.as_str())?;
+    named.set_item(
+        "detector",
+        value_of(&p.events.detector).or_raise(py)?.as_str(),
+    )?;
+    named.set_item("sensor_height_m", p.strides.sensor_height_m)?;
+    named.set_item("compute_sta", p.compute_sta)?;
+    d.set_item("analyze", named)?;
+    Ok(())
 }

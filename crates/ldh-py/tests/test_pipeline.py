@@ -39,14 +39,14 @@ def test_lyap_e_equals_nolds_goldens(name):
 def test_lyapunov_errors():
     with pytest.raises(ldh.LdhDataError, match="at least 40 samples"):
         ldh.lyap_r(np.random.default_rng(0).standard_normal(20))
-    with pytest.raises(ldh.LdhParamError, match="poly"):
-        ldh.lyap_r(np.zeros(1000), fit="RANSAC")
+    with pytest.raises(ldh.LdhParamError, match="fit"):
+        ldh.lyap_r(np.zeros(1000), fit="median")
     with pytest.raises(ValueError, match="NaN"):
         ldh.lyap_r(np.full(2000, np.nan))
 
 
 def _cli():
-    for c in ["target/debug/ldh-under-test", "target/debug/ldh", "target/release/ldh"]:
+    for c in ["target/debug/ldh-under-test", "target/debug/ldh", "target/release/ldh", "target/ci/ldh"]:
         if (ROOT / c).exists():
             return ROOT / c
     return None
@@ -64,7 +64,7 @@ def test_analyze_demo_equals_the_cli(tmp_path):
         pytest.skip("no ldh binary built (run cargo test or cargo build first)")
     subprocess.run([str(cli), "analyze", "--out", str(tmp_path)], check=True, capture_output=True)
     ref = json.loads((tmp_path / "recordings.json").read_text())
-    assert [r["subject_id"] for r in ref] == rec["subject_id"]
+    assert [r["subject_id"] for r in ref] == list(rec["subject_id"])
     for key in ["stride_time_s", "stance_ratio", "stride_length_m", "sta_per_s", "wqk_deg"]:
         np.testing.assert_array_equal(rec[key], np.array([r[key] for r in ref], dtype=float))
     strides = json.loads((tmp_path / "strides.json").read_text())
@@ -78,6 +78,6 @@ def test_analyze_reports_bad_files_without_raising(tmp_path):
     rec = res["recordings"]
     i = [k for k, (s, side) in enumerate(zip(rec["subject_id"], rec["side"])) if s == "H01" and side == "right"][0]
     assert rec["status"][i] == "error" and "H01/right.csv" in rec["error"][i]
-    assert rec["status"].count("ok") == 7
+    assert list(rec["status"]).count("ok") == 7
     with pytest.raises(ldh.LdhParamError, match="fusion"):
         ldh.analyze(tmp_path, model="kalman")

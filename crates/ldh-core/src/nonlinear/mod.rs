@@ -29,6 +29,7 @@ mod fft;
 mod gait;
 mod linalg;
 mod neighbours;
+mod ransac;
 mod rosenstein;
 
 #[cfg(test)]

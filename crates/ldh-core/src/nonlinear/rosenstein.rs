@@ -9,22 +9,23 @@ use super::embed::delay_embed_flat;
 use super::neighbours::{nearest_outside_window, np_euclidean, np_sum};
 use super::{check_series, fft, invalid, NonlinearError};
 
-/// Line-fitting method for the divergence curve.
-///
-/// Only ordinary least squares (`nolds` `fit="poly"`) is provided: nolds'
-/// default RANSAC is randomised and therefore not reproducible.
+/// Line-fitting method for the divergence curve (nolds' `fit`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
 pub enum Fit {
-    /// Least-squares straight line, `np.polyfit(ks, div, 1)`.
+    /// Least-squares straight line, `np.polyfit(ks, div, 1)` (`"poly"`; the pipeline's STA).
     #[default]
+    #[serde(rename = "poly")]
     Poly,
+    /// RANSAC line as scikit-learn fits it for nolds (`"RANSAC"`, nolds' default), made
+    /// deterministic by trying every triple of points: see [`super::ransac`].
+    #[serde(rename = "RANSAC", alias = "ransac")]
+    Ransac,
 }
 
 /// Parameters of [`lyap_r`], mirroring `nolds.lyap_r` one to one.
 ///
-/// All lengths are in samples. Defaults equal nolds' except `fit` (nolds
-/// defaults to RANSAC; only [`Fit::Poly`] exists here).
+/// All lengths are in samples. Defaults equal nolds' except `fit` (least squares here, for the
+/// pipeline's STA; nolds defaults to RANSAC: [`RosensteinParams::nolds`]).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct RosensteinParams {
@@ -48,11 +49,22 @@ pub struct RosensteinParams {
     /// Number of steps (samples) over which each neighbour pair is followed;
     /// the line is fitted over `k = 0..trajectory_len` (default 20).
     pub trajectory_len: usize,
-    /// Line-fitting method (default and only value: [`Fit::Poly`]).
+    /// Line-fitting method (default [`Fit::Poly`]).
     pub fit: Fit,
     /// Number of initial steps of the divergence curve left out of the fit
     /// (default 0).
     pub fit_offset: usize,
+}
+
+impl RosensteinParams {
+    /// nolds 0.6.2's defaults exactly, including `fit="RANSAC"` (what `ldh.lyap_r` uses, so
+    /// a nolds call gives the same value after `import ldh as nolds`).
+    pub fn nolds() -> Self {
+        Self {
+            fit: Fit::Ransac,
+            ..Self::default()
+        }
+    }
 }
 
 impl Default for RosensteinParams {
@@ -278,6 +290,17 @@ pub fn lyap_r(
         params.tau,
         params.fit_offset,
     )?;
+    if params.fit == Fit::Ransac {
+        let xs: Vec<f64> = res.ks[params.fit_offset..]
+            .iter()
+            .map(|&k| k as f64)
+            .collect();
+        let (slope, intercept) =
+            super::ransac::ransac_line_fit(&xs, &res.divergence[params.fit_offset..]);
+        res.slope = slope;
+        res.intercept = intercept;
+        res.exponent = slope / params.tau;
+    }
     res.lag = Some(lag);
     Ok(res)
 }

@@ -16,6 +16,35 @@ pub struct PearsonRResult {
     pub pvalue: f64,
     /// Number of pairs.
     pub n: usize,
+    /// The alternative the p-value and the confidence interval are for.
+    #[serde(default)]
+    pub alternative: Alternative,
+}
+
+impl PearsonRResult {
+    /// Confidence interval of ρ at `confidence_level` by the Fisher transformation (scipy's
+    /// `PearsonRResult.confidence_interval(confidence_level=0.95)`): `tanh(atanh(r) ± z·se)`
+    /// with `se = 1/√(n − 3)`; one-sided for `Less` (−1, ·) and `Greater` (·, 1).
+    ///
+    /// Errors: `confidence_level` outside (0, 1); n ≤ 3 (scipy returns NaN there).
+    pub fn confidence_interval(&self, confidence_level: f64) -> Result<(f64, f64), StatsError> {
+        let q = super::dist::confidence_quantile(confidence_level, self.alternative)?;
+        if self.n <= 3 {
+            return Err(StatsError::TooFewObservations {
+                test: "pearsonr confidence_interval",
+                needed: 4,
+                got: self.n,
+                what: " pairs",
+            });
+        }
+        let z = self.statistic.atanh();
+        let half = super::dist::norm_ppf(q) / ((self.n - 3) as f64).sqrt();
+        Ok(match self.alternative {
+            Alternative::TwoSided => ((z - half).tanh(), (z + half).tanh()),
+            Alternative::Less => (-1.0, (z + half).tanh()),
+            Alternative::Greater => ((z - half).tanh(), 1.0),
+        })
+    }
 }
 
 /// Pearson correlation coefficient and p-value, equal to
@@ -78,6 +107,7 @@ pub fn pearsonr(
             statistic: r.round(),
             pvalue: 1.0,
             n,
+            alternative,
         });
     }
     let ab = n as f64 / 2.0 - 1.0;
@@ -93,5 +123,6 @@ pub fn pearsonr(
         statistic: r,
         pvalue: p.clamp(0.0, 1.0),
         n,
+        alternative,
     })
 }

@@ -1,11 +1,11 @@
 //! Tail probabilities from `statrs`, always evaluated on the side that keeps
 //! small p-values accurate (no `1 - cdf` cancellation).
 
-use statrs::distribution::{ContinuousCDF, Normal};
+use statrs::distribution::{ContinuousCDF, Normal, StudentsT};
 use statrs::function::beta::beta_reg;
 use statrs::function::gamma::gamma_ur;
 
-use super::Alternative;
+use super::{Alternative, StatsError};
 
 /// Standard normal survival function P(Z > z) (scipy `special.ndtr(-z)`).
 pub(crate) fn norm_sf(z: f64) -> f64 {
@@ -85,4 +85,31 @@ pub(crate) fn beta_cdf(x: f64, a: f64, b: f64) -> f64 {
     } else {
         beta_reg(a, b, x)
     }
+}
+
+/// The quantile a confidence interval at `level` needs: `1 − (1 − level)/2` two-sided, `level`
+/// one-sided. Errors when `level` is not in (0, 1).
+pub(crate) fn confidence_quantile(level: f64, alternative: Alternative) -> Result<f64, StatsError> {
+    if !(level > 0.0 && level < 1.0) {
+        return Err(StatsError::InvalidArgument {
+            test: "confidence_interval",
+            detail: format!("confidence_level must be in (0, 1), got {level}"),
+        });
+    }
+    Ok(match alternative {
+        Alternative::TwoSided => 1.0 - (1.0 - level) / 2.0,
+        _ => level,
+    })
+}
+
+/// Quantile of Student's t with `df` degrees of freedom (scipy `stats.t.ppf`).
+pub(crate) fn t_ppf(q: f64, df: f64) -> f64 {
+    StudentsT::new(0.0, 1.0, df)
+        .map(|t| t.inverse_cdf(q))
+        .unwrap_or(f64::NAN)
+}
+
+/// Quantile of the standard normal distribution (scipy `stats.norm.ppf`).
+pub(crate) fn norm_ppf(q: f64) -> f64 {
+    Normal::standard().inverse_cdf(q)
 }

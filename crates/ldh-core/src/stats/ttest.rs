@@ -20,6 +20,31 @@ pub struct TTestResult {
     pub pvalue: f64,
     /// Degrees of freedom (Welch–Satterthwaite df for Welch's test).
     pub df: f64,
+    /// The estimated quantity the confidence interval is about: the difference of the means
+    /// (`ttest_ind`), the mean difference (`ttest_rel`) or the mean (`ttest_1samp`).
+    pub estimate: f64,
+    /// Standard error of `estimate` (the t statistic's denominator).
+    pub standard_error: f64,
+    /// The alternative the p-value and the confidence interval are for.
+    pub alternative: Alternative,
+}
+
+impl TTestResult {
+    /// Confidence interval of [`TTestResult::estimate`] at `confidence_level` (scipy's
+    /// `TtestResult.confidence_interval(confidence_level=0.95)`): two-sided
+    /// `estimate ± t(1 − (1 − level)/2, df)·se`; for `Less` `(−∞, estimate + t(level, df)·se)`,
+    /// for `Greater` `(estimate − t(level, df)·se, ∞)`.
+    ///
+    /// Errors: `confidence_level` outside (0, 1) ([`StatsError::InvalidArgument`]).
+    pub fn confidence_interval(&self, confidence_level: f64) -> Result<(f64, f64), StatsError> {
+        let q = super::dist::confidence_quantile(confidence_level, self.alternative)?;
+        let half = super::dist::t_ppf(q, self.df) * self.standard_error;
+        Ok(match self.alternative {
+            Alternative::TwoSided => (self.estimate - half, self.estimate + half),
+            Alternative::Less => (f64::NEG_INFINITY, self.estimate + half),
+            Alternative::Greater => (self.estimate - half, f64::INFINITY),
+        })
+    }
 }
 
 /// All values equal (a single value counts as constant).
@@ -105,6 +130,9 @@ pub fn ttest_ind(
         statistic: t,
         pvalue: t_pvalue(t, df, alternative),
         df,
+        estimate: d,
+        standard_error: denom,
+        alternative,
     })
 }
 
@@ -176,10 +204,16 @@ fn one_sample(
     }
     let v = var_unchecked(x, 1.0);
     let df = (n - 1) as f64;
-    let t = (mean_unchecked(x) - popmean) / (v / n as f64).sqrt();
+    let (mean, se) = (mean_unchecked(x), (v / n as f64).sqrt());
+    let t = (mean - popmean) / se;
+    // scipy's interval is of the mean itself (ttest_1samp) or of the mean difference (ttest_rel,
+    // popmean 0), not of mean − popmean.
     Ok(TTestResult {
         statistic: t,
         pvalue: t_pvalue(t, df, alternative),
         df,
+        estimate: mean,
+        standard_error: se,
+        alternative,
     })
 }

@@ -1,0 +1,215 @@
+"""The analysis of paths (``analyze``, ``analyze_many``) and arrays (``analyze_pair``,
+``analyze_recording``)."""
+from __future__ import annotations
+
+import os
+from typing import Any, Dict, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _ldh
+from ._errors import LdhParamError
+from ._result import Result
+from ._util import PathLike, opt_float, params_dict, vec
+
+_CHANNELS = ["acc_x_g", "acc_y_g", "acc_z_g", "gyro_x_dps", "gyro_y_dps", "gyro_z_dps"]
+
+
+def _jobs(n_jobs: Optional[int]) -> int:
+    """Rust threads: ``None`` or ``-1`` all cores (0 for the core), else a positive int."""
+    if n_jobs is None or (not isinstance(n_jobs, bool) and isinstance(n_jobs, (int, np.integer)) and n_jobs == -1):
+        return 0
+    if isinstance(n_jobs, bool) or not isinstance(n_jobs, (int, np.integer)) or n_jobs < 1:
+        raise LdhParamError(f"n_jobs must be a positive int, -1 or None (all cores), got {n_jobs!r}")
+    return int(n_jobs)
+
+
+def _paths(inputs: Union[None, PathLike, Sequence[PathLike]]) -> list:
+    if inputs is None:
+        return []
+    if isinstance(inputs, (str, os.PathLike)):
+        return [os.fspath(inputs)]
+    return [os.fspath(p) for p in inputs]
+
+
+def analyze(
+    inputs: Union[None, PathLike, Sequence[PathLike]] = None,
+    *,
+    model: Optional[str] = None,
+    detector: Optional[str] = None,
+    format: Optional[str] = None,
+    compute_sta: Optional[bool] = None,
+    sensor_height_m: Optional[float] = None,
+    n_jobs: Optional[int] = 1,
+    params: Optional[Dict[str, Any]] = None,
+    as_frame: Optional[bool] = None,
+) -> Result:
+    """Analyse recordings exactly as ``ldh analyze`` does.
+
+    Parameters
+    ----------
+    inputs : path or sequence of paths, optional
+        A manifest CSV, a cohort folder, a subject folder or a subject's two files; ``None``:
+        the embedded demo cohort.
+    model : {"fusion", "acc"}, optional
+        Attitude model (default: from ``params``, else "fusion").
+    detector : str, optional
+        Event detector (``gyro-landmarks`` — the default —, ``gyro-zero-crossing``,
+        ``salarian``, ``pitch-peaks``).
+    format : str, optional
+        Sensor format name or TOML column map; default: detect.
+    compute_sta : bool, optional
+        Compute the Lyapunov stability STA (default True).
+    sensor_height_m : float, optional
+        Sensor height above the ankle when the manifest has none, in metres (default 0.10).
+    n_jobs : int or None, default 1
+        Rust threads for the subjects (the GIL is released); ``None`` or ``-1``: all cores.
+        Results are identical whatever the number.
+    params : dict, optional
+        Any analysis parameter, nested as in docs/parameters.md and with the Rust names and
+        defaults, e.g. ``{"attitude": {"smoother": False}, "preprocess": {"cutoff_hz": 8.0}}``;
+        unknown names are refused. ``model``, ``detector``, ``sensor_height_m`` and
+        ``compute_sta`` are applied on top.
+    as_frame : bool, optional
+        Tables as pandas DataFrames (default when pandas is importable) or, with ``False``, as
+        dicts of numpy arrays.
+
+    Returns
+    -------
+    Result
+        ``.strides``, ``.recordings``, ``.events`` (DataFrames), ``.warnings``, ``.errors``,
+        ``.timings``; see :class:`ldh.Result` and docs/python.md. A recording that failed has
+        ``status == "error"`` and its ``error`` (and a row in ``.errors``); the others are
+        analysed. Problems that did not stop a recording are in ``.warnings``.
+
+    Raises
+    ------
+    LdhFileNotFoundError
+        An input path does not exist (also a ``FileNotFoundError``), before any work.
+    LdhParamError
+        An invalid option (also a ``ValueError``).
+    """
+    raw = _ldh.analyze(
+        _paths(inputs), model, detector, format, compute_sta, opt_float(sensor_height_m),
+        _jobs(n_jobs), params_dict(params),
+    )
+    return Result(raw, as_frame)
+
+
+def analyze_many(paths: Sequence[PathLike], n_jobs: Optional[int] = None, **kwargs: Any) -> Result:
+    """Analyse many inputs (manifests, cohort or subject folders, pairs of files) in parallel
+    on Rust threads; the same as :func:`analyze` with ``n_jobs`` defaulting to all cores.
+
+    ``paths`` must name at least one input (``analyze()`` without inputs is the demo). The
+    function is pure (files in, tables out) and keeps no state, so it runs unchanged in Dask or
+    Ray workers: ``client.map(lambda d: ldh.analyze(d, n_jobs=1), subject_dirs)``.
+    """
+    if isinstance(paths, (str, os.PathLike)):
+        paths = [paths]
+    paths = list(paths)
+    if not paths:
+        raise LdhParamError("analyze_many needs at least one input path (ldh.analyze() without inputs analyses the demo)")
+    return analyze(paths, n_jobs=n_jobs, **kwargs)
+
+
+def _rate(rec: Dict[str, Any], fs_hz: Optional[float], name: str) -> float:
+    if fs_hz is not None:
+        return float(fs_hz)
+    if rec.get("fs_hz") is None:
+        raise LdhParamError(f"fs_hz is needed: {name} does not carry 'fs_hz'")
+    return float(rec["fs_hz"])
+
+
+def analyze_pair(
+    left: Dict[str, Any],
+    right: Dict[str, Any],
+    fs_hz: Optional[float] = None,
+    *,
+    subject_id: str = "subject",
+    model: Optional[str] = None,
+    detector: Optional[str] = None,
+    sensor_height_m: Optional[float] = None,
+    compute_sta: Optional[bool] = None,
+    params: Optional[Dict[str, Any]] = None,
+    as_frame: Optional[bool] = None,
+) -> Result:
+    """Analyse one subject's two recordings given as arrays, with step time and step frequency
+    from both legs — the same tables as :func:`analyze`.
+
+    Parameters
+    ----------
+    left, right : dict
+        Channels ``acc_x_g`` … ``gyro_z_dps`` (array_like, g and deg/s), e.g. the first value
+        returned by :func:`read_recording`, and ``fs_hz``.
+    fs_hz : float, optional
+        Sampling rate of both, when the dicts do not carry ``fs_hz`` (it then overrides
+        theirs). Each leg is analysed at its own rate, as ``ldh analyze`` does with two files:
+        rates that differ by more than 0.5 % give a warning, not an error.
+
+    Returns
+    -------
+    Result
+        As :func:`analyze`.
+    """
+    for name, rec in (("left", left), ("right", right)):
+        missing = [c for c in _CHANNELS if c not in rec]
+        if missing:
+            raise LdhParamError(f"{name} lacks the channels {missing}")
+    lv = [vec(left[c], f"left[{c}]") for c in _CHANNELS]
+    rv = [vec(right[c], f"right[{c}]") for c in _CHANNELS]
+    raw = _ldh.analyze_pair(
+        lv, rv, _rate(left, fs_hz, "left"), _rate(right, fs_hz, "right"), subject_id, model,
+        detector, opt_float(sensor_height_m), compute_sta, params_dict(params),
+    )
+    return Result(raw, as_frame)
+
+
+def analyze_recording(
+    acc_g: Sequence[Any],
+    gyro_dps: Sequence[Any],
+    fs_hz: float,
+    *,
+    side: str = "left",
+    model: Optional[str] = None,
+    detector: Optional[str] = None,
+    sensor_height_m: Optional[float] = None,
+    compute_sta: Optional[bool] = None,
+    params: Optional[Dict[str, Any]] = None,
+) -> Dict[str, Any]:
+    """Run the per-recording pipeline on arrays: preprocessing, alignment, attitude, events,
+    strides and the per-side parameters (without the other leg: no step time).
+
+    Parameters
+    ----------
+    acc_g, gyro_dps : sequence of three array_like
+        Acceleration in g and angular velocity in deg/s, sensor axes x, y, z.
+    fs_hz : float
+        Sampling rate in Hz.
+    side : {"left", "right"}
+        The leg.
+    model : {"fusion", "acc"}
+        Attitude model.
+    detector : str
+        Event detector.
+    sensor_height_m : float
+        Sensor height above the ankle, m.
+    compute_sta : bool
+        Compute the Lyapunov stability STA.
+
+    Returns
+    -------
+    dict
+        ``alignment`` (dict), ``events`` (``hs_s``, ``to_s``, ``midswing_s`` arrays),
+        ``strides`` (columns), ``parameters`` (dict), ``attitude`` (``pitch_deg``,
+        ``roll_deg``, ``yaw_deg`` arrays), ``outliers_replaced``, ``warnings`` (list of str:
+        problems that did not stop the analysis, e.g. an upside-down mounting or too few
+        valid strides).
+    """
+    acc = [vec(c, f"acc_g[{i}]") for i, c in enumerate(acc_g)]
+    gyro = [vec(c, f"gyro_dps[{i}]") for i, c in enumerate(gyro_dps)]
+    if len(acc) != 3 or len(gyro) != 3:
+        raise LdhParamError("acc_g and gyro_dps must each hold three channels (x, y, z)")
+    return _ldh.analyze_recording(
+        acc, gyro, float(fs_hz), side, model, detector, opt_float(sensor_height_m), compute_sta,
+        params_dict(params),
+    )
