@@ -85,7 +85,10 @@ fn a_bad_recording_is_reported_and_the_rest_is_written() {
     ]);
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     let t = text(&o);
-    assert!(t.contains("analysed 6 of 8 recordings"), "{t}");
+    assert!(
+        t.contains("8 recordings (4 subjects, model fusion): 6 ok, 2 failed"),
+        "{t}"
+    );
     assert!(
         t.contains("H02 right") && t.contains("H02/right.csv"),
         "{t}"

@@ -197,6 +197,13 @@ pub fn discover(inputs: &[PathBuf]) -> Result<Vec<SubjectInput>> {
     if inputs.is_empty() {
         return demo_inputs();
     }
+    // A misspelt path is refused before any work (and before an output folder is made).
+    if let Some(p) = inputs.iter().find(|p| !p.exists()) {
+        return Err(LdhError::Io {
+            path: p.clone(),
+            source: std::io::Error::new(std::io::ErrorKind::NotFound, "no such file or folder"),
+        });
+    }
     let is_manifest = |p: &Path| {
         p.is_file()
             && std::fs::read_to_string(p)
@@ -220,8 +227,8 @@ pub fn discover(inputs: &[PathBuf]) -> Result<Vec<SubjectInput>> {
                 .unwrap_or_else(|| "subject".into()),
             group: None,
             affected_side: None,
-            left: l.exists().then(|| Source::Path(l)),
-            right: r.exists().then(|| Source::Path(r)),
+            left: l.exists().then_some(Source::Path(l)),
+            right: r.exists().then_some(Source::Path(r)),
             sensor_height_m: None,
         })
     };

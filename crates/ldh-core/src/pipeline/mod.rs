@@ -5,6 +5,7 @@
 //! One bad recording never stops the other leg or the other subjects: each side's outcome is a
 //! `Result`, with the error message naming the file.
 
+mod batch;
 mod bilateral;
 mod inputs;
 mod leg;
@@ -14,11 +15,13 @@ mod subject;
 #[cfg(test)]
 mod tests;
 
+pub use batch::{analyze_many_on, bare_subject, leg_from_arrays};
 pub use bilateral::{bilateral_events, bilateral_events_on_clock, BilateralEvent, EventKind};
 pub use inputs::{demo_inputs, discover, read_manifest, Source, SubjectInput};
 pub use leg::{analyze_leg, memory_report, LegResult};
 pub use many::{
-    analyze_many, analyze_to_folder, recording_rows_many, FolderOptions, FolderSummary,
+    analyze_many, analyze_to_folder, bounded_jobs, recording_rows_many, FolderOptions,
+    FolderSummary,
 };
 pub use quality::{
     all_leg_warnings, codes, leg_checks, leg_warnings, pair_warnings, params as quality_params,

@@ -533,7 +533,7 @@ fn stride_by_stride(strides: &[StrideRow]) -> Result<Markup> {
     }
     let mut figs: Vec<Markup> = Vec::new();
     for (title, ylab, get) in PER_STRIDE {
-        let series: Vec<(String, Vec<(f64, f64, bool)>)> = ["left", "right"]
+        let series: Vec<crate::plots::Series> = ["left", "right"]
             .iter()
             .map(|side| {
                 (
