@@ -104,7 +104,7 @@ pub fn sensor_checks(rec: &Recording) -> SensorFindings {
             codes::ACC_CLIPPING,
             Severity::Note,
             format!(
-                "accelerometer clipped at its range in {:.1} % of the samples (heel-strike impacts beyond a ±2 g range are common); stride length integrates through them",
+                "accelerometer clipped at its range in {:.1} % of the samples (heel-strike impacts beyond the sensor's range are common); stride length integrates through them",
                 n_aclip as f64 / n as f64 * 100.0
             ),
         ));
