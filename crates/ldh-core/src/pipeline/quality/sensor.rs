@@ -98,6 +98,17 @@ pub fn sensor_checks(rec: &Recording) -> SensorFindings {
         );
     }
     out.acc_clipped = clipped(&rec.acc_g, 1.5);
+    let n_aclip = out.acc_clipped.iter().filter(|&&c| c).count();
+    if n_aclip > 0 {
+        out.warnings.push(Warning::new(
+            codes::ACC_CLIPPING,
+            Severity::Note,
+            format!(
+                "accelerometer clipped at its range in {:.1} % of the samples (heel-strike impacts beyond the sensor's range are common); stride length integrates through them",
+                n_aclip as f64 / n as f64 * 100.0
+            ),
+        ));
+    }
     out
 }
 
