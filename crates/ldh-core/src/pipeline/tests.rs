@@ -22,7 +22,10 @@ proptest! {
             }
             for s in &leg.strides {
                 prop_assert!(s.hs_time_s < s.to_time_s || !s.to_time_s.is_finite());
-                prop_assert!(s.valid == s.reason.is_empty());
+                // Invalid strides say why; a valid one may only say why its length is withheld.
+                prop_assert!(s.valid || !s.reason.is_empty());
+                prop_assert!(!s.valid || s.reason.split("; ").all(|r| r.is_empty() || r.starts_with("stride length")), "{}", s.reason);
+                prop_assert!(!s.valid || s.reason.is_empty() == s.stride_length_m.is_finite());
             }
         }
     }
