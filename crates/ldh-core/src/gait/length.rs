@@ -72,13 +72,15 @@ pub fn zero_velocity_sample(
             // SHOE: ‖ω‖²/σω² + (|a| − 1 g)²/σa², σω = 20 deg/s, σa = 0.05 g, mean over the window.
             let stat = |i: usize| -> f64 {
                 let (lo, hi) = (i.saturating_sub(half), (i + half + 1).min(w_norm.len()));
-                let mut s = 0.0;
-                for j in lo..hi {
-                    let an =
-                        (al.acc_g[0][j].powi(2) + al.acc_g[1][j].powi(2) + al.acc_g[2][j].powi(2))
-                            .sqrt();
-                    s += (w_norm[j] / 20.0).powi(2) + ((an - 1.0) / 0.05).powi(2);
-                }
+                let s: f64 = (lo..hi)
+                    .map(|j| {
+                        let an = (al.acc_g[0][j].powi(2)
+                            + al.acc_g[1][j].powi(2)
+                            + al.acc_g[2][j].powi(2))
+                        .sqrt();
+                        (w_norm[j] / 20.0).powi(2) + ((an - 1.0) / 0.05).powi(2)
+                    })
+                    .sum();
                 s / (hi - lo) as f64
             };
             (a..b).min_by(|&x, &y| stat(x).total_cmp(&stat(y)))
