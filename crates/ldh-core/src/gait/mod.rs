@@ -3,7 +3,9 @@
 //! **Strides** run from a heel strike to the next heel strike of the same leg, with the toe off
 //! between them. A stride is kept in the table but flagged invalid, with the reason, when its
 //! toe off is missing, its time is outside [`StrideParams::min_stride_s`, `max_stride_s`], it is
-//! part of a turn (heading change over the stride above `turn_deg`), or it is the first or last
+//! part of a turn (heading change over the stride above `turn_deg`; with both legs, the other
+//! leg must turn too — [`crate::pipeline::analyze_pair`] — and on a treadmill nothing is a
+//! turn), or it is the first or last
 //! stride of a walking bout (bouts are separated by pauses longer than a stride and by turns).
 //!
 //! **Stride length** (the paper: "estimated by fusing three-axis acceleration"): the
@@ -123,6 +125,13 @@ pub fn check_stride_range(min_stride_s: f64, max_stride_s: f64) -> Result<()> {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ValidStrideParams(StrideParams);
 
+impl ValidStrideParams {
+    /// The parameters.
+    pub fn params(&self) -> &StrideParams {
+        &self.0
+    }
+}
+
 /// One stride of one leg: a row of the per-stride table (SPEC §6).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Stride {
@@ -237,6 +246,24 @@ pub fn strides(
     ev: &Events,
     params: &ValidStrideParams,
 ) -> Result<Vec<Stride>> {
+    let turn_deg = params.0.turn_deg;
+    strides_with_turns(side, al, att, ev, params, &|_, _, d| d.abs() > turn_deg)
+}
+
+/// The turn test of [`strides_with_turns`]: (HS time s, next HS time s, this leg's heading
+/// change over the stride deg) → the stride is part of a turn.
+pub type TurnTest<'a> = dyn Fn(f64, f64, f64) -> bool + 'a;
+
+/// As [`strides`], with the turn decision made by `is_turn` (e.g. from both legs: a turn
+/// rotates both shanks at the same time, yaw drift on one leg does not; none on a treadmill).
+pub fn strides_with_turns(
+    side: Side,
+    al: &Aligned,
+    att: &Attitude,
+    ev: &Events,
+    params: &ValidStrideParams,
+    is_turn: &TurnTest,
+) -> Result<Vec<Stride>> {
     let p = &params.0;
     let fs = al.fs_hz;
     let n = att.pitch_deg.len();
@@ -308,7 +335,7 @@ pub fn strides(
         };
         let mut dpsi = att.yaw_deg[b.min(n - 1)] - att.yaw_deg[a];
         dpsi = (dpsi + 180.0).rem_euclid(360.0) - 180.0;
-        if dpsi.abs() > p.turn_deg {
+        if is_turn(h0, h1, dpsi) {
             reasons.push(format!("turning ({dpsi:.0} deg heading change)"));
         }
         let est = match (zv_after(h0), zv_after(h1)) {

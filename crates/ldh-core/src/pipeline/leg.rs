@@ -87,7 +87,10 @@ pub fn analyze_leg(
         );
     }
     let hs = ev.hs_s.clone();
-    let warnings = leg_warnings(&al.alignment, &st, &parameters);
+    let mut warnings = leg_warnings(&al.alignment, &st, &parameters);
+    if st.is_empty() {
+        warnings.push(crate::events::no_strides_reason(&omega, &ev, &ev_params));
+    }
     Ok((
         LegResult {
             side,
