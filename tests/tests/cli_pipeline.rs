@@ -229,7 +229,8 @@ fn evaluate_reports_accuracy_within_the_issue_targets() {
     let a = &acc[1];
     assert_eq!(a["model"], "acc");
     assert!(a["pitch_rmse_deg"].as_f64().unwrap() > 5.0 * v("pitch_rmse_deg"));
-    // Its stride length is worse, or withheld by the quality layer (attitude drift, left and
-    // right disagreeing: docs/quality.md), never reported as good.
+    // Its stride lengths (≈ 97 % short) are withheld by the plausibility checks, not reported.
     assert!(a["stride_length_mae_pct"].as_f64().is_none_or(|x| x > 10.0));
+    assert!(a["stride_length_withheld"].as_u64().unwrap() * 2 > a["strides"].as_u64().unwrap());
+    assert_eq!(f["stride_length_over_15pct"], 0);
 }

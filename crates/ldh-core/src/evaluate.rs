@@ -3,6 +3,9 @@
 //! Scored on the truth's steady strides (not turning, not the first or last of the walk): each
 //! true HS and TO is matched to the nearest detected one within 250 ms (otherwise it is
 //! missed); a true stride is matched to the detected stride starting at the matched HS.
+//! Stride length is scored on the reported lengths only (valid strides with a length); the
+//! strides whose length was withheld are counted, and so are reported lengths more than 15 %
+//! off (a clinical tool may withhold, never report a wrong number).
 //! Attitude errors are RMS over the whole recording, pitch against the true shank pitch θ and
 //! roll against the true anatomical roll.
 
@@ -47,6 +50,15 @@ pub struct Accuracy {
     pub stride_length_bias_pct: f64,
     /// Stride length SD of the signed error, %.
     pub stride_length_sd_pct: f64,
+    /// Largest stride length error of a reported stride, %.
+    #[serde(default)]
+    pub stride_length_max_pct: f64,
+    /// Reported stride lengths more than 15 % off.
+    #[serde(default)]
+    pub stride_length_over_15pct: usize,
+    /// Matched steady strides whose length was withheld (or the stride invalid).
+    #[serde(default)]
+    pub stride_length_withheld: usize,
     /// Pitch RMSE (mean over recordings), deg.
     pub pitch_rmse_deg: f64,
     /// Roll RMSE (mean over recordings), deg.
@@ -92,6 +104,7 @@ pub fn evaluate(results: &[SubjectResult], truths: &[SubjectTruth]) -> Accuracy 
     let mut pitch = Vec::new();
     let mut roll = Vec::new();
     let mut missed = 0;
+    let mut withheld = 0;
     let mut recs = 0;
     let mut model = String::new();
     for r in results {
@@ -111,6 +124,7 @@ pub fn evaluate(results: &[SubjectResult], truths: &[SubjectTruth]) -> Accuracy 
                 &mut stance,
                 &mut sl,
                 &mut missed,
+                &mut withheld,
             );
             if let Some(att) = &leg.attitude {
                 let n = att.pitch_deg.len().min(truth.pitch_deg.len());
@@ -151,6 +165,9 @@ pub fn evaluate(results: &[SubjectResult], truths: &[SubjectTruth]) -> Accuracy 
         } else {
             f64::NAN
         },
+        stride_length_max_pct: sl.iter().fold(f64::NAN, |m, x| m.max(x.abs())),
+        stride_length_over_15pct: sl.iter().filter(|x| x.abs() > 15.0).count(),
+        stride_length_withheld: withheld,
         pitch_rmse_deg: mean(&pitch),
         roll_rmse_deg: mean(&roll),
     }
@@ -166,6 +183,7 @@ fn score_leg(
     stance: &mut Vec<f64>,
     sl: &mut Vec<f64>,
     missed: &mut usize,
+    withheld: &mut usize,
 ) {
     for ts in truth.strides.iter().filter(|s| !s.turning && !s.bout_edge) {
         match nearest(&leg.events.hs_s, ts.hs_time_s) {
@@ -184,8 +202,10 @@ fn score_leg(
             if s.stance_ratio.is_finite() {
                 stance.push(s.stance_ratio - ts.stance_ratio);
             }
-            if s.stride_length_m.is_finite() && ts.stride_length_m.is_finite() {
+            if s.valid && s.stride_length_m.is_finite() && ts.stride_length_m.is_finite() {
                 sl.push((s.stride_length_m - ts.stride_length_m) / ts.stride_length_m * 100.0);
+            } else {
+                *withheld += 1;
             }
         }
     }
@@ -202,7 +222,7 @@ pub fn markdown(acc: &[Accuracy]) -> String {
         s.push_str("---:|");
     }
     s.push('\n');
-    let rows: [AccuracyRow; 13] = [
+    let rows: [AccuracyRow; 15] = [
         ("recordings / steady strides", |a| {
             format!("{} / {}", a.recordings, a.strides)
         }),
@@ -230,6 +250,15 @@ pub fn markdown(acc: &[Accuracy]) -> String {
                 "{:+.2} ± {:.2}",
                 a.stride_length_bias_pct, a.stride_length_sd_pct
             )
+        }),
+        ("stride length worst reported (%) / > 15 %", |a| {
+            format!(
+                "{:.1} / {}",
+                a.stride_length_max_pct, a.stride_length_over_15pct
+            )
+        }),
+        ("stride lengths withheld (of steady strides)", |a| {
+            format!("{} / {}", a.stride_length_withheld, a.strides)
         }),
         ("pitch RMSE (deg)", |a| format!("{:.2}", a.pitch_rmse_deg)),
         ("roll RMSE (deg)", |a| format!("{:.2}", a.roll_rmse_deg)),

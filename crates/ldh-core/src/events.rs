@@ -110,8 +110,12 @@ pub struct EventParams {
     pub hs_offset_stride: Option<f64>,
     /// Offset added to every TO, fraction of the stride time; `None`: the detector's default.
     pub to_offset_stride: Option<f64>,
-    /// Smallest mid-swing peak of −ω_s, deg/s. Default 100.
+    /// Smallest mid-swing peak of −ω_s, deg/s. Default 100. With `adaptive_midswing` this is an
+    /// upper bound: the threshold used is 35 % of the recording's 99th percentile of −ω_s,
+    /// clamped to [30, this] (slow, pathological gait swings at well under 100 deg/s).
     pub min_midswing_dps: f64,
+    /// Adapt the mid-swing threshold to the recording (see `min_midswing_dps`). Default true.
+    pub adaptive_midswing: bool,
     /// Shortest plausible stride, s; mid-swings closer than 0.8 × this are merged. Default 0.7.
     pub min_stride_s: f64,
     /// Longest plausible stride, s. Default 2.5.
@@ -125,6 +129,7 @@ impl Default for EventParams {
             hs_offset_stride: None,
             to_offset_stride: None,
             min_midswing_dps: 100.0,
+            adaptive_midswing: true,
             min_stride_s: 0.7,
             max_stride_s: 2.5,
         }
@@ -207,6 +212,46 @@ fn parabolic(y: &[f64], i: usize) -> f64 {
     i as f64 + (0.5 * (a - c) / den).clamp(-0.5, 0.5)
 }
 
+/// Lowest adaptive mid-swing threshold, deg/s.
+pub const MIN_ADAPTIVE_MIDSWING_DPS: f64 = 30.0;
+
+/// The mid-swing threshold used on this recording (`neg` = −ω_s), deg/s.
+pub fn midswing_threshold_dps(neg: &[f64], p: &EventParams) -> f64 {
+    if !p.adaptive_midswing || neg.is_empty() {
+        return p.min_midswing_dps;
+    }
+    let mut v: Vec<f64> = neg.iter().copied().filter(|x| x.is_finite()).collect();
+    if v.is_empty() {
+        return p.min_midswing_dps;
+    }
+    let k = ((v.len() as f64 * 0.99) as usize).min(v.len() - 1);
+    let (_, p99, _) = v.select_nth_unstable_by(k, f64::total_cmp);
+    (0.35 * *p99).clamp(
+        MIN_ADAPTIVE_MIDSWING_DPS.min(p.min_midswing_dps),
+        p.min_midswing_dps,
+    )
+}
+
+/// Why a leg has no strides, in words (for its warning), from −ω_s and the parameters.
+pub fn no_strides_reason(omega_s_dps: &[f64], ev: &Events, p: &EventParams) -> String {
+    let neg: Vec<f64> = omega_s_dps.iter().map(|w| -w).collect();
+    let peak = neg.iter().copied().fold(f64::NAN, f64::max);
+    let thr = midswing_threshold_dps(&neg, p);
+    match ev.midswing_s.len() {
+        0 | 1 => format!(
+            "no strides: {} mid-swing peak(s) of the sagittal angular velocity above {thr:.0} deg/s (largest swing rate {peak:.0} deg/s); no walking, or a sensor not on the shank",
+            ev.midswing_s.len()
+        ),
+        n => format!(
+            "no strides: {n} mid-swings found but no heel strike pairs (HS {}, TO {}) within [{}, {}] s",
+            ev.hs_s.len(),
+            ev.to_s.len(),
+            p.min_stride_s,
+            p.max_stride_s
+        ),
+    }
+}
+
 /// Detect HS and TO from the pitch θ (deg) and the sagittal angular velocity ω_s (deg/s).
 pub fn detect(
     pitch_deg: &[f64],
@@ -227,9 +272,10 @@ pub fn detect(
     let p = &params.p;
     let neg: Vec<f64> = omega_s_dps.iter().map(|w| -w).collect();
     let min_dist = ((p.min_stride_s * 0.8) * fs_hz).max(1.0) as usize;
+    let threshold = midswing_threshold_dps(&neg, p);
     let mut pf = PeakFinder::new(&neg);
-    pf.with_min_height(p.min_midswing_dps)
-        .with_min_prominence(p.min_midswing_dps)
+    pf.with_min_height(threshold)
+        .with_min_prominence(threshold)
         .with_min_distance(min_dist);
     let mut mid: Vec<usize> = pf
         .find_peaks()

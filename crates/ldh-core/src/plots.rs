@@ -91,6 +91,9 @@ pub fn radar_svg(title: &str, codes: &[String], series: &[(String, Vec<f64>)]) -
         }
         for (k, (name, z)) in series.iter().enumerate() {
             let c = COLORS[k % COLORS.len()];
+            if z.is_empty() {
+                continue;
+            }
             let poly: Vec<(i32, i32)> = (0..=z.len())
                 .map(|i| pt(i % z.len().max(1), to_r(z[i % z.len().max(1)])))
                 .collect();

@@ -13,11 +13,15 @@ use crate::args::EvaluateArgs;
 
 /// Run `ldh evaluate`.
 pub fn run(a: EvaluateArgs) -> Result<ExitCode> {
-    let subjects = discover(std::slice::from_ref(&a.truth))?;
+    let mut subjects = discover(std::slice::from_ref(&a.truth))?;
     let truths: Vec<ldh_core::simulate::SubjectTruth> = subjects
         .iter()
         .map(|s| ldh_core::simulate::read_truth(a.truth.join(&s.subject_id).join("truth.json")))
         .collect::<ldh_core::Result<_>>()?;
+    // A family B truth knows its setting (treadmill: no turns) when the manifest does not say.
+    for (s, t) in subjects.iter_mut().zip(&truths) {
+        s.setting = s.setting.or(t.family_b.as_ref().map(|b| b.setting));
+    }
     let read = ReadParams::default().check()?;
     let pool = thread_pool(a.jobs)?;
     let mut accs = Vec::new();

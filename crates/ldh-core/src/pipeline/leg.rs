@@ -96,7 +96,16 @@ pub fn analyze_leg(
     } else {
         ev.hs_s.clone()
     };
-    let warnings = checks.warnings;
+    let mut warnings = checks.warnings;
+    if st.is_empty() {
+        // Why no stride was found (too slow for the mid-swing threshold, too short…).
+        let reason = crate::events::no_strides_reason(&omega, &ev, &ev_params);
+        warnings.push(quality::Warning::new(
+            "no_strides",
+            quality::Severity::Warning,
+            reason,
+        ));
+    }
     Ok((
         LegResult {
             side,

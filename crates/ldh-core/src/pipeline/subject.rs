@@ -117,8 +117,9 @@ pub fn analyze_pair(
             leg.source = label;
             Ok((leg, hs))
         };
-    let l = run(left, Side::Left);
-    let r = run(right, Side::Right);
+    let mut l = run(left, Side::Left);
+    let mut r = run(right, Side::Right);
+    bilateral_turns(&mut l, &mut r, input, params);
     // The other leg's heel strikes on this leg's clock: event times count from each file's own
     // first sample, and the two files may start at different times.
     let t0 = |x: &std::result::Result<(LegResult, Vec<f64>), String>| {
@@ -151,6 +152,9 @@ pub fn analyze_pair(
                 leg.parameters.sta_per_stride,
                 leg.parameters.sta_status.clone(),
             );
+            // The leg's own findings again (the strides may have been re-segmented for turns
+            // since the leg checks ran), then the pair's.
+            quality::apply_to_strides(&mut leg.strides, &leg.warnings);
             quality::apply_to_strides(&mut leg.strides, &warnings);
             leg.parameters = side_parameters(&leg.strides, other.as_deref());
             (
@@ -189,12 +193,84 @@ pub fn analyze_pair(
     }
 }
 
+/// One leg's analysis up to its strides (the leg and its heel strikes), or its error.
+type LegRun = std::result::Result<(LegResult, Vec<f64>), String>;
+
+/// Heading change of a leg between two times on its own clock, deg (wrapped to ±180).
+fn heading_change(leg: &LegResult, t0: f64, t1: f64) -> Option<f64> {
+    let att = leg.attitude.as_ref()?;
+    let fs = leg.signals.as_ref()?.fs_hz;
+    let n = att.yaw_deg.len();
+    let idx = |t: f64| ((t * fs).round().max(0.0) as usize).min(n.saturating_sub(1));
+    if n == 0 || t1 < 0.0 || t0 * fs > n as f64 {
+        return None;
+    }
+    let d = att.yaw_deg[idx(t1)] - att.yaw_deg[idx(t0)];
+    Some((d + 180.0).rem_euclid(360.0) - 180.0)
+}
+
+/// Re-segment both legs' strides with the turn decided from both legs (issue 20): a turn
+/// rotates both shanks at the same time, so a stride is a turn only when the other leg's
+/// heading also changes by more than half of `turn_deg` over the same interval (yaw drift on
+/// one leg is not a turn); on a treadmill (`input.setting`) no stride is a turn. With one leg,
+/// its own heading decides (as before).
+fn bilateral_turns(l: &mut LegRun, r: &mut LegRun, input: &SubjectInput, params: &AnalysisParams) {
+    let treadmill = input.setting == Some(crate::recording::Setting::Treadmill);
+    let (Ok((ll, _)), Ok((rl, _))) = (&*l, &*r) else {
+        if !treadmill {
+            return;
+        }
+        for (leg, _) in [l, r].into_iter().flatten() {
+            resegment(leg, input, params, &|_, _, _| false);
+        }
+        return;
+    };
+    let (ll, rl) = (ll.clone(), rl.clone());
+    let mut sp = params.strides.clone();
+    if let Some(h) = input.sensor_height_m {
+        sp.sensor_height_m = h;
+    }
+    let turn_deg = sp.turn_deg;
+    for (x, other) in [(l, &rl), (r, &ll)] {
+        let Ok((leg, _)) = x else { continue };
+        let shift = leg.t0_s - other.t0_s;
+        let test = |h0: f64, h1: f64, d: f64| {
+            !treadmill
+                && d.abs() > turn_deg
+                && heading_change(other, h0 + shift, h1 + shift)
+                    .is_none_or(|o| o.abs() > 0.5 * turn_deg)
+        };
+        resegment(leg, input, params, &test);
+    }
+}
+
+/// Recompute a leg's strides with another turn test (the leg keeps its events and attitude).
+fn resegment(
+    leg: &mut LegResult,
+    input: &SubjectInput,
+    params: &AnalysisParams,
+    test: &crate::gait::TurnTest,
+) {
+    let (Some(al), Some(att)) = (&leg.signals, &leg.attitude) else {
+        return;
+    };
+    let mut sp = params.strides.clone();
+    if let Some(h) = input.sensor_height_m {
+        sp.sensor_height_m = h;
+    }
+    let Ok(sp) = sp.check() else { return };
+    if let Ok(st) = crate::gait::strides_with_turns(leg.side, al, att, &leg.events, &sp, test) {
+        leg.strides = st;
+    }
+}
+
 /// Analyse a simulated subject in memory (for evaluation and tests).
 pub fn analyze_simulated(
     s: &crate::simulate::SimSubject,
     params: &AnalysisParams,
 ) -> SubjectResult {
     let input = SubjectInput {
+        setting: s.family_b.as_ref().map(|p| p.setting),
         subject_id: s.params.subject_id.clone(),
         group: Some(s.params.group.into()),
         affected_side: s.params.affected_side,

@@ -21,7 +21,10 @@ proptest! {
             }
             for s in &leg.strides {
                 prop_assert!(s.hs_time_s < s.to_time_s || !s.to_time_s.is_finite());
-                prop_assert!(s.valid == s.reason.is_empty());
+                // Invalid strides say why; a valid one may only say why its length is withheld.
+                prop_assert!(s.valid || !s.reason.is_empty());
+                prop_assert!(!s.valid || s.reason.split("; ").all(|r| r.is_empty() || r.starts_with("stride length")), "{}", s.reason);
+                prop_assert!(!s.valid || s.reason.is_empty() == s.stride_length_m.is_finite());
             }
         }
     }
@@ -95,4 +98,87 @@ fn manifests_are_parsed_and_bad_rows_named() {
     std::fs::create_dir(d.path().join("empty")).unwrap();
     let e = discover(&[d.path().join("empty")]).unwrap_err().to_string();
     assert!(e.contains("empty") && e.contains("no manifest.csv"), "{e}");
+}
+
+/// Family B subject analysed end to end, scored against its truth: (matched HS errors s,
+/// reported stride length errors (fraction), strides flagged turning, valid strides) per leg.
+fn family_b_case(
+    speed: f64,
+    setting: crate::Setting,
+    seed: u64,
+) -> Vec<(Vec<f64>, Vec<f64>, usize, usize)> {
+    use crate::simulate::family_b::CohortParamsB;
+    let c = CohortParamsB {
+        healthy: 0,
+        patients: 1,
+        seed,
+        duration_s: 45.0,
+        speed_mps: Some(speed),
+        setting: Some(setting),
+        ..CohortParamsB::default()
+    };
+    let s = c.simulate(0).unwrap();
+    let r = analyze_simulated(
+        &s,
+        &AnalysisParams {
+            compute_sta: false,
+            ..AnalysisParams::default()
+        },
+    );
+    let t = s.truth();
+    let mut out = Vec::new();
+    for (leg, tr) in [(&r.left, &t.left), (&r.right, &t.right)] {
+        let leg = leg.as_ref().unwrap();
+        let (mut hs, mut sl) = (vec![], vec![]);
+        for ts in tr.strides.iter().filter(|s| !s.turning && !s.bout_edge) {
+            if let Some(d) = leg
+                .events
+                .hs_s
+                .iter()
+                .find(|d| (*d - ts.hs_time_s).abs() < 0.25)
+            {
+                hs.push(d - ts.hs_time_s);
+            }
+            if let Some(st) = leg.strides.iter().find(|x| {
+                x.valid
+                    && (x.hs_time_s - ts.hs_time_s).abs() < 0.25
+                    && x.stride_length_m.is_finite()
+            }) {
+                sl.push(st.stride_length_m / ts.stride_length_m - 1.0);
+            }
+        }
+        let turning = leg
+            .strides
+            .iter()
+            .filter(|s| s.reason.contains("turning"))
+            .count();
+        let valid = leg.strides.iter().filter(|s| s.valid).count();
+        out.push((hs, sl, turning, valid));
+    }
+    out
+}
+
+/// Slow hemiparetic gait at 0.3 m/s (strides ≈ 2 s, mid-swing well under 100 deg/s): both legs
+/// find their strides, heel strikes within 40 ms, no reported stride length more than 15 % off.
+#[test]
+fn slow_gait_at_0_3_mps_against_truth() {
+    for (hs, sl, _, valid) in family_b_case(0.3, crate::Setting::Overground, 31) {
+        assert!(valid >= 4, "valid strides {valid}");
+        assert!(hs.len() >= 4);
+        assert!(hs.iter().all(|e| e.abs() < 0.04), "{hs:?}");
+        assert!(sl.iter().all(|e| e.abs() < 0.15), "{sl:?}");
+        assert!(!sl.is_empty(), "no stride length reported");
+    }
+}
+
+/// Treadmill walking: no stride is a turn, lengths on the belt within 15 % when reported.
+#[test]
+fn treadmill_walk_has_no_turns_against_truth() {
+    for (hs, sl, turning, valid) in family_b_case(0.9, crate::Setting::Treadmill, 32) {
+        assert_eq!(turning, 0);
+        assert!(valid >= 8, "valid strides {valid}");
+        assert!(hs.iter().all(|e| e.abs() < 0.04), "{hs:?}");
+        assert!(sl.iter().all(|e| e.abs() < 0.15), "{sl:?}");
+        assert!(sl.len() >= 4, "{sl:?}");
+    }
 }

@@ -209,7 +209,13 @@ pub fn withhold(p: &mut SideParameters, warnings: &[Warning]) {
             if c.starts_with("sta_") {
                 p.sta_status = format!("not measured: {}", w.reason());
             }
-            p.withheld.entry(c.clone()).or_insert_with(|| w.reason());
+            // A sensor fault is the reason that matters: it replaces a reason found in the
+            // faulty signals themselves (e.g. a stride length withheld for velocity drift).
+            if w.severity == Severity::Fault {
+                p.withheld.insert(c.clone(), w.reason());
+            } else {
+                p.withheld.entry(c.clone()).or_insert_with(|| w.reason());
+            }
         }
     }
 }

@@ -3,7 +3,9 @@
 //! **Strides** run from a heel strike to the next heel strike of the same leg, with the toe off
 //! between them. A stride is kept in the table but flagged invalid, with the reason, when its
 //! toe off is missing, its time is outside [`StrideParams::min_stride_s`, `max_stride_s`], it is
-//! part of a turn (heading change over the stride above `turn_deg`), or it is the first or last
+//! part of a turn (heading change over the stride above `turn_deg`; with both legs, the other
+//! leg must turn too — [`crate::pipeline::analyze_pair`] — and on a treadmill nothing is a
+//! turn), or it is the first or last
 //! stride of a walking bout (bouts are separated by pauses longer than a stride and by turns).
 //!
 //! **Stride length** (the paper: "estimated by fusing three-axis acceleration"): the
@@ -20,13 +22,19 @@
 //! over valid strides and SV, STV (SD / mean), SF, STT (needs both legs) and STA
 //! ([`crate::nonlinear::gait_sta`]).
 
+mod length;
+
 use serde::{Deserialize, Serialize};
 
 use crate::align::Aligned;
-use crate::attitude::{rotation_wf, Attitude};
+use crate::attitude::Attitude;
 use crate::error::{LdhError, Result};
 use crate::events::Events;
-use crate::recording::{Side, STANDARD_GRAVITY_MPS2};
+use crate::recording::Side;
+pub use length::{
+    pendulum_length_m, stride_length, zero_velocity_sample, LengthEstimate, ZeroVelocity,
+    MAX_DRIFT_MPS, MAX_VERTICAL_M, PENDULUM_GAIN, SHANK_LENGTH_M,
+};
 
 /// Default sensor height above the ankle joint, m (SPEC: "just above the ankle").
 pub const DEFAULT_SENSOR_HEIGHT_M: f64 = 0.10;
@@ -46,6 +54,11 @@ pub struct StrideParams {
     pub sensor_height_m: f64,
     /// Flag the first and last stride of every bout. Default true.
     pub drop_bout_edges: bool,
+    /// How the zero-velocity instant of each stance is found. Default foot-flat.
+    pub zero_velocity: ZeroVelocity,
+    /// A stride whose length differs from its bout's median by more than this fraction is
+    /// invalid (stride length withheld). Default 0.25.
+    pub max_length_deviation: f64,
 }
 
 impl Default for StrideParams {
@@ -56,6 +69,8 @@ impl Default for StrideParams {
             turn_deg: 20.0,
             sensor_height_m: DEFAULT_SENSOR_HEIGHT_M,
             drop_bout_edges: true,
+            zero_velocity: ZeroVelocity::default(),
+            max_length_deviation: 0.25,
         }
     }
 }
@@ -83,6 +98,13 @@ impl StrideParams {
                 "must lie in [0, 0.5] m",
             ));
         }
+        if !(self.max_length_deviation > 0.0 && self.max_length_deviation <= 1.0) {
+            return Err(LdhError::param(
+                "max_length_deviation",
+                self.max_length_deviation,
+                "must lie in (0, 1]",
+            ));
+        }
         Ok(ValidStrideParams(self.clone()))
     }
 }
@@ -103,6 +125,13 @@ pub fn check_stride_range(min_stride_s: f64, max_stride_s: f64) -> Result<()> {
 /// Checked stride parameters.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ValidStrideParams(StrideParams);
+
+impl ValidStrideParams {
+    /// The parameters.
+    pub fn params(&self) -> &StrideParams {
+        &self.0
+    }
+}
 
 /// One stride of one leg: a row of the per-stride table (SPEC §6).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -135,7 +164,9 @@ pub struct Stride {
     pub bout: usize,
     /// Valid for the per-side means.
     pub valid: bool,
-    /// Why not valid ("" when valid); several reasons joined by "; ".
+    /// Why not valid, and why a value of the stride is withheld (its length: "stride length
+    /// withheld: …"; the stride may then still be valid for its timing and angles); several
+    /// reasons joined by "; ", "" when valid with every value reported.
     pub reason: String,
 }
 
@@ -216,6 +247,24 @@ pub fn strides(
     ev: &Events,
     params: &ValidStrideParams,
 ) -> Result<Vec<Stride>> {
+    let turn_deg = params.0.turn_deg;
+    strides_with_turns(side, al, att, ev, params, &|_, _, d| d.abs() > turn_deg)
+}
+
+/// The turn test of [`strides_with_turns`]: (HS time s, next HS time s, this leg's heading
+/// change over the stride deg) → the stride is part of a turn.
+pub type TurnTest<'a> = dyn Fn(f64, f64, f64) -> bool + 'a;
+
+/// As [`strides`], with the turn decision made by `is_turn` (e.g. from both legs: a turn
+/// rotates both shanks at the same time, yaw drift on one leg does not; none on a treadmill).
+pub fn strides_with_turns(
+    side: Side,
+    al: &Aligned,
+    att: &Attitude,
+    ev: &Events,
+    params: &ValidStrideParams,
+    is_turn: &TurnTest,
+) -> Result<Vec<Stride>> {
     let p = &params.0;
     let fs = al.fs_hz;
     let n = att.pitch_deg.len();
@@ -237,16 +286,10 @@ pub fn strides(
             .copied()
             .find(|&t| t > h && t - h < 0.75 * p.max_stride_s);
         let end = to.unwrap_or(h + 0.6 * ev.median_stride_s.max(0.5));
-        let (a, b) = (idx(h), idx(end));
-        if b <= a + 2 {
-            return None;
-        }
-        (a..b).min_by(|&x, &y| {
-            w_norm[x]
-                .partial_cmp(&w_norm[y])
-                .unwrap_or(std::cmp::Ordering::Equal)
-        })
+        zero_velocity_sample(p.zero_velocity, al, &w_norm, idx(h), idx(end))
     };
+    // Why a stride's length is withheld (the stride stays valid for its timing and angles).
+    let mut length_notes: Vec<Option<String>> = Vec::new();
     for (k, w) in hs.windows(2).enumerate() {
         let (h0, h1) = (w[0], w[1]);
         let st = h1 - h0;
@@ -293,18 +336,30 @@ pub fn strides(
         };
         let mut dpsi = att.yaw_deg[b.min(n - 1)] - att.yaw_deg[a];
         dpsi = (dpsi + 180.0).rem_euclid(360.0) - 180.0;
-        if dpsi.abs() > p.turn_deg {
+        if is_turn(h0, h1, dpsi) {
             reasons.push(format!("turning ({dpsi:.0} deg heading change)"));
         }
-        let length = match (zv_after(h0), zv_after(h1)) {
+        let est = match (zv_after(h0), zv_after(h1)) {
             (Some(z0), Some(z1)) if z1 > z0 + 1 => {
                 stride_length(al, att, z0, z1, p.sensor_height_m)
             }
-            _ => f64::NAN,
+            _ => LengthEstimate {
+                length_m: f64::NAN,
+                drift_mps: f64::NAN,
+                vertical_m: f64::NAN,
+            },
         };
-        if !length.is_finite() {
-            reasons.push("stride length not integrable".into());
+        let pendulum = if to.is_finite() {
+            pendulum_length_m(att.pitch_deg[a], att.pitch_deg[idx(to)], (to - h0) / st)
+        } else {
+            f64::NAN
+        };
+        let mut length = est.length_m;
+        let note = est.implausible(pendulum);
+        if note.is_some() {
+            length = f64::NAN;
         }
+        length_notes.push(note);
         out.push(Stride {
             stride_index: k,
             hs_time_s: h0,
@@ -367,80 +422,54 @@ pub fn strides(
         }
         s.valid = s.reason.is_empty();
     }
+    for (s, note) in out.iter_mut().zip(length_notes) {
+        if let Some(r) = note {
+            append_reason(s, r);
+        }
+    }
+    withhold_length_outliers(&mut out, p.max_length_deviation);
     Ok(out)
 }
 
-/// Horizontal displacement of the ankle between two mid-stance samples (see the module doc).
-fn stride_length(al: &Aligned, att: &Attitude, z0: usize, z1: usize, h: f64) -> f64 {
-    let fs = al.fs_hz;
-    let dt = 1.0 / fs;
-    let rot = |i: usize| {
-        rotation_wf(
-            att.roll_deg[i].to_radians(),
-            att.pitch_deg[i].to_radians(),
-            att.yaw_deg[i].to_radians(),
-        )
+fn append_reason(s: &mut Stride, r: String) {
+    s.reason = if s.reason.is_empty() {
+        r
+    } else {
+        format!("{}; {r}", s.reason)
     };
-    let mv = |r: &[[f64; 3]; 3], v: [f64; 3]| -> [f64; 3] {
-        std::array::from_fn(|k| r[k][0] * v[0] + r[k][1] * v[1] + r[k][2] * v[2])
-    };
-    let acc_w = |i: usize| -> [f64; 3] {
-        let f = [al.acc_g[0][i], al.acc_g[1][i], al.acc_g[2][i]];
-        let mut a = mv(&rot(i), f);
-        for x in a.iter_mut() {
-            *x *= STANDARD_GRAVITY_MPS2;
+}
+
+/// Valid strides whose length differs from the median length of their bout's valid strides by
+/// more than `max_dev` (fraction): the length (and speed) is withheld with the reason; the
+/// stride stays valid for its timing and angles. Bouts with fewer than 3 lengths are left alone
+/// (no median to trust).
+fn withhold_length_outliers(out: &mut [Stride], max_dev: f64) {
+    let bouts: std::collections::BTreeSet<usize> = out.iter().map(|s| s.bout).collect();
+    for b in bouts {
+        let mut l: Vec<f64> = out
+            .iter()
+            .filter(|s| s.bout == b && s.valid && s.stride_length_m.is_finite())
+            .map(|s| s.stride_length_m)
+            .collect();
+        if l.len() < 3 {
+            continue;
         }
-        a[2] -= STANDARD_GRAVITY_MPS2;
-        a
-    };
-    // Sensor position from the ankle and its velocity when the ankle is at rest.
-    let lever = |i: usize| -> ([f64; 3], [f64; 3]) {
-        let r = rot(i);
-        let rw = mv(&r, [0.0, 0.0, h]);
-        let w = mv(
-            &r,
-            [
-                al.gyro_dps[0][i].to_radians(),
-                al.gyro_dps[1][i].to_radians(),
-                al.gyro_dps[2][i].to_radians(),
-            ],
-        );
-        let v = [
-            w[1] * rw[2] - w[2] * rw[1],
-            w[2] * rw[0] - w[0] * rw[2],
-            w[0] * rw[1] - w[1] * rw[0],
-        ];
-        (rw, v)
-    };
-    let (r0, v0) = lever(z0);
-    let (r1, v1) = lever(z1);
-    let m = z1 - z0;
-    let mut v = vec![[0.0f64; 3]; m + 1];
-    v[0] = v0;
-    let mut prev = acc_w(z0);
-    for j in 1..=m {
-        let a = acc_w(z0 + j);
-        for k in 0..3 {
-            v[j][k] = v[j - 1][k] + 0.5 * dt * (prev[k] + a[k]);
-        }
-        prev = a;
-    }
-    // Linear de-drifting so the velocity ends at the known v1.
-    let drift: [f64; 3] = std::array::from_fn(|k| v[m][k] - v1[k]);
-    for (j, vj) in v.iter_mut().enumerate() {
-        let f = j as f64 / m as f64;
-        for k in 0..3 {
-            vj[k] -= f * drift[k];
+        l.sort_by(f64::total_cmp);
+        let med = l[l.len() / 2];
+        for s in out.iter_mut().filter(|s| s.bout == b && s.valid) {
+            let dev = (s.stride_length_m - med) / med;
+            if s.stride_length_m.is_finite() && dev.abs() > max_dev {
+                let r = format!(
+                    "stride length withheld: {:.2} m is {:+.0} % from its bout's median {med:.2} m",
+                    s.stride_length_m,
+                    dev * 100.0
+                );
+                append_reason(s, r);
+                s.stride_length_m = f64::NAN;
+                s.speed_mps = f64::NAN;
+            }
         }
     }
-    let mut d = [0.0f64; 3];
-    for j in 1..=m {
-        for k in 0..3 {
-            d[k] += 0.5 * dt * (v[j - 1][k] + v[j][k]);
-        }
-    }
-    let ankle = [d[0] - (r1[0] - r0[0]), d[1] - (r1[1] - r0[1])];
-    (ankle[0] * ankle[0] + ankle[1] * ankle[1]).sqrt()
 }
 
 /// Per-side parameters from the strides of one leg and, when available, the other leg's HS.
@@ -471,7 +500,7 @@ pub fn side_parameters(strides: &[Stride], other_hs_s: Option<&[f64]>) -> SidePa
     };
     let mean_stt = mean(&stt);
     let stance = mean(&col(|s| s.stance_ratio));
-    SideParameters {
+    let mut out = SideParameters {
         strides_total: strides.len(),
         strides_valid: valid.len(),
         stride_time_s: mean_st,
@@ -494,5 +523,49 @@ pub fn side_parameters(strides: &[Stride], other_hs_s: Option<&[f64]>) -> SidePa
         pbi_deg: mean(&col(|s| s.pbi_deg)),
         bdk_deg: mean(&col(|s| s.bdk_deg)),
         withheld: Default::default(),
+    };
+    withhold_side_length(&mut out, &valid, sl.len());
+    out
+}
+
+/// Fewest valid strides with a length for the side's stride length, speed and SV.
+pub const MIN_LENGTH_STRIDES: usize = 3;
+
+/// Withhold the side's stride length, speed and SV when fewer than [`MIN_LENGTH_STRIDES`] valid
+/// strides (and fewer than half of them) have a length: say why (the most common per-stride
+/// reason).
+fn withhold_side_length(out: &mut SideParameters, valid: &[&Stride], with_length: usize) {
+    if valid.is_empty() || with_length >= MIN_LENGTH_STRIDES.min(valid.len().div_ceil(2)).max(1) {
+        return;
+    }
+    let mut why: std::collections::BTreeMap<String, usize> = Default::default();
+    for s in valid.iter().filter(|s| !s.stride_length_m.is_finite()) {
+        let r = &s.reason;
+        let key = [
+            ("drift", "velocity drift"),
+            ("floor", "ankle off the floor level"),
+            ("pendulum", "disagrees with the shank-pendulum estimate"),
+            ("median", "far from its bout's median"),
+        ]
+        .iter()
+        .find(|(k, _)| r.contains(k))
+        .map_or("not integrable", |(_, v)| v)
+        .to_string();
+        *why.entry(key).or_default() += 1;
+    }
+    let top = why
+        .iter()
+        .max_by_key(|(_, n)| **n)
+        .map(|(r, _)| r.clone())
+        .unwrap_or_default();
+    let reason = format!(
+        "stride length vouched for on {with_length} of {} valid strides ({top})",
+        valid.len()
+    );
+    out.stride_length_m = f64::NAN;
+    out.speed_mps = f64::NAN;
+    out.stride_length_cv = f64::NAN;
+    for c in ["stride_length_m", "speed_mps", "stride_length_cv"] {
+        out.withheld.insert(c.to_string(), reason.clone());
     }
 }

@@ -1,0 +1,280 @@
+//! Stride length by strapdown integration between two zero-velocity instants of the ankle, and
+//! the checks that withhold it when it cannot be vouched for (issue 20).
+//!
+//! **Zero-velocity instant.** The ankle is at rest only while the foot is flat (after the heel
+//! rocker, before heel off). [`ZeroVelocity::FootFlat`] (default) looks for it in the middle
+//! of the detected stance (10–65 % of HS→TO, so a late toe off cannot move it into early swing,
+//! where the shank also stops rotating at its pitch peak) as the 0.1 s window with the least
+//! rotation and an acceleration magnitude closest to 1 g (the SHOE statistic of Skog et al.
+//! 2010, IEEE TBME 57:2657, on the shank). The sensor is not at rest there: the shank rotates
+//! over the fixed ankle, so its velocity is ω × r (the inverted-pendulum velocity update of
+//! Sci Rep 2021, doi 10.1038/s41598-021-81009-w; r = `sensor_height_m` along the shank).
+//! [`ZeroVelocity::MinGyro`] keeps the former rule (minimum |ω| anywhere between HS and TO).
+//!
+//! **Plausibility** ([`LengthEstimate::implausible`]): a stride length is withheld (the stride is
+//! marked invalid with the reason) when the integration is inconsistent — the velocity drift
+//! removed by de-drifting is large, or the ankle does not come back to the floor level — or
+//! when the length disagrees with a shank-pendulum estimate from the pitch excursion in stance
+//! by more than a factor 2 (0.45–2.2). The bout-level checks (a stride far from its bout's median, left
+//! and right disagreeing over the walk) are in [`super::mod`] and [`crate::pipeline`].
+
+use serde::{Deserialize, Serialize};
+
+use crate::align::Aligned;
+use crate::attitude::{rotation_wf, Attitude};
+use crate::error::LdhError;
+use crate::recording::STANDARD_GRAVITY_MPS2;
+
+/// How the zero-velocity (mid-stance) instant of each stance is found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum ZeroVelocity {
+    /// The quietest 0.1 s window (low |ω|, |a| ≈ 1 g) in 10–65 % of the stance (default).
+    #[default]
+    FootFlat,
+    /// The minimum |ω| anywhere between HS and TO (before issue 20).
+    MinGyro,
+}
+
+impl std::str::FromStr for ZeroVelocity {
+    type Err = LdhError;
+    fn from_str(s: &str) -> crate::error::Result<Self> {
+        match s {
+            "foot-flat" => Ok(ZeroVelocity::FootFlat),
+            "min-gyro" => Ok(ZeroVelocity::MinGyro),
+            o => Err(LdhError::param(
+                "zero_velocity",
+                o,
+                "expected foot-flat or min-gyro",
+            )),
+        }
+    }
+}
+
+/// Zero-velocity sample of the stance from `hs` to `to` (sample indices, `to` > `hs` + 2).
+pub fn zero_velocity_sample(
+    rule: ZeroVelocity,
+    al: &Aligned,
+    w_norm: &[f64],
+    hs: usize,
+    to: usize,
+) -> Option<usize> {
+    if to <= hs + 2 || to > w_norm.len() {
+        return None;
+    }
+    match rule {
+        ZeroVelocity::MinGyro => (hs..to).min_by(|&x, &y| w_norm[x].total_cmp(&w_norm[y])),
+        ZeroVelocity::FootFlat => {
+            let len = (to - hs) as f64;
+            let a = hs + (0.10 * len).round() as usize;
+            let b = (hs + (0.65 * len).round() as usize).max(a + 1);
+            let half = ((0.05 * al.fs_hz).round() as usize).max(1);
+            // SHOE: ‖ω‖²/σω² + (|a| − 1 g)²/σa², σω = 20 deg/s, σa = 0.05 g, mean over the window.
+            let stat = |i: usize| -> f64 {
+                let (lo, hi) = (i.saturating_sub(half), (i + half + 1).min(w_norm.len()));
+                let s: f64 = (lo..hi)
+                    .map(|j| {
+                        let an = (al.acc_g[0][j].powi(2)
+                            + al.acc_g[1][j].powi(2)
+                            + al.acc_g[2][j].powi(2))
+                        .sqrt();
+                        (w_norm[j] / 20.0).powi(2) + ((an - 1.0) / 0.05).powi(2)
+                    })
+                    .sum();
+                s / (hi - lo) as f64
+            };
+            (a..b).min_by(|&x, &y| stat(x).total_cmp(&stat(y)))
+        }
+    }
+}
+
+/// One integrated stride: the length and what the integration says about its own consistency.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LengthEstimate {
+    /// Horizontal displacement of the ankle, m.
+    pub length_m: f64,
+    /// Velocity error removed by de-drifting (|v_end − ω × r| before correction), m/s.
+    pub drift_mps: f64,
+    /// Vertical displacement of the ankle between the two mid-stances, m (0 on level ground).
+    pub vertical_m: f64,
+}
+
+/// Largest velocity drift over one stride accepted, m/s.
+pub const MAX_DRIFT_MPS: f64 = 0.6;
+/// Largest vertical ankle displacement over one stride accepted, m.
+pub const MAX_VERTICAL_M: f64 = 0.15;
+
+impl LengthEstimate {
+    /// Why this length cannot be vouched for, if so. `pendulum_m`: the shank-pendulum estimate
+    /// ([`pendulum_length_m`]), NaN when unknown.
+    pub fn implausible(&self, pendulum_m: f64) -> Option<String> {
+        if !self.length_m.is_finite() {
+            return Some("stride length not integrable".into());
+        }
+        if self.drift_mps > MAX_DRIFT_MPS {
+            return Some(format!(
+                "stride length withheld: velocity drift {:.2} m/s over the stride",
+                self.drift_mps
+            ));
+        }
+        if self.vertical_m.abs() > MAX_VERTICAL_M {
+            return Some(format!(
+                "stride length withheld: the ankle ends {:.0} cm off the floor level",
+                self.vertical_m * 100.0
+            ));
+        }
+        if pendulum_m.is_finite()
+            && pendulum_m > 0.05
+            && !(0.45..=2.2).contains(&(self.length_m / pendulum_m))
+        {
+            return Some(format!(
+                "stride length withheld: {:.2} m disagrees with the shank-pendulum estimate {:.2} m",
+                self.length_m, pendulum_m
+            ));
+        }
+        None
+    }
+}
+
+/// Typical shank length (knee to ankle joint) of an adult, m (Winter 2009: 0.246 × height).
+pub const SHANK_LENGTH_M: f64 = 0.43;
+/// Ratio of the integrated stride length to the bare pendulum term, median over the family A
+/// tuning cohort (seed 100; 1.69, range 0.82–2.19): the foot's roll and the swing leg add to
+/// the stance leg's rotation.
+pub const PENDULUM_GAIN: f64 = 1.7;
+
+/// Shank-pendulum stride length: over the stance the shank turns over the fixed foot from
+/// θ_HS to θ_TO, moving the knee by ℓ (sin θ_TO − sin θ_HS); the body covers that during the
+/// stance fraction `stance` of the stride, so L ≈ g ℓ (sin θ_TO − sin θ_HS) / stance, g =
+/// [`PENDULUM_GAIN`]. Coarse (ℓ varies between people, the foot rolls): used only as a
+/// factor-2 sanity check (a length outside 0.45–2.2 × this is withheld).
+pub fn pendulum_length_m(theta_hs_deg: f64, theta_to_deg: f64, stance: f64) -> f64 {
+    if !(stance > 0.3 && stance < 0.95) {
+        return f64::NAN;
+    }
+    PENDULUM_GAIN
+        * SHANK_LENGTH_M
+        * (theta_to_deg.to_radians().sin() - theta_hs_deg.to_radians().sin())
+        / stance
+}
+
+/// Horizontal displacement of the ankle between two mid-stance samples (see the module doc).
+pub fn stride_length(al: &Aligned, att: &Attitude, z0: usize, z1: usize, h: f64) -> LengthEstimate {
+    let fs = al.fs_hz;
+    let dt = 1.0 / fs;
+    let rot = |i: usize| {
+        rotation_wf(
+            att.roll_deg[i].to_radians(),
+            att.pitch_deg[i].to_radians(),
+            att.yaw_deg[i].to_radians(),
+        )
+    };
+    let mv = |r: &[[f64; 3]; 3], v: [f64; 3]| -> [f64; 3] {
+        std::array::from_fn(|k| r[k][0] * v[0] + r[k][1] * v[1] + r[k][2] * v[2])
+    };
+    let acc_w = |i: usize| -> [f64; 3] {
+        let f = [al.acc_g[0][i], al.acc_g[1][i], al.acc_g[2][i]];
+        let mut a = mv(&rot(i), f);
+        for x in a.iter_mut() {
+            *x *= STANDARD_GRAVITY_MPS2;
+        }
+        a[2] -= STANDARD_GRAVITY_MPS2;
+        a
+    };
+    // Sensor position from the ankle and its velocity when the ankle is at rest.
+    let lever = |i: usize| -> ([f64; 3], [f64; 3]) {
+        let r = rot(i);
+        let rw = mv(&r, [0.0, 0.0, h]);
+        let w = mv(
+            &r,
+            [
+                al.gyro_dps[0][i].to_radians(),
+                al.gyro_dps[1][i].to_radians(),
+                al.gyro_dps[2][i].to_radians(),
+            ],
+        );
+        let v = [
+            w[1] * rw[2] - w[2] * rw[1],
+            w[2] * rw[0] - w[0] * rw[2],
+            w[0] * rw[1] - w[1] * rw[0],
+        ];
+        (rw, v)
+    };
+    let (r0, v0) = lever(z0);
+    let (r1, v1) = lever(z1);
+    let m = z1 - z0;
+    let mut v = vec![[0.0f64; 3]; m + 1];
+    v[0] = v0;
+    let mut prev = acc_w(z0);
+    for j in 1..=m {
+        let a = acc_w(z0 + j);
+        for k in 0..3 {
+            v[j][k] = v[j - 1][k] + 0.5 * dt * (prev[k] + a[k]);
+        }
+        prev = a;
+    }
+    // Linear de-drifting so the velocity ends at the known v1.
+    let drift: [f64; 3] = std::array::from_fn(|k| v[m][k] - v1[k]);
+    for (j, vj) in v.iter_mut().enumerate() {
+        let f = j as f64 / m as f64;
+        for k in 0..3 {
+            vj[k] -= f * drift[k];
+        }
+    }
+    let mut d = [0.0f64; 3];
+    for j in 1..=m {
+        for k in 0..3 {
+            d[k] += 0.5 * dt * (v[j - 1][k] + v[j][k]);
+        }
+    }
+    let ankle = [d[0] - (r1[0] - r0[0]), d[1] - (r1[1] - r0[1])];
+    LengthEstimate {
+        length_m: (ankle[0] * ankle[0] + ankle[1] * ankle[1]).sqrt(),
+        drift_mps: (drift[0].powi(2) + drift[1].powi(2) + drift[2].powi(2)).sqrt(),
+        vertical_m: d[2] - (r1[2] - r0[2]),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pendulum_estimate_of_a_normal_stride() {
+        // θ from −20° at HS to +40° at TO over 60 % of the stride: ≈ 1.0 m.
+        let l = pendulum_length_m(-20.0, 40.0, 0.6);
+        assert!(
+            (l - 1.7 * 0.43 * (0.6428 + 0.3420) / 0.6).abs() < 1e-3,
+            "{l}"
+        );
+        assert!(pendulum_length_m(0.0, 10.0, 0.1).is_nan());
+    }
+
+    #[test]
+    fn implausible_lengths_say_why() {
+        let ok = LengthEstimate {
+            length_m: 1.3,
+            drift_mps: 0.1,
+            vertical_m: 0.01,
+        };
+        assert_eq!(ok.implausible(1.1), None);
+        assert_eq!(ok.implausible(f64::NAN), None);
+        let r = ok.implausible(0.4).unwrap();
+        assert!(r.contains("shank-pendulum"), "{r}");
+        let drift = LengthEstimate {
+            drift_mps: 1.5,
+            ..ok
+        };
+        assert!(drift.implausible(1.1).unwrap().contains("drift"));
+        let up = LengthEstimate {
+            vertical_m: 0.3,
+            ..ok
+        };
+        assert!(up.implausible(1.1).unwrap().contains("floor"));
+        assert_eq!(
+            "min-gyro".parse::<ZeroVelocity>().unwrap(),
+            ZeroVelocity::MinGyro
+        );
+        assert!("x".parse::<ZeroVelocity>().is_err());
+    }
+}
