@@ -96,6 +96,27 @@ fn hugadb_original_files_are_analysed_per_leg_from_a_manifest() {
         );
         assert!((r["fs_hz"].parse::<f64>().unwrap() - 58.8).abs() < 1e-6);
         assert!(r["strides_total"].parse::<usize>().unwrap() > 0);
+        // PROVENANCE.md: shank-gyro stride periods of 46-64 samples (0.78-1.09 s at 58.8 Hz).
+        let st: f64 = r["stride_time_s"].parse().unwrap();
+        assert!(
+            (0.75..1.12).contains(&st),
+            "{} {}: {st}",
+            r["subject_id"],
+            r["side"]
+        );
+    }
+    // Both legs walk the same walk: their stride times agree (each leg from its own sensor).
+    for pair in rows.chunks(2) {
+        let st = |r: &std::collections::HashMap<String, String>| -> f64 {
+            r["stride_time_s"].parse().unwrap()
+        };
+        assert_eq!(pair[0]["subject_id"], pair[1]["subject_id"]);
+        let (l, r) = (st(&pair[0]), st(&pair[1]));
+        assert!(
+            (l - r).abs() / l < 0.02,
+            "{}: {l} vs {r}",
+            pair[0]["subject_id"]
+        );
     }
 }
 

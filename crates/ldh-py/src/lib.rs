@@ -335,7 +335,7 @@ fn lyap_e<'py>(
 /// Analyse subjects as `ldh analyze` does; returns JSON text of
 /// {"strides": [...], "recordings": [...], "events": [...]} rows.
 #[pyfunction]
-#[pyo3(signature = (inputs, model=None, detector=None, format=None, compute_sta=None, sensor_height_m=None, n_jobs=1, params_json=None))]
+#[pyo3(signature = (inputs, model=None, detector=None, format=None, compute_sta=None, sensor_height_m=None, n_jobs=1, params_json=None, subject_id=None, setting=None))]
 #[allow(clippy::too_many_arguments)]
 fn analyze(
     py: Python<'_>,
@@ -347,8 +347,10 @@ fn analyze(
     sensor_height_m: Option<f64>,
     n_jobs: usize,
     params_json: Option<String>,
+    subject_id: Option<String>,
+    setting: Option<String>,
 ) -> PyResult<String> {
-    use ldh_core::pipeline::{analyze_subject, discover};
+    use ldh_core::pipeline::{analyze_subject, discover_with, InputOptions};
     use rayon::prelude::*;
     let (model, detector, fmt) = (model, detector, format.map(String::from));
     let out = py
@@ -361,7 +363,11 @@ fn analyze(
             )?;
             let f = format_of(fmt.as_deref())?;
             let read = ReadParams::default().check()?;
-            let subjects = discover(&inputs)?;
+            let opts = InputOptions {
+                subject_id,
+                setting: setting.as_deref().map(str::parse).transpose()?,
+            };
+            let subjects = discover_with(&inputs, &opts)?;
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(n_jobs)
                 .build()

@@ -147,3 +147,20 @@ def test_every_analysis_parameter_can_be_set_from_python(tmp_path):
         ldh.analyze(tmp_path / "H01", params={"attitude": {"smoothing": True}})
     with pytest.raises(ldh.LdhParamError, match="params must be a dict"):
         ldh.analyze(tmp_path / "H01", params="fast")
+
+
+def test_empty_inputs_are_refused_and_setting_and_subject_are_passed(tmp_path):
+    # Only None means the embedded demo: an empty list is a mistake (issue 19).
+    for call in (lambda: ldh.analyze_many([]), lambda: ldh.analyze([])):
+        with pytest.raises(ValueError, match="empty|no paths"):
+            call()
+    ldh.write_demo(tmp_path)
+    files = [tmp_path / "L02" / "left.csv", tmp_path / "L02" / "right.csv"]
+    out = ldh.analyze(files, compute_sta=False, subject_id="patient-7", setting="treadmill")
+    assert out["recordings"]["subject_id"] == ["patient-7", "patient-7"]
+    assert out["recordings"]["setting"] == ["treadmill", "treadmill"]
+    assert not any("turning" in r for r in out["strides"]["reason"])
+    # Without --subject, names that are only side words take the folder's name.
+    assert ldh.analyze(files, compute_sta=False)["recordings"]["subject_id"] == ["L02", "L02"]
+    with pytest.raises(ldh.LdhParamError, match="setting"):
+        ldh.analyze(files, setting="stairs")

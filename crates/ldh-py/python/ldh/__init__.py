@@ -251,6 +251,8 @@ def analyze(
     sensor_height_m: Optional[float] = None,
     n_jobs: Optional[int] = 1,
     params: Optional[Dict[str, Any]] = None,
+    subject_id: Optional[str] = None,
+    setting: Optional[str] = None,
 ) -> Dict[str, Dict[str, Any]]:
     """Analyse recordings exactly as ``ldh analyze`` does.
 
@@ -278,6 +280,12 @@ def analyze(
         defaults, e.g. ``{"attitude": {"smoother": False}, "preprocess": {"cutoff_hz": 8.0}}``;
         unknown names are refused. ``model``, ``detector``, ``sensor_height_m`` and
         ``compute_sta`` are applied on top.
+    subject_id : str, optional
+        Subject id of two files given directly (``ldh analyze --subject``; default: the common
+        stem of their names).
+    setting : {"overground", "treadmill"}, optional
+        Setting of every subject whose manifest row does not say (``--setting``); on a
+        treadmill no stride is flagged as a turn (docs/input.md).
 
     Returns
     -------
@@ -295,11 +303,17 @@ def analyze(
         paths = [os.fspath(inputs)]
     else:
         paths = [os.fspath(p) for p in inputs]
+        if not paths:
+            # Only ``None`` means the embedded demo: an empty list is a mistake, not a request.
+            raise LdhParamError("inputs is an empty list: give paths, or None for the embedded demo cohort")
     if n_jobs is not None and n_jobs != -1 and int(n_jobs) < 1:
         raise LdhParamError(f"n_jobs must be a positive number, -1 or None (all cores), got {n_jobs}")
     jobs = 0 if n_jobs in (None, -1) else int(n_jobs)
     raw = json.loads(
-        _ldh.analyze(paths, model, detector, format, compute_sta, _opt_float(sensor_height_m), jobs, _params_json(params))
+        _ldh.analyze(
+            paths, model, detector, format, compute_sta, _opt_float(sensor_height_m), jobs, _params_json(params),
+            subject_id, setting,
+        )
     )
     return {k: _columns(v) for k, v in raw.items()}
 
@@ -310,8 +324,14 @@ def analyze_many(paths: Sequence[PathLike], n_jobs: Optional[int] = None, **kwar
 
     The function is pure (files in, columns out) and keeps no state, so it runs unchanged in
     Dask or Ray workers: ``client.map(lambda d: ldh.analyze(d, n_jobs=1), subject_dirs)``.
+    An empty ``paths`` raises :class:`LdhParamError` (a ``ValueError``).
     """
-    return analyze(list(paths), n_jobs=n_jobs, **kwargs)
+    if isinstance(paths, (str, os.PathLike)):
+        paths = [paths]
+    paths = list(paths)
+    if not paths:
+        raise LdhParamError("analyze_many() got no paths")
+    return analyze(paths, n_jobs=n_jobs, **kwargs)
 
 
 _CHANNELS = ["acc_x_g", "acc_y_g", "acc_z_g", "gyro_x_dps", "gyro_y_dps", "gyro_z_dps"]
