@@ -157,7 +157,7 @@ def main():
                 + tuple(v * k for v in r[4:]) for r in rows]
         n = int(fast[-1][0] * 100)
         return interp(fast, [i / 100 for i in range(n + 1)])
-    case("running", left_csv=text(run(left)), right_csv=text(run(right)))
+    case("walk_played_fast", left_csv=text(run(left)), right_csv=text(run(right)))
     # Left device upside down: rotated 180° about its z axis (x and y change sign).
     flip = lambda r: (r[0], -r[1], -r[2], r[3], -r[4], -r[5], r[6])
     case("upside_down", left_csv=text([flip(r) for r in l10]), right_csv=text(r10))

@@ -207,12 +207,49 @@ fn check_case(name: &str, exp: &toml::Value) -> Result<(), String> {
                     if r["status"] != "ok" {
                         return Err(format!("recording failed: {r}"));
                     }
-                    let w = r["warnings"].as_str().unwrap();
-                    if outcome == "ok" && !w.is_empty() {
-                        return Err(format!("unexpected warnings: {w}"));
+                    // Structured warnings (docs/quality.md): notes are worth knowing but
+                    // never make a case "not ok".
+                    let list = r["warnings"].as_array().cloned().unwrap_or_default();
+                    let serious: Vec<String> = list
+                        .iter()
+                        .filter(|x| x["severity"] != "note")
+                        .map(|x| {
+                            let f = |k: &str| x[k].as_str().unwrap_or("").to_string();
+                            format!("{} [{}]: {}", f("code"), f("severity"), f("message"))
+                        })
+                        .collect();
+                    let all: Vec<String> = list
+                        .iter()
+                        .map(|x| {
+                            let f = |k: &str| x[k].as_str().unwrap_or("").to_string();
+                            format!("{} [{}]: {}", f("code"), f("severity"), f("message"))
+                        })
+                        .collect();
+                    let flat = all.join(" | ");
+                    if outcome == "ok" && !serious.is_empty() {
+                        return Err(format!("unexpected warnings: {serious:?}"));
                     }
-                    if outcome == "warning" {
-                        has(w, &strs(exp, "warnings_contain"), "warnings")?;
+                    if outcome == "warning" && serious.is_empty() {
+                        return Err(format!("expected a warning, got {all:?}"));
+                    }
+                    has(&flat, &strs(exp, "warnings_contain"), "warnings")?;
+                    has(&flat, &strs(exp, "codes"), "warning codes")?;
+                    for c in strs(exp, "codes_absent") {
+                        if list.iter().any(|x| x["code"] == c.as_str()) {
+                            return Err(format!("unexpected {c}: {all:?}"));
+                        }
+                    }
+                    // Withheld parameters: an empty value (JSON null) and a reason.
+                    for c in strs(exp, "withheld") {
+                        if !r[c.as_str()].is_null() || r["withheld"][c.as_str()].as_str().is_none()
+                        {
+                            return Err(format!("{c} not withheld: {r}"));
+                        }
+                    }
+                    for c in strs(exp, "measured") {
+                        if !r[c.as_str()].is_number() {
+                            return Err(format!("{c} not measured: {r}"));
+                        }
                     }
                     if let Some(n) = exp.get("min_valid_strides").and_then(|x| x.as_integer()) {
                         if r["strides_valid"].as_i64().unwrap() < n {

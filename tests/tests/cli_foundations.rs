@@ -109,7 +109,7 @@ fn simulate_in_a_vendor_format_and_at_other_rates() {
     let o = ldh(&[
         "inspect",
         "--json",
-        "--format",
+        "--input-format",
         map.to_str().unwrap(),
         out.join("H01/left.csv").to_str().unwrap(),
     ]);

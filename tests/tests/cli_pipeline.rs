@@ -85,7 +85,10 @@ fn a_bad_recording_is_reported_and_the_rest_is_written() {
     ]);
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     let t = text(&o);
-    assert!(t.contains("analysed 6 of 8 recordings"), "{t}");
+    assert!(
+        t.contains("8 recordings (4 subjects, model fusion): 6 ok, 2 failed"),
+        "{t}"
+    );
     assert!(
         t.contains("H02 right") && t.contains("H02/right.csv"),
         "{t}"
@@ -226,5 +229,7 @@ fn evaluate_reports_accuracy_within_the_issue_targets() {
     let a = &acc[1];
     assert_eq!(a["model"], "acc");
     assert!(a["pitch_rmse_deg"].as_f64().unwrap() > 5.0 * v("pitch_rmse_deg"));
-    assert!(a["stride_length_mae_pct"].as_f64().unwrap() > 10.0);
+    // Its stride length is worse, or withheld by the quality layer (attitude drift, left and
+    // right disagreeing: docs/quality.md), never reported as good.
+    assert!(a["stride_length_mae_pct"].as_f64().is_none_or(|x| x > 10.0));
 }

@@ -87,3 +87,72 @@ fn ids_equal_ignoring_case_are_refused_before_any_work() {
     assert!(text(&o).contains("\"p1\" and \"P1\""), "{}", text(&o));
     assert!(!out.join("recordings.csv").exists());
 }
+
+#[test]
+fn fifos_devices_and_huge_files_are_refused_before_reading() {
+    let d = tempfile::tempdir().unwrap();
+    // /dev/zero never ends; a FIFO without a writer blocks forever: both refused at once.
+    let fifo = d.path().join("pipe.csv");
+    let made = std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .map(|s| s.success())
+        .unwrap_or(false);
+    let mut files = vec!["/dev/zero".to_string()];
+    if made {
+        files.push(fifo.to_str().unwrap().to_string());
+    } else {
+        println!("skipped the FIFO case: mkfifo is not available");
+    }
+    for f in &files {
+        let o = ldh(&["inspect", f]);
+        assert_eq!(o.status.code(), Some(1), "{f}: {}", text(&o));
+        assert!(
+            text(&o).contains(&format!("{f}: cannot read: not a regular file")),
+            "{}",
+            text(&o)
+        );
+    }
+    // A file above the declared limit is refused with its size and the way to raise the limit.
+    ldh_core::demo::write_to(d.path()).unwrap();
+    let f = d.path().join("H01/left.csv");
+    let o = ldh(&["inspect", "--max-file-size-mb", "0.1", f.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(
+        text(&o).contains("above the limit of 0.1 MB (raise it with --max-file-size-mb"),
+        "{}",
+        text(&o)
+    );
+    ldh_ok(&["inspect", f.to_str().unwrap()]);
+}
+
+#[test]
+fn a_second_run_into_the_same_folder_is_refused_and_a_stale_lock_taken_over() {
+    let d = tempfile::tempdir().unwrap();
+    let out = d.path().join("out");
+    std::fs::create_dir(&out).unwrap();
+    let lock = out.join(".ldh.lock");
+    // A running process (this test) holds the lock: refused, nothing written.
+    std::fs::write(&lock, std::process::id().to_string()).unwrap();
+    let o = ldh(&["analyze", "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("another ldh run"), "{}", text(&o));
+    assert!(!out.join("recordings.csv").exists());
+    // A killed run's lock (no such process): taken over; the lock is gone after the run.
+    std::fs::write(&lock, "4194305").unwrap();
+    ldh_ok(&["analyze", "-o", out.to_str().unwrap()]);
+    assert!(out.join("recordings.csv").exists());
+    assert!(!lock.exists(), "the lock is removed at the end of the run");
+}
+
+#[test]
+fn absurd_thread_counts_are_bounded_by_the_cores() {
+    let d = tempfile::tempdir().unwrap();
+    let out = d.path().join("out");
+    let o = ldh_ok(&["analyze", "-j", "1000000", "-o", out.to_str().unwrap()]);
+    assert!(
+        text(&o).contains("1000000 worker threads requested"),
+        "{}",
+        text(&o)
+    );
+}

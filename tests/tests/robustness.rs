@@ -135,8 +135,8 @@ fn a_killed_run_leaves_old_or_new_files_and_a_rerun_completes() {
                 .unwrap()
                 .to_string_lossy()
                 .to_string();
-            if name.starts_with('.') && name.contains(".tmp-") {
-                continue; // the killed run's temporary file: never an output
+            if name.starts_with('.') && name.contains(".tmp-") || name == ".ldh.lock" {
+                continue; // the killed run's temporary file or lock: never an output
             }
             let is_old = old.get(k) == Some(v);
             let is_new = new.get(k) == Some(v);

@@ -7,6 +7,8 @@ use clap::{Args, Parser, Subcommand};
 use ldh_core::attitude::AttitudeModel;
 use ldh_core::events::EventDetector;
 use ldh_core::ml::{ClassifierKind, Task};
+use ldh_core::simulate::family_b::Family;
+use ldh_core::Setting;
 
 /// Gait assessment for lumbar disc herniation from two shank-worn IMUs.
 ///
@@ -15,10 +17,27 @@ use ldh_core::ml::{ClassifierKind, Task};
 #[derive(Debug, Parser)]
 #[command(name = "ldh", version, about, long_about = None, propagate_version = true)]
 pub struct Cli {
+    /// How much to print (`-q`, `-v`), for every command.
+    #[command(flatten)]
+    pub verbosity: Verbosity,
     /// The command.
     #[command(subcommand)]
     pub command: Command,
 }
+
+/// `-q` / `-v`, accepted before or after the command.
+#[derive(Debug, Clone, Copy, Default, Args)]
+pub struct Verbosity {
+    /// Print only errors (no progress, no summary, no warnings).
+    #[arg(short, long, global = true, conflicts_with = "verbose")]
+    pub quiet: bool,
+    /// Also print every recording's warnings and the reader's notes.
+    #[arg(short, long, global = true)]
+    pub verbose: bool,
+}
+
+/// Shells `ldh completions` writes a completion script for.
+pub use clap_complete::Shell;
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
@@ -76,9 +95,17 @@ pub enum Command {
     /// Write the embedded demo cohort (the default data of `ldh analyze`) to a folder.
     Demo {
         /// Output folder.
-        #[arg(long, default_value = "ldh-demo")]
+        #[arg(short, long, default_value = "ldh-demo")]
         out: PathBuf,
     },
+    /// Print a shell completion script: `ldh completions bash > ~/.local/share/bash-completion/completions/ldh`.
+    Completions {
+        /// The shell.
+        #[arg(value_enum)]
+        shell: Shell,
+    },
+    /// Print the manual page (roff): `ldh man > ldh.1 && man ./ldh.1`.
+    Man,
 }
 
 #[derive(Debug, Args)]
@@ -86,7 +113,7 @@ pub struct AnalyzeArgs {
     /// Inputs (see above); none: the embedded demo cohort.
     pub inputs: Vec<PathBuf>,
     /// Output folder.
-    #[arg(long, default_value = "ldh-out")]
+    #[arg(short, long, default_value = "ldh-out")]
     pub out: PathBuf,
     /// Attitude model: fusion (adaptive Kalman; default) or acc (accelerometer tilt only).
     #[arg(long, value_enum)]
@@ -95,8 +122,9 @@ pub struct AnalyzeArgs {
     /// paper's).
     #[arg(long, value_enum)]
     pub detector: Option<EventDetector>,
-    /// Sensor format: a built-in name or a TOML column map; default: detect.
-    #[arg(long)]
+    /// Input sensor format: a built-in name or a TOML column map; default: detect.
+    /// (`--format` is accepted as an alias for one release.)
+    #[arg(long = "input-format", alias = "format", value_name = "FORMAT")]
     pub format: Option<String>,
     /// Sensor height above the ankle when the manifest has none, m (default 0.10).
     #[arg(long)]
@@ -127,8 +155,14 @@ pub struct AnalyzeArgs {
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
     pub batch: Option<u64>,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(short, long)]
     pub jobs: Option<usize>,
+    /// Print the end-of-run summary on stdout as JSON (for scripts) instead of a sentence.
+    #[arg(long)]
+    pub json: bool,
+    /// Largest sensor file read, MB (default 256); larger files are refused before reading.
+    #[arg(long, value_name = "MB")]
+    pub max_file_size_mb: Option<f64>,
 }
 
 #[derive(Debug, Args)]
@@ -136,7 +170,7 @@ pub struct ReportArgs {
     /// Output folder of `ldh analyze`.
     pub results: PathBuf,
     /// Where to write the reports (default: <RESULTS>/reports).
-    #[arg(long)]
+    #[arg(short, long)]
     pub out: Option<PathBuf>,
     /// A model saved by `ldh train`: its output goes into each subject's report.
     #[arg(long)]
@@ -151,7 +185,7 @@ pub struct ReportArgs {
     #[arg(long)]
     pub params: Option<PathBuf>,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(short, long)]
     pub jobs: Option<usize>,
 }
 
@@ -166,10 +200,10 @@ pub struct StatsArgs {
     #[arg(long, value_enum, conflicts_with = "results")]
     pub compare: Option<CompareModel>,
     /// Output folder.
-    #[arg(long, default_value = "ldh-stats")]
+    #[arg(short, long, default_value = "ldh-stats")]
     pub out: PathBuf,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(short, long)]
     pub jobs: Option<usize>,
 }
 
@@ -202,10 +236,10 @@ pub struct TrainArgs {
     #[arg(long, value_delimiter = ',')]
     pub features: Option<Vec<String>>,
     /// Output folder.
-    #[arg(long, default_value = "ldh-train")]
+    #[arg(short, long, default_value = "ldh-train")]
     pub out: PathBuf,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(short, long)]
     pub jobs: Option<usize>,
 }
 
@@ -220,7 +254,7 @@ pub struct PredictArgs {
     #[arg(long, conflicts_with = "inputs")]
     pub results: Option<PathBuf>,
     /// Output folder.
-    #[arg(long, default_value = "ldh-predict")]
+    #[arg(short, long, default_value = "ldh-predict")]
     pub out: PathBuf,
 }
 
@@ -236,14 +270,14 @@ pub struct EvaluateArgs {
     #[arg(long)]
     pub json: Option<PathBuf>,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(short, long)]
     pub jobs: Option<usize>,
 }
 
 #[derive(Debug, Args)]
 pub struct SimulateArgs {
     /// Output folder (created if missing).
-    #[arg(long)]
+    #[arg(short, long)]
     pub out: PathBuf,
     /// Number of healthy subjects.
     #[arg(long, default_value_t = 2)]
@@ -273,8 +307,19 @@ pub struct SimulateArgs {
     /// Output format: a built-in format name or a TOML file.
     #[arg(long, default_value = "ldh")]
     pub format: String,
-    /// Worker threads (default: all cores).
+    /// Simulator family: a (default, the original model) or b (the independently written family:
+    /// other published curves, rolling foot, slow hemiparetic gait as the `ldh` group, treadmill
+    /// walks, any sensor rotation, scale faults, clipping; docs/simulator.md).
+    #[arg(long, value_enum, default_value_t = Family::A)]
+    pub family: Family,
+    /// Family b: every subject's mean walking speed, m/s (default: drawn per subject).
     #[arg(long)]
+    pub speed_mps: Option<f64>,
+    /// Family b: overground or treadmill for every subject (default: about 30 % on a treadmill).
+    #[arg(long)]
+    pub setting: Option<Setting>,
+    /// Worker threads (default: all cores).
+    #[arg(short, long)]
     pub jobs: Option<usize>,
 }
 
@@ -283,8 +328,9 @@ pub struct InspectArgs {
     /// Sensor CSV files.
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
-    /// Format: a built-in name or a TOML column map; default: detect a built-in format.
-    #[arg(long)]
+    /// Input sensor format: a built-in name or a TOML column map; default: detect a built-in
+    /// format. (`--format` is accepted as an alias for one release.)
+    #[arg(long = "input-format", alias = "format", value_name = "FORMAT")]
     pub format: Option<String>,
     /// Longest gap in the timestamps bridged by interpolation, s.
     #[arg(long, default_value_t = 0.2)]
@@ -292,6 +338,9 @@ pub struct InspectArgs {
     /// Refuse recordings with longer gaps instead of keeping the longest segment.
     #[arg(long)]
     pub reject_gaps: bool,
+    /// Largest sensor file read, MB (default 256); larger files are refused before reading.
+    #[arg(long, value_name = "MB")]
+    pub max_file_size_mb: Option<f64>,
     /// Print JSON instead of one line per file.
     #[arg(long)]
     pub json: bool,

@@ -33,6 +33,7 @@ where
             };
         }
     };
+    commands::set_verbosity(cli.verbosity);
     let r = match cli.command {
         Command::Analyze(a) => commands::analyze::run(a),
         Command::Report(a) => commands::report::run(a),
@@ -44,12 +45,27 @@ where
         Command::Inspect(a) => commands::inspect::run(a),
         Command::Formats { name } => commands::formats::run(name),
         Command::Demo { out } => commands::demo::run(&out),
+        Command::Completions { shell } => commands::completions::run(shell),
+        Command::Man => commands::completions::man(),
     };
     match r {
         Ok(code) => code,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            eprintln!("error: {}", message(&e));
             ExitCode::from(2)
         }
     }
+}
+
+/// The error and its causes, each cause once (core errors already print their source).
+fn message(e: &anyhow::Error) -> String {
+    let mut msg = e.to_string();
+    for cause in e.chain().skip(1) {
+        let text = cause.to_string();
+        if !msg.contains(&text) {
+            msg.push_str(": ");
+            msg.push_str(&text);
+        }
+    }
+    msg
 }

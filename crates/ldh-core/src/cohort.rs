@@ -174,20 +174,23 @@ pub fn person_row(rows: &[&RecordingRow], side: &str) -> Option<RecordingRow> {
     out.strides_total = sum(|r| r.strides_total);
     out.strides_valid = sum(|r| r.strides_valid);
     out.duration_s = ok.iter().map(|r| r.duration_s).sum();
-    // Each `; `-separated item prefixed by its trial.
-    let each = |f: fn(&RecordingRow) -> &str| -> String {
+    // Each trial's file, prefixed by its trial.
+    out.source = ok
+        .iter()
+        .map(|r| format!("{}: {}", r.trial_id, r.source))
+        .collect::<Vec<_>>()
+        .join("; ");
+    out.warnings = crate::pipeline::WarningList(
         ok.iter()
             .flat_map(|r| {
-                f(r).split("; ")
-                    .filter(|x| !x.is_empty())
-                    .map(|x| format!("{}: {x}", r.trial_id))
-                    .collect::<Vec<_>>()
+                r.warnings.iter().map(|w| {
+                    let mut w = w.clone();
+                    w.message = format!("{}: {}", r.trial_id, w.message);
+                    w
+                })
             })
-            .collect::<Vec<_>>()
-            .join("; ")
-    };
-    out.source = each(|r| &r.source);
-    out.warnings = each(|r| &r.warnings);
+            .collect(),
+    );
     out.trial_id = format!(
         "mean of {} trials ({})",
         ok.len(),

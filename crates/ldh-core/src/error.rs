@@ -80,6 +80,16 @@ pub enum ErrorKind {
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum LdhError {
+    /// A file is larger than the reader's limit (`max_file_size_mb`).
+    #[error("{}: the file has {size_mb:.0} MB, above the limit of {limit_mb} MB (raise it with --max-file-size-mb or `max_file_size_mb`)", path.display())]
+    FileTooLarge {
+        /// The file.
+        path: PathBuf,
+        /// Its size, MB (at least this much when the size was not known in advance).
+        size_mb: f64,
+        /// The limit, MB.
+        limit_mb: f64,
+    },
     /// Opening or reading a file failed.
     #[error("{}: cannot read: {source}", path.display())]
     Io {

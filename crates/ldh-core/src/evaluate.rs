@@ -202,7 +202,7 @@ pub fn markdown(acc: &[Accuracy]) -> String {
         s.push_str("---:|");
     }
     s.push('\n');
-    let rows: [(&str, fn(&Accuracy) -> String); 13] = [
+    let rows: [AccuracyRow; 13] = [
         ("recordings / steady strides", |a| {
             format!("{} / {}", a.recordings, a.strides)
         }),
@@ -243,3 +243,6 @@ pub fn markdown(acc: &[Accuracy]) -> String {
     }
     s
 }
+
+/// A row of the accuracy table: its label and how to print it from an [`Accuracy`].
+type AccuracyRow = (&'static str, fn(&Accuracy) -> String);

@@ -463,8 +463,7 @@ pub fn side_parameters(strides: &[Stride], other_hs_s: Option<&[f64]>) -> SidePa
                 other
                     .iter()
                     .copied()
-                    .filter(|&c| c < s.hs_time_s && s.hs_time_s - c < 0.75 * mean_st)
-                    .last()
+                    .rfind(|&c| c < s.hs_time_s && s.hs_time_s - c < 0.75 * mean_st)
                     .map(|c| s.hs_time_s - c)
             })
             .collect(),

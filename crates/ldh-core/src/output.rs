@@ -12,7 +12,8 @@ use serde::{Deserialize, Serialize};
 use std::io::Write;
 
 use crate::error::{LdhError, Result};
-use crate::pipeline::SubjectResult;
+use crate::pipeline::quality::flat;
+use crate::pipeline::{SubjectResult, Warning, WarningList, WithheldList};
 
 pub mod names;
 
@@ -90,11 +91,17 @@ pub struct RecordingRow {
     pub status: String,
     /// The error, when status is `error`.
     pub error: String,
-    /// Problems that did not stop the analysis, `; `-separated: the reader's (a gap, a
-    /// constant or frozen channel), the leg's (upside-down mounting, running, few strides) and
-    /// the pair's (different clocks, rates or lengths; left and right possibly swapped).
+    /// What the quality checks found, most severe first (docs/quality.md): the leg's (sensor
+    /// faults, attitude, running, few strides, a device convention), the pair's (clocks, rates,
+    /// identical files, disagreement, a possible swap) and the reader's (code `input`). JSON: a
+    /// list of `{code, severity, message, affects}`; CSV: one cell, `code [severity]: message`
+    /// joined by ` | `.
     #[serde(default)]
-    pub warnings: String,
+    pub warnings: WarningList,
+    /// Parameters withheld by a check (their cells are empty): JSON an object column → reason;
+    /// CSV one cell, `column: reason` joined by ` | `.
+    #[serde(default)]
+    pub withheld: WithheldList,
     /// Sampling rate, Hz.
     pub fs_hz: Option<f64>,
     /// Duration, s.
@@ -214,7 +221,8 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
                 source: String::new(),
                 status: "ok".into(),
                 error: String::new(),
-                warnings: String::new(),
+                warnings: WarningList::default(),
+                withheld: WithheldList::default(),
                 fs_hz: None,
                 duration_s: None,
                 strides_total: None,
@@ -251,15 +259,11 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
                 }
                 Ok(l) => {
                     let p = &l.parameters;
-                    row.warnings = l
-                        .read
-                        .warnings
-                        .iter()
-                        .chain(&l.warnings)
-                        .chain(&r.warnings)
-                        .map(String::as_str)
-                        .collect::<Vec<_>>()
-                        .join("; ");
+                    let mut w: Vec<Warning> = crate::pipeline::all_leg_warnings(l);
+                    w.extend(r.warnings.iter().cloned());
+                    w.sort_by_key(|x| std::cmp::Reverse(x.severity));
+                    row.warnings = WarningList(w);
+                    row.withheld = WithheldList(p.withheld.clone());
                     row.source = l.source.clone();
                     row.fs_hz = num(l.read.fs_hz, 4);
                     row.duration_s = num(l.read.duration_s, 3);
@@ -377,7 +381,7 @@ pub fn to_csv<T: Serialize>(rows: &[T], header_if_empty: &[&str]) -> Result<Stri
         w.write_record(header_if_empty)?;
     }
     for r in rows {
-        w.serialize(r)?;
+        flat(|| w.serialize(r))?;
     }
     let bytes = w
         .into_inner()
@@ -449,7 +453,7 @@ impl TableSink {
     /// Append rows.
     pub fn push<T: Serialize>(&mut self, rows: &[T]) -> Result<()> {
         for r in rows {
-            self.csv.serialize(r)?;
+            flat(|| self.csv.serialize(r))?;
             if let Some(j) = self.json.as_mut() {
                 let text = serde_json::to_string_pretty(r)?;
                 let sep = if self.rows == 0 { "\n  " } else { ",\n  " };

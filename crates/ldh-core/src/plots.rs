@@ -449,11 +449,7 @@ pub fn signals_svg(
 
 /// A parameter stride by stride: x = heel-strike time (s), one series per side; strides
 /// excluded from the parameters are drawn as hollow circles, used ones filled.
-pub fn stride_series_svg(
-    title: &str,
-    y_label: &str,
-    series: &[(String, Vec<(f64, f64, bool)>)],
-) -> Result<String> {
+pub fn stride_series_svg(title: &str, y_label: &str, series: &[Series]) -> Result<String> {
     let pts: Vec<(f64, f64)> = series
         .iter()
         .flat_map(|s| s.1.iter().map(|p| (p.0, p.1)))
@@ -524,3 +520,6 @@ pub fn stride_series_svg(
     }
     Ok(buf)
 }
+
+/// One line of a per-stride plot: its label and `(x, y, valid)` points.
+pub type Series = (String, Vec<(f64, f64, bool)>);

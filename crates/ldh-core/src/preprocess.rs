@@ -109,7 +109,7 @@ impl PreprocessParams {
                 ),
             ));
         }
-        if self.filter_order < 2 || self.filter_order > 10 || self.filter_order % 2 != 0 {
+        if self.filter_order < 2 || self.filter_order > 10 || !self.filter_order.is_multiple_of(2) {
             return Err(LdhError::param(
                 "filter_order",
                 self.filter_order,

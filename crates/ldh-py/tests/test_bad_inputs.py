@@ -6,6 +6,8 @@ import pathlib
 import shutil
 import warnings
 
+import numpy as np
+
 import pytest
 
 import ldh
@@ -140,12 +142,23 @@ def test_bad_input(name, tmp_path):
         return
     for i in idx:
         assert r["status"][i] == "ok", r["error"][i]
-        w = r["warnings"][i]
+        # Structured warnings (docs/quality.md): a list of {code, severity, message, affects};
+        # notes never make a case "not ok".
+        ws = r["warnings"][i]
+        serious = [w for w in ws if w["severity"] != "note"]
+        flat = " | ".join(f'{w["code"]} [{w["severity"]}]: {w["message"]}' for w in ws)
         if outcome == "ok":
-            assert w == "", w
+            assert serious == [], serious
         else:
-            for m in exp.get("warnings_contain", []):
-                assert m in w, (m, w)
+            assert serious, f"expected a warning, got {flat}"
+        for m in exp.get("warnings_contain", []) + exp.get("codes", []):
+            assert m in flat, (m, flat)
+        for c in exp.get("codes_absent", []):
+            assert all(w["code"] != c for w in ws), (c, flat)
+        for c in exp.get("withheld", []):
+            assert np.isnan(r[c][i]) and r["withheld"][i][c], (c, r["withheld"][i])
+        for c in exp.get("measured", []):
+            assert np.isfinite(r[c][i]), c
         if "min_valid_strides" in exp:
             assert r["strides_valid"][i] >= exp["min_valid_strides"]
         if "fs_hz" in exp:

@@ -53,6 +53,9 @@ def test_errors_are_typed_and_name_the_problem(tmp_path):
     with pytest.raises(FileNotFoundError) as e:
         ldh.read_recording(tmp_path / "missing.csv")
     assert isinstance(e.value, ldh.LdhError) and "missing.csv" in str(e.value)
+    # A misspelt input to analyze raises before any work instead of returning error rows.
+    with pytest.raises(FileNotFoundError, match="no/such/folder"):
+        ldh.analyze("no/such/folder")
     bad = tmp_path / "bad.csv"
     bad.write_text("time_s,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z\n0,1,0,0,0,0,x\n")
     with pytest.raises(ValueError, match=r"bad.csv:2:7.*'x' is not a number"):

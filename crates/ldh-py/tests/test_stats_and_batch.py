@@ -58,10 +58,10 @@ def test_analyze_recording_from_arrays(tmp_path):
     assert len(out["events"]["hs_s"]) > 10
     assert np.isnan(out["parameters"]["step_time_s"])  # one leg: no step time
     assert out["warnings"] == []
-    # The device turned upside down (180 deg about its y axis): analysed, with a warning.
+    # The device turned upside down (180 deg about its y axis): analysed, with a note.
     flip = lambda ch: [-ch[0], ch[1], -ch[2]]
     up = ldh.analyze_recording(flip(acc), flip(gyro), rec["fs_hz"], side="right", compute_sta=False)
-    assert any("upside down" in w for w in up["warnings"]), up["warnings"]
+    assert any(w["code"] == "upside_down" and w["severity"] == "note" for w in up["warnings"]), up["warnings"]
     assert abs(up["parameters"]["stance_ratio"] - out["parameters"]["stance_ratio"]) < 0.02
     acc_only = ldh.analyze_recording(acc, gyro, rec["fs_hz"], side="right", model="acc", compute_sta=False)
     assert acc_only["parameters"]["stride_length_m"] < 0.5 * out["parameters"]["stride_length_m"]

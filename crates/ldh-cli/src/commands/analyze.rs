@@ -5,7 +5,10 @@ use std::process::ExitCode;
 
 use anyhow::Result;
 use ldh_core::io::ReadParams;
-use ldh_core::pipeline::{analyze_to_folder, discover_with, FolderOptions, InputOptions};
+use ldh_core::output::RecordingRow;
+use ldh_core::pipeline::{
+    analyze_to_folder, discover_with, FolderOptions, FolderSummary, InputOptions,
+};
 use ldh_core::report::{BuildSources, ReportParams};
 
 use super::{analysis_params, progress, resolve_format, thread_pool};
@@ -13,6 +16,7 @@ use crate::args::AnalyzeArgs;
 
 /// Run `ldh analyze`.
 pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
+    super::check_out_dir(&a.out)?;
     let params = analysis_params(
         a.params.as_deref(),
         a.model,
@@ -21,7 +25,12 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
         a.no_sta,
     )?;
     let format = a.format.as_deref().map(resolve_format).transpose()?;
-    let read = ReadParams::default().check()?;
+    let defaults = ReadParams::default();
+    let read = ReadParams {
+        max_file_size_mb: a.max_file_size_mb.unwrap_or(defaults.max_file_size_mb),
+        ..defaults
+    }
+    .check()?;
     let subjects = discover_with(
         &a.inputs,
         &InputOptions {
@@ -31,7 +40,7 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
     )?;
     anyhow::ensure!(!subjects.is_empty(), "no subjects found in the inputs");
     if a.inputs.is_empty() {
-        eprintln!(
+        super::note!(
             "no input given: analysing the embedded demo cohort ({} subjects)",
             subjects.len()
         );
@@ -39,7 +48,7 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
     let pool = thread_pool(a.jobs)?;
     let stale = ldh_core::io::remove_stale_temp_files(&a.out)?;
     if stale > 0 {
-        eprintln!(
+        super::note!(
             "removed {stale} temporary file(s) of an interrupted earlier run in {}",
             a.out.display()
         );
@@ -89,30 +98,70 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
             })
         })?;
         pb.finish_and_clear();
-        eprintln!(
+        super::note!(
             "{n} subject reports and the cohort report (index.html) in {}",
             dir.display()
         );
     }
-    eprintln!(
-        "analysed {} of {} recordings ({} subjects, model {}): {} strides, {} valid; results in {}",
-        sum.recordings - sum.failed,
-        sum.recordings,
-        subjects.len(),
-        params.attitude.model.as_str(),
-        sum.strides,
-        sum.valid_strides,
-        a.out.display()
-    );
-    for r in sum.warned() {
-        eprintln!("warning: {} {}: {}", r.subject_id, r.side, r.warnings);
-    }
-    for f in sum.failures() {
-        eprintln!("error: {} {}: {}", f.subject_id, f.side, f.error);
-    }
+    summary(&a, &sum, subjects.len(), params.attitude.model.as_str())?;
     Ok(if sum.failed == 0 {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)
     })
+}
+
+/// The end of a run: failures (always) and warnings (with `-v`) on stderr, then one summary on
+/// stdout — a sentence, or JSON with `--json` — unless `-q`.
+fn summary(a: &AnalyzeArgs, sum: &FolderSummary, subjects: usize, model: &str) -> Result<()> {
+    let v = super::verbosity();
+    let warned: Vec<_> = sum.warned().collect();
+    let failures: Vec<_> = sum.failures().collect();
+    for f in &failures {
+        eprintln!("error: {} {}: {}", f.subject_id, f.side, f.error);
+    }
+    if v.verbose {
+        for r in &warned {
+            for w in r.warnings.iter() {
+                let (sev, code) = (w.severity.as_str(), &w.code);
+                eprintln!("{sev}: {} {}: {code}: {}", r.subject_id, r.side, w.message);
+            }
+        }
+    }
+    if a.json {
+        let failure = |r: &&RecordingRow| serde_json::json!({"subject_id": r.subject_id, "side": r.side, "error": r.error});
+        let warning = |r: &&RecordingRow| serde_json::json!({"subject_id": r.subject_id, "side": r.side, "warnings": r.warnings});
+        let j = serde_json::json!({
+            "subjects": subjects,
+            "recordings": sum.recordings,
+            "ok": sum.recordings - sum.failed,
+            "failed": sum.failed,
+            "with_warnings": warned.len(),
+            "strides": sum.strides,
+            "valid_strides": sum.valid_strides,
+            "model": model,
+            "out": a.out,
+            "failures": failures.iter().map(failure).collect::<Vec<_>>(),
+            "warnings": warned.iter().map(warning).collect::<Vec<_>>(),
+        });
+        println!("{}", serde_json::to_string_pretty(&j)?);
+    } else if !v.quiet {
+        let line = format!(
+            "{} recordings ({subjects} subjects, model {model}): {} ok, {} failed; {} strides, {} valid; outputs in {}",
+            sum.recordings,
+            sum.recordings - sum.failed,
+            sum.failed,
+            sum.strides,
+            sum.valid_strides,
+            a.out.display()
+        );
+        println!("{line}");
+        if !warned.is_empty() && !v.verbose {
+            eprintln!(
+                "{} recording(s) with warnings: see recordings.csv, or -v to list them",
+                warned.len()
+            );
+        }
+    }
+    Ok(())
 }

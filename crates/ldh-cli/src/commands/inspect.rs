@@ -20,6 +20,9 @@ pub fn run(a: InspectArgs) -> Result<ExitCode> {
         } else {
             GapPolicy::Split
         },
+        max_file_size_mb: a
+            .max_file_size_mb
+            .unwrap_or(ReadParams::default().max_file_size_mb),
         ..ReadParams::default()
     }
     .check()?;

@@ -2,6 +2,7 @@
 //! core returned. Shared here: thread pool, progress bar, parameter files, reading inputs.
 
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -12,7 +13,20 @@ use ldh_core::io::{FormatSpec, ReadParams};
 use ldh_core::output::RecordingRow;
 use ldh_core::pipeline::{discover, recording_rows_many, AnalysisParams};
 
+use crate::args::Verbosity;
+
+/// Print an informational line on stderr, unless `-q` was given.
+macro_rules! note {
+    ($($t:tt)*) => {
+        if !$crate::commands::verbosity().quiet {
+            eprintln!($($t)*);
+        }
+    };
+}
+pub(crate) use note;
+
 pub mod analyze;
+pub mod completions;
 pub mod demo;
 pub mod evaluate;
 pub mod formats;
@@ -28,9 +42,31 @@ pub fn resolve_format(name: &str) -> Result<FormatSpec> {
     Ok(FormatSpec::resolve(name)?)
 }
 
-/// A progress bar on stderr when it is a terminal, hidden otherwise.
+static VERBOSITY: OnceLock<Verbosity> = OnceLock::new();
+
+/// Set `-q` / `-v` for the run (once, before the command runs).
+pub fn set_verbosity(v: Verbosity) {
+    let _ = VERBOSITY.set(v);
+}
+
+/// `-q` / `-v` of this run.
+pub fn verbosity() -> Verbosity {
+    VERBOSITY.get().copied().unwrap_or_default()
+}
+
+/// Refuse an output folder that is an existing file, before any work (exit 2).
+pub fn check_out_dir(out: &Path) -> Result<()> {
+    anyhow::ensure!(
+        !out.exists() || out.is_dir(),
+        "--out {}: exists and is not a folder",
+        out.display()
+    );
+    Ok(())
+}
+
+/// A progress bar on stderr when it is a terminal (and not `-q`), hidden otherwise.
 pub fn progress(len: u64, what: &str) -> ProgressBar {
-    let pb = if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
+    let pb = if std::io::IsTerminal::is_terminal(&std::io::stderr()) && !verbosity().quiet {
         ProgressBar::new(len)
     } else {
         ProgressBar::hidden()
@@ -49,6 +85,10 @@ pub fn thread_pool(jobs: Option<usize>) -> Result<rayon::ThreadPool> {
     let mut b = rayon::ThreadPoolBuilder::new();
     if let Some(j) = jobs {
         anyhow::ensure!(j >= 1, "--jobs must be at least 1");
+        let (j, warning) = ldh_core::pipeline::bounded_jobs(j);
+        if let Some(w) = warning {
+            eprintln!("warning: {w}");
+        }
         b = b.num_threads(j);
     }
     Ok(b.build()?)

@@ -9,6 +9,7 @@ use crate::args::PredictArgs;
 
 /// Run `ldh predict`.
 pub fn run(a: PredictArgs) -> Result<ExitCode> {
+    super::check_out_dir(&a.out)?;
     let model = ldh_core::ml::read_model(&a.model)?;
     let rows = match &a.results {
         Some(d) => ldh_core::report::read_recordings(d)?,
@@ -22,7 +23,7 @@ pub fn run(a: PredictArgs) -> Result<ExitCode> {
     let file = a.out.join("predictions.csv");
     ldh_core::io::write_atomic(&file, outcome.csv.as_bytes())?;
     print!("{}", outcome.csv);
-    eprintln!(
+    super::note!(
         "decision support, not a diagnosis: predictions in {}",
         file.display()
     );

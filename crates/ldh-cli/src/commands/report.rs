@@ -21,6 +21,7 @@ pub fn run(a: ReportArgs) -> Result<ExitCode> {
         .map(ldh_core::ml::read_model)
         .transpose()?;
     let out = a.out.clone().unwrap_or_else(|| a.results.join("reports"));
+    super::check_out_dir(&out)?;
     let pool = thread_pool(a.jobs)?;
     ldh_core::io::remove_stale_temp_files(&out)?;
     let src = BuildSources {
@@ -36,7 +37,7 @@ pub fn run(a: ReportArgs) -> Result<ExitCode> {
         })
     })?;
     pb.finish_and_clear();
-    eprintln!(
+    super::note!(
         "{n} subject reports in {} and the cohort report {}",
         out.join("subjects").display(),
         out.join("index.html").display()

@@ -1,37 +1,86 @@
-//! `ldh simulate`: a cohort with exact ground truth ([`ldh_core::simulate::write_cohort`]).
+//! `ldh simulate`: a cohort with exact ground truth ([`ldh_core::simulate::write_cohort`]),
+//! from simulator family a (default) or the independent family b.
 
 use std::process::ExitCode;
 
 use anyhow::Result;
-use ldh_core::simulate::{write_cohort, CohortParams, SensorModel};
+use ldh_core::simulate::family_b::{CohortParamsB, Family, SensorModelB};
+use ldh_core::simulate::{write_cohort, Cohort, CohortParams, SensorModel};
 
 use super::{progress, resolve_format, thread_pool};
 use crate::args::SimulateArgs;
 
 /// Run `ldh simulate`.
 pub fn run(a: SimulateArgs) -> Result<ExitCode> {
+    super::check_out_dir(&a.out)?;
     let format = resolve_format(&a.format)?;
-    let params = CohortParams {
-        healthy: a.healthy,
-        ldh: a.ldh,
-        duration_s: a.seconds,
-        fs_hz: a.rate_hz,
-        seed: a.seed,
-        turn: !a.no_turn,
-        ldh_severity_min: a.ldh_severity_min,
-        sensor: if a.ideal {
-            SensorModel::ideal()
-        } else {
-            SensorModel::default()
-        },
-    };
+    match a.family {
+        Family::A => {
+            anyhow::ensure!(
+                a.speed_mps.is_none() && a.setting.is_none(),
+                "--speed-mps and --setting apply to --family b"
+            );
+            let params = CohortParams {
+                healthy: a.healthy,
+                ldh: a.ldh,
+                duration_s: a.seconds,
+                fs_hz: a.rate_hz,
+                seed: a.seed,
+                turn: !a.no_turn,
+                ldh_severity_min: a.ldh_severity_min,
+                sensor: if a.ideal {
+                    SensorModel::ideal()
+                } else {
+                    SensorModel::default()
+                },
+            };
+            write(&params, &a, &format, "healthy", "LDH")
+        }
+        Family::B => {
+            anyhow::ensure!(
+                !a.no_turn && a.ldh_severity_min == 1.0,
+                "--no-turn and --ldh-severity-min apply to --family a (family b: --setting treadmill walks without turns)"
+            );
+            let params = CohortParamsB {
+                healthy: a.healthy,
+                patients: a.ldh,
+                duration_s: a.seconds,
+                fs_hz: a.rate_hz,
+                seed: a.seed,
+                speed_mps: a.speed_mps,
+                setting: a.setting,
+                sensor: if a.ideal {
+                    SensorModelB::ideal()
+                } else {
+                    SensorModelB::default()
+                },
+                ..CohortParamsB::default()
+            };
+            write(
+                &params,
+                &a,
+                &format,
+                "family-b normal gait",
+                "slow hemiparetic as 'ldh'",
+            )
+        }
+    }
+}
+
+fn write<C: Cohort>(
+    params: &C,
+    a: &SimulateArgs,
+    format: &ldh_core::io::FormatSpec,
+    healthy: &str,
+    ldh: &str,
+) -> Result<ExitCode> {
     params.validate()?;
     let pool = thread_pool(a.jobs)?;
     let pb = progress(params.len() as u64, "simulate");
-    let rows = pool.install(|| write_cohort(&params, &a.out, &format, &|| pb.inc(1)))?;
+    let rows = pool.install(|| write_cohort(params, &a.out, format, &|| pb.inc(1)))?;
     pb.finish_and_clear();
-    eprintln!(
-        "wrote {} subjects ({} healthy, {} LDH) to {}",
+    super::note!(
+        "wrote {} subjects ({} {healthy}, {} {ldh}) to {}",
         rows.len(),
         a.healthy,
         a.ldh,

@@ -10,6 +10,7 @@ use crate::args::StatsArgs;
 
 /// Run `ldh stats`.
 pub fn run(a: StatsArgs) -> Result<ExitCode> {
+    super::check_out_dir(&a.out)?;
     let pool = thread_pool(a.jobs)?;
     let mut models = vec![rows_from(
         a.results.as_deref(),
@@ -23,6 +24,6 @@ pub fn run(a: StatsArgs) -> Result<ExitCode> {
     let outcome = ldh_core::cohort::stats(&models)?;
     write_files(&a.out, &outcome.files)?;
     println!("{}", outcome.markdown);
-    eprintln!("tables and figures in {}", a.out.display());
+    super::note!("tables and figures in {}", a.out.display());
     Ok(ExitCode::SUCCESS)
 }

@@ -11,6 +11,7 @@ use crate::args::TrainArgs;
 
 /// Run `ldh train`.
 pub fn run(a: TrainArgs) -> Result<ExitCode> {
+    super::check_out_dir(&a.out)?;
     let pool = thread_pool(a.jobs)?;
     let rows = rows_from(
         a.results.as_deref(),
@@ -32,6 +33,6 @@ pub fn run(a: TrainArgs) -> Result<ExitCode> {
     let outcome = pool.install(|| ldh_core::ml::train(&rows, &params))?;
     write_files(&a.out, &outcome.files)?;
     println!("{}", outcome.markdown);
-    eprintln!("report, models and figures in {}", a.out.display());
+    super::note!("report, models and figures in {}", a.out.display());
     Ok(ExitCode::SUCCESS)
 }

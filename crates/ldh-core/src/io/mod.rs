@@ -15,7 +15,7 @@ pub use reader::{
 };
 pub use writer::{
     recording_to_csv, remove_stale_temp_files, write_atomic, write_recording, AtomicFile,
-    WriteOptions,
+    OutputLock, WriteOptions,
 };
 
 #[cfg(test)]

@@ -146,6 +146,75 @@ pub fn remove_stale_temp_files(dir: &Path) -> Result<usize> {
     Ok(removed)
 }
 
+/// A lock on an output folder: the file `.ldh.lock` (holding the process id) exists while a run
+/// writes into the folder, so a second concurrent run into the same folder is refused instead
+/// of interleaving its files with the first's. The lock is removed on drop (every exit path,
+/// errors included); a lock left by a killed run (its process no longer in `/proc`) is taken
+/// over.
+#[derive(Debug)]
+pub struct OutputLock {
+    path: std::path::PathBuf,
+}
+
+impl OutputLock {
+    /// Lock `dir` (created if missing).
+    pub fn acquire(dir: &Path) -> Result<OutputLock> {
+        let write_err = |path: &Path, err: std::io::Error| LdhError::Write {
+            path: path.to_path_buf(),
+            reason: err.to_string(),
+        };
+        std::fs::create_dir_all(dir).map_err(|e| write_err(dir, e))?;
+        let path = dir.join(".ldh.lock");
+        for _ in 0..2 {
+            match std::fs::OpenOptions::new()
+                .write(true)
+                .create_new(true)
+                .open(&path)
+            {
+                Ok(mut f) => {
+                    use std::io::Write;
+                    write!(f, "{}", std::process::id()).map_err(|e| write_err(&path, e))?;
+                    return Ok(OutputLock { path });
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+                    let holder = std::fs::read_to_string(&path).unwrap_or_default();
+                    let pid = holder.trim().parse::<u32>().ok();
+                    let alive = match pid {
+                        Some(p) if Path::new("/proc/self").exists() => {
+                            Path::new("/proc").join(p.to_string()).exists()
+                        }
+                        _ => true,
+                    };
+                    if alive {
+                        return Err(LdhError::Write {
+                            path: dir.to_path_buf(),
+                            reason: format!(
+                                "another ldh run (process {}) is writing to this folder; wait for it, \
+                                 or remove {} if no such run exists",
+                                holder.trim(),
+                                path.display()
+                            ),
+                        });
+                    }
+                    // A killed run's lock: take it over.
+                    let _ = std::fs::remove_file(&path);
+                }
+                Err(e) => return Err(write_err(&path, e)),
+            }
+        }
+        Err(LdhError::Write {
+            path: path.clone(),
+            reason: "could not take the lock".into(),
+        })
+    }
+}
+
+impl Drop for OutputLock {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.path);
+    }
+}
+
 /// Options of the writer.
 #[derive(Debug, Clone, PartialEq)]
 pub struct WriteOptions {

@@ -120,7 +120,7 @@ impl Dataset {
             }
             push(
                 get(&s.b),
-                if task == Task::ThreeClass { 1 } else { 1 },
+                1, // affected: 1 in both tasks
                 &s.subject_id,
                 "affected",
             );

@@ -17,6 +17,7 @@
 //! * **Ranking**: Pearson r of each feature with the label (Table 5), permutation importance on
 //!   the test folds; optional top-k selection by |r| inside each training fold.
 
+mod arrays;
 pub mod cv;
 pub mod dataset;
 pub mod forest;

@@ -128,7 +128,7 @@ fn same_seed_same_result_and_the_folds_respect_subjects() {
             .map(|c| (0..ds.len()).filter(|&i| s[i] == k && ds.y[i] == c).count())
             .collect();
         assert!(
-            counts.iter().all(|&c| c >= 1 && c <= 3),
+            counts.iter().all(|c| (1..=3).contains(c)),
             "fold {k}: {counts:?}"
         );
     }
@@ -149,7 +149,7 @@ fn degenerate_inputs_give_clear_errors() {
     .to_string();
     assert!(e.contains("only one class"), "{e}");
     // Fewer subjects than folds.
-    let e = grouped_folds(&ds.groups[..6].to_vec(), &ds.y[..6], 10, 1)
+    let e = grouped_folds(&ds.groups[..6], &ds.y[..6], 10, 1)
         .unwrap_err()
         .to_string();
     assert!(e.contains("fewer subjects (6) than folds (10)"), "{e}");

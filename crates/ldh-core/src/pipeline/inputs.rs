@@ -224,6 +224,13 @@ fn discover_inputs(inputs: &[PathBuf], opts: &InputOptions) -> Result<Vec<Subjec
         }
         return demo_inputs();
     }
+    // A misspelt path is refused before any work (and before an output folder is made).
+    if let Some(p) = inputs.iter().find(|p| !p.exists()) {
+        return Err(LdhError::Io {
+            path: p.clone(),
+            source: std::io::Error::new(std::io::ErrorKind::NotFound, "no such file or folder"),
+        });
+    }
     let subject_dir = |d: &Path| -> Option<SubjectInput> {
         let (l, r) = (d.join("left.csv"), d.join("right.csv"));
         (l.exists() || r.exists()).then(|| SubjectInput {
@@ -233,8 +240,8 @@ fn discover_inputs(inputs: &[PathBuf], opts: &InputOptions) -> Result<Vec<Subjec
                 .unwrap_or_else(|| "subject".into()),
             group: None,
             affected_side: None,
-            left: l.exists().then(|| Source::Path(l)),
-            right: r.exists().then(|| Source::Path(r)),
+            left: l.exists().then_some(Source::Path(l)),
+            right: r.exists().then_some(Source::Path(r)),
             ..SubjectInput::default()
         })
     };

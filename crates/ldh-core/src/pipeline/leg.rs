@@ -45,10 +45,11 @@ pub struct LegResult {
     /// in flight.
     #[serde(skip)]
     pub signals: Option<Aligned>,
-    /// Problems the analysis found that did not stop it (the reader's are in `read.warnings`):
-    /// a device mounted upside down, gait that looks like running, too few valid strides.
+    /// What the quality checks found (the reader's free-text findings are in
+    /// `read.warnings`), most severe first; the parameters they withhold are NaN with the reason
+    /// in `parameters.withheld` (docs/quality.md).
     #[serde(default)]
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 /// Analyse one recording up to its strides (no bilateral parameters yet).
@@ -74,9 +75,11 @@ pub fn analyze_leg(
     if let Some(h) = sensor_height_m {
         sp.sensor_height_m = h;
     }
-    let st = strides(side, &al, &att, &ev, &sp.check()?)?;
+    let mut st = strides(side, &al, &att, &ev, &sp.check()?)?;
+    let before = side_parameters(&st, None);
+    let checks = leg_checks(rec, &al, &att, &mut st, &before);
     let mut parameters = side_parameters(&st, None);
-    if params.compute_sta {
+    if params.compute_sta && !checks.gyro_fault {
         fill_sta(
             &mut parameters,
             &st,
@@ -86,8 +89,14 @@ pub fn analyze_leg(
             params.sta_max_strides,
         );
     }
-    let hs = ev.hs_s.clone();
-    let warnings = leg_warnings(&al.alignment, &st, &parameters);
+    withhold(&mut parameters, &checks.warnings);
+    // A faulty gyroscope's heel strikes are not lent to the other leg's step time.
+    let hs = if checks.gyro_fault {
+        Vec::new()
+    } else {
+        ev.hs_s.clone()
+    };
+    let warnings = checks.warnings;
     Ok((
         LegResult {
             side,

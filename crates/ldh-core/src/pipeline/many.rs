@@ -83,6 +83,8 @@ pub fn analyze_to_folder(
             .filter(|s| s.trial_id.is_none() || trials.insert(s.subject_id.as_str()))
             .map(|s| s.subject_id.as_str()),
     )?;
+    // A second run into the same folder is refused instead of interleaving (issue 19).
+    let _lock = crate::io::OutputLock::acquire(out)?;
     let mut strides = TableSink::create(out, "strides", &output::STRIDE_COLUMNS, true)?;
     let mut events = TableSink::create(out, "events", &output::EVENT_COLUMNS, false)?;
     let mut recordings = TableSink::create(out, "recordings", &[], true)?;
@@ -140,4 +142,33 @@ fn write_traces(out: &Path, r: &SubjectResult, p: &ValidTraceParams) -> Result<(
             .join(format!("{}.json", file_stem(&r.output_key()))),
         json.as_bytes(),
     )
+}
+
+/// Worker threads for a requested count: at most the machine's cores (more threads than cores
+/// only thrash: `n_jobs=10**6` would spawn a million threads). Returns the count to use and,
+/// when the request was lowered, a warning saying so.
+pub fn bounded_jobs(requested: usize) -> (usize, Option<String>) {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    if requested > cores {
+        (
+            cores,
+            Some(format!(
+                "{requested} worker threads requested, this machine has {cores} cores: using {cores}"
+            )),
+        )
+    } else {
+        (requested.max(1), None)
+    }
+}
+
+#[cfg(test)]
+mod jobs_tests {
+    #[test]
+    fn jobs_are_bounded_by_the_cores() {
+        let cores = std::thread::available_parallelism().unwrap().get();
+        assert_eq!(super::bounded_jobs(1), (1, None));
+        let (n, w) = super::bounded_jobs(1_000_000);
+        assert_eq!(n, cores);
+        assert!(w.unwrap().contains("1000000 worker threads requested"));
+    }
 }

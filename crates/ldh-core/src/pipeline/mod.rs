@@ -5,18 +5,20 @@
 //! One bad recording never stops the other leg or the other subjects: each side's outcome is a
 //! `Result`, with the error message naming the file.
 
+mod batch;
 mod bilateral;
 mod inputs;
 mod leg;
 mod manifest;
 mod many;
-mod quality;
+pub mod quality;
 mod subject;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]
 mod tests_inputs;
 
+pub use batch::{analyze_many_on, bare_subject, leg_from_arrays};
 pub use bilateral::{bilateral_events, bilateral_events_on_clock, BilateralEvent, EventKind};
 pub use inputs::{
     demo_inputs, discover, discover_with, is_manifest, read_manifest, subject_id_from_files,
@@ -25,9 +27,13 @@ pub use inputs::{
 pub use leg::{analyze_leg, memory_report, LegResult};
 pub use manifest::{is_manifest_text, GroupLabel, MANIFEST_COLUMNS};
 pub use many::{
-    analyze_many, analyze_to_folder, recording_rows_many, FolderOptions, FolderSummary,
+    analyze_many, analyze_to_folder, bounded_jobs, recording_rows_many, FolderOptions,
+    FolderSummary,
 };
-pub use quality::{leg_warnings, pair_warnings, RUNNING_STRIDE_TIME_S};
+pub use quality::{
+    all_leg_warnings, codes, leg_checks, leg_warnings, pair_warnings, params as quality_params,
+    withhold, LegChecks, Severity, Warning, WarningList, WithheldList, RUNNING_STRIDE_TIME_S,
+};
 pub use subject::{analyze_pair, analyze_simulated, analyze_subject, LoadedLeg, SubjectResult};
 
 use serde::{Deserialize, Serialize};

@@ -45,7 +45,7 @@ pub struct SubjectResult {
     /// Problems of the pair (different clocks, rates or lengths; left and right possibly
     /// swapped); see [`pair_warnings`].
     #[serde(default)]
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 impl SubjectResult {
@@ -141,6 +141,8 @@ pub fn analyze_pair(
     } else {
         (None, None)
     };
+    // The parameters again with the other leg's heel strikes, then what the checks withhold
+    // (the leg's own findings and the pair's).
     let finish = |x: std::result::Result<(LegResult, Vec<f64>), String>,
                   other: Option<Vec<f64>>| {
         x.map(|(mut leg, _)| {
@@ -149,20 +151,28 @@ pub fn analyze_pair(
                 leg.parameters.sta_per_stride,
                 leg.parameters.sta_status.clone(),
             );
+            quality::apply_to_strides(&mut leg.strides, &warnings);
             leg.parameters = side_parameters(&leg.strides, other.as_deref());
             (
                 leg.parameters.sta_per_s,
                 leg.parameters.sta_per_stride,
                 leg.parameters.sta_status,
             ) = sta;
+            withhold(&mut leg.parameters, &leg.warnings);
+            withhold(&mut leg.parameters, &warnings);
             leg
         })
     };
+    let (left, right) = (finish(l, rhs), finish(r, lhs));
     let mut warnings = warnings;
     if input.affected_side_unknown {
-        warnings.push(format!(
-            "affected side unknown (empty in the manifest for group '{}'): no affected/unaffected comparison for this subject",
-            input.group.as_ref().map_or("", |g| g.as_str())
+        warnings.push(Warning::new(
+            "affected_side_unknown",
+            Severity::Note,
+            format!(
+                "affected side unknown (empty in the manifest for group '{}'): no affected/unaffected comparison for this subject",
+                input.group.as_ref().map_or("", |g| g.as_str())
+            ),
         ));
     }
     SubjectResult {
@@ -173,8 +183,8 @@ pub fn analyze_pair(
         affected_side_unknown: input.affected_side_unknown,
         setting: input.setting,
         model: params.attitude.model,
-        left: finish(l, rhs),
-        right: finish(r, lhs),
+        left,
+        right,
         warnings,
     }
 }

@@ -83,19 +83,15 @@ fn manifests_are_parsed_and_bad_rows_named() {
     let e = read_manifest(&m).unwrap_err().to_string();
     assert!(e.contains("manifest.csv:2:3") && e.contains("'up'"), "{e}");
     assert_eq!(discover(&[]).unwrap().len(), 4);
-    // A missing file is kept as an input: reading it fails per recording, naming it.
-    let v = discover(&[d.path().join("nothing-here.csv")]).unwrap();
-    let r = analyze_subject(
-        &v[0],
-        &AnalysisParams::default(),
-        None,
-        &crate::io::ReadParams::default().check().unwrap(),
+    // A misspelt input is refused before any work, as "not found" (FileNotFoundError in
+    // Python, exit 2 on the command line); a file a manifest lists fails per recording.
+    let e = discover(&[d.path().join("nothing-here.csv")]).unwrap_err();
+    assert_eq!(e.kind(), crate::error::ErrorKind::NotFound);
+    assert!(
+        e.to_string()
+            .contains("nothing-here.csv: cannot read: no such file"),
+        "{e}"
     );
-    assert!(r
-        .left
-        .unwrap_err()
-        .contains("nothing-here.csv: cannot read"));
-    assert!(r.right.unwrap_err().contains("no right recording"));
     std::fs::create_dir(d.path().join("empty")).unwrap();
     let e = discover(&[d.path().join("empty")]).unwrap_err().to_string();
     assert!(e.contains("empty") && e.contains("no manifest.csv"), "{e}");

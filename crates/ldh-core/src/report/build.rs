@@ -64,6 +64,7 @@ pub fn build(
     let subjects = output::rows_by_subject(&rows);
     let ids: Vec<String> = subjects.iter().map(|(id, _)| id.to_string()).collect();
     output::names::check_unique(ids.iter().map(String::as_str))?;
+    let _lock = crate::io::OutputLock::acquire(out)?;
     let mut groups = output::stride_groups(&results.join("strides.csv"))?.peekable();
     let chunk = (rayon::current_num_threads() * 32).max(32);
     for part in subjects.chunks(chunk) {

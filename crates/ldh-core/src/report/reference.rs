@@ -144,16 +144,30 @@ impl Reference {
     pub fn from_rows(rows: &[RecordingRow], p: &ValidReportParams) -> Reference {
         let z = p.0.reference_z;
         let mut out = Reference::published(p);
-        // One value per healthy subject: the mean of its analysed legs.
+        // One value per healthy subject: the mean of its analysed legs that pass every quality
+        // check (no warning or fault, nothing withheld: docs/quality.md), so a faulty sensor
+        // never widens the healthy range.
+        let passes = |x: &RecordingRow| {
+            x.withheld.is_empty()
+                && x.warnings
+                    .at_least(crate::pipeline::Severity::Warning)
+                    .next()
+                    .is_none()
+        };
+        let healthy_legs = rows
+            .iter()
+            .filter(|x| x.group == "healthy" && x.status == "ok")
+            .count();
         let healthy: Vec<Vec<&RecordingRow>> = crate::output::rows_by_subject(rows)
             .into_iter()
             .map(|(_, v)| {
                 v.into_iter()
-                    .filter(|x| x.group == "healthy" && x.status == "ok")
+                    .filter(|x| x.group == "healthy" && x.status == "ok" && passes(x))
                     .collect::<Vec<_>>()
             })
             .filter(|v| !v.is_empty())
             .collect();
+        let used_legs: usize = healthy.iter().map(Vec::len).sum();
         let mut any_cohort = 0usize;
         for r in out.ranges.iter_mut() {
             let vals: Vec<f64> = healthy
@@ -183,11 +197,11 @@ impl Reference {
         }
         if any_cohort > 0 {
             out.description = format!(
-                "Healthy subjects of this cohort (n = {any_cohort}, mean of both legs): mean ± {z:.2} SD; parameters where the cohort has too few values fall back to published normal values."
+                "Healthy subjects of this cohort (n = {any_cohort}, mean of both legs; {used_legs} of {healthy_legs} analysed healthy legs used: only legs that pass every quality check): mean ± {z:.2} SD; parameters where the cohort has too few values fall back to published normal values."
             );
         } else {
             out.description = format!(
-                "Published normal values for healthy adults (approximate; see the references): the cohort has fewer than {} healthy subjects.",
+                "Published normal values for healthy adults (approximate; see the references): the cohort has fewer than {} healthy subjects with legs that pass every quality check ({used_legs} of {healthy_legs} analysed healthy legs pass).",
                 p.0.min_healthy_subjects
             );
         }

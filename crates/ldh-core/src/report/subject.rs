@@ -101,12 +101,25 @@ fn header(s: &SubjectReport, sides: &[&RecordingRow]) -> Markup {
     }
 }
 
-/// The quality warnings of each side, one bullet each.
+/// The quality findings, one bullet each: a finding of both legs (the pair's) once, notes last.
 fn warning_box(sides: &[&RecordingRow]) -> Markup {
-    let items: Vec<String> = sides
-        .iter()
-        .filter(|r| !r.warnings.is_empty())
-        .flat_map(|r| r.warnings.split("; ").map(|w| format!("{}: {w}", r.side)))
+    let mut items: Vec<(crate::pipeline::Severity, String, Vec<&str>)> = Vec::new();
+    for r in sides {
+        for w in r.warnings.iter() {
+            let text = w.to_string();
+            match items.iter_mut().find(|x| x.1 == text) {
+                Some(x) => x.2.push(r.side.as_str()),
+                None => items.push((w.severity, text, vec![r.side.as_str()])),
+            }
+        }
+    }
+    items.sort_by_key(|x| std::cmp::Reverse(x.0));
+    let items: Vec<String> = items
+        .into_iter()
+        .map(|(_, text, s)| {
+            let who = if s.len() > 1 { "both legs" } else { s[0] };
+            format!("{who}: {text}")
+        })
         .collect();
     red_box("Check before reading the numbers.", &items)
 }
@@ -167,7 +180,8 @@ fn facts(r: &RecordingRow) -> [String; 10] {
         if r.warnings.is_empty() {
             "none".into()
         } else {
-            r.warnings.clone()
+            let codes: Vec<&str> = r.warnings.iter().map(|w| w.code.as_str()).collect();
+            format!("{} (see above)", codes.join(", "))
         },
         fmt(r.duration_s, 1),
         fmt(r.fs_hz, 2),
@@ -229,11 +243,7 @@ fn leg_notes(leg: &LegTrace) -> Vec<String> {
 fn excluded_strides(strides: &[StrideRow]) -> Markup {
     let mut excl: Vec<(String, String, usize)> = Vec::new();
     for st in strides.iter().filter(|st| !st.valid) {
-        let reason = if st.reason.is_empty() {
-            "excluded".to_string()
-        } else {
-            st.reason.clone()
-        };
+        let reason = reason_kind(&st.reason);
         match excl.iter_mut().find(|e| e.0 == st.side && e.1 == reason) {
             Some(e) => e.2 += 1,
             None => excl.push((st.side.clone(), reason, 1)),
@@ -247,12 +257,28 @@ fn excluded_strides(strides: &[StrideRow]) -> Markup {
             table {
                 tr { th { "side" } th { "reason" } th { "strides" } } "\n"
                 @for (side, reason, n) in &excl {
-                    tr { td { (side) } td { (reason) } td.num { (n) } } "\n"
+                    tr { td { (side) } td { (reason) } td.num { (n) " strides" } } "\n"
                 }
             }
             "\n"
         }
     }
+}
+
+/// The kind of an exclusion reason: each "; "-separated reason without its numbers in
+/// parentheses ("turning (124 deg heading change)" → "turning"), so strides group by kind.
+fn reason_kind(reason: &str) -> String {
+    if reason.trim().is_empty() {
+        return "excluded".into();
+    }
+    let mut kinds: Vec<String> = Vec::new();
+    for part in reason.split("; ") {
+        let k = part.split(" (").next().unwrap_or(part).trim().to_string();
+        if !k.is_empty() && !kinds.contains(&k) {
+            kinds.push(k);
+        }
+    }
+    kinds.join("; ")
 }
 
 /// `▲`/`▼` when `v` lies above/below the range.
@@ -313,16 +339,22 @@ fn parameter_table(
     for par in PARAMETERS.iter() {
         let rr = reference.ranges.iter().find(|r| r.column == par.column);
         let dec = decimals(par.unit);
-        let cells: Vec<(Option<f64>, Option<&str>)> = sides
+        let cells: Vec<(Option<f64>, Option<&str>, Option<&str>)> = sides
             .iter()
-            .map(|r| {
-                let v = side_value(r, par.column);
-                (v, out_mark(v, rr))
+            .map(|r| match r.withheld.reason(par.column) {
+                Some(why) => (None, None, Some(why)),
+                None => {
+                    let v = side_value(r, par.column);
+                    (v, out_mark(v, rr), None)
+                }
             })
             .collect();
         out_of_range += cells.iter().filter(|c| c.1.is_some()).count();
         let si = match (left, right) {
-            (Some(l), Some(r)) => match (value(l, par.column), value(r, par.column)) {
+            (Some(l), Some(r)) => match (
+                value(l, par.column).filter(|_| l.withheld.reason(par.column).is_none()),
+                value(r, par.column).filter(|_| r.withheld.reason(par.column).is_none()),
+            ) {
                 (Some(a), Some(c)) => symmetry_index_pct(a, c),
                 _ => None,
             },
@@ -332,8 +364,12 @@ fn parameter_table(
         rows.push(html! {
             tr {
                 td { (par.code) " — " (par.name) } td { (par.unit) }
-                @for (v, out) in &cells {
-                    td.num.out[out.is_some()] { (fmt(*v, dec)) @if let Some(m) = out { " " (m) } }
+                @for (v, out, why) in &cells {
+                    @if let Some(why) = why {
+                        td.withheld { "not measured: " (why) }
+                    } @else {
+                        td.num.out[out.is_some()] { (fmt(*v, dec)) @if let Some(m) = out { " " (m) } }
+                    }
                 }
                 td { (range_text(rr, dec, citations)) }
                 td.num.flag[flag] { (si.map(|v| format!("{v:+.1}")).unwrap_or("–".into())) }
@@ -504,7 +540,7 @@ fn stride_by_stride(strides: &[StrideRow]) -> Result<Markup> {
     }
     let mut figs: Vec<Markup> = Vec::new();
     for (title, ylab, get) in PER_STRIDE {
-        let series: Vec<(String, Vec<(f64, f64, bool)>)> = ["left", "right"]
+        let series: Vec<crate::plots::Series> = ["left", "right"]
             .iter()
             .map(|side| {
                 (

@@ -124,3 +124,129 @@ fn text_from_files_is_escaped_and_control_characters_dropped() {
     assert!(c.contains("<a href=\"subjects/a&quot;b.html\">"), "{c}");
     assert!(!c.contains("<script>") && !c.contains('\u{1}'));
 }
+
+/// A leg whose gyroscope is amplified ×10 and clips at ±2000 deg/s (HuGaDB's fault), analysed
+/// and rendered: none of its parameters shows a number or a ▲/▼ mark, each says "not measured".
+#[test]
+fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
+    let c = crate::simulate::CohortParams {
+        healthy: 1,
+        ldh: 0,
+        duration_s: 25.0,
+        seed: 4,
+        ..crate::simulate::CohortParams::default()
+    };
+    let mut sub = c.simulate(0).unwrap();
+    for ch in sub.left.recording.gyro_dps.iter_mut() {
+        for x in ch.iter_mut() {
+            *x = (*x * 10.0).clamp(-2000.0, 2000.0);
+        }
+    }
+    let params = crate::pipeline::AnalysisParams {
+        compute_sta: false,
+        ..Default::default()
+    };
+    let res = crate::pipeline::analyze_simulated(&sub, &params);
+    let tables = crate::output::Tables::of(std::slice::from_ref(&res));
+    let left = tables.recordings.iter().find(|r| r.side == "left").unwrap();
+    assert!(left
+        .warnings
+        .iter()
+        .any(|w| w.code == "gyro_scale_fault" && w.severity == crate::pipeline::Severity::Fault));
+    // The rows go through JSON, as `ldh report --results` reads them.
+    let rows: Vec<RecordingRow> =
+        serde_json::from_str(&serde_json::to_string(&tables.recordings).unwrap()).unwrap();
+    // A reference whose every range is narrow, so any number shown would get a mark.
+    let p = ReportParams::default()
+        .min_healthy_subjects(4)
+        .check()
+        .unwrap();
+    let mut reference = Reference::published(&p);
+    for r in reference.ranges.iter_mut() {
+        (r.low, r.high) = (Some(1e6), Some(2e6));
+    }
+    let s = SubjectReport {
+        subject_id: res.subject_id.clone(),
+        recordings: rows,
+        strides: tables.strides.clone(),
+        ..Default::default()
+    };
+    let html = subject_html(&s, &reference, &p).unwrap();
+    let table = &html[html.find("2. Gait parameters").unwrap()..];
+    let table = &table[..table.find("</table>").unwrap()];
+    let mut checked = 0;
+    for par in crate::cohort::PARAMETERS.iter() {
+        let start = table
+            .find(&format!("<td>{} — ", par.code))
+            .unwrap_or_else(|| panic!("{} not in the table", par.code));
+        let row = &table[start..];
+        let row = &row[..row.find("</tr>").unwrap()];
+        // Cells: parameter, unit, left, right, range, SI.
+        let cells: Vec<&str> = row.split("<td").collect();
+        let left_cell = cells[3];
+        assert!(
+            left_cell.contains("not measured: gyro scale fault"),
+            "{}: {left_cell}",
+            par.code
+        );
+        assert!(
+            !left_cell.contains('▲') && !left_cell.contains('▼'),
+            "{left_cell}"
+        );
+        assert!(
+            !left_cell
+                .split('>')
+                .nth(1)
+                .unwrap_or("")
+                .chars()
+                .next()
+                .is_some_and(|ch| ch.is_ascii_digit() || ch == '-'),
+            "{}: a number: {left_cell}",
+            par.code
+        );
+        // No symmetry index from a withheld value.
+        assert!(cells[6].contains(">–<"), "{}: SI {}", par.code, cells[6]);
+        checked += 1;
+    }
+    assert_eq!(checked, crate::cohort::PARAMETERS.len());
+    // The warning box: one bullet for the fault, naming the leg.
+    assert!(html.contains("left: gyro_scale_fault [fault]: gyroscope sensor fault"));
+    // Every left stride is excluded, grouped under one kind.
+    assert!(
+        html.contains("<td>left</td><td>gyro scale fault</td>"),
+        "{}",
+        &html[html.find("Strides excluded").unwrap_or(0)..][..600]
+    );
+}
+
+/// Healthy legs with a warning or a withheld value stay out of the cohort's reference range,
+/// and the description says how many legs were used.
+#[test]
+fn the_reference_uses_only_legs_that_pass_every_check() {
+    let p = ReportParams::default()
+        .min_healthy_subjects(4)
+        .check()
+        .unwrap();
+    let mut rows = Vec::new();
+    for (i, v) in [1.0, 1.1, 1.2, 1.3].iter().enumerate() {
+        rows.push(row(&format!("H{i}"), "healthy", "left", *v));
+        rows.push(row(&format!("H{i}"), "healthy", "right", *v));
+    }
+    // A fifth healthy subject with a faulty sensor reading 9 m/s on one leg.
+    let mut bad = row("H9", "healthy", "left", 9.0);
+    bad.warnings = crate::pipeline::WarningList(vec![crate::pipeline::Warning::new(
+        "gyro_scale_fault",
+        crate::pipeline::Severity::Fault,
+        "x",
+    )]);
+    rows.push(bad);
+    let r = Reference::from_rows(&rows, &p);
+    let s = r.ranges.iter().find(|x| x.column == "speed_mps").unwrap();
+    assert_eq!(s.source, ReferenceSource::Cohort { n_subjects: 4 });
+    assert!((s.mean.unwrap() - 1.15).abs() < 1e-12);
+    assert!(
+        r.description.contains("8 of 9 analysed healthy legs used"),
+        "{}",
+        r.description
+    );
+}

@@ -112,7 +112,8 @@ impl LegTrace {
             return None;
         }
         // Longest run of valid strides.
-        let (mut best, mut cur): (Option<(usize, usize)>, Option<(usize, usize)>) = (None, None);
+        let mut best: Option<(usize, usize)> = None;
+        let mut cur: Option<(usize, usize)> = None;
         for (i, s) in leg.strides.iter().enumerate() {
             cur = if s.valid {
                 Some(cur.map_or((i, i), |(a, _)| (a, i)))

@@ -17,6 +17,7 @@
 //! subject, so a cohort is byte-identical for a seed whatever the thread count.
 
 pub mod curves;
+pub mod family_b;
 pub mod jet;
 pub mod model;
 mod write;
@@ -33,7 +34,7 @@ use model::normal_clamped;
 pub use model::{
     simulate_subject, DenseTruth, LegTruth, SensorTruth, SimLeg, SimSubject, StrideTruth,
 };
-pub use write::write_cohort;
+pub use write::{write_cohort, Cohort};
 
 /// Version tag of the ground-truth JSON.
 pub const TRUTH_SCHEMA: &str = "ldh-sim-truth/1";
@@ -612,6 +613,9 @@ pub struct SubjectTruth {
     pub left: LegTruth,
     /// Right leg truth.
     pub right: LegTruth,
+    /// Family B subjects: the full parameters (`params` is then a family A-shaped summary).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub family_b: Option<family_b::SubjectParamsB>,
 }
 
 fn round_to(v: &mut [f64], decimals: i32) {
@@ -640,6 +644,7 @@ impl SimSubject {
             params: self.params.clone(),
             left,
             right,
+            family_b: self.family_b.clone(),
         }
     }
 
@@ -699,6 +704,9 @@ pub struct ManifestRow {
     pub right: String,
     /// Sensor height above the ankle, m (optional column).
     pub sensor_height_m: Option<f64>,
+    /// Overground or treadmill (optional column `setting`; written for family B only).
+    #[serde(default)]
+    pub setting: Option<crate::recording::Setting>,
 }
 
 impl ManifestRow {
@@ -720,16 +728,21 @@ impl ManifestRow {
                     .round()
                     / 1000.0,
             ),
+            setting: s.family_b.as_ref().map(|p| p.setting),
         }
     }
 }
 
 /// Render manifest rows as CSV text.
+/// The `setting` column is written only when a row has a setting (family B), so family A
+/// manifests keep their columns.
 pub fn manifest_csv(rows: &[ManifestRow]) -> String {
-    let mut out = String::from("subject_id,group,affected_side,left,right,sensor_height_m\n");
+    let with_setting = rows.iter().any(|r| r.setting.is_some());
+    let mut out = String::from("subject_id,group,affected_side,left,right,sensor_height_m");
+    out.push_str(if with_setting { ",setting\n" } else { "\n" });
     for r in rows {
         out.push_str(&format!(
-            "{},{},{},{},{},{}\n",
+            "{},{},{},{},{},{}",
             r.subject_id,
             r.group.as_str(),
             r.affected_side,
@@ -737,6 +750,11 @@ pub fn manifest_csv(rows: &[ManifestRow]) -> String {
             r.right,
             r.sensor_height_m.map(|h| h.to_string()).unwrap_or_default()
         ));
+        if with_setting {
+            out.push(',');
+            out.push_str(r.setting.map(|s| s.as_str()).unwrap_or(""));
+        }
+        out.push('\n');
     }
     out
 }

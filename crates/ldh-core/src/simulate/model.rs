@@ -431,6 +431,8 @@ pub struct SimSubject {
     pub left: SimLeg,
     /// Right shank.
     pub right: SimLeg,
+    /// The full parameters of a family B subject (`params` then holds a summary).
+    pub family_b: Option<super::family_b::SubjectParamsB>,
 }
 
 /// Simulate one subject. `rng` draws stride-to-stride variability and the sensor errors.
@@ -914,6 +916,7 @@ pub fn simulate_subject(
         params: params.clone(),
         left,
         right,
+        family_b: None,
     })
 }
 

@@ -5,17 +5,57 @@ use std::path::Path;
 
 use rayon::prelude::*;
 
-use super::{manifest_csv, CohortParams, ManifestRow};
+use super::family_b::CohortParamsB;
+use super::{manifest_csv, CohortParams, ManifestRow, SimSubject};
 use crate::error::{LdhError, Result};
 use crate::io::{write_atomic, FormatSpec};
+
+/// A cohort description either simulator family can write ([`CohortParams`] for family A,
+/// [`CohortParamsB`] for family B).
+pub trait Cohort: serde::Serialize + Sync {
+    /// Check the parameters.
+    fn validate(&self) -> Result<()>;
+    /// Number of subjects.
+    fn len(&self) -> usize;
+    /// True when there are no subjects.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// Draw and simulate subject `i` (independent of the other subjects and of threads).
+    fn simulate(&self, i: usize) -> Result<SimSubject>;
+}
+
+impl Cohort for CohortParams {
+    fn validate(&self) -> Result<()> {
+        CohortParams::validate(self)
+    }
+    fn len(&self) -> usize {
+        CohortParams::len(self)
+    }
+    fn simulate(&self, i: usize) -> Result<SimSubject> {
+        CohortParams::simulate(self, i)
+    }
+}
+
+impl Cohort for CohortParamsB {
+    fn validate(&self) -> Result<()> {
+        CohortParamsB::validate(self)
+    }
+    fn len(&self) -> usize {
+        CohortParamsB::len(self)
+    }
+    fn simulate(&self, i: usize) -> Result<SimSubject> {
+        CohortParamsB::simulate(self, i)
+    }
+}
 
 /// Simulate every subject of `params` and write `<out>/<subject>/left.csv`, `right.csv`,
 /// `truth.json` (in `format`), then `<out>/manifest.csv` and `<out>/cohort.json` (the
 /// parameters). Subjects are simulated in parallel on the current rayon pool; the files are the
 /// same whatever the thread count. `done` is called once per subject written (progress).
 /// Returns the manifest rows in subject order; the first failing subject's error otherwise.
-pub fn write_cohort(
-    params: &CohortParams,
+pub fn write_cohort<C: Cohort>(
+    params: &C,
     out: &Path,
     format: &FormatSpec,
     done: &(dyn Fn() + Sync),

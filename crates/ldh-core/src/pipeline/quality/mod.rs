@@ -1,0 +1,223 @@
+//! The quality layer (docs/quality.md): checks per leg and per pair, each with a stable code, a
+//! severity and the parameters it withholds. A clinical tool may fail to measure something; it
+//! may never hand over a wrong number: a parameter a check cannot vouch for is NaN (an empty
+//! cell, JSON `null`) with its reason in [`SideParameters::withheld`].
+//!
+//! - [`sensor`]: gyroscope scale faults and clipping, accelerometer clipping (raw recording);
+//! - [`attitude`]: attitude health (stance pitch stride to stride, anatomical bounds);
+//! - this module: the leg's gait (running, a time base that cannot be right, few strides, a
+//!   device convention);
+//! - [`pair`]: the two legs together (clocks, identical files, disagreement, a possible swap).
+
+use crate::align::Alignment;
+use crate::gait::{SideParameters, Stride};
+
+use super::LegResult;
+
+mod attitude;
+mod pair;
+mod sensor;
+#[cfg(test)]
+mod tests;
+mod warning;
+
+pub use attitude::{
+    attitude_checks, MAX_BDK_DEG, MAX_PITCH_DEG, MIN_PITCH_EXCURSION_DEG, OUT_OF_BOUNDS_SHARE,
+    STANCE_PITCH_MAX_DEG, STANCE_PITCH_SPREAD_DEG,
+};
+pub use pair::{pair_warnings, CANONICAL_MOUNT_DEG, LR_STRIDE_LENGTH_TOL, LR_STRIDE_TIME_TOL};
+pub use sensor::{
+    sensor_checks, SensorFindings, GYRO_CLIP_SHARE, SCALE_FAULT_SHARE, SHANK_MAX_DPS,
+};
+pub use warning::{codes, flat, params, Severity, Warning, WarningList, WithheldList};
+
+/// Shortest median stride time of walking, s (0.7 s = 171 steps/min, beyond the fastest
+/// self-selected walking, ≈ 120–150 steps/min; Tudor-Locke et al., IJBNPA 2011;8:79).
+pub const RUNNING_STRIDE_TIME_S: f64 = 0.7;
+
+/// Smallest median stance share of walking (0.45): walking keeps 55–65 % stance (Perry, Gait
+/// Analysis, 1992), running 20–40 % (Novacheck, Gait Posture 1998;7:77–95), so stance below
+/// 45 % means a flight phase.
+pub const RUNNING_STANCE_MAX: f64 = 0.45;
+
+/// Stance share that only walking has (0.55): with a stride shorter than
+/// [`RUNNING_STRIDE_TIME_S`] and stance at least this, the gait is neither walking nor running:
+/// the time base is wrong.
+pub const WALKING_STANCE_MIN: f64 = 0.55;
+
+/// Median of the finite values (`None` for fewer than 3).
+pub(crate) fn median(mut v: Vec<f64>) -> Option<f64> {
+    v.retain(|x| x.is_finite());
+    v.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+    (v.len() >= 3).then(|| v[v.len() / 2])
+}
+
+/// Add a reason to a stride's `reason` ("; "-joined).
+pub(crate) fn add_reason(s: &mut Stride, why: &str) {
+    if s.reason.is_empty() {
+        s.reason = why.to_string();
+    } else if !s.reason.contains(why) {
+        s.reason = format!("{}; {why}", s.reason);
+    }
+}
+
+/// Findings about one leg's gait (after the sensor and attitude checks): a device convention
+/// (x axis down the shank: a note), running (a flight phase, or strides and stance both beyond
+/// walking), a time base that cannot be right (strides too short for walking with walking
+/// stance: a fault), and fewer than three valid strides.
+/// `fs_hz` is the sampling rate the recording states.
+pub fn leg_warnings(al: &Alignment, st: &[Stride], p: &SideParameters, fs_hz: f64) -> Vec<Warning> {
+    let mut w = Vec::new();
+    if al.shank_axis_tilt_deg > 90.0 {
+        w.push(Warning::new(codes::UPSIDE_DOWN, Severity::Note, format!(
+            "the device's x axis points down the shank ({:.0} deg from the shank axis found from gravity): a convention of some devices, or an upside-down mounting; the alignment corrects for it either way",
+            al.shank_axis_tilt_deg
+        )));
+    }
+    let stride_time = median(st.iter().map(|s| s.stride_time_s).collect());
+    let stance = median(st.iter().map(|s| s.stance_ratio).collect());
+    if let (Some(t), Some(stance)) = (stride_time, stance) {
+        if t < RUNNING_STRIDE_TIME_S && stance >= WALKING_STANCE_MIN {
+            w.push(
+                Warning::new(codes::IMPLAUSIBLE_CADENCE_FOR_RATE, Severity::Fault, format!(
+                    "median stride time {t:.2} s ({:.0} steps/min) with {:.0} % stance over {} detected strides: no human gait is that fast with that much stance, so the sampling rate is probably wrong (a stride of 1.05 s would mean {:.1} Hz instead of the {:.1} Hz stated); no parameter of this leg is measured",
+                    120.0 / t,
+                    stance * 100.0,
+                    st.len(),
+                    fs_hz * t / 1.05,
+                    fs_hz,
+                ))
+                .withholding(&params::ALL),
+            );
+        } else if stance < RUNNING_STANCE_MAX || t < RUNNING_STRIDE_TIME_S {
+            w.push(Warning::new(codes::RUNNING, Severity::Warning, format!(
+                "this looks like running, not walking: median stride time {t:.2} s ({:.0} steps/min), median stance {:.0} % of the stride over {} detected strides (walking keeps 55-65 % stance); the gait parameters and their reference values are defined for walking",
+                120.0 / t,
+                stance * 100.0,
+                st.len()
+            )));
+        }
+    }
+    if p.strides_valid < 3 {
+        w.push(
+            Warning::new(codes::FEW_STRIDES, Severity::Warning, format!(
+                "only {} valid stride(s) of {}: a mean of fewer than three strides is not a per-side parameter, so none is reported",
+                p.strides_valid, p.strides_total
+            ))
+            .withholding(&params::ALL),
+        );
+    }
+    w
+}
+
+/// Everything the checks of one leg found, in order of severity (most severe first).
+pub struct LegChecks {
+    /// The warnings.
+    pub warnings: Vec<Warning>,
+    /// The gyroscope is faulty: the leg's heel strikes are not lent to the other leg.
+    pub gyro_fault: bool,
+}
+
+/// Run every check of one leg on its recording, alignment, attitude and strides; strides are
+/// invalidated or lose values as the checks say. `p` are the leg's parameters before the checks.
+pub fn leg_checks(
+    rec: &crate::recording::Recording,
+    al: &crate::align::Aligned,
+    att: &crate::attitude::Attitude,
+    st: &mut [Stride],
+    p: &SideParameters,
+) -> LegChecks {
+    let sensor = sensor_checks(rec);
+    let mut warnings = sensor.warnings;
+    if !sensor.gyro_fault {
+        warnings.extend(attitude_checks(al, att, st));
+        let p = crate::gait::side_parameters(st, None);
+        warnings.extend(leg_warnings(&al.alignment, st, &p, rec.fs_hz));
+    } else {
+        warnings.extend(
+            leg_warnings(&al.alignment, &[], p, rec.fs_hz)
+                .into_iter()
+                .filter(|w| w.code == codes::UPSIDE_DOWN),
+        );
+    }
+    apply_to_strides(st, &warnings);
+    warnings.sort_by_key(|x| std::cmp::Reverse(x.severity));
+    LegChecks {
+        warnings,
+        gyro_fault: sensor.gyro_fault,
+    }
+}
+
+/// Per-stride consequences of leg-level findings: a finding that withholds every parameter
+/// invalidates every stride; one that withholds angles or stride length blanks them per stride
+/// (the strides table must not show what the recordings table withholds).
+pub fn apply_to_strides(st: &mut [Stride], warnings: &[Warning]) {
+    for w in warnings {
+        let has = |c: &str| w.affects.iter().any(|a| a == c);
+        if w.affects.is_empty() {
+            continue;
+        }
+        let all = params::ALL.iter().all(|c| has(c));
+        for s in st.iter_mut() {
+            if all {
+                // What else was found about this stride came from the same faulty signals.
+                s.valid = false;
+                s.reason = w.code.replace('_', " ");
+            }
+            if has("wqk_deg") {
+                s.wqk_deg = f64::NAN;
+            }
+            if has("pbi_deg") {
+                s.pbi_deg = f64::NAN;
+            }
+            if has("bdk_deg") {
+                s.bdk_deg = f64::NAN;
+            }
+            if has("stride_length_m") {
+                s.stride_length_m = f64::NAN;
+            }
+            if has("speed_mps") {
+                s.speed_mps = f64::NAN;
+            }
+        }
+    }
+}
+
+/// Withhold the parameters the warnings affect: NaN value and the reason in `withheld` (the
+/// first finding that withholds a column gives its reason).
+pub fn withhold(p: &mut SideParameters, warnings: &[Warning]) {
+    for w in warnings {
+        for c in &w.affects {
+            let slot = match c.as_str() {
+                "stride_time_s" => &mut p.stride_time_s,
+                "step_time_s" => &mut p.step_time_s,
+                "step_frequency_steps_per_s" => &mut p.step_frequency_hz,
+                "stance_ratio" => &mut p.stance_ratio,
+                "swing_ratio" => &mut p.swing_ratio,
+                "stride_length_m" => &mut p.stride_length_m,
+                "speed_mps" => &mut p.speed_mps,
+                "stride_length_cv" => &mut p.stride_length_cv,
+                "stride_time_cv" => &mut p.stride_time_cv,
+                "sta_per_s" => &mut p.sta_per_s,
+                "sta_per_stride" => &mut p.sta_per_stride,
+                "wqk_deg" => &mut p.wqk_deg,
+                "pbi_deg" => &mut p.pbi_deg,
+                "bdk_deg" => &mut p.bdk_deg,
+                _ => continue,
+            };
+            *slot = f64::NAN;
+            if c.starts_with("sta_") {
+                p.sta_status = format!("not measured: {}", w.reason());
+            }
+            p.withheld.entry(c.clone()).or_insert_with(|| w.reason());
+        }
+    }
+}
+
+/// The warnings of a leg, its reader's included (as code `input`), most severe first.
+pub fn all_leg_warnings(l: &LegResult) -> Vec<Warning> {
+    let mut v: Vec<Warning> = l.warnings.clone();
+    v.extend(l.read.warnings.iter().map(|t| Warning::from_reader(t)));
+    v.sort_by_key(|x| std::cmp::Reverse(x.severity));
+    v
+}

@@ -1,0 +1,360 @@
+//! Structured warnings: what a quality check found, how serious it is, and which parameters it
+//! withholds (docs/quality.md lists every code, its threshold, its source and its consequence).
+
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+/// How serious a finding is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Severity {
+    /// Worth knowing; every parameter is still vouched for (e.g. a documented device
+    /// convention, accelerometer clipping outside the integration windows).
+    Note,
+    /// Some parameters, or the interpretation, may be affected; `affects` names what is withheld.
+    Warning,
+    /// The sensor or the recording is faulty: the affected parameters are withheld.
+    Fault,
+}
+
+impl Severity {
+    /// `note`, `warning` or `fault`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Severity::Note => "note",
+            Severity::Warning => "warning",
+            Severity::Fault => "fault",
+        }
+    }
+}
+
+/// One finding of a quality check (or of the reader), with a stable `code`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Warning {
+    /// Stable machine-readable code, e.g. `gyro_scale_fault` (docs/quality.md lists them).
+    pub code: String,
+    /// How serious it is.
+    pub severity: Severity,
+    /// What was found, with the numbers, in one readable sentence or two. Never contains " | "
+    /// (the separator of the CSV column).
+    pub message: String,
+    /// The parameters it withholds (column names of recordings.csv); empty when none.
+    #[serde(default)]
+    pub affects: Vec<String>,
+}
+
+impl Warning {
+    /// A finding; `affects` are column names of recordings.csv.
+    pub fn new(code: &str, severity: Severity, message: impl Into<String>) -> Warning {
+        Warning {
+            code: code.into(),
+            severity,
+            message: message.into().replace(" | ", " / "),
+            affects: Vec::new(),
+        }
+    }
+    /// The same finding withholding `params`.
+    pub fn withholding(mut self, params: &[&str]) -> Warning {
+        for p in params {
+            if !self.affects.iter().any(|a| a == p) {
+                self.affects.push(p.to_string());
+            }
+        }
+        self
+    }
+    /// A reader warning (free text from the file checks) as a structured warning.
+    pub fn from_reader(text: &str) -> Warning {
+        Warning::new(codes::INPUT, Severity::Warning, text)
+    }
+    /// The short reason for withholding a parameter: the code and the first clause of the message.
+    pub fn reason(&self) -> String {
+        let first = self
+            .message
+            .split([':', ';'])
+            .next()
+            .unwrap_or(&self.message)
+            .trim();
+        format!("{} ({first})", self.code.replace('_', " "))
+    }
+}
+
+impl fmt::Display for Warning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} [{}]: {}",
+            self.code,
+            self.severity.as_str(),
+            self.message
+        )
+    }
+}
+
+/// Stable warning codes (docs/quality.md).
+pub mod codes {
+    /// A reader finding (gap, constant or frozen channel, jitter …).
+    pub const INPUT: &str = "input";
+    /// Gyroscope rates beyond any walking human shank (e.g. amplified ×10).
+    pub const GYRO_SCALE_FAULT: &str = "gyro_scale_fault";
+    /// Gyroscope samples at the sensor's range.
+    pub const GYRO_CLIPPING: &str = "gyro_clipping";
+    /// Accelerometer samples at the sensor's range.
+    pub const ACC_CLIPPING: &str = "acc_clipping";
+    /// Cadence and stance that no human gait has at the declared sampling rate.
+    pub const IMPLAUSIBLE_CADENCE_FOR_RATE: &str = "implausible_cadence_for_rate";
+    /// Shank angles outside anatomical bounds.
+    pub const IMPLAUSIBLE_ANGLE: &str = "implausible_angle";
+    /// The attitude drifts: stance pitch inconsistent from stride to stride.
+    pub const ATTITUDE_DIVERGENCE: &str = "attitude_divergence";
+    /// Left and right disagree beyond what one walk allows.
+    pub const LR_DISAGREEMENT: &str = "lr_disagreement";
+    /// Left and right files carry the same signals.
+    pub const IDENTICAL_LEGS: &str = "identical_legs";
+    /// Left and right may be swapped.
+    pub const POSSIBLE_SWAP: &str = "possible_swap";
+    /// The gait looks like running.
+    pub const RUNNING: &str = "running";
+    /// The device is mounted upside down relative to its usual orientation.
+    pub const UPSIDE_DOWN: &str = "upside_down";
+    /// Too few valid strides.
+    pub const FEW_STRIDES: &str = "few_strides";
+    /// The two sensors' sampling rates differ.
+    pub const RATE_MISMATCH: &str = "rate_mismatch";
+    /// The two recordings do not overlap in time.
+    pub const NO_OVERLAP: &str = "no_overlap";
+    /// The two recordings differ in length or start.
+    pub const LENGTH_MISMATCH: &str = "length_mismatch";
+}
+
+/// Column names of recordings.csv, by what they are computed from.
+pub mod params {
+    /// Every per-side parameter.
+    pub const ALL: [&str; 14] = [
+        "stride_time_s",
+        "step_time_s",
+        "step_frequency_steps_per_s",
+        "stance_ratio",
+        "swing_ratio",
+        "stride_length_m",
+        "speed_mps",
+        "stride_length_cv",
+        "stride_time_cv",
+        "sta_per_s",
+        "sta_per_stride",
+        "wqk_deg",
+        "pbi_deg",
+        "bdk_deg",
+    ];
+    /// The shank angles (from the attitude).
+    pub const ANGLES: [&str; 3] = ["wqk_deg", "pbi_deg", "bdk_deg"];
+    /// Stride length and what is derived from it (double integration of the acceleration).
+    pub const LENGTH: [&str; 3] = ["stride_length_m", "speed_mps", "stride_length_cv"];
+    /// The parameters that pair the legs.
+    pub const PAIRED: [&str; 2] = ["step_time_s", "step_frequency_steps_per_s"];
+}
+
+/// A list of warnings: a JSON array of objects, and one readable CSV cell (the warnings'
+/// [`Display`](fmt::Display) forms joined by " | "; a warning never contains " | ").
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct WarningList(pub Vec<Warning>);
+
+impl WarningList {
+    /// No warnings.
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+    /// The warnings.
+    pub fn iter(&self) -> std::slice::Iter<'_, Warning> {
+        self.0.iter()
+    }
+    /// The warnings of at least `s`.
+    pub fn at_least(&self, s: Severity) -> impl Iterator<Item = &Warning> {
+        self.0.iter().filter(move |w| w.severity >= s)
+    }
+}
+
+impl fmt::Display for WarningList {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, w) in self.0.iter().enumerate() {
+            if i > 0 {
+                f.write_str(" | ")?;
+            }
+            write!(f, "{w}")?;
+        }
+        Ok(())
+    }
+}
+
+thread_local! {
+    static FLAT: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Run `f` with lists serialised flat (one text cell), as CSV needs.
+pub fn flat<R>(f: impl FnOnce() -> R) -> R {
+    struct Reset(bool);
+    impl Drop for Reset {
+        fn drop(&mut self) {
+            FLAT.with(|c| c.set(self.0));
+        }
+    }
+    let _reset = Reset(FLAT.with(|c| c.replace(true)));
+    f()
+}
+
+fn is_flat() -> bool {
+    FLAT.with(|c| c.get())
+}
+
+impl Serialize for WarningList {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        if is_flat() {
+            s.serialize_str(&self.to_string())
+        } else {
+            self.0.serialize(s)
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for WarningList {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Either {
+            List(Vec<Warning>),
+            Text(String),
+        }
+        Ok(match Either::deserialize(d)? {
+            Either::List(v) => WarningList(v),
+            Either::Text(t) if t.is_empty() => WarningList::default(),
+            Either::Text(t) => WarningList(t.split(" | ").map(parse_flat).collect()),
+        })
+    }
+}
+
+/// A warning back from its CSV form `code [severity]: message` (the `affects` are in the
+/// `withheld` column).
+fn parse_flat(s: &str) -> Warning {
+    let parsed = s.split_once(": ").and_then(|(head, message)| {
+        let (code, sev) = head.split_once(" [")?;
+        let severity = match sev.trim_end_matches(']') {
+            "note" => Severity::Note,
+            "warning" => Severity::Warning,
+            "fault" => Severity::Fault,
+            _ => return None,
+        };
+        Some(Warning::new(code, severity, message))
+    });
+    parsed.unwrap_or_else(|| Warning::from_reader(s))
+}
+
+/// Parameters withheld: column name → reason; a JSON object, and one readable CSV cell
+/// (`name: reason` joined by " | ").
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct WithheldList(pub std::collections::BTreeMap<String, String>);
+
+impl WithheldList {
+    /// Nothing withheld.
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+    /// Why `param` is withheld, if it is.
+    pub fn reason(&self, param: &str) -> Option<&str> {
+        self.0.get(param).map(String::as_str)
+    }
+}
+
+impl fmt::Display for WithheldList {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, (k, v)) in self.0.iter().enumerate() {
+            if i > 0 {
+                f.write_str(" | ")?;
+            }
+            write!(f, "{k}: {v}")?;
+        }
+        Ok(())
+    }
+}
+
+impl Serialize for WithheldList {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        if is_flat() {
+            s.serialize_str(&self.to_string())
+        } else {
+            self.0.serialize(s)
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for WithheldList {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Either {
+            Map(std::collections::BTreeMap<String, String>),
+            Text(String),
+        }
+        Ok(match Either::deserialize(d)? {
+            Either::Map(m) => WithheldList(m),
+            Either::Text(t) => WithheldList(
+                t.split(" | ")
+                    .filter_map(|kv| kv.split_once(": "))
+                    .map(|(k, v)| (k.to_string(), v.to_string()))
+                    .collect(),
+            ),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lists_are_arrays_in_json_and_one_cell_in_csv() {
+        #[derive(Serialize, Deserialize)]
+        struct Row {
+            id: u32,
+            warnings: WarningList,
+            withheld: WithheldList,
+        }
+        let w = WarningList(vec![
+            Warning::new(
+                codes::GYRO_SCALE_FAULT,
+                Severity::Fault,
+                "rates of 2400 deg/s; a | b",
+            )
+            .withholding(&params::ANGLES),
+            Warning::new(codes::ACC_CLIPPING, Severity::Note, "clipped at 2 g"),
+        ]);
+        let wh = WithheldList(
+            [("wqk_deg".to_string(), "gyro scale fault".to_string())]
+                .into_iter()
+                .collect(),
+        );
+        let row = Row {
+            id: 1,
+            warnings: w.clone(),
+            withheld: wh.clone(),
+        };
+        let j = serde_json::to_value(&row).unwrap();
+        assert_eq!(j["warnings"][0]["code"], "gyro_scale_fault");
+        assert_eq!(j["warnings"][0]["affects"][2], "bdk_deg");
+        assert_eq!(j["withheld"]["wqk_deg"], "gyro scale fault");
+        let back: Row = serde_json::from_value(j).unwrap();
+        assert_eq!(back.warnings, w);
+        let mut c = csv::Writer::from_writer(Vec::new());
+        flat(|| c.serialize(&row)).unwrap();
+        let text = String::from_utf8(c.into_inner().unwrap()).unwrap();
+        assert!(text.contains("gyro_scale_fault [fault]: rates of 2400 deg/s; a / b | acc_clipping [note]: clipped at 2 g"), "{text}");
+        assert!(text.contains("wqk_deg: gyro scale fault"), "{text}");
+        // Serialised as JSON again outside `flat`.
+        assert!(serde_json::to_string(&row)
+            .unwrap()
+            .starts_with("{\"id\":1,\"warnings\":[{"));
+        let mut r = csv::Reader::from_reader(text.as_bytes());
+        let back: Row = r.deserialize().next().unwrap().unwrap();
+        assert_eq!(back.warnings.0[1].code, "acc_clipping");
+        assert_eq!(back.warnings.0.len(), 2);
+        assert_eq!(back.withheld, wh);
+    }
+}
