@@ -174,20 +174,13 @@ pub fn person_row(rows: &[&RecordingRow], side: &str) -> Option<RecordingRow> {
     out.strides_total = sum(|r| r.strides_total);
     out.strides_valid = sum(|r| r.strides_valid);
     out.duration_s = ok.iter().map(|r| r.duration_s).sum();
-    // Each trial's `; `-separated sources, prefixed by its trial.
+    // Each trial's file, prefixed by its trial.
     out.source = ok
         .iter()
-        .flat_map(|r| {
-            r.source
-                .split("; ")
-                .filter(|x| !x.is_empty())
-                .map(|x| format!("{}: {x}", r.trial_id))
-                .collect::<Vec<_>>()
-        })
+        .map(|r| format!("{}: {}", r.trial_id, r.source))
         .collect::<Vec<_>>()
         .join("; ");
-    // Each trial's structured warnings, the message prefixed by its trial.
-    out.warnings = crate::pipeline::quality::WarningList(
+    out.warnings = crate::pipeline::WarningList(
         ok.iter()
             .flat_map(|r| {
                 r.warnings.iter().map(|w| {

@@ -205,13 +205,6 @@ pub fn subject_id_from_files(files: &[&PathBuf]) -> String {
 /// As [`discover`], with a subject id for files given directly and a setting for subjects
 /// whose manifest row does not say.
 pub fn discover_with(inputs: &[PathBuf], opts: &InputOptions) -> Result<Vec<SubjectInput>> {
-    // A misspelt path is refused before any work (and before an output folder is made).
-    if let Some(p) = inputs.iter().find(|p| !p.exists()) {
-        return Err(LdhError::Io {
-            path: p.clone(),
-            source: std::io::Error::new(std::io::ErrorKind::NotFound, "no such file or folder"),
-        });
-    }
     let mut out = discover_inputs(inputs, opts)?;
     if let Some(st) = opts.setting {
         for s in &mut out {
@@ -230,6 +223,13 @@ fn discover_inputs(inputs: &[PathBuf], opts: &InputOptions) -> Result<Vec<Subjec
             ));
         }
         return demo_inputs();
+    }
+    // A misspelt path is refused before any work (and before an output folder is made).
+    if let Some(p) = inputs.iter().find(|p| !p.exists()) {
+        return Err(LdhError::Io {
+            path: p.clone(),
+            source: std::io::Error::new(std::io::ErrorKind::NotFound, "no such file or folder"),
+        });
     }
     let subject_dir = |d: &Path| -> Option<SubjectInput> {
         let (l, r) = (d.join("left.csv"), d.join("right.csv"));

@@ -170,12 +170,12 @@ pub fn analyze_pair(
     let (left, right) = (finish(l, rhs), finish(r, lhs));
     let mut warnings = warnings;
     if input.affected_side_unknown {
-        warnings.push(quality::Warning::new(
+        warnings.push(Warning::new(
             "affected_side_unknown",
-            quality::Severity::Note,
+            Severity::Note,
             format!(
-            "affected side unknown (empty in the manifest for group '{}'): no affected/unaffected comparison for this subject",
-            input.group.as_ref().map_or("", |g| g.as_str())
+                "affected side unknown (empty in the manifest for group '{}'): no affected/unaffected comparison for this subject",
+                input.group.as_ref().map_or("", |g| g.as_str())
             ),
         ));
     }
