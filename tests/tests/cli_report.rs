@@ -178,7 +178,18 @@ fn reports_are_well_formed_self_contained_and_label_every_axis() {
         // Fig. 3 and 4 per leg (4), radar, 4 stride-by-stride plots.
         assert!(check_page(p) >= 9, "{}: figures missing", p.display());
         let s = std::fs::read_to_string(p).unwrap();
+        // The clinical summary comes first, in clinical units, each value against its range.
+        let summary = s.find("Clinical summary").expect("no clinical summary");
+        assert!(summary < s.find("1. Recordings").unwrap());
         for must in [
+            "(steps/min)",
+            "(m/s)",
+            "<b>Stride length</b> (m)",
+            "(% of gait cycle)",
+            "(CV %)",
+            "(SI %, left vs right)",
+            "normal range",
+            "judged against",
             "1. Recordings",
             "2. Gait parameters",
             "reference range",
@@ -225,6 +236,53 @@ fn reports_are_well_formed_self_contained_and_label_every_axis() {
         s.contains("left shank: attitude with gait events"),
         "the good side still plots"
     );
+}
+
+/// The bad-corpus leg with a gyroscope amplified ×10 (HuGaDB's fault): its report shows no
+/// number and no ▲/▼ for any of its parameters, in the summary and in the parameter table.
+#[test]
+fn a_faulty_gyroscope_leg_shows_no_number_in_its_report() {
+    let tmp = tempfile::tempdir().unwrap();
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data-fixtures/bad/gyro_scale_fault");
+    let out = tmp.path().join("out");
+    ldh_ok(&[
+        "analyze",
+        case.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--report",
+    ]);
+    let pages = html_files(&out.join("reports"));
+    let s = std::fs::read_to_string(&pages[1]).unwrap();
+    check_page(&pages[1]);
+    // Each table's left column: the cell after the label (and the unit in section 2).
+    let section = |from: &str| {
+        let t = &s[s.find(from).unwrap()..];
+        t[..t.find("</table>").unwrap()].to_string()
+    };
+    let mut rows = 0;
+    for (table, left_cell) in [
+        (section("Clinical summary"), 2),
+        (section("2. Gait parameters"), 3),
+    ] {
+        for row in table.split("<tr>").skip(2) {
+            let cells: Vec<&str> = row.split("<td").collect();
+            let cell = cells[left_cell];
+            if cell.contains("colspan") {
+                // A symmetry index needs both legs.
+                assert!(cell.contains("not measured: left"), "{cell}");
+                continue;
+            }
+            let text: String = cell.split('>').skip(1).collect::<Vec<_>>().join(">");
+            assert!(
+                text.starts_with("not measured: "),
+                "a value on the faulty leg: {row}"
+            );
+            assert!(!text.contains('▲') && !text.contains('▼'), "{row}");
+            rows += 1;
+        }
+    }
+    assert!(rows >= 7 + 13, "{rows} rows checked");
 }
 
 fn chromium() -> Option<PathBuf> {

@@ -26,6 +26,10 @@ th { background: #eee; } td.num { text-align: right; font-variant-numeric: tabul
 .missing { background: #fde2e2; border-left: 4px solid #c00; padding: 6px 10px; margin: 8px 0; }
 .support { background: #e8f0fe; border-left: 4px solid #1a56c4; padding: 6px 10px; margin: 8px 0; }
 .meta { color: #444; font-size: 12.5px; }
+td.nm, td.withheld { color: #555; font-style: italic; }
+table.summary { font-size: 13.5px; } table.summary td.num { white-space: nowrap; }
+span.flagword { font-weight: normal; font-size: 11.5px; color: #333; }
+p.headline { font-size: 14.5px; margin: 6px 0; }
 figure { margin: 10px 0; page-break-inside: avoid; break-inside: avoid; }
 figure svg { width: 100%; height: auto; display: block; }
 figcaption { font-size: 12px; color: #333; margin-top: 3px; }

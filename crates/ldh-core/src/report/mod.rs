@@ -29,6 +29,7 @@ mod cohort;
 mod html;
 pub mod reference;
 mod subject;
+mod summary;
 pub mod trace;
 
 use serde::{Deserialize, Serialize};

@@ -50,6 +50,12 @@ pub struct ReferenceRange {
     pub sd: Option<f64>,
     /// Where it comes from.
     pub source: ReferenceSource,
+    /// Healthy subjects of the cohort with a value of this parameter from legs that pass every
+    /// quality check (0 for a reference made without a cohort): the range is the cohort's own
+    /// when this reaches [`super::ReportParams::min_healthy_subjects`]; below it the report says
+    /// "no reference (n = …)" or names the published range it fell back to.
+    #[serde(default)]
+    pub n_reference: usize,
 }
 
 impl ReferenceRange {
@@ -122,6 +128,7 @@ impl Reference {
                     mean: None,
                     sd: None,
                     source: ReferenceSource::None,
+                    n_reference: 0,
                 };
                 if let Some(&(_, lo, hi, cite)) = PUBLISHED.iter().find(|x| x.0 == par.column) {
                     r.low = Some(lo);
@@ -177,6 +184,7 @@ impl Reference {
                     (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
                 })
                 .collect();
+            r.n_reference = vals.len();
             if vals.len() < p.0.min_healthy_subjects {
                 continue;
             }

@@ -7,6 +7,7 @@
 use maud::{html, Markup};
 
 use super::html::{count, decimals, figure, fmt, page, red_box, side_label, VERSION};
+use super::summary::clinical_summary;
 use super::{symmetry_index_pct, Reference, ReferenceRange, ReferenceSource, SubjectReport};
 use super::{LegTrace, ValidReportParams};
 use crate::cohort::{value, PARAMETERS};
@@ -32,6 +33,7 @@ pub fn subject_html(
         (header(s, &sides))
         (warning_box(&sides))
         (red_box("Missing from this report.", &missing(s)))
+        (clinical_summary(&sides, reference, &citations, p))
         (recordings_table(&sides))
         (reading_notes(s))
         (excluded_strides(&s.strides))
@@ -49,7 +51,7 @@ pub fn subject_html(
 pub(crate) struct Citations(Vec<String>);
 
 impl Citations {
-    fn of(reference: &Reference) -> Citations {
+    pub(crate) fn of(reference: &Reference) -> Citations {
         let mut v: Vec<String> = Vec::new();
         for par in PARAMETERS.iter() {
             if let Some(ReferenceRange {
@@ -67,7 +69,7 @@ impl Citations {
         Citations(v)
     }
     /// The number `[k]` of a citation.
-    fn number(&self, c: &str) -> usize {
+    pub(crate) fn number(&self, c: &str) -> usize {
         self.0.iter().position(|x| x == c).unwrap_or(0) + 1
     }
 }
@@ -295,8 +297,14 @@ fn out_mark(v: Option<f64>, rr: Option<&ReferenceRange>) -> Option<&'static str>
     }
 }
 
-/// The reference range as the table shows it, with its source.
-fn range_text(rr: Option<&ReferenceRange>, dec: usize, citations: &Citations) -> String {
+/// The reference range as the table shows it, with its source; without one, how many healthy
+/// subjects the cohort had for it (`min_n` needed).
+fn range_text(
+    rr: Option<&ReferenceRange>,
+    dec: usize,
+    citations: &Citations,
+    min_n: usize,
+) -> String {
     match rr {
         Some(ReferenceRange {
             low: Some(l),
@@ -313,7 +321,11 @@ fn range_text(rr: Option<&ReferenceRange>, dec: usize, citations: &Citations) ->
             };
             format!("{}–{} ({src})", fmt(Some(*l), dec), fmt(Some(*h), dec))
         }
-        _ => "no reference".into(),
+        Some(r) => format!(
+            "no reference (n = {} healthy subjects passing every check; {min_n} needed)",
+            r.n_reference
+        ),
+        None => "no reference".into(),
     }
 }
 
@@ -371,7 +383,7 @@ fn parameter_table(
                         td.num.out[out.is_some()] { (fmt(*v, dec)) @if let Some(m) = out { " " (m) } }
                     }
                 }
-                td { (range_text(rr, dec, citations)) }
+                td { (range_text(rr, dec, citations, p.0.min_healthy_subjects)) }
                 td.num.flag[flag] { (si.map(|v| format!("{v:+.1}")).unwrap_or("–".into())) }
             }
             "\n"
