@@ -175,8 +175,8 @@ fn reports_are_well_formed_self_contained_and_label_every_axis() {
     let pages = html_files(&demo.join("reports"));
     assert_eq!(pages.len(), 5, "cohort + 4 demo subjects");
     for p in &pages[1..] {
-        // Fig. 3 and 4 per leg (4), radar, 4 stride-by-stride plots.
-        assert!(check_page(p) >= 9, "{}: figures missing", p.display());
+        // Fig. 3 and 4 per leg (4), radar, gait cycle, 4 stride-by-stride plots.
+        assert!(check_page(p) >= 10, "{}: figures missing", p.display());
         let s = std::fs::read_to_string(p).unwrap();
         // The clinical summary comes first, in clinical units, each value against its range.
         let summary = s.find("Clinical summary").expect("no clinical summary");
@@ -190,6 +190,10 @@ fn reports_are_well_formed_self_contained_and_label_every_axis() {
             "(SI %, left vs right)",
             "normal range",
             "judged against",
+            // Gait-cycle curves; the demo has too few healthy legs for a reference band.
+            "Gait cycle: shank pitch",
+            "No reference band (n = ",
+            "a gap in a polygon is a parameter not measured",
             "1. Recordings",
             "2. Gait parameters",
             "reference range",
@@ -212,14 +216,26 @@ fn reports_are_well_formed_self_contained_and_label_every_axis() {
         "Tables 6–7",
         "grouped 3-fold",
         "subjects/H01.html",
+        "Subjects, worst first",
+        "outside reference",
     ] {
         assert!(index.contains(must), "cohort report: no '{must}'");
     }
+    // The triage table comes before the group statistics, one row per subject.
+    let triage = &index[index.find("Subjects, worst first").unwrap()..];
+    assert!(triage.find("</table>").unwrap() < triage.find("1. Group statistics").unwrap());
+    let triage = &triage[..triage.find("</table>").unwrap()];
+    assert_eq!(triage.matches("<a href=\"subjects/").count(), 12);
     // Radar, 13 box plots, confusion matrix.
     assert!(check_page(&pages[0]) >= 15);
     let subj = std::fs::read_to_string(&pages[1]).unwrap();
     assert!(subj.contains("Decision support, not a diagnosis") && subj.contains("<th>p("));
     assert!(subj.contains("cohort healthy, n = 6") || subj.contains("published ["));
+    // 12 healthy legs: the gait-cycle curves get the healthy reference band.
+    assert!(
+        subj.contains("Grey band: mean ± 1 SD of the mean curves of 12 healthy legs"),
+        "no reference band"
+    );
     for p in &pages[1..] {
         check_page(p);
     }
@@ -283,6 +299,13 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_its_report() {
         }
     }
     assert!(rows >= 7 + 13, "{rows} rows checked");
+    // No gait-cycle curve for the faulty leg: it says why in place of the plot; the right leg
+    // still has its curve.
+    assert!(
+        s.contains("left leg: no gait-cycle curve — shank angles not measured: gyro scale fault"),
+        "no reason for the missing curve"
+    );
+    assert!(s.contains("right (n = "), "the good leg's curve");
 }
 
 fn chromium() -> Option<PathBuf> {
@@ -320,6 +343,31 @@ fn ink(png_path: &Path) -> (f64, usize) {
     (dark as f64 / n as f64, colours.len())
 }
 
+/// Pages of a PDF printed by Chromium (the page tree's largest `/Count`).
+fn pdf_pages(bytes: &[u8]) -> usize {
+    let s = String::from_utf8_lossy(bytes);
+    s.match_indices("/Count ")
+        .filter_map(|(i, _)| {
+            let digits: String = s[i + 7..]
+                .chars()
+                .take_while(char::is_ascii_digit)
+                .collect();
+            digits.parse().ok()
+        })
+        .max()
+        .unwrap_or(0)
+}
+
+/// Where tests leave files for people to look at: `target/test-artifacts/`.
+fn artefact_dir() -> PathBuf {
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../target"));
+    let d = target.join("test-artifacts");
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
 /// Headless Chromium on a page, killed after 120 s.
 fn run_chromium(chrome: &Path, args: &[&str], page: &Path) -> std::process::Output {
     std::process::Command::new("timeout")
@@ -346,6 +394,21 @@ fn chromium_renders_every_report() {
     let demo = tmp.path().join("demo-out");
     demo_with_reports(&demo);
     let mut pages = html_files(&demo.join("reports"));
+    // The first screen of a subject page (1280 × 800) shows the clinical summary: kept under
+    // target/test-artifacts/ for a person to look at.
+    let first = artefact_dir().join("subject_first_screen_1280x800.png");
+    let o = run_chromium(
+        &chrome,
+        &[
+            "--hide-scrollbars",
+            "--window-size=1280,800",
+            &format!("--screenshot={}", first.display()),
+        ],
+        pages.iter().find(|p| p.ends_with("L01.html")).unwrap(),
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let (share, colours) = ink(&first);
+    assert!(share > 0.05 && colours > 8, "the first screen looks blank");
     pages.extend(html_files(&failed_side(tmp.path())));
     for (i, p) in pages.iter().enumerate() {
         let shot = tmp.path().join(format!("shot{i}.png"));
@@ -386,9 +449,9 @@ fn chromium_renders_every_report() {
             p.display(),
             share
         );
-        // Printing to A4 gives pages of A4 size (595 × 842 pt).
-        if i == 1 {
-            let pdf = tmp.path().join("print.pdf");
+        // Every subject page prints to at most 3 A4 pages (595 × 842 pt).
+        if p.parent().is_some_and(|d| d.ends_with("subjects")) {
+            let pdf = tmp.path().join(format!("print{i}.pdf"));
             let o = run_chromium(
                 &chrome,
                 &[
@@ -405,6 +468,15 @@ fn chromium_renders_every_report() {
                 s.contains("MediaBox [0 0 594.9") || s.contains("MediaBox [0 0 595"),
                 "not A4"
             );
+            let n = pdf_pages(&bytes);
+            assert!(
+                (1..=3).contains(&n),
+                "{}: prints to {n} A4 pages (at most 3)",
+                p.display()
+            );
+            if i == 1 {
+                std::fs::copy(&pdf, artefact_dir().join("subject_report.pdf")).unwrap();
+            }
         }
     }
 }

@@ -34,8 +34,10 @@ figure { margin: 10px 0; page-break-inside: avoid; break-inside: avoid; }
 figure svg { width: 100%; height: auto; display: block; }
 figcaption { font-size: 12px; color: #333; margin-top: 3px; }
 ol.refs { font-size: 11.5px; }
-@page { size: A4; margin: 14mm; }
-@media print { body { margin: 0; max-width: none; font-size: 11pt; } h2 { page-break-after: avoid; break-after: avoid; } table, .note, .missing, .support { page-break-inside: avoid; break-inside: avoid; } .out, .flag, th { -webkit-print-color-adjust: exact; print-color-adjust: exact; } }
+table.triage td.bad { background: #fde2e2; font-weight: bold; }
+.print-only { display: none; }
+@page { size: A4; margin: 10mm; }
+@media print { body { margin: 0; max-width: none; font-size: 8.5pt; } .screen-only { display: none; } .print-only { display: block; } figure.plot { width: 50%; margin: 2px auto; } figure.plot[data-axis-labels^="z-score"] { width: 36%; } figcaption { font-size: 8pt; } table { font-size: 8pt; } th, td { padding: 1px 4px; } h1 { font-size: 15pt; } h2 { font-size: 12pt; margin-top: 10px; page-break-after: avoid; break-after: avoid; } .note, .missing, .support, figure, tr { page-break-inside: avoid; break-inside: avoid; } .out, .flag, th, td.bad { -webkit-print-color-adjust: exact; print-color-adjust: exact; } }
 "#;
 
 /// The whole page around `body`: doctype, head (charset, viewport, generator, title, CSS).

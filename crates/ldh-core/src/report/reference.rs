@@ -82,6 +82,20 @@ pub struct Reference {
     pub ranges: Vec<ReferenceRange>,
     /// One sentence on how the ranges were made, for the report.
     pub description: String,
+    /// The healthy band of the shank-pitch gait cycle (from the legs' traces; empty when the
+    /// reference was made from the tables alone).
+    #[serde(default)]
+    pub cycle: super::cycle::CycleReference,
+}
+
+/// Whether a leg passes every quality check: no warning or fault, nothing withheld
+/// (docs/quality.md). Only such legs make a healthy reference.
+pub(crate) fn passes_every_check(x: &RecordingRow) -> bool {
+    x.withheld.is_empty()
+        && x.warnings
+            .at_least(crate::pipeline::Severity::Warning)
+            .next()
+            .is_none()
 }
 
 /// Published ranges: (column, low, high, citation). Approximate ranges for healthy adults
@@ -143,6 +157,7 @@ impl Reference {
         Reference {
             ranges,
             description: "Published normal values for healthy adults (approximate; see the references): the cohort has too few healthy subjects for its own range.".into(),
+            cycle: Default::default(),
         }
     }
 
@@ -154,13 +169,7 @@ impl Reference {
         // One value per healthy subject: the mean of its analysed legs that pass every quality
         // check (no warning or fault, nothing withheld: docs/quality.md), so a faulty sensor
         // never widens the healthy range.
-        let passes = |x: &RecordingRow| {
-            x.withheld.is_empty()
-                && x.warnings
-                    .at_least(crate::pipeline::Severity::Warning)
-                    .next()
-                    .is_none()
-        };
+        let passes = passes_every_check;
         let healthy_legs = rows
             .iter()
             .filter(|x| x.group == "healthy" && x.status == "ok")

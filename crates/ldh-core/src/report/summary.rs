@@ -87,7 +87,7 @@ const ASYMMETRY: [(&str, &str); 4] = [
 /// has one.
 pub(crate) fn not_measured(r: &RecordingRow, column: &str) -> Option<String> {
     if r.status != "ok" {
-        return Some("the recording could not be analysed".into());
+        return Some("not analysed (see above)".into());
     }
     if let Some(why) = r.withheld.reason(column) {
         return Some(why.to_string());
@@ -263,7 +263,7 @@ pub(crate) fn clinical_summary(
                         Err(why) => { td.nm colspan="2" { "not measured: " (why) } }
                     }
                     td.num { "|SI| ≤ " (format!("{limit:.0}")) }
-                    td { "report threshold; SI of Robinson et al. 1987" }
+                    td { "asymmetry threshold (Robinson et al. 1987)" }
                 }
                 "\n"
             }

@@ -326,3 +326,50 @@ fn the_summary_uses_clinical_units_and_plain_flags() {
         "{html}"
     );
 }
+
+/// A trace beyond the physical ranges is drawn clipped, and the captions say so.
+#[test]
+fn clipped_figures_say_so_in_their_caption() {
+    let p = ReportParams::default().check().unwrap();
+    let n = 300;
+    let t: Vec<f64> = (0..n).map(|i| i as f64 / 100.0).collect();
+    let wave = |a: f64| -> Vec<f64> { t.iter().map(|x| a * (x * 6.0).sin()).collect() };
+    let leg = LegTrace {
+        side: "left".into(),
+        fs_hz: 100.0,
+        start_s: 0.0,
+        acc_g: [wave(1.0), wave(0.5), wave(30.0)],
+        gyro_dps: [wave(100.0), wave(2500.0), wave(50.0)],
+        roll_deg: wave(10.0),
+        pitch_deg: wave(300.0),
+        hs_s: vec![],
+        to_s: vec![],
+        stance_s: vec![],
+        read_notes: vec![],
+        alignment_notes: vec![],
+        gaps_s: vec![],
+    };
+    let s = SubjectReport {
+        subject_id: "C".into(),
+        recordings: vec![row("C", "ldh", "left", 1.0)],
+        traces: Some(SubjectTraces {
+            schema: trace::TRACE_SCHEMA.into(),
+            subject_id: "C".into(),
+            legs: vec![leg],
+        }),
+        ..Default::default()
+    };
+    let html = subject_html(&s, &Reference::published(&p), &p).unwrap();
+    assert!(
+        html.contains("samples beyond ±16 g") && html.contains("samples beyond ±2000 deg/s"),
+        "Fig. 3 caption"
+    );
+    assert!(
+        html.contains("samples beyond ±90° (a shank angle's physical range) are drawn at the edge"),
+        "Fig. 4 caption"
+    );
+    // Axes stop at the physical range: no tick label beyond ±90 on the attitude plot.
+    let fig4 = &html[html.find("shank: attitude with gait events").unwrap()..];
+    let fig4 = &fig4[..fig4.find("</figure>").unwrap()];
+    assert!(!fig4.contains(">200<") && !fig4.contains(">-200<"));
+}
