@@ -306,6 +306,11 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_its_report() {
         "no reason for the missing curve"
     );
     assert!(s.contains("right (n = "), "the good leg's curve");
+    // The faulty leg's attitude diverges and its gyroscope clips: drawn clipped, captioned.
+    assert!(
+        s.contains("samples beyond ±90° (a shank angle's physical range) are drawn at the edge"),
+        "Fig. 4 of the faulty leg: clipping not captioned"
+    );
 }
 
 fn chromium() -> Option<PathBuf> {

@@ -181,7 +181,7 @@ pub fn radar_svg(title: &str, codes: &[String], series: &[(String, Vec<f64>)]) -
             x_legend += 60 + 9 * name.chars().count() as i32;
         }
         root.draw(&Text::new(
-            "● with black edge: beyond ±1.96 SD (abnormal)   △ on the rim: clipped   gap: not measured"
+            "● with black edge: beyond ±1.96 SD (abnormal) · △ on the rim: clipped · gap: not measured"
                 .to_string(),
             (20, 76),
             font(13),
