@@ -22,6 +22,11 @@
 //! A filter that has rejected every measurement for `reacquire_s` accepts the next one. The output is Σ βᵢ x̂ᵢ with βᵢ proportional to each
 //! filter's accumulated innovation likelihood (floored so no filter is ever shut out for good).
 //!
+//! **Anchored to gravity** (issue 20; [`fusion`], [`anchor`]): the state carries the bias of the
+//! two tilting gyroscope axes, and in quasi-static windows (foot flat) the tilt update is never
+//! gated and its noise is capped, so a bias left after alignment (a recording without quiet
+//! standing) or an adapted R grown by drift cannot let the attitude run away.
+//!
 //! **Smoother** (optional): Rauch–Tung–Striebel backward pass per filter, fused with the forward
 //! weights (offline analysis only).
 //!
