@@ -261,9 +261,13 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_its_report() {
     let tmp = tempfile::tempdir().unwrap();
     let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data-fixtures/bad/gyro_scale_fault");
     let out = tmp.path().join("out");
+    // the case names baseline_ok's right leg instead of holding a copy (data-fixtures/bad)
     ldh_ok(&[
         "analyze",
-        case.to_str().unwrap(),
+        case.join("left.csv").to_str().unwrap(),
+        case.join("../baseline_ok/right.csv").to_str().unwrap(),
+        "--subject",
+        "gyro_scale_fault",
         "--out",
         out.to_str().unwrap(),
         "--report",
