@@ -52,6 +52,11 @@ def cut(rows, t_end):
     return [r for r in rows if r[0] <= t_end + 1e-9]
 
 
+def window(rows, t0, t1):
+    """The rows from t0 to t1 s (timestamps kept: the file starts at t0)."""
+    return [r for r in rows if t0 - 1e-9 <= r[0] <= t1 + 1e-9]
+
+
 def case(name, **files):
     d = HERE / name
     d.mkdir(exist_ok=True)
@@ -78,7 +83,12 @@ def interp(rows, times):
 
 def main():
     left, right = simulate()
-    l10, r10 = cut(left, 10.0), cut(right, 10.0)
+    # Kept small (the corpus is in git): the single-file signal cases are the first 5.5 s
+    # (3 s standing, 2.5 s walking); every pair is 2-10 s (1 s standing, then ~7 strides:
+    # the shortest window in which baseline_ok keeps its 3 valid strides per leg). Cases that
+    # leave a leg unchanged name baseline_ok's file in their expected.toml instead of a copy.
+    l10 = cut(left, 5.5)
+    lp, rp = window(left, 2.0, 10.0), window(right, 2.0, 10.0)
     tiny = l10[:12]
 
     # --- malformed text: refused with file, line and column ----------------------------------
@@ -117,12 +127,12 @@ def main():
 
     # --- too short, no signal, wrong units ---------------------------------------------------
     case("one_second", data_csv=text(cut(l10, 1.0)))
-    case("all_zero", data_csv=text([(i / 100, 0, 0, 0, 0, 0, 0) for i in range(501)]))
-    case("all_constant", data_csv=text([(i / 100, 1.0, 0, 0, 0, 0, 0) for i in range(501)]))
+    case("all_zero", data_csv=text([(i / 100, 0, 0, 0, 0, 0, 0) for i in range(421)]))
+    case("all_constant", data_csv=text([(i / 100, 1.0, 0, 0, 0, 0, 0) for i in range(421)]))
     case("constant_gyro", data_csv=text([r[:4] + (0.0, 0.0, 0.0) for r in l10]))
     case("constant_acc_channel", data_csv=text([r[:3] + (0.0,) + r[4:] for r in l10]))
     # The logger repeats the last sample while the sensor is disconnected, then data jump back.
-    frozen = [r if not (3.0 <= r[0] < 5.0) else (r[0],) + l10[300][1:] for r in l10]
+    frozen = [r if not (3.0 <= r[0] < 4.5) else (r[0],) + l10[300][1:] for r in l10]
     case("disconnected_frozen", data_csv=text(frozen))
     # Zeros until the sensor connects, then the signal jumps in.
     case("disconnected_zeros_then_jump",
@@ -134,44 +144,47 @@ def main():
     case("acc_mps2_declared_g", data_csv=text([(r[0],) + tuple(v * 9.80665 for v in r[1:4]) + r[4:] for r in l10]))
 
     # --- timing: gaps and jitter --------------------------------------------------------------
-    case("gap_split", data_csv=text([r for r in l10 if not (6.0 < r[0] < 7.0)]))
+    case("gap_split", data_csv=text([r for r in cut(left, 6.5) if not (4.5 < r[0] < 5.0)]))
     rnd = random.Random(7)
     jit = [(r[0] + rnd.uniform(-0.003, 0.003),) + r[1:] for r in l10]
     case("jitter_resampled", data_csv=text(jit, tdec=4))
-    spike = list(l10); spike[500] = (spike[500][0], 40.0) + spike[500][2:]
+    spike = list(l10); spike[450] = (spike[450][0], 40.0) + spike[450][2:]
     case("single_spike", data_csv=text(spike))
     case("clipped_gyro", data_csv=text([r[:4] + tuple(max(-250.0, min(250.0, v)) for v in r[4:]) for r in l10]))
 
     # --- pairs: analysed with `ldh analyze` -----------------------------------------------------
-    case("baseline_ok", left_csv=text(left), right_csv=text(right))
+    case("baseline_ok", left_csv=text(lp), right_csv=text(rp))
     rnd = random.Random(11)
     stand = lambda: [(i / 100, 1.0 + rnd.gauss(0, 0.004), rnd.gauss(0, 0.004), rnd.gauss(0, 0.004),
-                      rnd.gauss(0, 0.3), rnd.gauss(0, 0.3), rnd.gauss(0, 0.3)) for i in range(801)]
+                      rnd.gauss(0, 0.3), rnd.gauss(0, 0.3), rnd.gauss(0, 0.3)) for i in range(421)]
     case("standing_only", left_csv=text(stand()), right_csv=text(stand()))
     # Running: the walk played 1.6 times faster (cadence ×1.6, angular velocity ×1.6, the
     # dynamic acceleration ×1.6²), resampled back to 100 Hz.
     def run(rows):
         k = 1.6
         g = [sum(r[i] for r in rows[:100]) / 100 for i in range(1, 4)]
-        fast = [(r[0] / k,) + tuple(g[i] + (r[1 + i] - g[i]) * k * k for i in range(3))
+        fast = [((r[0] - rows[0][0]) / k,) + tuple(g[i] + (r[1 + i] - g[i]) * k * k for i in range(3))
                 + tuple(v * k for v in r[4:]) for r in rows]
         n = int(fast[-1][0] * 100)
         return interp(fast, [i / 100 for i in range(n + 1)])
-    case("walk_played_fast", left_csv=text(run(left)), right_csv=text(run(right)))
+    case("walk_played_fast", left_csv=text(run(lp)), right_csv=text(run(rp)))
     # Left device upside down: rotated 180° about its z axis (x and y change sign).
     flip = lambda r: (r[0], -r[1], -r[2], r[3], -r[4], -r[5], r[6])
-    case("upside_down", left_csv=text([flip(r) for r in l10]), right_csv=text(r10))
-    case("left_right_swapped", left_csv=text(r10), right_csv=text(l10))
-    case("different_lengths", left_csv=text(l10), right_csv=text(cut(r10, 7.0)))
-    case("different_clocks", left_csv=text(l10),
-         right_csv=text([(r[0] + 3600.0,) + r[1:] for r in r10]))
-    case("clock_drift", left_csv=text(l10), right_csv=text([(r[0] * 1.02,) + r[1:] for r in r10], tdec=4))
+    # The other leg of these is baseline_ok's (named in expected.toml, not copied).
+    case("upside_down", left_csv=text([flip(r) for r in lp]))
+    # baseline_ok's legs swapped, through a manifest (which states the sides; no copies).
+    case("left_right_swapped", manifest_csv="subject_id,group,affected_side,left,right\n"
+         "S1,healthy,none,../baseline_ok/right.csv,../baseline_ok/left.csv\n")
+    case("different_lengths", right_csv=text(cut(rp, 7.0)))
+    case("different_clocks", right_csv=text([(r[0] + 3600.0,) + r[1:] for r in rp]))
+    case("clock_drift", right_csv=text([(r[0] * 1.02,) + r[1:] for r in rp], tdec=4))
     l50, r50 = simulate(rate_hz=50)
     l200, r200 = simulate(rate_hz=200)
-    case("mixed_rates_100_50", left_csv=text(l10), right_csv=text(cut(r50, 10.0)))
-    case("rate_50hz", left_csv=text(l50), right_csv=text(r50))
-    case("rate_200hz", left_csv=text(cut(l200, 10.0), tdec=3), right_csv=text(cut(r200, 10.0), tdec=3))
-    case("missing_right_file", left_csv=text(l10))
+    # mixed_rates_100_50: baseline_ok's left leg and rate_50hz's right leg (no copies).
+    case("rate_50hz", left_csv=text(window(l50, 2.0, 10.0)), right_csv=text(window(r50, 2.0, 10.0)))
+    case("rate_200hz", left_csv=text(window(l200, 2.0, 10.0), tdec=3),
+         right_csv=text(window(r200, 2.0, 10.0), tdec=3))
+    case("missing_right_file", left_csv=text(lp))
 
 
 if __name__ == "__main__":

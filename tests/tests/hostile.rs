@@ -156,3 +156,48 @@ fn absurd_thread_counts_are_bounded_by_the_cores() {
         text(&o)
     );
 }
+
+/// Simulations too large to hold (a day at 2000 Hz: 172.8 M samples per leg) or counts that
+/// overflow are refused before any work with the declared limit (exit 2), never an abort, and
+/// no output folder is made. The largest allowed simulation still runs.
+#[test]
+fn impossible_simulation_sizes_are_refused_with_the_declared_limit() {
+    let d = tempfile::tempdir().unwrap();
+    let out = d.path().join("sim");
+    let o = out.to_str().unwrap();
+    let cases: [(&[&str], &str); 6] = [
+        (
+            &["--seconds", "86400", "--rate-hz", "2000"],
+            "duration_s × fs_hz = 86400.0 s × 2000.0 Hz: a simulated leg holds at most 1000000 samples (500 s at 2000.0 Hz)",
+        ),
+        (
+            &["--seconds", "1e308"],
+            "duration_s × fs_hz = 1e308 s × 100.0 Hz: a simulated leg holds at most 1000000 samples (2.8 h at 100.0 Hz)",
+        ),
+        (
+            &["--family", "b", "--seconds", "3600", "--rate-hz", "2000"],
+            "a simulated leg holds at most 1000000 samples",
+        ),
+        (
+            &["--healthy", "18446744073709551615", "--ldh", "1"],
+            "healthy + ldh = 18446744073709551615 + 1: a simulated cohort holds at most 100000 subjects",
+        ),
+        (
+            &["--healthy", "1000000", "--ldh", "0"],
+            "healthy + ldh = 1000000 + 0: a simulated cohort holds at most 100000 subjects",
+        ),
+        (
+            &["--family", "b", "--healthy", "9223372036854775807", "--ldh", "9223372036854775807"],
+            "a simulated cohort holds at most 100000 subjects",
+        ),
+    ];
+    for (args, msg) in cases {
+        let mut argv = vec!["simulate", "--out", o];
+        argv.extend_from_slice(args);
+        let r = ldh(&argv);
+        assert_eq!(r.status.code(), Some(2), "{args:?}: {}", text(&r));
+        assert!(text(&r).contains(msg), "{args:?}: {}", text(&r));
+        assert!(!text(&r).contains("panicked"), "{}", text(&r));
+        assert!(!out.exists(), "{args:?}: an output folder was made");
+    }
+}

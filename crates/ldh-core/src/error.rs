@@ -123,6 +123,14 @@ pub enum LdhError {
         /// Byte offset of the first invalid sequence.
         offset: u64,
     },
+    /// The text is UTF-16 (with or without a byte-order mark), a common spreadsheet export.
+    #[error("{}: the text is UTF-16 ({}), not valid UTF-8; re-export the file as UTF-8", path.display(), if *big_endian { "big-endian" } else { "little-endian" })]
+    Utf16 {
+        /// The file.
+        path: PathBuf,
+        /// Byte order.
+        big_endian: bool,
+    },
     /// No header row with the expected columns was found.
     #[error("{}: no header row with the expected columns; missing {missing:?} (format '{format}'){hint}. First row seen: {first_row:?}", path.display())]
     NoHeader {
@@ -209,6 +217,17 @@ pub enum LdhError {
     /// A cell holds NaN or an infinity.
     #[error("{loc}: column '{column}': non-finite value '{value}'")]
     NonFinite {
+        /// Where.
+        loc: Location,
+        /// Column name.
+        column: String,
+        /// The text found.
+        value: String,
+    },
+    /// A finite value far beyond any sensor's range (above [`crate::io::MAX_ABS_SIGNAL`] in
+    /// magnitude, e.g. `1e308`): a corrupted cell; it would overflow the arithmetic.
+    #[error("{loc}: column '{column}': value '{value}' is beyond any sensor's range (magnitude above 1e12): a corrupted cell?")]
+    OutOfRange {
         /// Where.
         loc: Location,
         /// Column name.

@@ -12,7 +12,7 @@ use ldh_core::io::ReadParams;
 use ldh_core::output::{self, Tables};
 use ldh_core::pipeline::{self as core, AnalysisParams, SubjectResult};
 use ldh_core::timings::{Stage, StageTimings};
-use ldh_core::{LdhError, Recording, Side};
+use ldh_core::{LdhError, Recording, Setting, Side};
 
 use crate::convert::{columns, from_py, to_py, value_of, vec1, vecs, Opts};
 use crate::errors::OrRaise;
@@ -63,6 +63,12 @@ fn options(
     })
 }
 
+/// `setting=` of the analysis functions: `None` (not said: overground), `"overground"` or
+/// `"treadmill"`.
+fn setting_of(setting: Option<&str>) -> Result<Option<Setting>, LdhError> {
+    setting.map(str::parse).transpose()
+}
+
 /// The three result tables as a dict of column dicts, plus the wall-clock time and the wall time
 /// per stage summed over the recordings (`write_s`: building the tables).
 fn tables<'py>(
@@ -88,10 +94,12 @@ fn tables<'py>(
     Ok(d)
 }
 
-/// Analyse subjects as `ldh analyze` does on `n_jobs` threads (0: one per core). A missing input
-/// path raises before any work; a bad recording is an error row.
+/// Analyse subjects as `ldh analyze` does on `n_jobs` threads (0: one per core; more than the
+/// cores are lowered to the cores, and `jobs_warning` in the result says so). A missing input
+/// path raises before any work; a bad recording is an error row. `subject_id` and `setting`
+/// are `ldh analyze --subject` and `--setting`.
 #[pyfunction]
-#[pyo3(signature = (inputs, model=None, detector=None, format=None, compute_sta=None, sensor_height_m=None, n_jobs=1, params=None))]
+#[pyo3(signature = (inputs, model=None, detector=None, format=None, compute_sta=None, sensor_height_m=None, n_jobs=1, params=None, subject_id=None, setting=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn analyze<'py>(
     py: Python<'py>,
@@ -103,25 +111,38 @@ pub(crate) fn analyze<'py>(
     sensor_height_m: Option<f64>,
     n_jobs: usize,
     params: Option<&Bound<'py, PyAny>>,
+    subject_id: Option<String>,
+    setting: Option<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let o = options(model, detector, sensor_height_m, compute_sta, params)?;
+    // `n_jobs=10**6` must not spawn a million threads: bounded by the cores, as `-j` is.
+    let (jobs, jobs_warning) = match n_jobs {
+        0 => (0, None),
+        n => core::bounded_jobs(n),
+    };
     let start = Instant::now();
     let results = py
         .detach(move || -> Result<Vec<SubjectResult>, LdhError> {
             let p = o.params()?;
             let f = format_of(format.as_deref())?;
             let read = ReadParams::default().check()?;
-            let subjects = core::discover(&inputs)?;
-            core::analyze_many_on(&subjects, &p, f.as_ref(), &read, n_jobs)
+            let opts = core::InputOptions {
+                subject_id,
+                setting: setting_of(setting.as_deref())?,
+            };
+            let subjects = core::discover_with(&inputs, &opts)?;
+            core::analyze_many_on(&subjects, &p, f.as_ref(), &read, jobs)
         })
         .or_raise(py)?;
-    tables(py, &results, start.elapsed().as_secs_f64())
+    let d = tables(py, &results, start.elapsed().as_secs_f64())?;
+    d.set_item("jobs_warning", jobs_warning)?;
+    Ok(d)
 }
 
 /// One subject's two legs given as arrays (six channels each, each leg at its own rate: the
 /// core warns when they differ by more than 0.5 %); the same tables as `analyze`.
 #[pyfunction]
-#[pyo3(signature = (left, right, left_fs_hz, right_fs_hz, subject_id="subject", model=None, detector=None, sensor_height_m=None, compute_sta=None, params=None))]
+#[pyo3(signature = (left, right, left_fs_hz, right_fs_hz, subject_id="subject", model=None, detector=None, sensor_height_m=None, compute_sta=None, params=None, setting=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn analyze_pair<'py>(
     py: Python<'py>,
@@ -135,6 +156,7 @@ pub(crate) fn analyze_pair<'py>(
     sensor_height_m: Option<f64>,
     compute_sta: Option<bool>,
     params: Option<&Bound<'py, PyAny>>,
+    setting: Option<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let o = options(model, detector, sensor_height_m, compute_sta, params)?;
     let (l, r) = (vecs(&left)?, vecs(&right)?);
@@ -143,12 +165,16 @@ pub(crate) fn analyze_pair<'py>(
     let result = py
         .detach(move || -> Result<SubjectResult, LdhError> {
             let p = o.params()?;
+            let subject = core::SubjectInput {
+                setting: setting_of(setting.as_deref())?,
+                ..core::bare_subject(&id)
+            };
             let leg = |c: [Vec<f64>; 6], fs: f64, side| {
                 let [a, b, cc, d, e, f] = c;
                 core::leg_from_arrays(fs, [a, b, cc], [d, e, f], side)
             };
             Ok(core::analyze_pair(
-                &core::bare_subject(&id),
+                &subject,
                 leg(l, left_fs_hz, Side::Left),
                 leg(r, right_fs_hz, Side::Right),
                 &p,
@@ -159,9 +185,10 @@ pub(crate) fn analyze_pair<'py>(
 }
 
 /// The per-recording pipeline on arrays: alignment, events, strides, parameters, attitude and
-/// warnings of one leg.
+/// warnings of one leg. `setting="treadmill"`: no stride is a turn
+/// ([`AnalysisParams::for_treadmill`]).
 #[pyfunction]
-#[pyo3(signature = (acc_g, gyro_dps, fs_hz, side="left", model=None, detector=None, sensor_height_m=None, compute_sta=None, params=None))]
+#[pyo3(signature = (acc_g, gyro_dps, fs_hz, side="left", model=None, detector=None, sensor_height_m=None, compute_sta=None, params=None, setting=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn analyze_recording<'py>(
     py: Python<'py>,
@@ -174,6 +201,7 @@ pub(crate) fn analyze_recording<'py>(
     sensor_height_m: Option<f64>,
     compute_sta: Option<bool>,
     params: Option<&Bound<'py, PyAny>>,
+    setting: Option<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let o = options(model, detector, sensor_height_m, compute_sta, params)?;
     let (acc, gyro) = (vecs(&acc_g)?, vecs(&gyro_dps)?);
@@ -181,7 +209,10 @@ pub(crate) fn analyze_recording<'py>(
     let leg = py
         .detach(move || -> Result<core::LegResult, LdhError> {
             let side: Side = side.parse()?;
-            let p = o.params()?;
+            let p = match setting_of(setting.as_deref())? {
+                Some(Setting::Treadmill) => o.params()?.for_treadmill(),
+                _ => o.params()?,
+            };
             let rec = Recording::new(fs_hz, acc, gyro, vec![])?.with_side(side);
             Ok(core::analyze_leg(&rec, side, &p, None)?.0)
         })

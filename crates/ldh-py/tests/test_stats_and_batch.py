@@ -151,3 +151,88 @@ def test_every_analysis_parameter_can_be_set_from_python(tmp_path):
         ldh.analyze(tmp_path / "H01", params={"attitude": {"smoothing": True}})
     with pytest.raises(ldh.LdhParamError, match="params must be a dict"):
         ldh.analyze(tmp_path / "H01", params="fast")
+
+
+def test_empty_input_lists_raise_value_error(tmp_path):
+    # Only None means the embedded demo: an empty list is a mistake, not a request (issue 19).
+    for call in (lambda: ldh.analyze_many([]), lambda: ldh.analyze([]), lambda: ldh.analyze(())):
+        with pytest.raises(ValueError, match="empty list|at least one input"):
+            call()
+
+
+def test_subject_id_and_setting_from_python_as_on_the_command_line(tmp_path):
+    ldh.write_demo(tmp_path)
+    files = [tmp_path / "L02" / "left.csv", tmp_path / "L02" / "right.csv"]
+    # The demo walks there and back: overground, the turn's strides are flagged.
+    over = ldh.analyze(files, compute_sta=False, as_frame=False)
+    assert list(over["recordings"]["subject_id"]) == ["L02", "L02"]
+    assert list(over["recordings"]["setting"]) == ["", ""], "not said"
+    assert any("turning" in r for r in over["strides"]["reason"])
+    out = ldh.analyze(files, compute_sta=False, subject_id="patient-7", setting="treadmill", as_frame=False)
+    assert list(out["recordings"]["subject_id"]) == ["patient-7", "patient-7"]
+    assert list(out["recordings"]["setting"]) == ["treadmill", "treadmill"]
+    assert not any("turning" in r for r in out["strides"]["reason"])
+    with pytest.raises(ldh.LdhParamError, match="setting"):
+        ldh.analyze(files, setting="stairs")
+    with pytest.raises(ldh.LdhParamError, match="setting"):
+        ldh.analyze(files, setting=1)
+    # A folder names its own subjects: subject_id is refused for it, as --subject is.
+    with pytest.raises(ValueError, match="names its own subjects"):
+        ldh.analyze(tmp_path / "L02", subject_id="x")
+
+    # The same for arrays: a pair and one recording.
+    left, _ = ldh.read_recording(files[0])
+    right, _ = ldh.read_recording(files[1])
+    pair = ldh.analyze_pair(left, right, subject_id="P9", setting="treadmill", compute_sta=False, as_frame=False)
+    assert list(pair["recordings"]["subject_id"]) == ["P9", "P9"]
+    assert list(pair["recordings"]["setting"]) == ["treadmill", "treadmill"]
+    assert not any("turning" in r for r in pair["strides"]["reason"])
+    pair_over = ldh.analyze_pair(left, right, subject_id="P9", compute_sta=False, as_frame=False)
+    assert any("turning" in r for r in pair_over["strides"]["reason"])
+    with pytest.raises(ldh.LdhParamError, match="setting"):
+        ldh.analyze_pair(left, right, setting="stairs")
+    acc = [left[c] for c in ("acc_x_g", "acc_y_g", "acc_z_g")]
+    gyro = [left[c] for c in ("gyro_x_dps", "gyro_y_dps", "gyro_z_dps")]
+    one = ldh.analyze_recording(acc, gyro, left["fs_hz"], compute_sta=False)
+    belt = ldh.analyze_recording(acc, gyro, left["fs_hz"], compute_sta=False, setting="treadmill")
+    assert any("turning" in r for r in one["strides"]["reason"])
+    assert not any("turning" in r for r in belt["strides"]["reason"])
+    assert len(belt["strides"]["reason"]) == len(one["strides"]["reason"])
+    with pytest.raises(ldh.LdhParamError, match="setting"):
+        ldh.analyze_recording(acc, gyro, left["fs_hz"], setting="stairs")
+
+
+def test_n_jobs_is_bounded_by_the_cores_with_a_warning(tmp_path):
+    import os
+    import warnings
+
+    ldh.write_demo(tmp_path)
+    dirs = [tmp_path / "H01", tmp_path / "L01"]
+    cores = os.cpu_count()
+    # 10**6 threads would thrash the machine for minutes (issue 19): lowered to the cores.
+    with pytest.warns(ldh.LdhWarning, match=r"1000000 worker threads requested, this machine has \d+ cores") as rec:
+        big = ldh.analyze_many(dirs, n_jobs=10**6, compute_sta=False)
+    assert rec[0].filename == __file__, "the warning points at the caller's line"
+    one = ldh.analyze_many(dirs, n_jobs=1, compute_sta=False)
+    np.testing.assert_array_equal(big["strides"]["stride_length_m"], one["strides"]["stride_length_m"])
+    # Within the cores: no warning.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ldh.LdhWarning)
+        ldh.analyze(dirs, n_jobs=max(1, min(2, cores or 1)), compute_sta=False)
+
+
+def test_impossible_simulation_sizes_raise_value_error(tmp_path):
+    out = tmp_path / "sim"
+    cases = [
+        (dict(seconds=86400, rate_hz=2000), "at most 1000000 samples (500 s at 2000.0 Hz)"),
+        (dict(seconds=1e308), "at most 1000000 samples"),
+        (dict(healthy=10**6, ldh=0), "at most 100000 subjects"),
+        (dict(healthy=2**64 - 1, ldh=1), "at most 100000 subjects"),
+        (dict(healthy=10**30), "far more subjects"),
+        (dict(healthy=-1), "non-negative int"),
+        (dict(seed=-5), "non-negative int"),
+    ]
+    for kwargs, msg in cases:
+        with pytest.raises(ValueError, match=msg.replace("(", r"\(").replace(")", r"\)")):
+            ldh.simulate_cohort(out, **kwargs)
+        assert not out.exists(), kwargs

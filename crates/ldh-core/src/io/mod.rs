@@ -18,6 +18,12 @@ pub use writer::{
     OutputLock, WriteOptions,
 };
 
+/// The largest magnitude a signal cell may hold (raw, before the format's scale): 1e12, far
+/// beyond any sensor's range in physical units or raw counts. A larger finite value (`1e308`)
+/// is a corrupted cell, refused with its line and column (it would overflow the filters'
+/// arithmetic and silently void the recording).
+pub const MAX_ABS_SIGNAL: f64 = 1e12;
+
 #[cfg(test)]
 mod tests;
 #[cfg(test)]

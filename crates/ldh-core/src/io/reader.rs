@@ -358,7 +358,7 @@ pub fn read_recording_bytes(
             time_raw.push(v);
         }
         for (k, &c) in acc_cols.iter().chain(gyro_cols.iter()).enumerate() {
-            raw[k].push(parse_number(
+            let v = parse_number(
                 fields[c],
                 spec.decimal,
                 delim,
@@ -366,7 +366,15 @@ pub fn read_recording_bytes(
                 lineno,
                 c,
                 &header_fields[c],
-            )?);
+            )?;
+            if v.abs() > super::MAX_ABS_SIGNAL {
+                return Err(LdhError::OutOfRange {
+                    loc: Location::cell(path, lineno, c + 1),
+                    column: header_fields[c].clone(),
+                    value: fields[c].chars().take(60).collect(),
+                });
+            }
+            raw[k].push(v);
         }
         row_lines.push(lineno);
     }
@@ -779,11 +787,12 @@ fn decode_text<'a>(bytes: &'a [u8], path: &Path) -> Result<&'a str> {
         });
     }
     let body = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]).unwrap_or(bytes);
-    // UTF-16 byte-order marks: a common export mistake, named as such.
-    if bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]) {
-        return Err(LdhError::NotUtf8 {
-            loc: Location::file(path),
-            offset: 0,
+    // UTF-16 (byte-order mark, or every other byte zero in the first line's ASCII text): a
+    // common export mistake, named as such rather than as a binary file.
+    if let Some(big_endian) = utf16_order(bytes) {
+        return Err(LdhError::Utf16 {
+            path: path.to_path_buf(),
+            big_endian,
         });
     }
     if let Some(off) = body
@@ -805,6 +814,30 @@ fn decode_text<'a>(bytes: &'a [u8], path: &Path) -> Result<&'a str> {
             offset: off as u64 + (bytes.len() - body.len()) as u64,
         }
     })
+}
+
+/// `Some(big_endian)` when `bytes` look like UTF-16: a byte-order mark, or (without one) the
+/// first up to 64 bytes alternate ASCII characters and zero bytes.
+fn utf16_order(bytes: &[u8]) -> Option<bool> {
+    if bytes.starts_with(&[0xFF, 0xFE]) {
+        return Some(false);
+    }
+    if bytes.starts_with(&[0xFE, 0xFF]) {
+        return Some(true);
+    }
+    let head = &bytes[..bytes.len().min(64) & !1];
+    if head.len() < 4 {
+        return None;
+    }
+    let ascii = |b: &u8| (0x09..0x7F).contains(b);
+    let pairs = || head.chunks_exact(2);
+    if pairs().all(|p| ascii(&p[0]) && p[1] == 0) {
+        Some(false)
+    } else if pairs().all(|p| p[0] == 0 && ascii(&p[1])) {
+        Some(true)
+    } else {
+        None
+    }
 }
 
 /// The most frequent of `,` `;` tab in a header line (ties: tab, `;`, `,`).

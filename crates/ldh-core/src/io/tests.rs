@@ -334,6 +334,18 @@ fn bad_files_are_refused_with_the_file_and_the_problem() {
     );
     let p = t.write("inf.csv", with_line(40, "0.39,1.0,0.0,0.0,0.0,inf,0.0"));
     assert!(err_of(&p, None).contains("inf.csv:41:6"));
+    // Finite but beyond any sensor (it would overflow the filters): refused where it is.
+    let p = t.write("e308.csv", with_line(40, "0.39,1.0,0.0,-1e308,0.0,0.0,0.0"));
+    let m = err_of(&p, None);
+    assert!(
+        m.contains("e308.csv:41:4") && m.contains("'-1e308' is beyond any sensor's range"),
+        "{m}"
+    );
+    let p = t.write("e12.csv", with_line(40, "0.39,1.0,0.0,1e12,0.0,0.0,0.0"));
+    assert!(
+        read(&p, None).is_ok(),
+        "1e12 is allowed (an outlier, replaced later)"
+    );
     let p = t.write("fields.csv", with_line(40, "0.39,1.0,0.0,0.0,0.0,0.0"));
     let m = err_of(&p, None);
     assert!(
@@ -494,4 +506,33 @@ fn the_sensor_model_of_the_simulator_reads_without_unit_complaints() {
     let spec = FormatSpec::default();
     assert!(check_units_plausible(&rec, &spec, Path::new("x.csv")).is_ok());
     let _ = SensorModel::default();
+}
+
+#[test]
+fn utf16_is_named_with_or_without_a_byte_order_mark() {
+    let t = Tmp::new();
+    let text = "time_s,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z\n0.00,1,0,0,0,0,0\n";
+    let le: Vec<u8> = text.encode_utf16().flat_map(|u| u.to_le_bytes()).collect();
+    let be: Vec<u8> = text.encode_utf16().flat_map(|u| u.to_be_bytes()).collect();
+    for (name, bytes, order) in [
+        ("le.csv", le.clone(), "little-endian"),
+        ("be.csv", be.clone(), "big-endian"),
+        (
+            "bom.csv",
+            [&[0xFF, 0xFE][..], &le].concat(),
+            "little-endian",
+        ),
+    ] {
+        let p = t.write(name, bytes);
+        let m = err_of(&p, None);
+        assert!(
+            m.contains(&format!(
+                "the text is UTF-16 ({order}), not valid UTF-8; re-export the file as UTF-8"
+            )),
+            "{m}"
+        );
+    }
+    // A binary file with zero bytes is still a binary file.
+    let p = t.write("bin.csv", [0x89, b'P', b'N', b'G', 0, 0, 0, 13, 1, 2]);
+    assert!(err_of(&p, None).contains("not a text file"));
 }

@@ -39,6 +39,54 @@ pub use write::{write_cohort, Cohort};
 /// Version tag of the ground-truth JSON.
 pub const TRUTH_SCHEMA: &str = "ldh-sim-truth/1";
 
+/// The most samples one simulated leg may have (`duration_s × fs_hz`): 1 000 000, e.g. 2.7 h
+/// at 100 Hz or 500 s at 2000 Hz. The simulator holds about 0.8 kB per output sample of a
+/// subject (the 10× oversampled integration grid of both legs), so this bounds one subject in
+/// flight to about 0.8 GB; longer recordings are made by concatenating simulated ones
+/// (tests/tests/bad_inputs.rs `two_hour`).
+pub const MAX_SAMPLES_PER_LEG: u64 = 1_000_000;
+
+/// The most subjects one simulated cohort may have (`healthy + ldh`): 100 000.
+pub const MAX_SUBJECTS: u64 = 100_000;
+
+/// The declared size limits of a simulation, checked with exact arithmetic before any work:
+/// `healthy + ldh` (which must not overflow) at most [`MAX_SUBJECTS`], `duration_s × fs_hz`
+/// at most [`MAX_SAMPLES_PER_LEG`]. The error says which limit and what to do.
+pub fn check_size(healthy: usize, ldh: usize, duration_s: f64, fs_hz: f64) -> Result<()> {
+    let n = (healthy as u64).checked_add(ldh as u64);
+    if n.is_none_or(|n| n > MAX_SUBJECTS) {
+        return Err(LdhError::param(
+            "healthy + ldh",
+            format!("{healthy} + {ldh}"),
+            format!("a simulated cohort holds at most {MAX_SUBJECTS} subjects"),
+        ));
+    }
+    check_samples(duration_s, fs_hz)
+}
+
+/// `duration_s × fs_hz` at most [`MAX_SAMPLES_PER_LEG`] (both finite and positive; the range of
+/// each is checked by the caller).
+pub fn check_samples(duration_s: f64, fs_hz: f64) -> Result<()> {
+    let samples = duration_s * fs_hz;
+    if duration_s.is_finite() && fs_hz.is_finite() && samples <= MAX_SAMPLES_PER_LEG as f64 {
+        return Ok(());
+    }
+    let longest_s = MAX_SAMPLES_PER_LEG as f64 / fs_hz.max(1.0);
+    let longest = if longest_s >= 3600.0 {
+        format!("{:.1} h", longest_s / 3600.0)
+    } else {
+        format!("{longest_s:.0} s")
+    };
+    Err(LdhError::param(
+        "duration_s × fs_hz",
+        format!("{duration_s:?} s × {fs_hz:?} Hz"),
+        format!(
+            "a simulated leg holds at most {MAX_SAMPLES_PER_LEG} samples ({longest} at {fs_hz:?} Hz); \
+             simulate shorter recordings (or a lower rate) and concatenate them"
+        ),
+    ))
+}
+
 /// Subject group.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -413,6 +461,7 @@ impl SubjectParams {
         };
         range("fs_hz", self.fs_hz, 20.0, 2000.0)?;
         range("duration_s", self.duration_s, 5.0, 24.0 * 3600.0)?;
+        check_samples(self.duration_s, self.fs_hz)?;
         range("standing_s", self.standing_s, 0.0, 60.0)?;
         range("stride_time_s", self.stride_time_s, 0.7, 2.0)?;
         range("stride_length_m", self.stride_length_m, 0.3, 2.2)?;
@@ -505,9 +554,10 @@ impl Default for CohortParams {
 }
 
 impl CohortParams {
-    /// Total number of subjects.
+    /// Total number of subjects (saturating: [`CohortParams::validate`] refuses a sum that
+    /// overflows).
     pub fn len(&self) -> usize {
-        self.healthy + self.ldh
+        self.healthy.saturating_add(self.ldh)
     }
     /// No subjects.
     pub fn is_empty(&self) -> bool {
@@ -532,6 +582,7 @@ impl CohortParams {
                 "at least one subject is needed",
             ));
         }
+        check_size(self.healthy, self.ldh, self.duration_s, self.fs_hz)?;
         if !(0.0..=1.0).contains(&self.ldh_severity_min) {
             return Err(LdhError::param(
                 "ldh_severity_min",

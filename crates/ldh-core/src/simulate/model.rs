@@ -778,18 +778,18 @@ pub fn simulate_subject(
             let Some(&t_to) = to_times.iter().find(|&&x| x > t_hs && x < t_next) else {
                 continue;
             };
-            let in_stride = |t: f64| t >= t_hs && t < t_next;
             let (mut mx, mut mn) = (f64::MIN, f64::MAX);
             let (mut rmx, mut rmn) = (f64::MIN, f64::MAX);
-            for (k, &ft) in fine_t.iter().enumerate() {
-                if in_stride(ft) {
-                    mx = mx.max(fine_theta[k]);
-                    mn = mn.min(fine_theta[k]);
-                }
-                if ft >= t_to && ft < t_next {
-                    rmx = rmx.max(fine_rho[k]);
-                    rmn = rmn.min(fine_rho[k]);
-                }
+            // `fine_t` increases: the stride's samples are one index range (found by bisection,
+            // so the truth is linear in the recording's length, not quadratic).
+            let at = |t: f64| fine_t.partition_point(|&ft| ft < t);
+            for k in at(t_hs)..at(t_next) {
+                mx = mx.max(fine_theta[k]);
+                mn = mn.min(fine_theta[k]);
+            }
+            for k in at(t_to)..at(t_next) {
+                rmx = rmx.max(fine_rho[k]);
+                rmn = rmn.min(fine_rho[k]);
             }
             let length = match (
                 heel_pos.get(j).copied().flatten(),

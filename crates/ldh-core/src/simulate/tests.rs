@@ -316,3 +316,37 @@ fn rejects_impossible_parameters() {
         .to_string()
         .contains("stance_ratio"));
 }
+
+#[test]
+fn sizes_beyond_the_declared_limits_are_refused_with_exact_arithmetic() {
+    let big = CohortParams {
+        duration_s: 86_400.0,
+        fs_hz: 2000.0,
+        ..CohortParams::default()
+    };
+    let e = big.validate().unwrap_err().to_string();
+    assert!(
+        e.contains("at most 1000000 samples (500 s at 2000.0 Hz)"),
+        "{e}"
+    );
+    let overflow = CohortParams {
+        healthy: usize::MAX,
+        ldh: 1,
+        ..CohortParams::default()
+    };
+    assert_eq!(overflow.len(), usize::MAX, "saturates instead of wrapping");
+    let e = overflow.validate().unwrap_err().to_string();
+    assert!(e.contains("at most 100000 subjects"), "{e}");
+    // At the limits: accepted.
+    assert!(check_size(100_000, 0, 10_000.0, 100.0).is_ok());
+    assert!(check_size(100_000, 1, 25.0, 100.0).is_err());
+    assert!(check_samples(10_000.1, 100.0).is_err());
+    assert!(check_samples(f64::NAN, 100.0).is_err());
+    let mut p = SubjectParams::healthy("X");
+    p.duration_s = 20_000.0;
+    assert!(p
+        .validate()
+        .unwrap_err()
+        .to_string()
+        .contains("1000000 samples"));
+}

@@ -156,7 +156,21 @@ def simulate_cohort(
 ) -> str:
     """Simulate a cohort into ``out`` exactly as ``ldh simulate`` does (subject folders,
     ``manifest.csv`` and ``cohort.json``); returns the manifest CSV text. The same seed gives
-    byte-identical files."""
-    return _ldh.simulate_cohort(os.fspath(out), healthy, ldh, seconds, seed, rate_hz, turn)
+    byte-identical files.
+
+    Sizes beyond the core's declared limits (100 000 subjects; 1 000 000 samples per leg,
+    i.e. ``seconds * rate_hz``) raise :class:`LdhParamError` (a ``ValueError``) before any
+    work, as do negative or non-integer counts."""
+    for name, v in (("healthy", healthy), ("ldh", ldh), ("seed", seed)):
+        if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 0:
+            raise LdhParamError(f"{name} must be a non-negative int, got {v!r}")
+    if healthy >= 2**64 or ldh >= 2**64:
+        # Beyond what the core can represent (its own limit, checked there, is far lower).
+        raise LdhParamError(f"healthy + ldh = {healthy} + {ldh}: far more subjects than a simulated cohort can hold")
+    if seed >= 2**64:
+        raise LdhParamError(f"seed must be below 2**64, got {seed!r}")
+    return _ldh.simulate_cohort(
+        os.fspath(out), int(healthy), int(ldh), float(seconds), int(seed), float(rate_hz), bool(turn),
+    )
 
 

@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 import os
+import warnings
 from typing import Any, Dict, Optional, Sequence, Union
 
 import numpy as np
 
 from . import _ldh
-from ._errors import LdhParamError
+from ._errors import LdhParamError, LdhWarning
 from ._result import Result
 from ._util import PathLike, opt_float, params_dict, vec
 
@@ -29,7 +30,23 @@ def _paths(inputs: Union[None, PathLike, Sequence[PathLike]]) -> list:
         return []
     if isinstance(inputs, (str, os.PathLike)):
         return [os.fspath(inputs)]
-    return [os.fspath(p) for p in inputs]
+    paths = [os.fspath(p) for p in inputs]
+    if not paths:
+        # Only ``None`` means the embedded demo: an empty list is a mistake, not a request.
+        raise LdhParamError("inputs is an empty list: give paths, or None for the embedded demo cohort")
+    return paths
+
+
+def _setting(setting: Optional[str]) -> Optional[str]:
+    if setting is not None and not isinstance(setting, str):
+        raise LdhParamError(f"setting must be 'overground', 'treadmill' or None, got {setting!r}")
+    return setting
+
+
+def _subject_id(subject_id: Optional[str]) -> Optional[str]:
+    if subject_id is not None and not isinstance(subject_id, str):
+        raise LdhParamError(f"subject_id must be a str, got {subject_id!r}")
+    return subject_id
 
 
 def analyze(
@@ -42,6 +59,8 @@ def analyze(
     sensor_height_m: Optional[float] = None,
     n_jobs: Optional[int] = 1,
     params: Optional[Dict[str, Any]] = None,
+    subject_id: Optional[str] = None,
+    setting: Optional[str] = None,
     as_frame: Optional[bool] = None,
 ) -> Result:
     """Analyse recordings exactly as ``ldh analyze`` does.
@@ -50,7 +69,7 @@ def analyze(
     ----------
     inputs : path or sequence of paths, optional
         A manifest CSV, a cohort folder, a subject folder or a subject's two files; ``None``:
-        the embedded demo cohort.
+        the embedded demo cohort (an empty list raises :class:`LdhParamError`).
     model : {"fusion", "acc"}, optional
         Attitude model (default: from ``params``, else "fusion").
     detector : str, optional
@@ -64,12 +83,20 @@ def analyze(
         Sensor height above the ankle when the manifest has none, in metres (default 0.10).
     n_jobs : int or None, default 1
         Rust threads for the subjects (the GIL is released); ``None`` or ``-1``: all cores.
-        Results are identical whatever the number.
+        More than the machine's cores is lowered to the cores with an :class:`LdhWarning`
+        (as ``ldh analyze -j``). Results are identical whatever the number.
     params : dict, optional
         Any analysis parameter, nested as in docs/parameters.md and with the Rust names and
         defaults, e.g. ``{"attitude": {"smoother": False}, "preprocess": {"cutoff_hz": 8.0}}``;
         unknown names are refused. ``model``, ``detector``, ``sensor_height_m`` and
         ``compute_sta`` are applied on top.
+    subject_id : str, optional
+        Subject id of two files given directly (``ldh analyze --subject``; default: the common
+        stem of their names, or the folder of ``left.csv``/``right.csv``). Refused with a
+        manifest or a folder, which name their own subjects.
+    setting : {"overground", "treadmill"}, optional
+        Setting of every subject whose manifest row does not say (``--setting``); on a
+        treadmill no stride is flagged as a turn (docs/input.md "Setting").
     as_frame : bool, optional
         Tables as pandas DataFrames (default when pandas is importable) or, with ``False``, as
         dicts of numpy arrays.
@@ -91,16 +118,30 @@ def analyze(
     """
     raw = _ldh.analyze(
         _paths(inputs), model, detector, format, compute_sta, opt_float(sensor_height_m),
-        _jobs(n_jobs), params_dict(params),
+        _jobs(n_jobs), params_dict(params), _subject_id(subject_id), _setting(setting),
     )
+    if raw.get("jobs_warning"):
+        warnings.warn(raw["jobs_warning"], LdhWarning, stacklevel=_caller_level())
     return Result(raw, as_frame)
+
+
+def _caller_level() -> int:
+    """The ``stacklevel`` that points a warning at the user's call of ``analyze`` or
+    ``analyze_many`` (not at this module)."""
+    import sys
+
+    level, frame = 2, sys._getframe(2)
+    while frame is not None and frame.f_globals.get("__name__") == __name__:
+        level, frame = level + 1, frame.f_back
+    return level
 
 
 def analyze_many(paths: Sequence[PathLike], n_jobs: Optional[int] = None, **kwargs: Any) -> Result:
     """Analyse many inputs (manifests, cohort or subject folders, pairs of files) in parallel
     on Rust threads; the same as :func:`analyze` with ``n_jobs`` defaulting to all cores.
 
-    ``paths`` must name at least one input (``analyze()`` without inputs is the demo). The
+    ``paths`` must name at least one input (``analyze()`` without inputs is the demo); an
+    empty list raises :class:`LdhParamError` (a ``ValueError``). The
     function is pure (files in, tables out) and keeps no state, so it runs unchanged in Dask or
     Ray workers: ``client.map(lambda d: ldh.analyze(d, n_jobs=1), subject_dirs)``.
     """
@@ -131,6 +172,7 @@ def analyze_pair(
     sensor_height_m: Optional[float] = None,
     compute_sta: Optional[bool] = None,
     params: Optional[Dict[str, Any]] = None,
+    setting: Optional[str] = None,
     as_frame: Optional[bool] = None,
 ) -> Result:
     """Analyse one subject's two recordings given as arrays, with step time and step frequency
@@ -145,6 +187,11 @@ def analyze_pair(
         Sampling rate of both, when the dicts do not carry ``fs_hz`` (it then overrides
         theirs). Each leg is analysed at its own rate, as ``ldh analyze`` does with two files:
         rates that differ by more than 0.5 % give a warning, not an error.
+    subject_id : str, default "subject"
+        The subject's id in the tables.
+    setting : {"overground", "treadmill"}, optional
+        Where the walk happened (default: not said, analysed as overground); on a treadmill
+        no stride is flagged as a turn.
 
     Returns
     -------
@@ -158,8 +205,9 @@ def analyze_pair(
     lv = [vec(left[c], f"left[{c}]") for c in _CHANNELS]
     rv = [vec(right[c], f"right[{c}]") for c in _CHANNELS]
     raw = _ldh.analyze_pair(
-        lv, rv, _rate(left, fs_hz, "left"), _rate(right, fs_hz, "right"), subject_id, model,
-        detector, opt_float(sensor_height_m), compute_sta, params_dict(params),
+        lv, rv, _rate(left, fs_hz, "left"), _rate(right, fs_hz, "right"), _subject_id(subject_id),
+        model, detector, opt_float(sensor_height_m), compute_sta, params_dict(params),
+        _setting(setting),
     )
     return Result(raw, as_frame)
 
@@ -175,6 +223,7 @@ def analyze_recording(
     sensor_height_m: Optional[float] = None,
     compute_sta: Optional[bool] = None,
     params: Optional[Dict[str, Any]] = None,
+    setting: Optional[str] = None,
 ) -> Dict[str, Any]:
     """Run the per-recording pipeline on arrays: preprocessing, alignment, attitude, events,
     strides and the per-side parameters (without the other leg: no step time).
@@ -195,6 +244,8 @@ def analyze_recording(
         Sensor height above the ankle, m.
     compute_sta : bool
         Compute the Lyapunov stability STA.
+    setting : {"overground", "treadmill"}, optional
+        Where the walk happened; on a treadmill no stride is flagged as a turn.
 
     Returns
     -------
@@ -211,5 +262,5 @@ def analyze_recording(
         raise LdhParamError("acc_g and gyro_dps must each hold three channels (x, y, z)")
     return _ldh.analyze_recording(
         acc, gyro, float(fs_hz), side, model, detector, opt_float(sensor_height_m), compute_sta,
-        params_dict(params),
+        params_dict(params), _setting(setting),
     )

@@ -343,9 +343,10 @@ impl Default for CohortParamsB {
 }
 
 impl CohortParamsB {
-    /// Number of subjects.
+    /// Number of subjects (saturating: [`CohortParamsB::validate`] refuses a sum that
+    /// overflows).
     pub fn len(&self) -> usize {
-        self.healthy + self.patients
+        self.healthy.saturating_add(self.patients)
     }
     /// No subjects.
     pub fn is_empty(&self) -> bool {
@@ -383,6 +384,7 @@ impl CohortParamsB {
                 "family B needs 25–3600 s per subject (up to 5 s standing at each end and four strides of 2.3 s)",
             ));
         }
+        super::check_size(self.healthy, self.patients, self.duration_s, self.fs_hz)?;
         if let Some(v) = self.speed_mps {
             if !(v.is_finite() && (0.15..=2.0).contains(&v)) {
                 return Err(LdhError::param("speed_mps", v, "must lie in [0.15, 2]"));
