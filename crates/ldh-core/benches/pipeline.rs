@@ -75,6 +75,17 @@ fn bench(c: &mut Criterion) {
             )
         })
     });
+    // the whole 25 s leg, as `ldh analyze` runs STA on a clean walk (issue 17)
+    g.bench_function("sta_whole_leg", |b| {
+        b.iter(|| {
+            gait_sta(
+                black_box(&al.gyro_dps[1]),
+                rec.fs_hz,
+                1.1,
+                &GaitStaParams::default(),
+            )
+        })
+    });
     g.finish();
 
     let mut g = c.benchmark_group("end_to_end");

@@ -59,6 +59,14 @@ def test_analyze_demo_equals_the_cli(tmp_path):
     assert np.all((rec["stride_time_s"] > 0.9) & (rec["stride_time_s"] < 1.4))
     assert np.all(rec["sta_per_s"] > 0)
     assert set(res["events"]["event"]) == {"HS", "TO"}
+    # wall time per stage, as `ldh analyze --timings` (issue 17)
+    stages = ["read", "preprocess", "align", "attitude", "events", "strides", "sta", "write"]
+    t = res.timings
+    assert t["subjects"] == 4 and t["recordings"] == 8 and t["total_s"] > 0
+    assert all(t[f"{s}_s"] >= 0 for s in stages) and t["sta_s"] > 0 and t["attitude_s"] > 0
+    table = res.timings_table()
+    assert list(table["stage"]) == stages
+    assert list(table["seconds"]) == [t[f"{s}_s"] for s in stages]
     cli = _cli()
     if cli is None:
         pytest.skip("no ldh binary built (run cargo test or cargo build first)")
