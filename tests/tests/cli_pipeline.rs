@@ -168,6 +168,8 @@ fn inputs_as_pair_subject_folder_and_manifest() {
     );
 }
 
+/// The outputs do not depend on the thread count, nor on `--timings` (issue 17), which prints
+/// the stage table on stderr and adds "timings" to the JSON summary.
 #[test]
 fn results_are_byte_identical_whatever_the_jobs() {
     let d = tempfile::tempdir().unwrap();
@@ -177,16 +179,49 @@ fn results_are_byte_identical_whatever_the_jobs() {
             .status
             .success()
     );
+    let o = ldh(&[
+        "analyze",
+        "--out",
+        b.to_str().unwrap(),
+        "--jobs",
+        "2",
+        "--timings",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let err = String::from_utf8_lossy(&o.stderr);
+    for stage in [
+        "read",
+        "preprocess",
+        "align",
+        "attitude",
+        "events",
+        "strides",
+        "sta",
+        "write",
+    ] {
+        assert!(
+            err.lines().any(|l| l.starts_with(stage)),
+            "{stage} in {err}"
+        );
+    }
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let t = &j["timings"];
+    assert_eq!(t["recordings"], 8, "{t}");
+    assert!(t["sta_s"].as_f64().unwrap() > 0.0, "{t}");
+    assert!(t["attitude_s"].as_f64().unwrap() > 0.0, "{t}");
+    let total = t["total_s"].as_f64().unwrap();
     assert!(
-        ldh(&["analyze", "--out", b.to_str().unwrap(), "--jobs", "2"])
-            .status
-            .success()
+        total > 0.0 && total <= 2.0 * t["wall_s"].as_f64().unwrap() + 1e-3,
+        "{t}"
     );
     for f in [
         "strides.csv",
         "recordings.csv",
         "strides.json",
         "recordings.json",
+        "events.csv",
+        "params.json",
     ] {
         assert_eq!(
             std::fs::read(a.join(f)).unwrap(),

@@ -175,10 +175,25 @@ fn reports_are_well_formed_self_contained_and_label_every_axis() {
     let pages = html_files(&demo.join("reports"));
     assert_eq!(pages.len(), 5, "cohort + 4 demo subjects");
     for p in &pages[1..] {
-        // Fig. 3 and 4 per leg (4), radar, 4 stride-by-stride plots.
-        assert!(check_page(p) >= 9, "{}: figures missing", p.display());
+        // Fig. 3 and 4 per leg (4), radar, gait cycle, 4 stride-by-stride plots.
+        assert!(check_page(p) >= 10, "{}: figures missing", p.display());
         let s = std::fs::read_to_string(p).unwrap();
+        // The clinical summary comes first, in clinical units, each value against its range.
+        let summary = s.find("Clinical summary").expect("no clinical summary");
+        assert!(summary < s.find("1. Recordings").unwrap());
         for must in [
+            "(steps/min)",
+            "(m/s)",
+            "<b>Stride length</b> (m)",
+            "(% of gait cycle)",
+            "(CV %)",
+            "(SI %, left vs right)",
+            "normal range",
+            "judged against",
+            // Gait-cycle curves; the demo has too few healthy legs for a reference band.
+            "Gait cycle: shank pitch",
+            "No reference band (n = ",
+            "a gap in a polygon is a parameter not measured",
             "1. Recordings",
             "2. Gait parameters",
             "reference range",
@@ -201,14 +216,26 @@ fn reports_are_well_formed_self_contained_and_label_every_axis() {
         "Tables 6–7",
         "grouped 3-fold",
         "subjects/H01.html",
+        "Subjects, worst first",
+        "outside reference",
     ] {
         assert!(index.contains(must), "cohort report: no '{must}'");
     }
+    // The triage table comes before the group statistics, one row per subject.
+    let triage = &index[index.find("Subjects, worst first").unwrap()..];
+    assert!(triage.find("</table>").unwrap() < triage.find("1. Group statistics").unwrap());
+    let triage = &triage[..triage.find("</table>").unwrap()];
+    assert_eq!(triage.matches("<a href=\"subjects/").count(), 12);
     // Radar, 13 box plots, confusion matrix.
     assert!(check_page(&pages[0]) >= 15);
     let subj = std::fs::read_to_string(&pages[1]).unwrap();
     assert!(subj.contains("Decision support, not a diagnosis") && subj.contains("<th>p("));
     assert!(subj.contains("cohort healthy, n = 6") || subj.contains("published ["));
+    // 12 healthy legs: the gait-cycle curves get the healthy reference band.
+    assert!(
+        subj.contains("Grey band: mean ± 1 SD of the mean curves of 12 healthy legs"),
+        "no reference band"
+    );
     for p in &pages[1..] {
         check_page(p);
     }
@@ -224,6 +251,65 @@ fn reports_are_well_formed_self_contained_and_label_every_axis() {
     assert!(
         s.contains("left shank: attitude with gait events"),
         "the good side still plots"
+    );
+}
+
+/// The bad-corpus leg with a gyroscope amplified ×10 (HuGaDB's fault): its report shows no
+/// number and no ▲/▼ for any of its parameters, in the summary and in the parameter table.
+#[test]
+fn a_faulty_gyroscope_leg_shows_no_number_in_its_report() {
+    let tmp = tempfile::tempdir().unwrap();
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data-fixtures/bad/gyro_scale_fault");
+    let out = tmp.path().join("out");
+    ldh_ok(&[
+        "analyze",
+        case.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--report",
+    ]);
+    let pages = html_files(&out.join("reports"));
+    let s = std::fs::read_to_string(&pages[1]).unwrap();
+    check_page(&pages[1]);
+    // Each table's left column: the cell after the label (and the unit in section 2).
+    let section = |from: &str| {
+        let t = &s[s.find(from).unwrap()..];
+        t[..t.find("</table>").unwrap()].to_string()
+    };
+    let mut rows = 0;
+    for (table, left_cell) in [
+        (section("Clinical summary"), 2),
+        (section("2. Gait parameters"), 3),
+    ] {
+        for row in table.split("<tr>").skip(2) {
+            let cells: Vec<&str> = row.split("<td").collect();
+            let cell = cells[left_cell];
+            if cell.contains("colspan") {
+                // A symmetry index needs both legs.
+                assert!(cell.contains("not measured: left"), "{cell}");
+                continue;
+            }
+            let text: String = cell.split('>').skip(1).collect::<Vec<_>>().join(">");
+            assert!(
+                text.starts_with("not measured: "),
+                "a value on the faulty leg: {row}"
+            );
+            assert!(!text.contains('▲') && !text.contains('▼'), "{row}");
+            rows += 1;
+        }
+    }
+    assert!(rows >= 7 + 13, "{rows} rows checked");
+    // No gait-cycle curve for the faulty leg: it says why in place of the plot; the right leg
+    // still has its curve.
+    assert!(
+        s.contains("left leg: no gait-cycle curve — shank angles not measured: gyro scale fault"),
+        "no reason for the missing curve"
+    );
+    assert!(s.contains("right (n = "), "the good leg's curve");
+    // The faulty leg's attitude diverges and its gyroscope clips: drawn clipped, captioned.
+    assert!(
+        s.contains("samples beyond ±90° (a shank angle's physical range) are drawn at the edge"),
+        "Fig. 4 of the faulty leg: clipping not captioned"
     );
 }
 
@@ -262,6 +348,31 @@ fn ink(png_path: &Path) -> (f64, usize) {
     (dark as f64 / n as f64, colours.len())
 }
 
+/// Pages of a PDF printed by Chromium (the page tree's largest `/Count`).
+fn pdf_pages(bytes: &[u8]) -> usize {
+    let s = String::from_utf8_lossy(bytes);
+    s.match_indices("/Count ")
+        .filter_map(|(i, _)| {
+            let digits: String = s[i + 7..]
+                .chars()
+                .take_while(char::is_ascii_digit)
+                .collect();
+            digits.parse().ok()
+        })
+        .max()
+        .unwrap_or(0)
+}
+
+/// Where tests leave files for people to look at: `target/test-artifacts/`.
+fn artefact_dir() -> PathBuf {
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../target"));
+    let d = target.join("test-artifacts");
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
 /// Headless Chromium on a page, killed after 120 s.
 fn run_chromium(chrome: &Path, args: &[&str], page: &Path) -> std::process::Output {
     std::process::Command::new("timeout")
@@ -288,6 +399,21 @@ fn chromium_renders_every_report() {
     let demo = tmp.path().join("demo-out");
     demo_with_reports(&demo);
     let mut pages = html_files(&demo.join("reports"));
+    // The first screen of a subject page (1280 × 800) shows the clinical summary: kept under
+    // target/test-artifacts/ for a person to look at.
+    let first = artefact_dir().join("subject_first_screen_1280x800.png");
+    let o = run_chromium(
+        &chrome,
+        &[
+            "--hide-scrollbars",
+            "--window-size=1280,800",
+            &format!("--screenshot={}", first.display()),
+        ],
+        pages.iter().find(|p| p.ends_with("L01.html")).unwrap(),
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let (share, colours) = ink(&first);
+    assert!(share > 0.05 && colours > 8, "the first screen looks blank");
     pages.extend(html_files(&failed_side(tmp.path())));
     for (i, p) in pages.iter().enumerate() {
         let shot = tmp.path().join(format!("shot{i}.png"));
@@ -328,9 +454,9 @@ fn chromium_renders_every_report() {
             p.display(),
             share
         );
-        // Printing to A4 gives pages of A4 size (595 × 842 pt).
-        if i == 1 {
-            let pdf = tmp.path().join("print.pdf");
+        // Every subject page prints to at most 3 A4 pages (595 × 842 pt).
+        if p.parent().is_some_and(|d| d.ends_with("subjects")) {
+            let pdf = tmp.path().join(format!("print{i}.pdf"));
             let o = run_chromium(
                 &chrome,
                 &[
@@ -347,6 +473,15 @@ fn chromium_renders_every_report() {
                 s.contains("MediaBox [0 0 594.9") || s.contains("MediaBox [0 0 595"),
                 "not A4"
             );
+            let n = pdf_pages(&bytes);
+            assert!(
+                (1..=3).contains(&n),
+                "{}: prints to {n} A4 pages (at most 3)",
+                p.display()
+            );
+            if i == 1 {
+                std::fs::copy(&pdf, artefact_dir().join("subject_report.pdf")).unwrap();
+            }
         }
     }
 }

@@ -163,6 +163,11 @@ pub struct AnalyzeArgs {
     /// Largest sensor file read, MB (default 256); larger files are refused before reading.
     #[arg(long, value_name = "MB")]
     pub max_file_size_mb: Option<f64>,
+    /// Print the wall time of each stage (read, preprocess, align, attitude, events, strides,
+    /// STA, write), summed over the run, as a table on stderr; with --json also as "timings" in
+    /// the summary. The outputs are unchanged.
+    #[arg(long)]
+    pub timings: bool,
 }
 
 #[derive(Debug, Args)]

@@ -35,6 +35,7 @@ pub mod recording;
 pub mod report;
 pub mod simulate;
 pub mod stats;
+pub mod timings;
 
 pub use error::{ErrorKind, LdhError, Location, Result};
 pub use recording::{Recording, Setting, Side};

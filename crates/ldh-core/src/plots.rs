@@ -7,12 +7,49 @@ use plotters::prelude::*;
 
 use crate::error::{LdhError, Result};
 
+/// Series colours, colour-blind safe (Okabe & Ito 2008): left blue, right orange, then bluish
+/// green and reddish purple. Sides differ by hue (never red against green), and no colour means
+/// "abnormal": an abnormal value is marked by shape (▲/▼ in tables, a black-edged dot on the
+/// radar), a clipped one by an open triangle.
 const COLORS: [RGBColor; 4] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(148, 103, 189),
+    RGBColor(0, 114, 178),
+    RGBColor(230, 159, 0),
+    RGBColor(0, 158, 115),
+    RGBColor(204, 121, 167),
 ];
+
+/// The colour of the `k`-th series named `name`: a series named after a side (`left…`,
+/// `right…`) gets that side's colour in every figure, others go by position.
+fn colour_of(name: &str, k: usize) -> RGBColor {
+    if name.starts_with("left") {
+        COLORS[0]
+    } else if name.starts_with("right") {
+        COLORS[1]
+    } else {
+        COLORS[k % COLORS.len()]
+    }
+}
+
+/// Values outside `[lo, hi]` (a physical range) set to the nearer bound, and how many were
+/// (non-finite values are kept as gaps).
+pub fn clip_to(values: &[f64], lo: f64, hi: f64) -> (Vec<f64>, usize) {
+    let mut n = 0;
+    let v = values
+        .iter()
+        .map(|&x| {
+            if x.is_finite() && !(lo..=hi).contains(&x) {
+                n += 1;
+                x.clamp(lo, hi)
+            } else {
+                x
+            }
+        })
+        .collect();
+    (v, n)
+}
+
+/// The start of the note [`radar_svg`] writes under a chart with clipped values.
+pub const RADAR_CLIPPED: &str = "clipped at ±";
 
 /// The scale label of [`radar_svg`] (drawn under the chart).
 pub const RADAR_SCALE_LABEL: &str = "z-score (SD from the healthy mean)";
@@ -25,22 +62,31 @@ fn perr<E: std::fmt::Display>(e: E) -> LdhError {
     LdhError::signal("plot", e.to_string())
 }
 
-/// A radar chart: one axis per parameter (`codes`), one closed polygon per series of z-scores.
-/// The scale runs from −zmax (centre) to +zmax (rim), zmax the largest |z| rounded up (2–20);
-/// rings at −zmax, −zmax/2, 0, zmax/2, zmax, the z = 0 ring (the healthy mean) in black.
+/// z-scores beyond ± this are drawn on the rim of [`radar_svg`] and marked as clipped.
+pub const RADAR_Z_CLIP: f64 = 4.0;
+/// |z| above which a radar point is marked abnormal (outside mean ± 1.96 SD).
+pub const RADAR_Z_ABNORMAL: f64 = 1.96;
+
+/// A radar chart: one axis per parameter (`codes`), one polygon per series of z-scores, its
+/// colour by series (left/right by hue). The scale runs from −zmax (centre) to +zmax (rim),
+/// zmax the largest |z| rounded up, between 2 and [`RADAR_Z_CLIP`]; rings at −zmax, −zmax/2, 0,
+/// zmax/2, zmax, the z = 0 ring (the healthy mean) in black. A missing (NaN) value leaves a gap
+/// in its polygon (never drawn as 0); a value beyond the rim is drawn on the rim as an open
+/// triangle (clipped) and named under the chart; |z| > [`RADAR_Z_ABNORMAL`] is marked with a
+/// black-edged dot. The legend sits above the chart, clear of the data.
 pub fn radar_svg(title: &str, codes: &[String], series: &[(String, Vec<f64>)]) -> Result<String> {
     let mut buf = String::new();
     {
         let root = SVGBackend::with_string(&mut buf, (800, 720)).into_drawing_area();
         root.fill(&WHITE).map_err(perr)?;
         let (w, h) = (800.0, 720.0);
-        let (cx, cy, rad) = (w / 2.0, h / 2.0 + 20.0, 260.0);
+        let (cx, cy, rad) = (w / 2.0, h / 2.0 + 30.0, 250.0);
         let zabs = series
             .iter()
             .flat_map(|s| s.1.iter())
             .filter(|v| v.is_finite())
             .fold(0.0f64, |m, v| m.max(v.abs()));
-        let z_max = zabs.ceil().clamp(2.0, 20.0);
+        let z_max = zabs.ceil().clamp(2.0, RADAR_Z_CLIP);
         let z_min = -z_max;
         let to_r = |z: f64| (z.clamp(z_min, z_max) - z_min) / (z_max - z_min) * rad;
         let n = codes.len().max(1);
@@ -48,12 +94,9 @@ pub fn radar_svg(title: &str, codes: &[String], series: &[(String, Vec<f64>)]) -
             let a = std::f64::consts::FRAC_PI_2 - i as f64 / n as f64 * std::f64::consts::TAU;
             ((cx + r * a.cos()) as i32, (cy - r * a.sin()) as i32)
         };
-        root.draw(&Text::new(
-            title.to_string(),
-            (20, 15),
-            ("sans-serif", 24).into_font(),
-        ))
-        .map_err(perr)?;
+        let font = |s: i32| ("sans-serif", s).into_font();
+        root.draw(&Text::new(title.to_string(), (20, 15), font(24)))
+            .map_err(perr)?;
         for z in [-z_max, -z_max / 2.0, 0.0, z_max / 2.0, z_max] {
             let ring: Vec<(i32, i32)> = (0..=n).map(|i| pt(i % n, to_r(z))).collect();
             let style = if z == 0.0 {
@@ -68,12 +111,8 @@ pub fn radar_svg(title: &str, codes: &[String], series: &[(String, Vec<f64>)]) -
             } else {
                 format!("z = {z:+.1}")
             };
-            root.draw(&Text::new(
-                label,
-                (x + 4, y - 14),
-                ("sans-serif", 13).into_font(),
-            ))
-            .map_err(perr)?;
+            root.draw(&Text::new(label, (x + 4, y - 14), font(13)))
+                .map_err(perr)?;
         }
         for (i, c) in codes.iter().enumerate() {
             root.draw(&PathElement::new(
@@ -89,34 +128,79 @@ pub fn radar_svg(title: &str, codes: &[String], series: &[(String, Vec<f64>)]) -
             ))
             .map_err(perr)?;
         }
+        let mut clipped: Vec<String> = Vec::new();
+        let mut x_legend = 20i32;
         for (k, (name, z)) in series.iter().enumerate() {
-            let c = COLORS[k % COLORS.len()];
-            if z.is_empty() {
-                continue;
+            let c = colour_of(name, k);
+            let m = z.len();
+            // Segments between neighbouring axes that both have a value: a gap where one is
+            // missing (a missing value is never drawn as 0).
+            for i in 0..m {
+                let j = (i + 1) % m;
+                if m > 1 && z[i].is_finite() && z[j].is_finite() {
+                    root.draw(&PathElement::new(
+                        vec![pt(i, to_r(z[i])), pt(j, to_r(z[j]))],
+                        c.stroke_width(3),
+                    ))
+                    .map_err(perr)?;
+                }
             }
-            let poly: Vec<(i32, i32)> = (0..=z.len())
-                .map(|i| pt(i % z.len().max(1), to_r(z[i % z.len().max(1)])))
-                .collect();
-            root.draw(&PathElement::new(poly, c.stroke_width(3)))
-                .map_err(perr)?;
+            for (i, &v) in z.iter().enumerate().filter(|(_, v)| v.is_finite()) {
+                let p = pt(i, to_r(v));
+                if v.abs() > z_max {
+                    let (x, y) = p;
+                    root.draw(&Polygon::new(
+                        vec![(x, y - 9), (x - 8, y + 6), (x + 8, y + 6)],
+                        WHITE.filled(),
+                    ))
+                    .map_err(perr)?;
+                    root.draw(&PathElement::new(
+                        vec![(x, y - 9), (x - 8, y + 6), (x + 8, y + 6), (x, y - 9)],
+                        c.stroke_width(2),
+                    ))
+                    .map_err(perr)?;
+                    clipped.push(format!(
+                        "{name} {} z = {v:+.1}",
+                        codes.get(i).map(String::as_str).unwrap_or("")
+                    ));
+                } else if v.abs() > RADAR_Z_ABNORMAL {
+                    root.draw(&Circle::new(p, 6, BLACK.filled()))
+                        .map_err(perr)?;
+                    root.draw(&Circle::new(p, 4, c.filled())).map_err(perr)?;
+                } else {
+                    root.draw(&Circle::new(p, 3, c.filled())).map_err(perr)?;
+                }
+            }
             root.draw(&Rectangle::new(
-                [(20, 50 + 24 * k as i32), (40, 64 + 24 * k as i32)],
+                [(x_legend, 52), (x_legend + 20, 66)],
                 c.filled(),
             ))
             .map_err(perr)?;
+            root.draw(&Text::new(name.clone(), (x_legend + 28, 50), font(16)))
+                .map_err(perr)?;
+            x_legend += 60 + 9 * name.chars().count() as i32;
+        }
+        root.draw(&Text::new(
+            "● with black edge: beyond ±1.96 SD (abnormal) · △ on the rim: clipped · gap: not measured"
+                .to_string(),
+            (20, 76),
+            font(13),
+        ))
+        .map_err(perr)?;
+        root.draw(&Text::new(
+            format!("{RADAR_SCALE_LABEL}: (x − mean_H) / SD_H, eq. 18"),
+            (20, 675),
+            font(14),
+        ))
+        .map_err(perr)?;
+        if !clipped.is_empty() {
             root.draw(&Text::new(
-                name.clone(),
-                (48, 48 + 24 * k as i32),
-                ("sans-serif", 16).into_font(),
+                format!("{RADAR_CLIPPED}{z_max:.0} SD: {}", clipped.join(", ")),
+                (20, 697),
+                font(13),
             ))
             .map_err(perr)?;
         }
-        root.draw(&Text::new(
-            format!("{RADAR_SCALE_LABEL}: (x − mean_H) / SD_H, eq. 18"),
-            (20, 690),
-            ("sans-serif", 14).into_font(),
-        ))
-        .map_err(perr)?;
         root.present().map_err(perr)?;
     }
     Ok(buf)
@@ -219,6 +303,45 @@ mod tests {
         assert!(b.contains("stride time (s)") && b.contains("group") && b.contains("LDHH"));
         assert!(boxplot_svg("x", "y", &[("A".into(), vec![])]).is_err());
     }
+
+    /// A missing value is a gap (no point, no segment to it), never a point at 0; values beyond
+    /// ±4 SD are drawn on the rim, marked and named.
+    #[test]
+    fn the_radar_leaves_gaps_and_marks_clipping() {
+        let codes: Vec<String> = ["SF", "SL", "ST", "WQK"].map(String::from).to_vec();
+        let r = radar_svg(
+            "x",
+            &codes,
+            &[("left".into(), vec![0.5, f64::NAN, 1.0, -0.2])],
+        )
+        .unwrap();
+        // Three finite values: three points; segments SF–WQK and ST–WQK only (SL missing).
+        assert_eq!(r.matches("<circle").count(), 3, "{r}");
+        assert!(!r.contains(RADAR_CLIPPED));
+        let all = radar_svg("x", &codes, &[("left".into(), vec![0.5, 0.1, 1.0, -0.2])]).unwrap();
+        assert_eq!(all.matches("<circle").count(), 4);
+        assert!(all.matches("<polyline").count() > r.matches("<polyline").count());
+        let c = radar_svg(
+            "x",
+            &codes,
+            &[("right".into(), vec![12.0, 0.1, -2.5, f64::NAN])],
+        )
+        .unwrap();
+        assert!(c.contains("clipped at ±4 SD: right SF z = +12.0"), "{c}");
+        assert!(c.contains("z = +4.0"), "the scale stops at 4 SD");
+        assert!(!c.contains("z = +6.0") && !c.contains("z = +10.0"));
+        // −2.5 is abnormal: the black-edged dot (two circles), 12 a triangle, NaN nothing.
+        assert_eq!(c.matches("<circle").count(), 3);
+    }
+
+    #[test]
+    fn clipping_counts_values_beyond_the_range() {
+        let (v, n) = clip_to(&[-100.0, 0.0, f64::NAN, 95.0], -90.0, 90.0);
+        assert_eq!(n, 2);
+        assert_eq!(v[0], -90.0);
+        assert_eq!(v[3], 90.0);
+        assert!(v[2].is_nan());
+    }
 }
 
 /// A confusion matrix (rows true, columns predicted) as an SVG heat map with counts.
@@ -295,7 +418,15 @@ pub fn confusion_svg(title: &str, classes: &[String], m: &[Vec<usize>]) -> Resul
     Ok(buf)
 }
 
-/// The series legend in the upper right corner of a chart.
+/// Extra y range above the data that keeps the upper-right legend of `n_series` entries clear
+/// of the data (about 15 % of the plot height per entry), in data units of a range `span`.
+fn legend_room(n_series: usize, span: f64) -> f64 {
+    let share = (0.15 * n_series as f64).min(0.6);
+    span * share / (1.0 - share)
+}
+
+/// The series legend in the upper right corner of a chart (drawn in the headroom that
+/// [`legend_room`] adds above the data).
 fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
     chart: &mut ChartContext<'a, DB, CT>,
 ) -> Result<()> {
@@ -373,7 +504,9 @@ pub fn signals_svg(
             let (lo, hi) = vals.fold((f64::MAX, f64::MIN), |(a, b), &v| (a.min(v), b.max(v)));
             let (lo, hi) = if lo <= hi { (lo, hi) } else { (-1.0, 1.0) };
             let pad = ((hi - lo) * 0.08).max(1e-3);
-            let (y_lo, y_hi) = (lo - pad, hi + pad);
+            // Headroom above the data for the legend (upper right), so it never covers a curve.
+            let room = legend_room(p.series.len(), hi - lo + 2.0 * pad);
+            let (y_lo, y_hi) = (lo - pad, hi + pad + room);
             let last = k + 1 == panels.len();
             let mut chart = ChartBuilder::on(area)
                 .margin(8)
@@ -414,7 +547,7 @@ pub fn signals_svg(
                 }
             }
             for (j, (name, v)) in p.series.iter().enumerate() {
-                let c = COLORS[j % COLORS.len()];
+                let c = colour_of(name, j);
                 // Break the line at non-finite samples.
                 let mut seg: Vec<(f64, f64)> = Vec::new();
                 let mut first = true;
@@ -479,7 +612,10 @@ pub fn stride_series_svg(title: &str, y_label: &str, series: &[Series]) -> Resul
             .margin(10)
             .x_label_area_size(40)
             .y_label_area_size(70)
-            .build_cartesian_2d(x_lo - xp..x_hi + xp, y_lo - yp..y_hi + yp)
+            .build_cartesian_2d(
+                x_lo - xp..x_hi + xp,
+                y_lo - yp..y_hi + yp + legend_room(series.len(), y_hi - y_lo + 2.0 * yp),
+            )
             .map_err(perr)?;
         chart
             .configure_mesh()
@@ -492,7 +628,7 @@ pub fn stride_series_svg(title: &str, y_label: &str, series: &[Series]) -> Resul
             .draw()
             .map_err(perr)?;
         for (k, (name, v)) in series.iter().enumerate() {
-            let c = COLORS[k % COLORS.len()];
+            let c = colour_of(name, k);
             let ok: Vec<(f64, f64)> = v
                 .iter()
                 .filter(|p| p.0.is_finite() && p.1.is_finite())
@@ -526,3 +662,94 @@ pub fn stride_series_svg(title: &str, y_label: &str, series: &[Series]) -> Resul
 
 /// One line of a per-stride plot: its label and `(x, y, valid)` points.
 pub type Series = (String, Vec<(f64, f64, bool)>);
+
+/// The x-axis label of [`cycle_svg`].
+pub const CYCLE_X_LABEL: &str = "gait cycle (%)";
+
+/// One curve of [`cycle_svg`]: name, mean and SD at equally spaced points over 0–100 %.
+pub type CycleSeries = (String, Vec<f64>, Vec<f64>);
+
+/// Gait-cycle curves: per series a line for the mean and a translucent band for mean ± SD,
+/// coloured by side (left blue, right orange), over an optional reference band (grey, drawn
+/// first, its line dashed-looking thin black). The legend sits in headroom above the data.
+pub fn cycle_svg(
+    title: &str,
+    y_label: &str,
+    series: &[CycleSeries],
+    reference: Option<&CycleSeries>,
+) -> Result<String> {
+    let vals = series.iter().chain(reference).flat_map(|(_, m, s)| {
+        m.iter()
+            .zip(s)
+            .flat_map(|(m, s)| [m - s, m + s])
+            .filter(|v| v.is_finite())
+    });
+    let (lo, hi) = vals.fold((f64::MAX, f64::MIN), |(a, b), v| (a.min(v), b.max(v)));
+    if !(lo <= hi) {
+        return Err(LdhError::signal(
+            "plot",
+            format!("{title}: nothing to plot"),
+        ));
+    }
+    let pad = ((hi - lo) * 0.06).max(1e-3);
+    let n_legend = series.len() + usize::from(reference.is_some());
+    let room = legend_room(n_legend, hi - lo + 2.0 * pad);
+    let mut buf = String::new();
+    {
+        let root = SVGBackend::with_string(&mut buf, (800, 360)).into_drawing_area();
+        root.fill(&WHITE).map_err(perr)?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 18))
+            .margin(10)
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d(0.0..100.0, lo - pad..hi + pad + room)
+            .map_err(perr)?;
+        chart
+            .configure_mesh()
+            .x_desc(CYCLE_X_LABEL)
+            .y_desc(y_label)
+            .axis_desc_style(("sans-serif", 15))
+            .label_style(("sans-serif", 13))
+            .light_line_style(RGBColor(235, 235, 235))
+            .max_light_lines(2)
+            .draw()
+            .map_err(perr)?;
+        let grey = RGBColor(120, 120, 120);
+        let all = reference.map(|r| (r, grey, true)).into_iter().chain(
+            series
+                .iter()
+                .enumerate()
+                .map(|(k, s)| (s, colour_of(&s.0, k), false)),
+        );
+        for ((name, mean, sd), c, is_ref) in all {
+            let n = mean.len().min(sd.len());
+            if n < 2 {
+                continue;
+            }
+            let x = |i: usize| 100.0 * i as f64 / (n - 1) as f64;
+            let band: Vec<(f64, f64)> = (0..n)
+                .map(|i| (x(i), mean[i] + sd[i]))
+                .chain((0..n).rev().map(|i| (x(i), mean[i] - sd[i])))
+                .collect();
+            let alpha = if is_ref { 0.30 } else { 0.22 };
+            chart
+                .draw_series(std::iter::once(Polygon::new(band, c.mix(alpha).filled())))
+                .map_err(perr)?;
+            let width = if is_ref { 1 } else { 2 };
+            chart
+                .draw_series(LineSeries::new(
+                    (0..n).map(|i| (x(i), mean[i])),
+                    c.stroke_width(width),
+                ))
+                .map_err(perr)?
+                .label(name.clone())
+                .legend(move |(x, y)| {
+                    Rectangle::new([(x, y - 5), (x + 16, y + 5)], c.mix(0.5).filled())
+                });
+        }
+        legend(&mut chart)?;
+        root.present().map_err(perr)?;
+    }
+    Ok(buf)
+}

@@ -11,6 +11,7 @@ use pyo3::types::PyDict;
 use ldh_core::io::ReadParams;
 use ldh_core::output::{self, Tables};
 use ldh_core::pipeline::{self as core, AnalysisParams, SubjectResult};
+use ldh_core::timings::{Stage, StageTimings};
 use ldh_core::{LdhError, Recording, Setting, Side};
 
 use crate::convert::{columns, from_py, to_py, value_of, vec1, vecs, Opts};
@@ -68,13 +69,16 @@ fn setting_of(setting: Option<&str>) -> Result<Option<Setting>, LdhError> {
     setting.map(str::parse).transpose()
 }
 
-/// The three result tables as a dict of column dicts, plus the wall-clock time.
+/// The three result tables as a dict of column dicts, plus the wall-clock time and the wall time
+/// per stage summed over the recordings (`write_s`: building the tables).
 fn tables<'py>(
     py: Python<'py>,
     results: &[SubjectResult],
     seconds: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let t = Tables::of(results);
+    let mut spent = StageTimings::default();
+    results.iter().for_each(|r| spent.add(&r.timings));
+    let t = spent.time(Stage::Write, || Tables::of(results));
     let d = PyDict::new(py);
     d.set_item("strides", columns(py, &t.strides, &output::STRIDE_COLUMNS)?)?;
     d.set_item("recordings", columns(py, &t.recordings, &[])?)?;
@@ -82,6 +86,10 @@ fn tables<'py>(
     let timings = PyDict::new(py);
     timings.set_item("total_s", seconds)?;
     timings.set_item("subjects", results.len())?;
+    timings.set_item("recordings", spent.recordings)?;
+    for stage in Stage::ALL {
+        timings.set_item(format!("{}_s", stage.as_str()), spent.get(stage))?;
+    }
     d.set_item("timings", timings)?;
     Ok(d)
 }

@@ -16,6 +16,7 @@ use crate::args::AnalyzeArgs;
 
 /// Run `ldh analyze`.
 pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
+    let started = std::time::Instant::now();
     super::check_out_dir(&a.out)?;
     let params = analysis_params(
         a.params.as_deref(),
@@ -103,7 +104,17 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
             dir.display()
         );
     }
-    summary(&a, &sum, subjects.len(), params.attitude.model.as_str())?;
+    let wall_s = started.elapsed().as_secs_f64();
+    if a.timings {
+        eprint!("{}", sum.timings.table(Some(wall_s)));
+    }
+    summary(
+        &a,
+        &sum,
+        subjects.len(),
+        params.attitude.model.as_str(),
+        wall_s,
+    )?;
     Ok(if sum.failed == 0 {
         ExitCode::SUCCESS
     } else {
@@ -113,7 +124,13 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
 
 /// The end of a run: failures (always) and warnings (with `-v`) on stderr, then one summary on
 /// stdout — a sentence, or JSON with `--json` — unless `-q`.
-fn summary(a: &AnalyzeArgs, sum: &FolderSummary, subjects: usize, model: &str) -> Result<()> {
+fn summary(
+    a: &AnalyzeArgs,
+    sum: &FolderSummary,
+    subjects: usize,
+    model: &str,
+    wall_s: f64,
+) -> Result<()> {
     let v = super::verbosity();
     let warned: Vec<_> = sum.warned().collect();
     let failures: Vec<_> = sum.failures().collect();
@@ -131,7 +148,7 @@ fn summary(a: &AnalyzeArgs, sum: &FolderSummary, subjects: usize, model: &str) -
     if a.json {
         let failure = |r: &&RecordingRow| serde_json::json!({"subject_id": r.subject_id, "side": r.side, "error": r.error});
         let warning = |r: &&RecordingRow| serde_json::json!({"subject_id": r.subject_id, "side": r.side, "warnings": r.warnings});
-        let j = serde_json::json!({
+        let mut j = serde_json::json!({
             "subjects": subjects,
             "recordings": sum.recordings,
             "ok": sum.recordings - sum.failed,
@@ -144,6 +161,9 @@ fn summary(a: &AnalyzeArgs, sum: &FolderSummary, subjects: usize, model: &str) -
             "failures": failures.iter().map(failure).collect::<Vec<_>>(),
             "warnings": warned.iter().map(warning).collect::<Vec<_>>(),
         });
+        if a.timings {
+            j["timings"] = sum.timings.to_json(Some(wall_s));
+        }
         println!("{}", serde_json::to_string_pretty(&j)?);
     } else if !v.quiet {
         let line = format!(

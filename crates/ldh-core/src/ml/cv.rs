@@ -1,7 +1,7 @@
 //! Repeated k-fold cross-validation with scaling (and optional feature selection) fitted inside
 //! each training fold, metrics as scikit-learn computes them, permutation importance.
 
-use ndarray::Axis;
+use ndarray::{Array2, Axis};
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -181,6 +181,23 @@ pub fn cross_validate_with_folds(
     fold_sets: &[Vec<usize>],
 ) -> Result<CvReport> {
     ds.validate()?;
+    let p = &checked_fold_params(ds, p, fold_sets)?;
+    // Every (repeat, fold) is independent: run them in parallel, then reduce in order.
+    let jobs: Vec<(usize, usize, &Vec<usize>)> = fold_sets
+        .iter()
+        .enumerate()
+        .flat_map(|(r, f)| (0..p.k).map(move |k| (r, k, f)))
+        .collect();
+    let outs: Vec<FoldOut> = jobs
+        .par_iter()
+        .map(|&(r, k, fold)| run_fold(ds, clf, p, r, k, fold))
+        .collect::<Result<Vec<_>>>()?;
+    Ok(reduce_folds(ds, clf, p, &outs))
+}
+
+/// The CV params with `k` and `repeats` taken from the fold table, after checking that every
+/// row has a fold id in every repeat, every repeat uses every fold and `top_k` fits.
+fn checked_fold_params(ds: &Dataset, p: &CvParams, fold_sets: &[Vec<usize>]) -> Result<CvParams> {
     if fold_sets.is_empty() || fold_sets.iter().any(|f| f.len() != ds.len()) {
         return Err(LdhError::param(
             "folds",
@@ -204,11 +221,6 @@ pub fn cross_validate_with_folds(
             ),
         ));
     }
-    let p = &CvParams {
-        repeats: fold_sets.len(),
-        k,
-        ..p.clone()
-    };
     if let Some(t) = p.top_k {
         if t == 0 || t > ds.feature_names.len() {
             return Err(LdhError::param(
@@ -218,75 +230,92 @@ pub fn cross_validate_with_folds(
             ));
         }
     }
+    Ok(CvParams {
+        repeats: fold_sets.len(),
+        k,
+        ..p.clone()
+    })
+}
+
+/// One fold's outcome: repeat, (true, predicted) pairs, accuracy drop per feature, test rows.
+type FoldOut = (usize, Vec<(usize, usize)>, Vec<f64>, usize);
+
+/// Trains on every row outside fold `k` of repeat `r` and tests on the fold (feature selection
+/// and min-max scaling fitted on the training rows only).
+fn run_fold(
+    ds: &Dataset,
+    clf: &Classifier,
+    p: &CvParams,
+    r: usize,
+    k: usize,
+    fold: &[usize],
+) -> Result<FoldOut> {
+    let nf = ds.feature_names.len();
+    let train: Vec<usize> = (0..ds.len()).filter(|&i| fold[i] != k).collect();
+    let test: Vec<usize> = (0..ds.len()).filter(|&i| fold[i] == k).collect();
+    if test.is_empty() {
+        return Ok((r, vec![], vec![0.0; nf], 0));
+    }
+    let (xtr, ytr) = ds.take(&train);
+    let (xte, yte) = ds.take(&test);
+    let cols: Vec<usize> = match p.top_k {
+        None => (0..nf).collect(),
+        Some(t) => top_k_columns(&xtr, &ytr, t),
+    };
+    let xtr = xtr.select(Axis(1), &cols);
+    let xte = xte.select(Axis(1), &cols);
+    let sc = MinMax::fit(&xtr);
+    let (xtr, xte) = (sc.transform(&xtr), sc.transform(&xte));
+    let seed = p
+        .seed
+        .wrapping_mul(1_000_003)
+        .wrapping_add((r * 1000 + k) as u64);
+    let model = clf
+        .reseeded(seed)
+        .fit(&xtr, &ytr, ds.class_names.len())
+        .map_err(|e| LdhError::signal("cross-validation", format!("repeat {r}, fold {k}: {e}")))?;
+    let pred = model.predict(&xte)?;
+    let pairs: Vec<(usize, usize)> = yte.iter().copied().zip(pred.iter().copied()).collect();
+    let base = pairs.iter().filter(|(a, b)| a == b).count() as f64;
+    let mut imp = vec![0.0; nf];
+    if p.permutation_importance {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed);
+        for (jj, &j) in cols.iter().enumerate() {
+            let mut xp = xte.clone();
+            let mut col: Vec<f64> = xp.column(jj).to_vec();
+            col.shuffle(&mut rng);
+            for (i, v) in col.into_iter().enumerate() {
+                xp[[i, jj]] = v;
+            }
+            let pp = model.predict(&xp)?;
+            let acc = yte.iter().zip(&pp).filter(|(a, b)| a == b).count() as f64;
+            imp[j] = base - acc;
+        }
+    }
+    Ok((r, pairs, imp, test.len()))
+}
+
+/// The `t` columns most correlated (|Pearson r|) with the label, in column order; ties keep
+/// the lower index.
+fn top_k_columns(x: &Array2<f64>, y: &[usize], t: usize) -> Vec<usize> {
+    let rr = pearson_with_label(x, y);
+    let mut idx: Vec<usize> = (0..rr.len()).collect();
+    idx.sort_by(|&a, &b| {
+        rr[b]
+            .abs()
+            .partial_cmp(&rr[a].abs())
+            .unwrap_or(std::cmp::Ordering::Equal)
+            .then(a.cmp(&b))
+    });
+    let mut keep: Vec<usize> = idx.into_iter().take(t).collect();
+    keep.sort_unstable();
+    keep
+}
+
+/// Confusion matrices and macro scores per repeat, pooled per-class scores and importances.
+fn reduce_folds(ds: &Dataset, clf: &Classifier, p: &CvParams, outs: &[FoldOut]) -> CvReport {
     let nc = ds.class_names.len();
     let nf = ds.feature_names.len();
-    // Every (repeat, fold) is independent: run them in parallel, then reduce in order.
-    let jobs: Vec<(usize, usize, &Vec<usize>)> = fold_sets
-        .iter()
-        .enumerate()
-        .flat_map(|(r, f)| (0..p.k).map(move |k| (r, k, f)))
-        .collect();
-    type FoldOut = (usize, Vec<(usize, usize)>, Vec<f64>, usize);
-    let outs: Vec<FoldOut> = jobs
-        .par_iter()
-        .map(|(r, k, fold)| -> Result<FoldOut> {
-            let train: Vec<usize> = (0..ds.len()).filter(|&i| fold[i] != *k).collect();
-            let test: Vec<usize> = (0..ds.len()).filter(|&i| fold[i] == *k).collect();
-            if test.is_empty() {
-                return Ok((*r, vec![], vec![0.0; nf], 0));
-            }
-            let (xtr, ytr) = ds.take(&train);
-            let (xte, yte) = ds.take(&test);
-            let cols: Vec<usize> = match p.top_k {
-                None => (0..nf).collect(),
-                Some(t) => {
-                    let rr = pearson_with_label(&xtr, &ytr);
-                    let mut idx: Vec<usize> = (0..nf).collect();
-                    idx.sort_by(|&a, &b| {
-                        rr[b]
-                            .abs()
-                            .partial_cmp(&rr[a].abs())
-                            .unwrap_or(std::cmp::Ordering::Equal)
-                            .then(a.cmp(&b))
-                    });
-                    let mut keep: Vec<usize> = idx.into_iter().take(t).collect();
-                    keep.sort_unstable();
-                    keep
-                }
-            };
-            let xtr = xtr.select(Axis(1), &cols);
-            let xte = xte.select(Axis(1), &cols);
-            let sc = MinMax::fit(&xtr);
-            let (xtr, xte) = (sc.transform(&xtr), sc.transform(&xte));
-            let seed = p
-                .seed
-                .wrapping_mul(1_000_003)
-                .wrapping_add((*r * 1000 + *k) as u64);
-            let model = clf.reseeded(seed).fit(&xtr, &ytr, nc).map_err(|e| {
-                LdhError::signal("cross-validation", format!("repeat {r}, fold {k}: {e}"))
-            })?;
-            let pred = model.predict(&xte)?;
-            let pairs: Vec<(usize, usize)> =
-                yte.iter().copied().zip(pred.iter().copied()).collect();
-            let base = pairs.iter().filter(|(a, b)| a == b).count() as f64;
-            let mut imp = vec![0.0; nf];
-            if p.permutation_importance {
-                let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed);
-                for (jj, &j) in cols.iter().enumerate() {
-                    let mut xp = xte.clone();
-                    let mut col: Vec<f64> = xp.column(jj).to_vec();
-                    col.shuffle(&mut rng);
-                    for (i, v) in col.into_iter().enumerate() {
-                        xp[[i, jj]] = v;
-                    }
-                    let pp = model.predict(&xp)?;
-                    let acc = yte.iter().zip(&pp).filter(|(a, b)| a == b).count() as f64;
-                    imp[j] = base - acc;
-                }
-            }
-            Ok((*r, pairs, imp, test.len()))
-        })
-        .collect::<Result<Vec<_>>>()?;
     let mut conf_total = vec![vec![0usize; nc]; nc];
     let (mut acc, mut pm, mut rm, mut fm) = (vec![], vec![], vec![], vec![]);
     let mut imp_total = vec![0.0; nf];
@@ -322,7 +351,7 @@ pub fn cross_validate_with_folds(
         }
     }
     let pc = prf(&conf_total);
-    Ok(CvReport {
+    CvReport {
         classifier: clf.name().into(),
         kind: p.kind,
         k: p.k,
@@ -346,7 +375,7 @@ pub fn cross_validate_with_folds(
             .map(|(n, v)| (n.clone(), v / n_test.max(1) as f64))
             .collect(),
         accuracy_per_repeat: acc,
-    })
+    }
 }
 
 /// The feature ranking of Table 5: Pearson r with the label, and its absolute rank.

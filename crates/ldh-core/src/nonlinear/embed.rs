@@ -30,14 +30,22 @@ pub(crate) fn delay_embed_flat(
             needed: span,
         });
     }
-    let m = x.len() - span + 1;
-    let mut out = Vec::with_capacity(m * emb_dim);
+    let mut out = Vec::new();
+    delay_embed_into(x, emb_dim, lag, &mut out);
+    Ok(out)
+}
+
+/// [`delay_embed_flat`] into a reused buffer (cleared first); the caller has checked
+/// `emb_dim ≥ 1`, `lag ≥ 1` and `x.len() ≥ (emb_dim − 1)·lag + 1`.
+fn delay_embed_into(x: &[f64], emb_dim: usize, lag: usize, out: &mut Vec<f64>) {
+    let m = x.len() + 1 - ((emb_dim - 1) * lag + 1);
+    out.clear();
+    out.reserve(m * emb_dim);
     for i in 0..m {
         for d in 0..emb_dim {
             out.push(x[i + d * lag]);
         }
     }
-    Ok(out)
 }
 
 /// Delay embedding of a 1-D series: row `i` is
@@ -75,32 +83,52 @@ pub fn state_embed(channels: &[&[f64]]) -> Result<Array2<f64>, NonlinearError> {
     }))
 }
 
-/// Average mutual information `I(τ)` (nats) between `x_t` and `x_{t+τ}`.
-fn ami(x: &[f64], tau: usize, bins: usize, lo: f64, width: f64) -> f64 {
-    let m = x.len() - tau;
-    let bin = |v: f64| (((v - lo) / width) as usize).min(bins - 1);
-    let mut joint = vec![0u32; bins * bins];
-    let mut pa = vec![0u32; bins];
-    let mut pb = vec![0u32; bins];
-    for t in 0..m {
-        let a = bin(x[t]);
-        let b = bin(x[t + tau]);
-        joint[a * bins + b] += 1;
-        pa[a] += 1;
-        pb[b] += 1;
-    }
-    let mf = m as f64;
-    let mut s = 0.0;
-    for a in 0..bins {
-        for b in 0..bins {
-            let c = joint[a * bins + b];
-            if c > 0 {
-                let pab = c as f64 / mf;
-                s += pab * (pab / (pa[a] as f64 / mf * pb[b] as f64 / mf)).ln();
-            }
+/// Reused buffers of [`lag_ami`]: the bin of every sample (computed once) and the histograms.
+struct AmiBuffers {
+    bins: usize,
+    bin: Vec<usize>,
+    joint: Vec<u32>,
+    pa: Vec<u32>,
+    pb: Vec<u32>,
+}
+
+impl AmiBuffers {
+    fn new(x: &[f64], bins: usize, lo: f64, width: f64) -> Self {
+        let bin = |v: f64| (((v - lo) / width) as usize).min(bins - 1);
+        AmiBuffers {
+            bins,
+            bin: x.iter().map(|&v| bin(v)).collect(),
+            joint: vec![0; bins * bins],
+            pa: vec![0; bins],
+            pb: vec![0; bins],
         }
     }
-    s
+
+    /// Average mutual information `I(τ)` (nats) between `x_t` and `x_{t+τ}`.
+    fn ami(&mut self, tau: usize) -> f64 {
+        let bins = self.bins;
+        let m = self.bin.len() - tau;
+        self.joint.fill(0);
+        self.pa.fill(0);
+        self.pb.fill(0);
+        for (&a, &b) in self.bin[..m].iter().zip(&self.bin[tau..]) {
+            self.joint[a * bins + b] += 1;
+            self.pa[a] += 1;
+            self.pb[b] += 1;
+        }
+        let mf = m as f64;
+        let mut s = 0.0;
+        for a in 0..bins {
+            for b in 0..bins {
+                let c = self.joint[a * bins + b];
+                if c > 0 {
+                    let pab = c as f64 / mf;
+                    s += pab * (pab / (self.pa[a] as f64 / mf * self.pb[b] as f64 / mf)).ln();
+                }
+            }
+        }
+        s
+    }
 }
 
 /// Delay (samples) at the first local minimum of the average mutual
@@ -135,9 +163,10 @@ pub fn lag_ami(x: &[f64], max_lag: usize, bins: Option<usize>) -> Result<usize, 
     let lo = x.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = x.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let width = (hi - lo) / bins as f64;
-    let mut prev = ami(x, 1, bins, lo, width);
+    let mut buf = AmiBuffers::new(x, bins, lo, width);
+    let mut prev = buf.ami(1);
     for tau in 1..max_lag {
-        let next = ami(x, tau + 1, bins, lo, width);
+        let next = buf.ami(tau + 1);
         if prev <= next {
             return Ok(tau);
         }
@@ -264,9 +293,13 @@ pub fn emb_dim_fnn(x: &[f64], lag: usize, params: &FnnParams) -> Result<FnnResul
     let mean = x.iter().sum::<f64>() / n as f64;
     let sd = (x.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n as f64).sqrt();
     let mut fractions = Vec::with_capacity(params.max_dim);
+    // one embedding buffer for every dimension; the loop stops at the first dimension that
+    // meets the criterion
+    let mut pts = Vec::with_capacity(n * params.max_dim.min(4));
     for d in 1..=params.max_dim {
         let rows = n - d * lag;
-        let pts = delay_embed_flat(&x[..rows + (d - 1) * lag], d, lag)?;
+        // rows ≥ 2·min_tsep + 2 ≥ 2 by the length check above
+        delay_embed_into(&x[..rows + (d - 1) * lag], d, lag, &mut pts);
         let nb = nearest_outside_window(&pts, d, params.min_tsep);
         let mut false_nb = 0usize;
         let mut counted = 0usize;

@@ -19,9 +19,10 @@
 //!   of a gait signal (Theiler window of one stride, fit over the first half
 //!   stride), in 1/s and per stride.
 //!
-//! Nearest neighbours are exact, found through a `kiddo` k-d tree with a
-//! Theiler window (no O(N²) distance matrix); see `docs/lyapunov.md` for the
-//! algorithms, defaults, differences from nolds and measured speed.
+//! Nearest neighbours are exact, found through a k-d tree that skips the
+//! Theiler window (Euclidean: Rosenstein, FNN) or a `kiddo` k-d tree
+//! (Chebyshev: Eckmann); no O(N²) distance matrix; see `docs/lyapunov.md` for
+//! the algorithms, defaults, differences from nolds and measured speed.
 
 mod eckmann;
 mod embed;
@@ -31,6 +32,7 @@ mod linalg;
 mod neighbours;
 mod ransac;
 mod rosenstein;
+mod window_tree;
 
 #[cfg(test)]
 mod tests;

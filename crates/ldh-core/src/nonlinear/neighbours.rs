@@ -1,8 +1,9 @@
 //! Exact nearest-neighbour searches with a Theiler window.
 //!
 //! Points are rows of a row-major `n × dim` slice. For `dim` in `1..=10` the
-//! searches go through a `kiddo` 6 k-d tree (the dimension is a const generic,
-//! dispatched by [`dispatch_dim!`]); for larger dimensions an exact brute-force
+//! Euclidean searches go through a [`WindowTree`] that skips the Theiler window,
+//! the Chebyshev ones through a `kiddo` 6 k-d tree (the dimension is a const
+//! generic, dispatched by [`dispatch_dim!`]); for larger dimensions an exact brute-force
 //! scan is used (O(n²) time but O(n) memory: one row of distances is never
 //! materialised, each query keeps only its running best).
 //!
@@ -13,7 +14,9 @@
 
 use std::num::NonZeroUsize;
 
-use kiddo::{Chebyshev, ImmutableKdTree, SquaredEuclidean};
+use kiddo::{Chebyshev, ImmutableKdTree};
+
+use super::window_tree::WindowTree;
 use rayon::prelude::*;
 
 /// Dispatches a const-generic function over dimensions 1..=10; `None` for
@@ -73,6 +76,15 @@ pub(crate) fn np_sum(a: &[f64]) -> f64 {
 
 /// Euclidean distance as nolds computes it: `np.sqrt(np.sum((x - y)**2))`.
 pub(crate) fn np_euclidean(a: &[f64], b: &[f64]) -> f64 {
+    if a.len() < 8 {
+        // np_sum's plain loop, without the buffer
+        let mut res = 0.0;
+        for (x, y) in a.iter().zip(b) {
+            let d = x - y;
+            res += d * d;
+        }
+        return res.sqrt();
+    }
     let mut sq = [0.0f64; 128];
     if a.len() <= 128 {
         for ((s, x), y) in sq.iter_mut().zip(a).zip(b) {
@@ -155,72 +167,31 @@ pub(crate) fn nn_brute(points: &[f64], dim: usize, min_tsep: usize) -> Vec<usize
         .collect()
 }
 
-/// k-d tree search with an adaptive `k`: ask for the 8 nearest, grow ×4 until a
-/// row outside the Theiler window appears. With `k ≥ 2·min_tsep + 2` at least
-/// one result must lie outside the window (the window holds `2·min_tsep + 1`
-/// rows), so the loop always terminates with the exact answer. The tree's own
-/// distances only select candidates: all valid candidates within a relative
-/// 1e-9 of the best are re-measured in numpy's order and the lowest index wins
-/// among exact ties; `k` also grows until the returned set provably contains
-/// every such near-tie.
+/// Search through a [`WindowTree`]: rows in chunks (in parallel), each chunk in order, every
+/// query seeded with the previous row's neighbour shifted by one.
 fn nn_kdtree<const K: usize>(points: &[f64], min_tsep: usize) -> Vec<usize> {
     let pts = to_arrays::<K>(points);
     let n = pts.len();
-    let Ok(tree) = ImmutableKdTree::<f64, K>::new_from_slice(&pts) else {
-        // construction only fails for > u32::MAX points: stay exact, no panic
+    if n > u32::MAX as usize {
+        // the tree indexes rows with u32: stay exact, no panic
         return nn_brute(points, K, min_tsep);
-    };
-    let start_k = 8.min(n).max(1);
-    (0..n)
-        .into_par_iter()
-        .map(|i| {
-            let q = &pts[i];
-            let mut k = start_k;
-            loop {
-                let res = tree
-                    .query(q)
-                    .nearest_n::<SquaredEuclidean<f64>>(
-                        NonZeroUsize::new(k).unwrap_or(NonZeroUsize::MIN),
-                    )
-                    .execute();
-                let all_returned = res.len() < k || k >= n;
-                let best = res
-                    .iter()
-                    .find(|r| outside_window(i, r.item as usize, min_tsep))
-                    .map(|r| r.distance);
-                if let Some(dstar) = best {
-                    let thr = dstar * (1.0 + 1e-9) + f64::MIN_POSITIVE;
-                    let last = res.last().map(|r| r.distance).unwrap_or(f64::INFINITY);
-                    if all_returned || last > thr {
-                        let mut choice = (f64::INFINITY, usize::MAX);
-                        for r in &res {
-                            let j = r.item as usize;
-                            if r.distance <= thr && outside_window(i, j, min_tsep) {
-                                let d = np_euclidean(q, &pts[j]);
-                                if d < choice.0
-                                    || (d == choice.0 && j < choice.1)
-                                    || choice.1 == usize::MAX
-                                {
-                                    choice = (d, j);
-                                }
-                            }
-                        }
-                        return choice.1;
-                    }
-                }
-                if all_returned {
-                    // unreachable under the caller's precondition; fall back to
-                    // the exact scan rather than panic
-                    return nn_brute_one(points, K, i, min_tsep);
-                }
-                // ×4 growth, but stop at 2·min_tsep + 2 first: from there on a
-                // row outside the window is guaranteed among the results
-                let cap = 2 * min_tsep + 2;
-                let next = if k < cap { (k * 4).min(cap) } else { k * 4 };
-                k = next.min(n);
-            }
-        })
-        .collect()
+    }
+    let tree = WindowTree::new(&pts);
+    let mut out = vec![usize::MAX; n];
+    out.par_chunks_mut(512).enumerate().for_each(|(c, chunk)| {
+        let mut stack = Vec::with_capacity(64);
+        let mut seed = None;
+        for (o, slot) in chunk.iter_mut().enumerate() {
+            let i = c * 512 + o;
+            *slot = match tree.nearest_outside(i, min_tsep, seed, &mut stack) {
+                Some(j) => j,
+                // unreachable under the caller's precondition: exact scan, no panic
+                None => nn_brute_one(points, K, i, min_tsep),
+            };
+            seed = Some(*slot + 1);
+        }
+    });
+    out
 }
 
 fn nn_brute_one(points: &[f64], dim: usize, i: usize, min_tsep: usize) -> usize {

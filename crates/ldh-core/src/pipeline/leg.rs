@@ -4,6 +4,7 @@
 use super::*;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
+use std::time::Instant;
 
 use crate::align::{align, Aligned, Alignment};
 use crate::attitude::{estimate, Attitude};
@@ -14,6 +15,7 @@ use crate::io::ReadReport;
 use crate::nonlinear::{gait_sta, GaitStaParams};
 use crate::preprocess::preprocess;
 use crate::recording::{Recording, Side};
+use crate::timings::{Stage, StageTimings};
 
 /// The analysis of one leg.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -59,18 +61,42 @@ pub fn analyze_leg(
     params: &AnalysisParams,
     sensor_height_m: Option<f64>,
 ) -> Result<(LegResult, Vec<f64>)> {
+    analyze_leg_timed(
+        rec,
+        side,
+        params,
+        sensor_height_m,
+        &mut StageTimings::default(),
+    )
+}
+
+/// [`analyze_leg`], adding the wall time of each stage to `t` and 1 to `t.recordings`
+/// (timing never changes the result).
+pub fn analyze_leg_timed(
+    rec: &Recording,
+    side: Side,
+    params: &AnalysisParams,
+    sensor_height_m: Option<f64>,
+    t: &mut StageTimings,
+) -> Result<(LegResult, Vec<f64>)> {
+    t.recordings += 1;
+    let mut clock = Instant::now();
     // The fields are public: a recording built by hand may break the invariants.
     rec.validate()?;
     let pp = params.preprocess.check(rec.fs_hz)?;
     let pre = preprocess(rec, &pp)?;
+    t.lap(Stage::Preprocess, &mut clock);
     let al = align(&pre, &params.align.check()?)?;
+    t.lap(Stage::Align, &mut clock);
     let att = estimate(&al, &params.attitude.check()?)?;
+    t.lap(Stage::Attitude, &mut clock);
     let fs = rec.fs_hz;
     // Events come from the gyroscope's sagittal rate in both models (the ACC-only model replaces
     // the attitude only, so the comparison isolates it; SPEC §3.7).
     let omega = al.gyro_dps[1].clone();
     let ev_params = params.events.clone();
     let ev = detect(&att.pitch_deg, &omega, fs, &ev_params.check()?)?;
+    t.lap(Stage::Events, &mut clock);
     let mut sp = params.strides.clone();
     if let Some(h) = sensor_height_m {
         sp.sensor_height_m = h;
@@ -79,6 +105,7 @@ pub fn analyze_leg(
     let before = side_parameters(&st, None);
     let checks = leg_checks(rec, &al, &att, &mut st, &before);
     let mut parameters = side_parameters(&st, None);
+    t.lap(Stage::Strides, &mut clock);
     if params.compute_sta && !checks.gyro_fault {
         fill_sta(
             &mut parameters,
@@ -88,6 +115,7 @@ pub fn analyze_leg(
             &params.sta,
             params.sta_max_strides,
         );
+        t.lap(Stage::Sta, &mut clock);
     }
     withhold(&mut parameters, &checks.warnings);
     // A faulty gyroscope's heel strikes are not lent to the other leg's step time.
@@ -106,6 +134,7 @@ pub fn analyze_leg(
             reason,
         ));
     }
+    t.lap(Stage::Strides, &mut clock);
     Ok((
         LegResult {
             side,

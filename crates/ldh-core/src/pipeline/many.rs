@@ -14,6 +14,7 @@ use crate::error::Result;
 use crate::io::{FormatSpec, ValidReadParams};
 use crate::output::{self, RecordingRow, TableSink};
 use crate::report::{file_stem, SubjectTraces, ValidTraceParams};
+use crate::timings::{Stage, StageTimings};
 
 /// Analyse every subject (in parallel, results in input order).
 pub fn analyze_many(
@@ -60,6 +61,9 @@ pub struct FolderSummary {
     pub valid_strides: usize,
     /// Rows with something to say: failed or with warnings, in output order.
     pub flagged: Vec<RecordingRow>,
+    /// Wall time per stage summed over the subjects (and threads); `write` is building and
+    /// writing the tables (and traces).
+    pub timings: StageTimings,
 }
 
 /// Analyse `subjects` and write `strides.csv/.json`, `events.csv` and `recordings.csv/.json` to
@@ -90,19 +94,25 @@ pub fn analyze_to_folder(
     let mut recordings = TableSink::create(out, "recordings", &[], true)?;
     let mut sum = FolderSummary::default();
     for part in subjects.chunks(opts.chunk.max(1)) {
-        let tables: Vec<Result<output::Tables>> = part
+        let tables: Vec<Result<(output::Tables, StageTimings)>> = part
             .par_iter()
             .map(|s| {
                 let r = analyze_subject(s, params, format, read);
-                if let Some(tp) = opts.traces {
-                    write_traces(out, &r, tp)?;
-                }
+                let mut spent = r.timings;
+                let tables = spent.time(Stage::Write, || -> Result<output::Tables> {
+                    if let Some(tp) = opts.traces {
+                        write_traces(out, &r, tp)?;
+                    }
+                    Ok(output::Tables::of(std::slice::from_ref(&r)))
+                })?;
                 done();
-                Ok(output::Tables::of(std::slice::from_ref(&r)))
+                Ok((tables, spent))
             })
             .collect();
         for t in tables {
-            let t = t?;
+            let (t, spent) = t?;
+            sum.timings.add(&spent);
+            let clock = std::time::Instant::now();
             sum.valid_strides += t.strides.iter().filter(|s| s.valid).count();
             strides.push(&t.strides)?;
             events.push(&t.events)?;
@@ -114,12 +124,15 @@ pub fn analyze_to_folder(
                     .into_iter()
                     .filter(|r| r.status != "ok" || !r.warnings.is_empty()),
             );
+            sum.timings.write_s += clock.elapsed().as_secs_f64();
         }
     }
     sum.strides = strides.rows();
+    let clock = std::time::Instant::now();
     strides.finish()?;
     events.finish()?;
     recordings.finish()?;
+    sum.timings.write_s += clock.elapsed().as_secs_f64();
     Ok(sum)
 }
 

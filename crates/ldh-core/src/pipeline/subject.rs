@@ -7,6 +7,7 @@ use crate::attitude::AttitudeModel;
 use crate::gait::side_parameters;
 use crate::io::{FormatSpec, ReadReport, ValidReadParams};
 use crate::recording::{Recording, Side};
+use crate::timings::{Stage, StageTimings};
 
 impl SubjectResult {
     /// The bilateral event sequence of this subject (see [`bilateral_events`]).
@@ -46,6 +47,10 @@ pub struct SubjectResult {
     /// swapped); see [`pair_warnings`].
     #[serde(default)]
     pub warnings: Vec<Warning>,
+    /// Wall time per stage of both legs, reading included (describes the run, not the result:
+    /// not serialised, and always compares equal; see [`StageTimings`]).
+    #[serde(skip)]
+    pub timings: StageTimings,
 }
 
 impl SubjectResult {
@@ -82,12 +87,16 @@ pub fn analyze_subject(
         let (rec, report) = src.read(own.or(format), read).map_err(|e| e.to_string())?;
         Ok((rec, report, src.label()))
     };
-    analyze_pair(
-        input,
-        load(&input.left, input.left_format.as_ref(), Side::Left),
-        load(&input.right, input.right_format.as_ref(), Side::Right),
-        params,
-    )
+    let mut read_time = StageTimings::default();
+    let (left, right) = read_time.time(Stage::Read, || {
+        (
+            load(&input.left, input.left_format.as_ref(), Side::Left),
+            load(&input.right, input.right_format.as_ref(), Side::Right),
+        )
+    });
+    let mut out = analyze_pair(input, left, right, params);
+    out.timings.add(&read_time);
+    out
 }
 
 /// The read outcome of one leg: the recording, what the reader found and a label, or the error.
@@ -108,17 +117,21 @@ pub fn analyze_pair(
         }
         _ => params,
     };
-    let run =
+    let mut timings = StageTimings::default();
+    let mut run =
         |loaded: LoadedLeg, side: Side| -> std::result::Result<(LegResult, Vec<f64>), String> {
             let (rec, report, label) = loaded?;
-            let (mut leg, hs) = analyze_leg(&rec, side, params, input.sensor_height_m)
-                .map_err(|e| format!("{label}: {e}"))?;
+            let (mut leg, hs) =
+                analyze_leg_timed(&rec, side, params, input.sensor_height_m, &mut timings)
+                    .map_err(|e| format!("{label}: {e}"))?;
             leg.read = report;
             leg.source = label;
             Ok((leg, hs))
         };
     let mut l = run(left, Side::Left);
     let mut r = run(right, Side::Right);
+    // The pairing below (turns from both legs, step times, the pair's checks) counts as strides.
+    let clock = std::time::Instant::now();
     bilateral_turns(&mut l, &mut r, input, params);
     // The other leg's heel strikes on this leg's clock: event times count from each file's own
     // first sample, and the two files may start at different times.
@@ -179,6 +192,7 @@ pub fn analyze_pair(
             ),
         ));
     }
+    timings.strides_s += clock.elapsed().as_secs_f64();
     SubjectResult {
         subject_id: input.subject_id.clone(),
         trial_id: input.trial_id.clone(),
@@ -190,6 +204,7 @@ pub fn analyze_pair(
         left,
         right,
         warnings,
+        timings,
     }
 }
 

@@ -2,11 +2,13 @@
 //! regrouped from the streamed `strides.csv`, its traces when kept, and a classifier's output
 //! when given) and the cohort page.
 
-use std::collections::HashMap;
-use std::path::Path;
+use std::collections::{HashMap, HashSet};
+use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
 
+use super::cycle::{pitch_cycle, CycleReference};
+use super::reference::passes_every_check;
 use super::{
     cohort_html, file_stem, subject_html, CohortReport, Reference, SubjectReport, SubjectTraces,
     ValidReportParams,
@@ -58,7 +60,8 @@ pub fn build(
     done: &(dyn Fn(usize) + Sync),
 ) -> Result<usize> {
     let rows = read_recordings(results)?;
-    let reference = Reference::from_rows(&rows, params);
+    let mut reference = Reference::from_rows(&rows, params);
+    reference.cycle = cycle_reference(results, &rows, params)?;
     let mut preds_by = predictions_by_subject(src.model, &rows)?;
     let model_desc = src.model.map(|m| m.describe()).unwrap_or_default();
     let subjects = output::rows_by_subject(&rows);
@@ -118,6 +121,7 @@ pub fn build(
             .map(|id| (id.clone(), format!("subjects/{}.html", file_stem(id))))
             .collect(),
         recordings: rows,
+        reference: Some(reference),
     };
     write_atomic(out.join("index.html"), cohort_html(&cohort)?.as_bytes())?;
     Ok(ids.len())
@@ -136,6 +140,83 @@ fn predictions_by_subject(
     Ok(by)
 }
 
+/// The trace file of a subject (of its first trial when it has several), and that trial.
+fn trace_file(
+    results: &Path,
+    subject_id: &str,
+    recs: &[RecordingRow],
+) -> (PathBuf, Option<String>) {
+    let first_trial = recs.first().map(|r| r.trial_id.clone());
+    match first_trial.filter(|t| !t.is_empty()) {
+        Some(t) => {
+            let key = format!("{subject_id}__trial_{t}");
+            let tf = results
+                .join("traces")
+                .join(format!("{}.json", file_stem(&key)));
+            let several = recs.iter().any(|r| r.trial_id != t);
+            (tf, several.then_some(t))
+        }
+        None => (
+            results
+                .join("traces")
+                .join(format!("{}.json", file_stem(subject_id))),
+            None,
+        ),
+    }
+}
+
+/// The healthy reference band of the shank-pitch cycle: the mean curve of every healthy leg
+/// that passes every quality check and has a trace (from `ldh analyze --report`).
+fn cycle_reference(
+    results: &Path,
+    rows: &[RecordingRow],
+    params: &ValidReportParams,
+) -> Result<CycleReference> {
+    let legs: HashSet<(&str, &str)> = rows
+        .iter()
+        .filter(|r| r.group == "healthy" && r.status == "ok" && passes_every_check(r))
+        .map(|r| (r.subject_id.as_str(), r.side.as_str()))
+        .collect();
+    let subjects: HashSet<&str> = legs.iter().map(|l| l.0).collect();
+    let mut curves = Vec::new();
+    if subjects.is_empty() || !results.join("traces").is_dir() {
+        return Ok(CycleReference::default());
+    }
+    let mut strides: HashMap<String, Vec<crate::output::StrideRow>> = HashMap::new();
+    for g in output::stride_groups(&results.join("strides.csv"))? {
+        let (id, v) = g?;
+        if subjects.contains(id.as_str()) {
+            strides.insert(id, v);
+        }
+    }
+    for (id, recs) in output::rows_by_subject(rows) {
+        if !subjects.contains(id) {
+            continue;
+        }
+        let recs: Vec<RecordingRow> = recs.into_iter().cloned().collect();
+        let (tf, trial) = trace_file(results, id, &recs);
+        if !tf.exists() {
+            continue;
+        }
+        let t = SubjectTraces::from_json(&read_text(&tf)?, &tf.display().to_string())?;
+        let st: Vec<crate::output::StrideRow> = strides
+            .remove(id)
+            .unwrap_or_default()
+            .into_iter()
+            .filter(|r| trial.as_ref().is_none_or(|t| &r.trial_id == t))
+            .collect();
+        for leg in &t.legs {
+            if legs.contains(&(id, leg.side.as_str())) {
+                curves.extend(pitch_cycle(leg, &st));
+            }
+        }
+    }
+    Ok(CycleReference::from_legs(
+        &curves,
+        params.0.min_healthy_subjects,
+    ))
+}
+
 fn write_subject(
     results: &Path,
     out: &Path,
@@ -144,18 +225,11 @@ fn write_subject(
     params: &ValidReportParams,
 ) -> Result<()> {
     let stem = file_stem(&job.subject_id);
-    let mut tf = results.join("traces").join(format!("{stem}.json"));
     // A person's several trials: the plots show the first trial (its traces and strides); the
     // parameter table averages them all.
-    let first_trial = job.recordings.first().map(|r| r.trial_id.clone());
-    if let Some(t) = first_trial.filter(|t| !t.is_empty()) {
-        if job.recordings.iter().any(|r| r.trial_id != t) {
-            job.strides.retain(|r| r.trial_id == t);
-        }
-        let key = format!("{}__trial_{t}", job.subject_id);
-        tf = results
-            .join("traces")
-            .join(format!("{}.json", file_stem(&key)));
+    let (tf, trial) = trace_file(results, &job.subject_id, &job.recordings);
+    if let Some(t) = trial {
+        job.strides.retain(|r| r.trial_id == t);
     }
     if tf.exists() {
         job.traces = Some(SubjectTraces::from_json(

@@ -7,7 +7,7 @@
 use maud::{html, Markup};
 
 use super::html::{count, figure, fmt, page, side_label, VERSION};
-use super::CohortReport;
+use super::{CohortReport, Reference, ReportParams};
 use crate::cohort::{self, Cohort, ModelOffsets, PARAMETERS};
 use crate::error::Result;
 use crate::ml::{CvKind, CvReport};
@@ -19,6 +19,7 @@ pub fn cohort_html(c: &CohortReport) -> Result<String> {
     let body = html! {
         (header(&c.recordings))
         (failed_box(&c.recordings))
+        (triage(c)?)
         h2 { "1. Group statistics (Table 3)" } "\n"
         (group_sections(c)?)
         (classifiers(&c.cv)?)
@@ -54,6 +55,140 @@ fn failed_box(rows: &[RecordingRow]) -> Markup {
             "\n"
         }
     }
+}
+
+/// One subject's line of the triage table.
+struct TriageRow<'a> {
+    id: &'a str,
+    group: &'a str,
+    /// 0 nothing analysed, 1 one side missing or failed, 2 both sides analysed.
+    rank: u8,
+    status: String,
+    abnormal: usize,
+    measured: usize,
+    not_measured: usize,
+    warnings: usize,
+    faults: usize,
+}
+
+fn triage_row<'a>(id: &'a str, recs: &[&'a RecordingRow], reference: &Reference) -> TriageRow<'a> {
+    let sides: Vec<RecordingRow> = ["left", "right"]
+        .iter()
+        .filter_map(|side| cohort::person_row(recs, side))
+        .collect();
+    let ok: Vec<&RecordingRow> = sides.iter().filter(|r| r.status == "ok").collect();
+    let (rank, status) = match (ok.len(), sides.len()) {
+        (0, _) => (0, "not analysed".to_string()),
+        (1, 2) => {
+            let bad = sides
+                .iter()
+                .find(|r| r.status != "ok")
+                .map_or("", |r| r.side.as_str());
+            (1, format!("{bad} side failed"))
+        }
+        (1, _) => (1, "one side only".to_string()),
+        _ => (2, "analysed".to_string()),
+    };
+    let mut t = TriageRow {
+        id,
+        group: recs.first().map_or("", |r| r.group.as_str()),
+        rank,
+        status,
+        abnormal: 0,
+        measured: 0,
+        not_measured: 0,
+        warnings: 0,
+        faults: 0,
+    };
+    for r in &ok {
+        for par in PARAMETERS.iter() {
+            if r.withheld.reason(par.column).is_some() {
+                t.not_measured += 1;
+                continue;
+            }
+            let Some(v) = cohort::value(r, par.column) else {
+                t.not_measured += 1;
+                continue;
+            };
+            t.measured += 1;
+            let rr = reference.ranges.iter().find(|x| x.column == par.column);
+            if rr.and_then(|rr| rr.outside(v)) == Some(true) {
+                t.abnormal += 1;
+            }
+        }
+    }
+    for r in &sides {
+        t.warnings += r
+            .warnings
+            .at_least(crate::pipeline::Severity::Warning)
+            .count();
+        t.faults += r
+            .warnings
+            .at_least(crate::pipeline::Severity::Fault)
+            .count();
+    }
+    t
+}
+
+/// The triage table: one row per subject, worst first (nothing analysed, then one side only,
+/// then by sensor faults, values outside the reference, warnings), each linked to its page.
+/// Sorted here rather than by a script: the page has none.
+fn triage(c: &CohortReport) -> Result<Markup> {
+    let own;
+    let reference = match &c.reference {
+        Some(r) => r,
+        None => {
+            own = Reference::from_rows(&c.recordings, &ReportParams::default().check()?);
+            &own
+        }
+    };
+    let links: std::collections::HashMap<&str, &str> = c
+        .subject_links
+        .iter()
+        .map(|(id, href)| (id.as_str(), href.as_str()))
+        .collect();
+    let mut rows: Vec<TriageRow> = crate::output::rows_by_subject(&c.recordings)
+        .into_iter()
+        .map(|(id, recs)| triage_row(id, &recs, reference))
+        .collect();
+    rows.sort_by(|a, b| {
+        (
+            a.rank,
+            std::cmp::Reverse((a.faults, a.abnormal, a.warnings)),
+            a.id,
+        )
+            .cmp(&(
+                b.rank,
+                std::cmp::Reverse((b.faults, b.abnormal, b.warnings)),
+                b.id,
+            ))
+    });
+    Ok(html! {
+        h2 #triage { "Subjects, worst first" } "\n"
+        p.meta {
+            "One row per subject, sorted: subjects with nothing analysed first, then one side only, then by sensor faults, parameters outside the reference range (judged as on the subject pages: " (reference.description) ") and warnings. Parameters that were not measured are counted apart, never as normal."
+        }
+        "\n"
+        table.triage {
+            "\n"
+            tr { th { "subject" } th { "group" } th { "status" } th { "outside reference" } th { "not measured" } th { "warnings (faults)" } } "\n"
+            @for t in &rows {
+                tr {
+                    td {
+                        @if let Some(href) = links.get(t.id) { a href=(href) { (t.id) } }
+                        @else { (t.id) }
+                    }
+                    td { (t.group) }
+                    td.bad[t.rank < 2] { (t.status) }
+                    td.num.bad[t.abnormal > 0] { (t.abnormal) " of " (t.measured) }
+                    td.num { (t.not_measured) }
+                    td.num.bad[t.faults > 0] { (t.warnings) " (" (t.faults) ")" }
+                }
+                "\n"
+            }
+        }
+        "\n"
+    })
 }
 
 /// Sections 1–3 (Table 3, Table 4 with the radar, Fig. 7), or why there are none.

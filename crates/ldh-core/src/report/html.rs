@@ -26,12 +26,18 @@ th { background: #eee; } td.num { text-align: right; font-variant-numeric: tabul
 .missing { background: #fde2e2; border-left: 4px solid #c00; padding: 6px 10px; margin: 8px 0; }
 .support { background: #e8f0fe; border-left: 4px solid #1a56c4; padding: 6px 10px; margin: 8px 0; }
 .meta { color: #444; font-size: 12.5px; }
+td.nm, td.withheld { color: #555; font-style: italic; }
+table.summary { font-size: 13.5px; } table.summary td.num { white-space: nowrap; }
+span.flagword { font-weight: normal; font-size: 11.5px; color: #333; }
+p.headline { font-size: 14.5px; margin: 6px 0; }
 figure { margin: 10px 0; page-break-inside: avoid; break-inside: avoid; }
 figure svg { width: 100%; height: auto; display: block; }
 figcaption { font-size: 12px; color: #333; margin-top: 3px; }
 ol.refs { font-size: 11.5px; }
-@page { size: A4; margin: 14mm; }
-@media print { body { margin: 0; max-width: none; font-size: 11pt; } h2 { page-break-after: avoid; break-after: avoid; } table, .note, .missing, .support { page-break-inside: avoid; break-inside: avoid; } .out, .flag, th { -webkit-print-color-adjust: exact; print-color-adjust: exact; } }
+table.triage td.bad { background: #fde2e2; font-weight: bold; }
+.print-only { display: none; }
+@page { size: A4; margin: 10mm; }
+@media print { body { margin: 0; max-width: none; font-size: 8.5pt; } .screen-only { display: none; } .print-only { display: block; } figure.plot { width: 50%; margin: 2px auto; } figure.plot[data-axis-labels^="z-score"] { width: 36%; } figcaption { font-size: 8pt; } table { font-size: 8pt; } th, td { padding: 1px 4px; } h1 { font-size: 15pt; } h2 { font-size: 12pt; margin-top: 10px; page-break-after: avoid; break-after: avoid; } .note, .missing, .support, figure, tr { page-break-inside: avoid; break-inside: avoid; } .out, .flag, th, td.bad { -webkit-print-color-adjust: exact; print-color-adjust: exact; } }
 "#;
 
 /// The whole page around `body`: doctype, head (charset, viewport, generator, title, CSS).

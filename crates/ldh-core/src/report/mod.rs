@@ -26,9 +26,11 @@
 
 mod build;
 mod cohort;
+pub mod cycle;
 mod html;
 pub mod reference;
 mod subject;
+mod summary;
 pub mod trace;
 
 use serde::{Deserialize, Serialize};
@@ -150,6 +152,9 @@ pub struct CohortReport {
     pub cv: Vec<CvReport>,
     /// Links to the per-subject reports (subject, relative href).
     pub subject_links: Vec<(String, String)>,
+    /// The reference the subject pages were judged against (the triage table counts values
+    /// outside it); `None`: made from `recordings` with the default parameters.
+    pub reference: Option<Reference>,
 }
 
 #[cfg(test)]

@@ -50,6 +50,12 @@ pub struct ReferenceRange {
     pub sd: Option<f64>,
     /// Where it comes from.
     pub source: ReferenceSource,
+    /// Healthy subjects of the cohort with a value of this parameter from legs that pass every
+    /// quality check (0 for a reference made without a cohort): the range is the cohort's own
+    /// when this reaches [`super::ReportParams::min_healthy_subjects`]; below it the report says
+    /// "no reference (n = …)" or names the published range it fell back to.
+    #[serde(default)]
+    pub n_reference: usize,
 }
 
 impl ReferenceRange {
@@ -76,6 +82,20 @@ pub struct Reference {
     pub ranges: Vec<ReferenceRange>,
     /// One sentence on how the ranges were made, for the report.
     pub description: String,
+    /// The healthy band of the shank-pitch gait cycle (from the legs' traces; empty when the
+    /// reference was made from the tables alone).
+    #[serde(default)]
+    pub cycle: super::cycle::CycleReference,
+}
+
+/// Whether a leg passes every quality check: no warning or fault, nothing withheld
+/// (docs/quality.md). Only such legs make a healthy reference.
+pub(crate) fn passes_every_check(x: &RecordingRow) -> bool {
+    x.withheld.is_empty()
+        && x.warnings
+            .at_least(crate::pipeline::Severity::Warning)
+            .next()
+            .is_none()
 }
 
 /// Published ranges: (column, low, high, citation). Approximate ranges for healthy adults
@@ -122,6 +142,7 @@ impl Reference {
                     mean: None,
                     sd: None,
                     source: ReferenceSource::None,
+                    n_reference: 0,
                 };
                 if let Some(&(_, lo, hi, cite)) = PUBLISHED.iter().find(|x| x.0 == par.column) {
                     r.low = Some(lo);
@@ -136,6 +157,7 @@ impl Reference {
         Reference {
             ranges,
             description: "Published normal values for healthy adults (approximate; see the references): the cohort has too few healthy subjects for its own range.".into(),
+            cycle: Default::default(),
         }
     }
 
@@ -147,13 +169,7 @@ impl Reference {
         // One value per healthy subject: the mean of its analysed legs that pass every quality
         // check (no warning or fault, nothing withheld: docs/quality.md), so a faulty sensor
         // never widens the healthy range.
-        let passes = |x: &RecordingRow| {
-            x.withheld.is_empty()
-                && x.warnings
-                    .at_least(crate::pipeline::Severity::Warning)
-                    .next()
-                    .is_none()
-        };
+        let passes = passes_every_check;
         let healthy_legs = rows
             .iter()
             .filter(|x| x.group == "healthy" && x.status == "ok")
@@ -177,6 +193,7 @@ impl Reference {
                     (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
                 })
                 .collect();
+            r.n_reference = vals.len();
             if vals.len() < p.0.min_healthy_subjects {
                 continue;
             }

@@ -6,7 +6,9 @@
 
 use maud::{html, Markup};
 
+use super::cycle::cycle_section;
 use super::html::{count, decimals, figure, fmt, page, red_box, side_label, VERSION};
+use super::summary::clinical_summary;
 use super::{symmetry_index_pct, Reference, ReferenceRange, ReferenceSource, SubjectReport};
 use super::{LegTrace, ValidReportParams};
 use crate::cohort::{value, PARAMETERS};
@@ -32,13 +34,16 @@ pub fn subject_html(
         (header(s, &sides))
         (warning_box(&sides))
         (red_box("Missing from this report.", &missing(s)))
+        (clinical_summary(&sides, reference, &citations, p))
         (recordings_table(&sides))
         (reading_notes(s))
         (excluded_strides(&s.strides))
         (parameter_table(&sides, reference, &citations, p))
         (subject_radar(s, &sides, reference)?)
-        (signals(s)?)
-        (stride_by_stride(&s.strides)?)
+        (cycle_section(s, &sides, reference, p)?)
+        p.print-only.meta { "Printed report: the signal figures (section 3) and the stride-by-stride plots (section 4) are in the on-screen report." } "\n"
+        div.screen-only { (signals(s)?) (stride_by_stride(&s.strides)?) } "\n"
+
         (classifier(s))
         (methods(&citations))
     };
@@ -49,7 +54,7 @@ pub fn subject_html(
 pub(crate) struct Citations(Vec<String>);
 
 impl Citations {
-    fn of(reference: &Reference) -> Citations {
+    pub(crate) fn of(reference: &Reference) -> Citations {
         let mut v: Vec<String> = Vec::new();
         for par in PARAMETERS.iter() {
             if let Some(ReferenceRange {
@@ -67,7 +72,7 @@ impl Citations {
         Citations(v)
     }
     /// The number `[k]` of a citation.
-    fn number(&self, c: &str) -> usize {
+    pub(crate) fn number(&self, c: &str) -> usize {
         self.0.iter().position(|x| x == c).unwrap_or(0) + 1
     }
 }
@@ -295,8 +300,14 @@ fn out_mark(v: Option<f64>, rr: Option<&ReferenceRange>) -> Option<&'static str>
     }
 }
 
-/// The reference range as the table shows it, with its source.
-fn range_text(rr: Option<&ReferenceRange>, dec: usize, citations: &Citations) -> String {
+/// The reference range as the table shows it, with its source; without one, how many healthy
+/// subjects the cohort had for it (`min_n` needed).
+fn range_text(
+    rr: Option<&ReferenceRange>,
+    dec: usize,
+    citations: &Citations,
+    min_n: usize,
+) -> String {
     match rr {
         Some(ReferenceRange {
             low: Some(l),
@@ -313,7 +324,11 @@ fn range_text(rr: Option<&ReferenceRange>, dec: usize, citations: &Citations) ->
             };
             format!("{}–{} ({src})", fmt(Some(*l), dec), fmt(Some(*h), dec))
         }
-        _ => "no reference".into(),
+        Some(r) => format!(
+            "no reference (n = {} healthy subjects passing every check; {min_n} needed)",
+            r.n_reference
+        ),
+        None => "no reference".into(),
     }
 }
 
@@ -371,7 +386,7 @@ fn parameter_table(
                         td.num.out[out.is_some()] { (fmt(*v, dec)) @if let Some(m) = out { " " (m) } }
                     }
                 }
-                td { (range_text(rr, dec, citations)) }
+                td { (range_text(rr, dec, citations, p.0.min_healthy_subjects)) }
                 td.num.flag[flag] { (si.map(|v| format!("{v:+.1}")).unwrap_or("–".into())) }
             }
             "\n"
@@ -409,7 +424,12 @@ fn subject_radar(
                 side_label(r),
                 ranges
                     .iter()
-                    .map(|rr| value(r, &rr.column).and_then(|v| rr.z(v)).unwrap_or(0.0))
+                    .map(|rr| {
+                        value(r, &rr.column)
+                            .filter(|_| r.withheld.reason(&rr.column).is_none())
+                            .and_then(|v| rr.z(v))
+                            .unwrap_or(f64::NAN)
+                    })
                     .collect(),
             )
         })
@@ -428,7 +448,7 @@ fn subject_radar(
     )?;
     Ok(figure(
         &svg,
-        "Radar chart of the subject's parameters as z-scores against the healthy reference (0 = the healthy mean, the black ring). A missing value is drawn at 0.",
+        &format!("Radar chart of the subject's parameters as z-scores against the reference of section 2 (0 = the reference mean, the black ring); left blue, right orange. A dot with a black edge lies beyond ±{:.2} SD (abnormal); a gap in a polygon is a parameter not measured on that side (never drawn as 0). The scale stops at ±{:.0} SD: a value beyond it is an open triangle on the rim{}.", plots::RADAR_Z_ABNORMAL, plots::RADAR_Z_CLIP, if svg.contains(plots::RADAR_CLIPPED) { " — clipped here, the values are named under the chart" } else { " (none here)" }),
         &[plots::RADAR_SCALE_LABEL],
     ))
 }
@@ -459,22 +479,39 @@ fn signals(s: &SubjectReport) -> Result<Markup> {
 
 fn leg_signals(leg: &LegTrace) -> Result<Markup> {
     let secs = leg.pitch_deg.len() as f64 / leg.fs_hz;
-    let named = |names: [&str; 3], v: &[Vec<f64>; 3]| -> Vec<(String, Vec<f64>)> {
-        names
+    let mut clipped: Vec<String> = Vec::new();
+    let mut named = |names: [&str; 3], v: &[Vec<f64>; 3], range: f64, unit: &str| {
+        let mut n = 0;
+        let out: Vec<(String, Vec<f64>)> = names
             .iter()
             .zip(v)
-            .map(|(a, v)| (a.to_string(), v.clone()))
-            .collect()
+            .map(|(a, v)| {
+                let (v, k) = plots::clip_to(v, -range, range);
+                n += k;
+                (a.to_string(), v)
+            })
+            .collect();
+        if n > 0 {
+            clipped.push(format!("{n} samples beyond ±{range:.0} {unit}"));
+        }
+        out
     };
     let acc = Panel {
         y_label: "acceleration (g)".into(),
-        series: named(["anterior (x)", "left (y)", "up (z)"], &leg.acc_g),
+        series: named(
+            ["anterior (x)", "left (y)", "up (z)"],
+            &leg.acc_g,
+            ACC_RANGE_G,
+            "g",
+        ),
     };
     let gyro = Panel {
         y_label: "angular velocity (deg/s)".into(),
         series: named(
             ["about anterior", "about left (sagittal)", "about up"],
             &leg.gyro_dps,
+            GYRO_RANGE_DPS,
+            "deg/s",
         ),
     };
     let svg = plots::signals_svg(
@@ -486,7 +523,7 @@ fn leg_signals(leg: &LegTrace) -> Result<Markup> {
     )?;
     Ok(figure(
         &svg,
-        &format!("Fig. 3 — {} leg: filtered acceleration and angular velocity in the shank frame (after alignment and outlier replacement).", leg.side),
+        &format!("Fig. 3 — {} leg: filtered acceleration and angular velocity in the shank frame (after alignment and outlier replacement).{}", leg.side, clip_note(&clipped)),
         &["time (s)", "acceleration (g)", "angular velocity (deg/s)"],
     ))
 }
@@ -497,12 +534,21 @@ fn leg_attitude(leg: &LegTrace) -> Result<Markup> {
         to_s: leg.to_s.clone(),
         stance_s: leg.stance_s.clone(),
     };
+    let (lo, hi) = super::cycle::SHANK_ANGLE_RANGE_DEG;
+    let (pitch, a) = plots::clip_to(&leg.pitch_deg, lo, hi);
+    let (roll, b) = plots::clip_to(&leg.roll_deg, lo, hi);
+    let clipped: Vec<String> = (a + b > 0)
+        .then(|| {
+            format!(
+                "{} samples beyond ±{hi:.0}° (a shank angle's physical range)",
+                a + b
+            )
+        })
+        .into_iter()
+        .collect();
     let att = Panel {
         y_label: "angle (deg)".into(),
-        series: vec![
-            ("pitch (sagittal)".into(), leg.pitch_deg.clone()),
-            ("roll".into(), leg.roll_deg.clone()),
-        ],
+        series: vec![("pitch (sagittal)".into(), pitch), ("roll".into(), roll)],
     };
     let svg = plots::signals_svg(
         &format!("{} shank: attitude with gait events", leg.side),
@@ -513,21 +559,62 @@ fn leg_attitude(leg: &LegTrace) -> Result<Markup> {
     )?;
     Ok(figure(
         &svg,
-        &format!("Fig. 4 — {} leg: shank attitude; red lines heel strikes (HS), blue lines toe offs (TO), grey bands stance (HS to TO).", leg.side),
+        &format!("Fig. 4 — {} leg: shank attitude; red lines heel strikes (HS), blue lines toe offs (TO), grey bands stance (HS to TO).{}", leg.side, clip_note(&clipped)),
         &["time (s)", "angle (deg)"],
     ))
 }
 
-/// A per-stride quantity: title, y label with unit, getter.
-type PerStride = (&'static str, &'static str, fn(&StrideRow) -> Option<f64>);
+/// Physical range of the plotted acceleration, g (± the range of common shank IMUs).
+const ACC_RANGE_G: f64 = 16.0;
+/// Physical range of the plotted angular rate, deg/s (± the range of common shank IMUs).
+const GYRO_RANGE_DPS: f64 = 2000.0;
+
+/// " Clipped: …, drawn at the edge of the range." when something was clipped, else nothing.
+fn clip_note(clipped: &[String]) -> String {
+    if clipped.is_empty() {
+        String::new()
+    } else {
+        format!(
+            " Clipped: {} are drawn at the edge of the physical range.",
+            clipped.join("; ")
+        )
+    }
+}
+
+/// A per-stride quantity: title, y label with unit, getter, physical range (values beyond are
+/// drawn at its edge and captioned).
+type PerStride = (
+    &'static str,
+    &'static str,
+    fn(&StrideRow) -> Option<f64>,
+    (f64, f64),
+);
 
 const PER_STRIDE: [PerStride; 4] = [
-    ("stride time", "stride time (s)", |r| r.stride_time_s),
-    ("stance phase", "stance ratio (fraction of stride)", |r| {
-        r.stance_ratio
-    }),
-    ("stride length", "stride length (m)", |r| r.stride_length_m),
-    ("shank swing angle (WQK)", "WQK (deg)", |r| r.wqk_deg),
+    (
+        "stride time",
+        "stride time (s)",
+        |r| r.stride_time_s,
+        (0.0, 4.0),
+    ),
+    (
+        "stance phase",
+        "stance ratio (fraction of stride)",
+        |r| r.stance_ratio,
+        (0.0, 1.0),
+    ),
+    (
+        "stride length",
+        "stride length (m)",
+        |r| r.stride_length_m,
+        (0.0, 3.0),
+    ),
+    (
+        "shank swing angle (WQK)",
+        "WQK (deg)",
+        |r| r.wqk_deg,
+        (-180.0, 180.0),
+    ),
 ];
 
 /// Section 4: parameters stride by stride, left and right.
@@ -539,7 +626,8 @@ fn stride_by_stride(strides: &[StrideRow]) -> Result<Markup> {
         });
     }
     let mut figs: Vec<Markup> = Vec::new();
-    for (title, ylab, get) in PER_STRIDE {
+    for (title, ylab, get, (lo, hi)) in PER_STRIDE {
+        let mut clipped = 0usize;
         let series: Vec<crate::plots::Series> = ["left", "right"]
             .iter()
             .map(|side| {
@@ -549,6 +637,11 @@ fn stride_by_stride(strides: &[StrideRow]) -> Result<Markup> {
                         .iter()
                         .filter(|r| r.side == *side)
                         .filter_map(|r| Some((r.hs_time_s?, get(r)?, r.valid)))
+                        .filter(|p| p.1.is_finite())
+                        .map(|(t, v, ok)| {
+                            clipped += usize::from(!(lo..=hi).contains(&v));
+                            (t, v.clamp(lo, hi), ok)
+                        })
                         .collect(),
                 )
             })
@@ -560,7 +653,12 @@ fn stride_by_stride(strides: &[StrideRow]) -> Result<Markup> {
         figs.push(figure(
             &svg,
             &format!(
-                "{title} per stride; filled circles strides used, hollow circles strides excluded."
+                "{title} per stride; filled circles strides used, hollow circles strides excluded; left blue, right orange.{}",
+                clip_note(&if clipped > 0 {
+                    vec![format!("{clipped} stride(s) outside {lo}–{hi}")]
+                } else {
+                    vec![]
+                })
             ),
             &["heel-strike time (s)", ylab],
         ));

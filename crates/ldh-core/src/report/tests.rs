@@ -209,6 +209,27 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
         checked += 1;
     }
     assert_eq!(checked, crate::cohort::PARAMETERS.len());
+    // The clinical summary: every left measure says "not measured", with no number or mark.
+    let summary = &html[html.find("Clinical summary").unwrap()..];
+    let summary = &summary[..summary.find("</table>").unwrap()];
+    for m in super::summary::MEASURES.iter() {
+        let row = &summary[summary.find(&format!("<b>{}</b>", m.label)).unwrap()..];
+        let row = &row[..row.find("</tr>").unwrap()];
+        let cells: Vec<&str> = row.split("<td").collect();
+        assert!(
+            cells[1].contains("not measured: gyro scale fault"),
+            "{}: {}",
+            m.label,
+            cells[1]
+        );
+        assert!(!cells[1].contains('▲') && !cells[1].contains('▼'));
+        assert!(
+            !cells[1].chars().any(|c| c.is_ascii_digit()),
+            "{}",
+            cells[1]
+        );
+    }
+    assert!(summary.contains("not measured: left gyro scale fault"));
     // The warning box: one bullet for the fault, naming the leg.
     assert!(html.contains("left: gyro_scale_fault [fault]: gyroscope sensor fault"));
     // Every left stride is excluded, grouped under one kind.
@@ -249,4 +270,106 @@ fn the_reference_uses_only_legs_that_pass_every_check() {
         "{}",
         r.description
     );
+}
+
+/// The summary speaks in clinical units, judges each value against its range in plain words,
+/// and a parameter without enough healthy subjects says "no reference (n = …)".
+#[test]
+fn the_summary_uses_clinical_units_and_plain_flags() {
+    let p = ReportParams::default()
+        .min_healthy_subjects(4)
+        .check()
+        .unwrap();
+    let mut l = row("S1", "ldh", "left", 0.6);
+    l.step_frequency_steps_per_s = Some(1.5);
+    l.stance_ratio = Some(0.62);
+    let mut r = row("S1", "ldh", "right", 1.2);
+    r.step_frequency_steps_per_s = Some(1.5);
+    r.stance_ratio = Some(0.70);
+    let s = SubjectReport {
+        subject_id: "S1".into(),
+        recordings: vec![l, r],
+        ..Default::default()
+    };
+    let reference = Reference::from_rows(&s.recordings, &p);
+    let html = subject_html(&s, &reference, &p).unwrap();
+    let at = html.find("Clinical summary").unwrap();
+    assert!(at < html.find("1. Recordings").unwrap(), "summary first");
+    let summary = &html[at..];
+    let summary = &summary[..summary.find("</table>").unwrap()];
+    for must in [
+        "<b>Cadence</b> (steps/min)",
+        "<b>Walking speed</b> (m/s)",
+        "<b>Stride length</b> (m)",
+        "<b>Stance</b> (% of gait cycle)",
+        "(CV %)",
+        "(SI %, left vs right)",
+        // 1.5 steps/s = 90 steps/min, below the published 96–126.
+        ">90 ▼ <span class=\"flagword\">below normal</span>",
+        "96–126",
+        "0.60 ▼",
+        "1.20 <span class=\"flagword\">within normal</span>",
+        "62.0 <span class=\"flagword\">within normal</span>",
+        "70.0 ▲ <span class=\"flagword\">above normal</span>",
+        // SI of speed is not in the summary; stance SI = 100·(0.62 − 0.70)/0.66.
+        "-12.1 ◆",
+        "published normal values [",
+    ] {
+        assert!(summary.contains(must), "no '{must}' in {summary}");
+    }
+    // Stride length is not in the rows: "not measured", never a number.
+    assert!(summary.contains("not measured: not computable from these strides"));
+    assert!(html.contains("Outside the normal range: </b>cadence below normal (left)"));
+    // No cohort: the shank angles have no reference and say how many healthy subjects there were.
+    assert!(
+        html.contains("no reference (n = 0 healthy subjects passing every check; 4 needed)"),
+        "{html}"
+    );
+}
+
+/// A trace beyond the physical ranges is drawn clipped, and the captions say so.
+#[test]
+fn clipped_figures_say_so_in_their_caption() {
+    let p = ReportParams::default().check().unwrap();
+    let n = 300;
+    let t: Vec<f64> = (0..n).map(|i| i as f64 / 100.0).collect();
+    let wave = |a: f64| -> Vec<f64> { t.iter().map(|x| a * (x * 6.0).sin()).collect() };
+    let leg = LegTrace {
+        side: "left".into(),
+        fs_hz: 100.0,
+        start_s: 0.0,
+        acc_g: [wave(1.0), wave(0.5), wave(30.0)],
+        gyro_dps: [wave(100.0), wave(2500.0), wave(50.0)],
+        roll_deg: wave(10.0),
+        pitch_deg: wave(300.0),
+        hs_s: vec![],
+        to_s: vec![],
+        stance_s: vec![],
+        read_notes: vec![],
+        alignment_notes: vec![],
+        gaps_s: vec![],
+    };
+    let s = SubjectReport {
+        subject_id: "C".into(),
+        recordings: vec![row("C", "ldh", "left", 1.0)],
+        traces: Some(SubjectTraces {
+            schema: trace::TRACE_SCHEMA.into(),
+            subject_id: "C".into(),
+            legs: vec![leg],
+        }),
+        ..Default::default()
+    };
+    let html = subject_html(&s, &Reference::published(&p), &p).unwrap();
+    assert!(
+        html.contains("samples beyond ±16 g") && html.contains("samples beyond ±2000 deg/s"),
+        "Fig. 3 caption"
+    );
+    assert!(
+        html.contains("samples beyond ±90° (a shank angle's physical range) are drawn at the edge"),
+        "Fig. 4 caption"
+    );
+    // Axes stop at the physical range: no tick label beyond ±90 on the attitude plot.
+    let fig4 = &html[html.find("shank: attitude with gait events").unwrap()..];
+    let fig4 = &fig4[..fig4.find("</figure>").unwrap()];
+    assert!(!fig4.contains(">200<") && !fig4.contains(">-200<"));
 }

@@ -90,7 +90,11 @@ class Result:
         One row per recording that failed: ``subject_id``, ``side``, ``error`` (a file that
         cannot be read, too few strides...); the other recordings are analysed.
     timings : dict
-        ``total_s`` (wall-clock seconds of the analysis) and ``subjects``.
+        ``total_s`` (wall-clock seconds of the analysis), ``subjects``, ``recordings`` and the
+        wall time of each stage summed over the recordings (and threads), as
+        ``ldh analyze --timings`` prints it: ``read_s``, ``preprocess_s``, ``align_s``,
+        ``attitude_s``, ``events_s``, ``strides_s``, ``sta_s``, ``write_s`` (building the
+        tables). :meth:`timings_table` gives them one row per stage.
 
     ``result["strides"]`` is ``result.strides``, and ``keys()``, ``items()`` and iteration
     work as on the dict of tables that earlier versions returned.
@@ -107,6 +111,13 @@ class Result:
         self.warnings = _table(_warning_rows(raw["recordings"]), self.as_frame)
         self.errors = _table(_error_rows(raw["recordings"]), self.as_frame)
         self.timings: Dict[str, Any] = dict(raw.get("timings", {}))
+
+    def timings_table(self) -> Any:
+        """The stage timings one row per stage (``stage``, ``seconds``), in pipeline order: a
+        DataFrame when ``as_frame``, else a dict of arrays."""
+        stages = [k[: -len("_s")] for k in self.timings if k.endswith("_s") and k != "total_s"]
+        cols = {"stage": stages, "seconds": np.array([float(self.timings[s + "_s"]) for s in stages])}
+        return _table(cols, self.as_frame)
 
     def to_pandas(self) -> Dict[str, Any]:
         """The tables as pandas DataFrames: ``{"strides", "recordings", "events", "warnings",

@@ -1,16 +1,17 @@
-//! Unit tests of `ml::mlp` (included from `mlp.rs`).
+//! Unit tests of `ml::mlp`.
 
+use super::train::{backprop, stratified_split};
 use super::*;
 use linfa::traits::Predict;
 use linfa::Dataset;
-use ndarray::{array, Array1, Array2};
+use ndarray::{array, Array1, Array2, Axis};
 use proptest::prelude::*;
-use rand::Rng;
+use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use std::sync::OnceLock;
 
-const REFERENCE: &str = include_str!("../../../../data-fixtures/golden/ml/mlp_reference.json");
+const REFERENCE: &str = include_str!("../../../../../data-fixtures/golden/ml/mlp_reference.json");
 
 fn accuracy(pred: &Array1<usize>, y: &[usize]) -> f64 {
     assert_eq!(pred.len(), y.len());

@@ -1,0 +1,279 @@
+//! The first screen of a subject's page: a clinical summary in a clinician's words and units
+//! (cadence in steps/min, speed m/s, stride length m, stance % of the gait cycle, variability as
+//! CV %, left-right asymmetry %), each value beside the normal range it was judged against and
+//! that range's source, a plain-language flag ("below normal", "within normal", …) and ▲/▼ for
+//! values outside it, and "not measured: <reason>" — never a number, never a mark — for what a
+//! quality check withheld or could not be computed.
+//!
+//! The asymmetry is the symmetry index of Robinson et al. (J Manipulative Physiol Ther
+//! 1987;10(4):172–176), flagged above [`super::ReportParams::asymmetry_flag_pct`].
+
+use maud::{html, Markup};
+
+use super::html::fmt;
+use super::subject::Citations;
+use super::{symmetry_index_pct, Reference, ReferenceRange, ReferenceSource, ValidReportParams};
+use crate::cohort::value;
+use crate::output::RecordingRow;
+
+/// One line of the summary: a parameter column shown in clinical units.
+pub(crate) struct Measure {
+    /// What a clinician calls it.
+    pub label: &'static str,
+    /// The clinical unit.
+    pub unit: &'static str,
+    /// Column of the per-recording table.
+    pub column: &'static str,
+    /// Factor from the table's unit to the clinical unit.
+    pub scale: f64,
+    /// Decimals shown.
+    pub decimals: usize,
+}
+
+const fn m(
+    label: &'static str,
+    unit: &'static str,
+    column: &'static str,
+    scale: f64,
+    decimals: usize,
+) -> Measure {
+    Measure {
+        label,
+        unit,
+        column,
+        scale,
+        decimals,
+    }
+}
+
+/// The summary's measures, in clinical units.
+pub(crate) const MEASURES: [Measure; 7] = [
+    m(
+        "Cadence",
+        "steps/min",
+        "step_frequency_steps_per_s",
+        60.0,
+        0,
+    ),
+    m("Walking speed", "m/s", "speed_mps", 1.0, 2),
+    m("Stride length", "m", "stride_length_m", 1.0, 2),
+    m("Stride time", "s", "stride_time_s", 1.0, 2),
+    m("Stance", "% of gait cycle", "stance_ratio", 100.0, 1),
+    m(
+        "Stride time variability",
+        "CV %",
+        "stride_time_cv",
+        100.0,
+        1,
+    ),
+    m(
+        "Stride length variability",
+        "CV %",
+        "stride_length_cv",
+        100.0,
+        1,
+    ),
+];
+
+/// Left-right asymmetry lines: (label, column).
+const ASYMMETRY: [(&str, &str); 4] = [
+    ("Step time asymmetry", "step_time_s"),
+    ("Stance asymmetry", "stance_ratio"),
+    ("Stride length asymmetry", "stride_length_m"),
+    ("Shank swing asymmetry (WQK)", "wqk_deg"),
+];
+
+/// Why a side has no value of `column` (the quality check's reason first), or `None` when it
+/// has one.
+pub(crate) fn not_measured(r: &RecordingRow, column: &str) -> Option<String> {
+    if r.status != "ok" {
+        return Some("not analysed (see above)".into());
+    }
+    if let Some(why) = r.withheld.reason(column) {
+        return Some(why.to_string());
+    }
+    if value(r, column).is_some() {
+        return None;
+    }
+    if column == "sta_per_s" && !r.sta_status.is_empty() {
+        return Some(r.sta_status.clone());
+    }
+    Some(match r.strides_valid {
+        Some(0) => "no valid stride".into(),
+        _ => "not computable from these strides".into(),
+    })
+}
+
+/// The mark and plain words of a value judged against a range: `(▲, "above normal")`,
+/// `(▼, "below normal")`, no mark "within normal", or "no reference".
+pub(crate) fn judged(v: f64, rr: Option<&ReferenceRange>) -> (Option<&'static str>, &'static str) {
+    match rr.map(|r| (r.low, r.high)) {
+        Some((Some(l), _)) if v < l => (Some("▼"), "below normal"),
+        Some((_, Some(h))) if v > h => (Some("▲"), "above normal"),
+        Some((Some(_), Some(_))) => (None, "within normal"),
+        _ => (None, "no reference"),
+    }
+}
+
+/// The range in clinical units and where it comes from.
+fn range_cells(
+    rr: Option<&ReferenceRange>,
+    m: &Measure,
+    citations: &Citations,
+) -> (String, String) {
+    match rr {
+        Some(ReferenceRange {
+            low: Some(l),
+            high: Some(h),
+            source,
+            ..
+        }) => {
+            let d = m.decimals;
+            let src = match source {
+                ReferenceSource::Cohort { n_subjects } => {
+                    format!("healthy subjects of this cohort (n = {n_subjects})")
+                }
+                ReferenceSource::Published(c) => {
+                    format!("published normal values [{}]", citations.number(c))
+                }
+                ReferenceSource::None => String::new(),
+            };
+            (
+                format!(
+                    "{}–{}",
+                    fmt(Some(l * m.scale), d),
+                    fmt(Some(h * m.scale), d)
+                ),
+                src,
+            )
+        }
+        Some(r) => (
+            format!("no reference (n = {})", r.n_reference),
+            "too few healthy subjects".into(),
+        ),
+        None => ("no reference".into(), "none available".into()),
+    }
+}
+
+/// One side's cell: the value with its mark and flag, or "not measured: reason".
+fn side_cell(r: Option<&&RecordingRow>, m: &Measure, rr: Option<&ReferenceRange>) -> Markup {
+    let Some(r) = r else {
+        return html! { td.nm { "not measured: no recording" } };
+    };
+    if let Some(why) = not_measured(r, m.column) {
+        return html! { td.nm { "not measured: " (why) } };
+    }
+    let v = value(r, m.column).unwrap_or(f64::NAN);
+    let (mark, words) = judged(v, rr);
+    html! {
+        td.num.out[mark.is_some()] {
+            (fmt(Some(v * m.scale), m.decimals)) @if let Some(k) = mark { " " (k) }
+            " " span.flagword { (words) }
+        }
+    }
+}
+
+/// One plain sentence: what lies outside its range and what was not measured.
+fn headline(sides: &[&RecordingRow], reference: &Reference) -> Markup {
+    let mut outside: Vec<String> = Vec::new();
+    let mut missing: Vec<String> = Vec::new();
+    for m in &MEASURES {
+        let rr = reference.ranges.iter().find(|r| r.column == m.column);
+        for r in sides {
+            match not_measured(r, m.column) {
+                Some(_) => missing.push(format!("{} ({})", m.label.to_lowercase(), r.side)),
+                None => {
+                    let v = value(r, m.column).unwrap_or(f64::NAN);
+                    if let (Some(_), words) = judged(v, rr) {
+                        outside.push(format!("{} {words} ({})", m.label.to_lowercase(), r.side));
+                    }
+                }
+            }
+        }
+    }
+    html! {
+        p.headline {
+            @if outside.is_empty() {
+                "No measured value lies outside its normal range."
+            } @else {
+                b { "Outside the normal range: " } (outside.join("; ")) "."
+            }
+            @if !missing.is_empty() {
+                " " b { "Not measured: " } (missing.join(", ")) " (reasons in the table)."
+            }
+        }
+        "\n"
+    }
+}
+
+/// The clinical summary (first screen of the subject page).
+pub(crate) fn clinical_summary(
+    sides: &[&RecordingRow],
+    reference: &Reference,
+    citations: &Citations,
+    p: &ValidReportParams,
+) -> Markup {
+    let left = sides.iter().find(|r| r.side == "left");
+    let right = sides.iter().find(|r| r.side == "right");
+    let limit = p.0.asymmetry_flag_pct;
+    let si = |column: &str| -> Result<f64, String> {
+        let (l, r) = (
+            left.ok_or("no left recording")?,
+            right.ok_or("no right recording")?,
+        );
+        if let Some(w) = not_measured(l, column) {
+            return Err(format!("left {w}"));
+        }
+        if let Some(w) = not_measured(r, column) {
+            return Err(format!("right {w}"));
+        }
+        let (a, b) = (
+            value(l, column).unwrap_or(f64::NAN),
+            value(r, column).unwrap_or(f64::NAN),
+        );
+        symmetry_index_pct(a, b).ok_or_else(|| "not defined for these values".into())
+    };
+    html! {
+        h2 #summary { "Clinical summary" } "\n"
+        (headline(sides, reference))
+        table.summary {
+            "\n"
+            tr { th { "measure (unit)" } th { "left" } th { "right" } th { "normal range" } th { "judged against" } } "\n"
+            @for m in &MEASURES {
+                @let rr = reference.ranges.iter().find(|r| r.column == m.column);
+                @let (range, src) = range_cells(rr, m, citations);
+                tr {
+                    td { b { (m.label) } " (" (m.unit) ")" }
+                    (side_cell(left, m, rr)) (side_cell(right, m, rr))
+                    td.num { (range) } td { (src) }
+                }
+                "\n"
+            }
+            @for (label, column) in ASYMMETRY {
+                tr {
+                    td { b { (label) } " (SI %, left vs right)" }
+                    @match si(column) {
+                        Ok(v) => {
+                            @let flag = v.abs() > limit;
+                            td.num.out[flag] colspan="2" {
+                                (format!("{v:+.1}")) @if flag { " ◆" } " "
+                                span.flagword { (if flag { "asymmetric" } else { "symmetric" }) }
+                            }
+                        }
+                        Err(why) => { td.nm colspan="2" { "not measured: " (why) } }
+                    }
+                    td.num { "|SI| ≤ " (format!("{limit:.0}")) }
+                    td { "asymmetry threshold (Robinson et al. 1987)" }
+                }
+                "\n"
+            }
+        }
+        "\n"
+        p.meta {
+            "▲ above, ▼ below the normal range; ◆ asymmetry beyond the threshold (also shaded). "
+            "SI = 100·(L − R)/((L + R)/2) %: positive when the left value is larger. "
+            "The shank angles (WQK, PBI, BDK) and gait stability (STA) are in section 2 with their own reference."
+        }
+        "\n"
+    }
+}
