@@ -201,3 +201,60 @@ fn impossible_simulation_sizes_are_refused_with_the_declared_limit() {
         assert!(!out.exists(), "{args:?}: an output folder was made");
     }
 }
+
+/// One leg too large for the memory (here: a 100 MB, 2.4 M-row file, within the file-size
+/// limit, under a 500 MB address-space limit) fails alone with its reason; the other leg and
+/// the other subject are analysed and written, exit 1 (it used to abort the batch, exit 134).
+#[test]
+fn a_leg_too_large_for_the_memory_fails_alone() {
+    use std::io::Write;
+    let d = tempfile::tempdir().unwrap();
+    let (a, b) = (d.path().join("A"), d.path().join("B"));
+    let base =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../data-fixtures/bad/baseline_ok");
+    std::fs::create_dir(&a).unwrap();
+    std::fs::create_dir(&b).unwrap();
+    for side in ["left.csv", "right.csv"] {
+        std::fs::copy(base.join(side), b.join(side)).unwrap();
+    }
+    std::fs::copy(base.join("right.csv"), a.join("right.csv")).unwrap();
+    let csv = std::fs::read_to_string(base.join("left.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header = lines.next().unwrap();
+    let rows: Vec<&str> = lines.map(|l| l.split_once(',').unwrap().1).collect();
+    let mut f = std::io::BufWriter::new(std::fs::File::create(a.join("left.csv")).unwrap());
+    writeln!(f, "{header}").unwrap();
+    for k in 0..3000 * rows.len() {
+        writeln!(f, "{:.2},{}", k as f64 / 100.0, rows[k % rows.len()]).unwrap();
+    }
+    f.flush().unwrap();
+    drop(f);
+    let out = d.path().join("out");
+    let cmd = format!(
+        "ulimit -v 500000 && exec '{}' analyze '{}' '{}' -o '{}' -j 1",
+        env!("CARGO_BIN_EXE_ldh-under-test"),
+        a.display(),
+        b.display(),
+        out.display()
+    );
+    let o = std::process::Command::new("sh")
+        .args(["-c", &cmd])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    let rows = common::json(&out.join("recordings.json"));
+    let rows = rows.as_array().unwrap();
+    assert_eq!(rows.len(), 4, "{rows:?}");
+    for r in rows {
+        if r["subject_id"] == "A" && r["side"] == "left" {
+            assert_eq!(r["status"], "error");
+            let e = r["error"].as_str().unwrap();
+            assert!(
+                e.contains("A/left.csv: not enough memory to read it"),
+                "{e}"
+            );
+        } else {
+            assert_eq!(r["status"], "ok", "{r}");
+        }
+    }
+}

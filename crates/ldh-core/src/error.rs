@@ -90,6 +90,15 @@ pub enum LdhError {
         /// The limit, MB.
         limit_mb: f64,
     },
+    /// The memory to read a file could not be had (its buffers are reserved fallibly, so one
+    /// huge recording fails alone instead of aborting the batch).
+    #[error("{}: not enough memory to read it ({needed_mb:.0} MB more were needed); analyse it alone, on a machine with more memory, or split it", path.display())]
+    OutOfMemory {
+        /// The file.
+        path: PathBuf,
+        /// The allocation that failed, MB.
+        needed_mb: f64,
+    },
     /// Opening or reading a file failed.
     #[error("{}: cannot read: {source}", path.display())]
     Io {

@@ -228,6 +228,7 @@ fn read_limited(path: &Path, max_mb: f64) -> Result<Vec<u8>> {
         return Err(too_large(meta.len()));
     }
     let mut bytes = Vec::new();
+    reserve(&mut bytes, meta.len() as usize + 1, path)?;
     std::fs::File::open(path)
         .map_err(io)?
         .take(limit + 1)
@@ -237,6 +238,24 @@ fn read_limited(path: &Path, max_mb: f64) -> Result<Vec<u8>> {
         return Err(too_large(bytes.len() as u64));
     }
     Ok(bytes)
+}
+
+/// Memory the reading and the analysis of one leg need at their peak, bytes per sample
+/// (measured: a 2-hour pair of 720 000 samples per leg peaks at 1.0 GB, docs/robustness.md),
+/// with a margin. Checked with a fallible reservation once the rows are parsed.
+const HEADROOM_BYTES_PER_SAMPLE: usize = 1024;
+
+/// Reserve room for `n` more items in `v`, or [`LdhError::OutOfMemory`] naming `path`.
+pub(crate) fn reserve<T>(v: &mut Vec<T>, n: usize, path: &Path) -> Result<()> {
+    v.try_reserve_exact(n).map_err(|_| LdhError::OutOfMemory {
+        path: path.to_path_buf(),
+        needed_mb: n as f64 * std::mem::size_of::<T>() as f64 / 1e6,
+    })
+}
+
+/// Number of lines of `bytes` (newlines, plus one for a last line without one).
+fn bytecount_lines(bytes: &[u8]) -> usize {
+    bytes.iter().filter(|&&b| b == b'\n').count() + usize::from(!bytes.ends_with(b"\n"))
 }
 
 /// As [`read_recording`], from bytes in memory; `path` is used in messages.
@@ -257,12 +276,16 @@ pub fn read_recording_bytes(
         notes.push("UTF-8 byte-order mark found and ignored".to_string());
     }
 
-    // Lines with their 1-based numbers.
-    let lines: Vec<(u64, &str)> = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i as u64 + 1, l.strip_suffix('\r').unwrap_or(l)))
-        .collect();
+    // Lines with their 1-based numbers (the buffers sized from the input are reserved
+    // fallibly: a file too large for the memory is this file's error, not an abort).
+    let n_lines = bytecount_lines(bytes);
+    let mut lines: Vec<(u64, &str)> = Vec::new();
+    reserve(&mut lines, n_lines, path)?;
+    lines.extend(
+        text.lines()
+            .enumerate()
+            .map(|(i, l)| (i as u64 + 1, l.strip_suffix('\r').unwrap_or(l))),
+    );
 
     // Find the header row and the format (column resolution: `columns.rs`).
     let found = super::columns::find_header(&lines, format, path, &mut notes)?;
@@ -292,6 +315,12 @@ pub fn read_recording_bytes(
     let mut time_raw: Vec<f64> = Vec::new();
     let mut raw: [Vec<f64>; 6] = Default::default();
     let mut row_lines: Vec<u64> = Vec::new();
+    let n_rows = lines.len().saturating_sub(first_data);
+    reserve(&mut time_raw, n_rows, path)?;
+    reserve(&mut row_lines, n_rows, path)?;
+    for r in &mut raw {
+        reserve(r, n_rows, path)?;
+    }
     let mut fields: Vec<&str> = Vec::with_capacity(expected);
     let mut rdr_buf = String::new();
     for &(lineno, line) in lines.iter().skip(first_data) {
@@ -379,6 +408,15 @@ pub fn read_recording_bytes(
         row_lines.push(lineno);
     }
     let rows = row_lines.len();
+    // The rest of the reading and the analysis of this leg allocate as they go; check once
+    // that their peak can be had, so that a leg too large for the memory fails alone.
+    let mut probe: Vec<u8> = Vec::new();
+    reserve(
+        &mut probe,
+        rows.saturating_mul(HEADROOM_BYTES_PER_SAMPLE),
+        path,
+    )?;
+    drop(probe);
     if rows == 0 {
         return Err(LdhError::TooShort {
             path: path.to_path_buf(),

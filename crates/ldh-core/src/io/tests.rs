@@ -536,3 +536,17 @@ fn utf16_is_named_with_or_without_a_byte_order_mark() {
     let p = t.write("bin.csv", [0x89, b'P', b'N', b'G', 0, 0, 0, 13, 1, 2]);
     assert!(err_of(&p, None).contains("not a text file"));
 }
+
+#[test]
+fn a_buffer_that_cannot_be_had_is_the_files_error() {
+    let mut v: Vec<f64> = Vec::new();
+    let e = reserve(&mut v, usize::MAX / 16, Path::new("huge.csv")).unwrap_err();
+    assert!(matches!(e, LdhError::OutOfMemory { .. }), "{e:?}");
+    assert!(
+        e.to_string()
+            .starts_with("huge.csv: not enough memory to read it"),
+        "{e}"
+    );
+    assert!(reserve(&mut v, 1000, Path::new("small.csv")).is_ok());
+    assert!(v.capacity() >= 1000);
+}
