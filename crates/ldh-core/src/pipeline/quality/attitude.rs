@@ -137,3 +137,155 @@ pub fn attitude_checks(al: &Aligned, att: &Attitude, st: &mut [Stride]) -> Vec<W
     }
     w
 }
+
+#[cfg(test)]
+mod tests {
+    //! The attitude health checks on synthetic legs: 1 s strides at 100 Hz, stance over the
+    //! first 60 %, the mid-stance pitch set per stride (the divergence fixture: an attitude
+    //! that drifts by a few degrees per stride, as a gyro-only integration with an unremoved
+    //! bias does).
+    use super::*;
+    use crate::align::Alignment;
+    use crate::attitude::AttitudeModel;
+
+    const FS: f64 = 100.0;
+
+    fn aligned() -> Aligned {
+        Aligned {
+            fs_hz: FS,
+            acc_g: Default::default(),
+            gyro_dps: Default::default(),
+            alignment: Alignment {
+                r_f_from_device: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+                gyro_bias_dps: [0.0; 3],
+                quiet_standing_s: None,
+                still_periods_s: vec![],
+                mirrored: false,
+                axial_rotation_deg: 0.0,
+                shank_axis_tilt_deg: 0.0,
+                sagittal_variance_share: 1.0,
+                notes: vec![],
+            },
+        }
+    }
+
+    /// A leg whose mid-stance pitch in stride k is `stance_pitch(k)` and whose stride angles are
+    /// `angles(k)` = (WQK, PBI, BDK).
+    fn leg(
+        n: usize,
+        stance_pitch: impl Fn(usize) -> f64,
+        angles: impl Fn(usize) -> (f64, f64, f64),
+    ) -> (Attitude, Vec<Stride>) {
+        let len = (n + 1) * FS as usize;
+        let pitch: Vec<f64> = (0..len)
+            .map(|i| stance_pitch((i / FS as usize).min(n - 1)))
+            .collect();
+        let att = Attitude {
+            model: AttitudeModel::Fusion,
+            fs_hz: FS,
+            roll_deg: vec![0.0; len],
+            pitch_deg: pitch,
+            yaw_deg: vec![0.0; len],
+            final_weights: vec![],
+            final_tilt_noise_deg: vec![],
+            gyro_bias_dps: [0.0; 2],
+            gravity_windows: 0,
+        };
+        let strides = (0..n)
+            .map(|k| {
+                let (wqk, pbi, bdk) = angles(k);
+                Stride {
+                    stride_index: k,
+                    hs_time_s: k as f64,
+                    to_time_s: k as f64 + 0.6,
+                    next_hs_time_s: k as f64 + 1.0,
+                    stride_time_s: 1.0,
+                    stance_ratio: 0.6,
+                    stride_length_m: 1.3,
+                    speed_mps: 1.3,
+                    wqk_deg: wqk,
+                    pbi_deg: pbi,
+                    bdk_deg: bdk,
+                    heading_change_deg: 0.0,
+                    bout: 0,
+                    valid: true,
+                    reason: String::new(),
+                }
+            })
+            .collect();
+        (att, strides)
+    }
+
+    fn normal(_: usize) -> (f64, f64, f64) {
+        (30.0, 45.0, 8.0)
+    }
+
+    fn codes_of(w: &[Warning]) -> Vec<&str> {
+        w.iter().map(|w| w.code.as_str()).collect()
+    }
+
+    #[test]
+    fn a_steady_stance_pitch_passes() {
+        // ±1.5° stride to stride around 5° forward: what a walking shank does
+        let (att, mut st) = leg(12, |k| 5.0 + 1.5 * ((k % 3) as f64 - 1.0), normal);
+        let w = attitude_checks(&aligned(), &att, &mut st);
+        assert!(w.is_empty(), "{w:?}");
+        assert!(st.iter().all(|s| s.valid && s.wqk_deg == 30.0));
+    }
+
+    #[test]
+    fn a_drifting_attitude_withholds_angles_and_stride_length() {
+        // 2.5° more per stride: 12 strides spread over 25° at mid-stance
+        let (att, mut st) = leg(12, |k| 2.5 * k as f64, normal);
+        let w = attitude_checks(&aligned(), &att, &mut st);
+        assert_eq!(codes_of(&w), [codes::ATTITUDE_DIVERGENCE]);
+        assert_eq!(w[0].severity, Severity::Warning);
+        for p in params::ANGLES.iter().chain(&params::LENGTH) {
+            assert!(w[0].affects.iter().any(|a| a == p), "{p} not withheld");
+        }
+        assert!(w[0].message.contains("spreads over"), "{}", w[0].message);
+        // a constant lean far from vertical is the same failure
+        let (att, mut st) = leg(12, |_| 40.0, normal);
+        let w = attitude_checks(&aligned(), &att, &mut st);
+        assert_eq!(codes_of(&w), [codes::ATTITUDE_DIVERGENCE]);
+    }
+
+    #[test]
+    fn angles_out_of_bounds_in_many_strides_withhold_the_leg() {
+        let (att, mut st) = leg(
+            10,
+            |_| 5.0,
+            |k| {
+                if k < 3 {
+                    (250.0, 45.0, 8.0)
+                } else {
+                    normal(k)
+                }
+            },
+        );
+        let w = attitude_checks(&aligned(), &att, &mut st);
+        assert_eq!(codes_of(&w), [codes::IMPLAUSIBLE_ANGLE]);
+        assert!(w[0].message.contains("WQK 250"), "{}", w[0].message);
+        assert!(w[0].affects.iter().any(|a| a == "wqk_deg"));
+    }
+
+    #[test]
+    fn one_stride_out_of_bounds_loses_only_its_angles() {
+        let (att, mut st) = leg(
+            20,
+            |_| 5.0,
+            |k| {
+                if k == 7 {
+                    (30.0, 45.0, 60.0)
+                } else {
+                    normal(k)
+                }
+            },
+        );
+        let w = attitude_checks(&aligned(), &att, &mut st);
+        assert!(w.is_empty(), "{w:?}");
+        assert!(!st[7].valid && st[7].bdk_deg.is_nan() && st[7].wqk_deg.is_nan());
+        assert!(st[7].reason.contains("outside anatomical bounds"));
+        assert_eq!(st.iter().filter(|s| s.valid).count(), 19);
+    }
+}
