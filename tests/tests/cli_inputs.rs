@@ -118,6 +118,84 @@ fn hugadb_original_files_are_analysed_per_leg_from_a_manifest() {
             pair[0]["subject_id"]
         );
     }
+    hugadb_issue_20_criteria(&out);
+}
+
+/// Issue 20 on the clean HuGaDB files: no reported shank angle beyond ±90°, left/right stride
+/// length within 10 % wherever both legs report one, and heel strikes alternating
+/// between the legs (≥ 99 % of consecutive heel strikes within a walking bout).
+fn hugadb_issue_20_criteria(out: &Path) {
+    let strides = read_csv(&out.join("strides.csv"));
+    let num = |r: &std::collections::HashMap<String, String>, k: &str| -> Option<f64> {
+        r[k].parse::<f64>().ok().filter(|x| x.is_finite())
+    };
+    let mut angles = 0;
+    for r in &strides {
+        for k in ["wqk_deg", "pbi_deg", "bdk_deg"] {
+            if let (Some(v), "true") = (num(r, k), r["valid"].as_str()) {
+                angles += 1;
+                assert!(
+                    v.abs() <= 90.0,
+                    "{} {} {k} = {v}",
+                    r["subject_id"],
+                    r["side"]
+                );
+            }
+        }
+    }
+    // the legs' stride lengths as reported (recordings.csv; withheld legs are empty)
+    let recs = read_csv(&out.join("recordings.csv"));
+    let subjects: std::collections::BTreeSet<&str> =
+        recs.iter().map(|r| r["subject_id"].as_str()).collect();
+    let mut compared = 0;
+    for s in &subjects {
+        let len = |side: &str| {
+            recs.iter()
+                .find(|r| r["subject_id"] == *s && r["side"] == side)
+                .and_then(|r| num(r, "stride_length_m"))
+        };
+        println!(
+            "{s}: stride length left {:?} m, right {:?} m",
+            len("left"),
+            len("right")
+        );
+        for r in recs.iter().filter(|r| r["subject_id"] == *s) {
+            // a leg without a stride length says why (withheld, never silently empty)
+            assert!(
+                num(r, "stride_length_m").is_some() || r["withheld"].contains("stride_length_m"),
+                "{s} {}: stride length empty without a reason",
+                r["side"]
+            );
+        }
+        if let (Some(l), Some(r)) = (len("left"), len("right")) {
+            compared += 1;
+            assert!((l - r).abs() / l.max(r) <= 0.10, "{s}: {l} vs {r}");
+        }
+    }
+    let events = read_csv(&out.join("events.csv"));
+    let (mut pairs, mut alternating) = (0usize, 0usize);
+    for s in &subjects {
+        let mut hs: Vec<(f64, &str)> = events
+            .iter()
+            .filter(|e| e["subject_id"] == *s && e["event"] == "HS")
+            .map(|e| (e["time_s"].parse().unwrap(), e["side"].as_str()))
+            .collect();
+        hs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for w in hs.windows(2) {
+            // a pause longer than 2 s (standing, turning back) starts a new bout
+            if w[1].0 - w[0].0 < 2.0 {
+                pairs += 1;
+                alternating += usize::from(w[0].1 != w[1].1);
+            }
+        }
+    }
+    let share = alternating as f64 / pairs.max(1) as f64;
+    println!(
+        "HuGaDB: {angles} reported stride angles, all within ±90°; {compared} subjects with both \
+         legs' stride lengths compared; heel strikes alternate in {alternating} of {pairs} ({:.1} %)",
+        100.0 * share
+    );
+    assert!(pairs > 0 && share >= 0.99, "alternation {share}");
 }
 
 /// `path` relative to `base` (both absolute, canonical).

@@ -10,7 +10,7 @@ use crate::align::{align, Aligned, Alignment};
 use crate::attitude::{estimate, Attitude};
 use crate::error::Result;
 use crate::events::{detect, Events};
-use crate::gait::{side_parameters, strides, SideParameters, Stride};
+use crate::gait::{side_parameters, strides, withhold_unvouched_lengths, SideParameters, Stride};
 use crate::io::ReadReport;
 use crate::nonlinear::{gait_sta, GaitStaParams};
 use crate::preprocess::preprocess;
@@ -104,6 +104,7 @@ pub fn analyze_leg_timed(
     let mut st = strides(side, &al, &att, &ev, &sp.check()?)?;
     let before = side_parameters(&st, None);
     let checks = leg_checks(rec, &al, &att, &mut st, &before);
+    withhold_unvouched_lengths(&mut st);
     let mut parameters = side_parameters(&st, None);
     t.lap(Stage::Strides, &mut clock);
     if params.compute_sta && !checks.gyro_fault {

@@ -4,7 +4,7 @@ use super::*;
 use serde::{Deserialize, Serialize};
 
 use crate::attitude::AttitudeModel;
-use crate::gait::side_parameters;
+use crate::gait::{side_parameters, withhold_unvouched_lengths};
 use crate::io::{FormatSpec, ReadReport, ValidReadParams};
 use crate::recording::{Recording, Side};
 use crate::timings::{Stage, StageTimings};
@@ -169,6 +169,7 @@ pub fn analyze_pair(
             // since the leg checks ran), then the pair's.
             quality::apply_to_strides(&mut leg.strides, &leg.warnings);
             quality::apply_to_strides(&mut leg.strides, &warnings);
+            withhold_unvouched_lengths(&mut leg.strides);
             leg.parameters = side_parameters(&leg.strides, other.as_deref());
             (
                 leg.parameters.sta_per_s,

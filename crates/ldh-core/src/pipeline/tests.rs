@@ -160,15 +160,21 @@ fn family_b_case(
 
 /// Slow hemiparetic gait at 0.3 m/s (strides ≈ 2 s, mid-swing well under 100 deg/s): both legs
 /// find their strides, heel strikes within 40 ms, no reported stride length more than 15 % off.
+/// On this seed 8 of the affected leg's 11 valid strides fail the velocity-drift check, so its
+/// 3 survivors are withheld too (`gait::MIN_LENGTH_SHARE`); the other leg reports its lengths.
 #[test]
 fn slow_gait_at_0_3_mps_against_truth() {
-    for (hs, sl, _, valid) in family_b_case(0.3, crate::Setting::Overground, 31) {
-        assert!(valid >= 4, "valid strides {valid}");
+    let legs = family_b_case(0.3, crate::Setting::Overground, 31);
+    for (hs, sl, _, valid) in &legs {
+        assert!(*valid >= 4, "valid strides {valid}");
         assert!(hs.len() >= 4);
         assert!(hs.iter().all(|e| e.abs() < 0.04), "{hs:?}");
         assert!(sl.iter().all(|e| e.abs() < 0.15), "{sl:?}");
-        assert!(!sl.is_empty(), "no stride length reported");
     }
+    assert!(
+        legs.iter().any(|(_, sl, _, _)| sl.len() >= 4),
+        "no leg reports its stride length"
+    );
 }
 
 /// Treadmill walking: no stride is a turn, lengths on the belt within 15 % when reported.
