@@ -27,7 +27,7 @@ mod length;
 use serde::{Deserialize, Serialize};
 
 use crate::align::Aligned;
-use crate::attitude::Attitude;
+use crate::attitude::{Attitude, AttitudeModel};
 use crate::error::{LdhError, Result};
 use crate::events::Events;
 use crate::recording::Side;
@@ -251,6 +251,12 @@ pub fn strides(
     strides_with_turns(side, al, att, ev, params, &|_, _, d| d.abs() > turn_deg)
 }
 
+/// Why the ACC-only model never reports a stride length: its attitude is the accelerometer's
+/// own tilt, which walking accelerations corrupt, so gravity cannot be removed before the
+/// integration. On both simulator families its few lengths that passed the per-stride checks
+/// were 86-99 % short (docs/accuracy.md); the paper uses this model for angles only.
+pub const ACC_ONLY_LENGTH: &str = "stride length withheld: the ACC-only attitude cannot separate gravity from motion, so the acceleration is not integrated";
+
 /// The turn test of [`strides_with_turns`]: (HS time s, next HS time s, this leg's heading
 /// change over the stride deg) → the stride is part of a turn.
 pub type TurnTest<'a> = dyn Fn(f64, f64, f64) -> bool + 'a;
@@ -355,7 +361,11 @@ pub fn strides_with_turns(
             f64::NAN
         };
         let mut length = est.length_m;
-        let note = est.implausible(pendulum);
+        let note = if att.model == AttitudeModel::Acc {
+            Some(ACC_ONLY_LENGTH.to_string())
+        } else {
+            est.implausible(pendulum)
+        };
         if note.is_some() {
             length = f64::NAN;
         }
@@ -584,6 +594,10 @@ fn withhold_side_length(out: &mut SideParameters, valid: &[&Stride], with_length
     for s in valid.iter().filter(|s| !s.stride_length_m.is_finite()) {
         let r = &s.reason;
         let key = [
+            (
+                "ACC-only",
+                "the ACC-only attitude cannot separate gravity from motion",
+            ),
             ("drift", "velocity drift"),
             ("floor", "ankle off the floor level"),
             ("pendulum", "disagrees with the shank-pendulum estimate"),
