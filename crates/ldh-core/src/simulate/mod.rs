@@ -30,12 +30,13 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{LdhError, Result};
 pub use cohort::CohortParams;
-pub use model::{
-    simulate_subject, DenseTruth, LegTruth, SensorTruth, SimLeg, SimSubject, StrideTruth,
-};
+pub use model::simulate_subject;
 pub use params::{LegParams, SubjectParams};
 pub use sensor::SensorModel;
-pub use truth::{read_truth, SubjectTruth, TRUTH_SCHEMA};
+pub use truth::{
+    read_truth, DenseTruth, LegTruth, SensorTruth, SimLeg, SimSubject, StrideTruth, SubjectTruth,
+    TRUTH_SCHEMA,
+};
 pub use write::{manifest_csv, write_cohort, Cohort, ManifestRow};
 
 /// The most samples one simulated leg may have (`duration_s × fs_hz`): 1 000 000, e.g. 2.7 h

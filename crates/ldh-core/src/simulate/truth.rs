@@ -1,12 +1,125 @@
-//! Ground truth of a simulated subject: the `truth.json` file ([`SubjectTruth`]) and reading it
-//! back ([`read_truth`]).
+//! What a simulation delivers ([`SimSubject`]: per leg the recording, the ground truth and the
+//! noise-free dense kinematics) and the ground-truth file `truth.json` ([`SubjectTruth`],
+//! [`read_truth`]).
 
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
-use super::{family_b, Group, LegTruth, SimSubject, SubjectParams};
+use super::{family_b, Group, SubjectParams};
 use crate::error::{LdhError, Result};
-use crate::recording::Side;
+use crate::recording::{Recording, Side};
+
+/// Ground truth of one stride of one leg.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StrideTruth {
+    /// Stride number within the leg (its heel strike's index).
+    pub index: usize,
+    /// Heel strike, s from the first sample.
+    pub hs_time_s: f64,
+    /// Toe off, s.
+    pub to_time_s: f64,
+    /// Next heel strike, s.
+    pub next_hs_time_s: f64,
+    /// Stride time, s.
+    pub stride_time_s: f64,
+    /// Stance ratio (TO − HS) / stride time.
+    pub stance_ratio: f64,
+    /// Horizontal displacement of the foot over the stride, m.
+    pub stride_length_m: f64,
+    /// Maximum shank pitch θ in the stride, deg (WQK).
+    pub max_pitch_deg: f64,
+    /// Minimum shank pitch θ in the stride, deg (−PBI).
+    pub min_pitch_deg: f64,
+    /// Range of anatomical roll from toe off to the next heel strike, deg (BDK).
+    pub roll_swing_excursion_deg: f64,
+    /// The stride overlaps the turn.
+    pub turning: bool,
+    /// First or last stride of a walking bout (gait ramping in or out).
+    pub bout_edge: bool,
+}
+
+/// What was drawn for one sensor.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SensorTruth {
+    /// Rotation of the device about the shank axis relative to nominal, deg.
+    pub axial_misalignment_deg: f64,
+    /// Small tilts about the device's y and z axes, deg.
+    pub tilt_misalignment_deg: [f64; 2],
+    /// The device is mounted mirrored (rotated 180° about the shank axis: right leg).
+    pub mirrored: bool,
+    /// Device axes (columns x, y, z) in the anatomical frame F (e1 anterior, e2 left, e3 up).
+    pub device_axes_in_f: [[f64; 3]; 3],
+    /// Gyroscope bias, deg/s, device axes.
+    pub gyro_bias_dps: [f64; 3],
+    /// Accelerometer bias, g, device axes.
+    pub acc_bias_g: [f64; 3],
+    /// Samples clipped at the sensor's range.
+    pub saturated_samples: usize,
+}
+
+/// Ground truth of one leg.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LegTruth {
+    /// The leg.
+    pub side: Side,
+    /// Sensor height above the ankle joint, m.
+    pub sensor_height_m: f64,
+    /// The sensor's draw.
+    pub sensor: SensorTruth,
+    /// All heel strikes, s.
+    pub hs_times_s: Vec<f64>,
+    /// All toe offs, s.
+    pub to_times_s: Vec<f64>,
+    /// Strides with both heel strikes.
+    pub strides: Vec<StrideTruth>,
+    /// Shank pitch θ at each sample, deg.
+    pub pitch_deg: Vec<f64>,
+    /// Anatomical roll ρ at each sample, deg (positive: knee lateral to ankle).
+    pub roll_deg: Vec<f64>,
+    /// Heading ψ at each sample, deg.
+    pub yaw_deg: Vec<f64>,
+}
+
+/// Noise-free signals and world kinematics at each sample (for physics tests; not written).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DenseTruth {
+    /// Specific force in the device frame without noise, bias, quantisation or clipping, g.
+    pub acc_clean_g: [Vec<f64>; 3],
+    /// Angular velocity in the device frame, noise-free, deg/s.
+    pub gyro_clean_dps: [Vec<f64>; 3],
+    /// Sensor position in the world, m.
+    pub sensor_pos_m: [Vec<f64>; 3],
+    /// Sensor velocity in the world, m/s.
+    pub sensor_vel_mps: [Vec<f64>; 3],
+    /// Rotation world ← device at each sample (row-major).
+    pub r_world_device: Vec<[[f64; 3]; 3]>,
+    /// ZYX Euler angles (φ, θ, ψ) of the anatomical frame, rad.
+    pub euler_rad: [Vec<f64>; 3],
+}
+
+/// One simulated leg: the sensor's recording and the truth.
+#[derive(Debug, Clone)]
+pub struct SimLeg {
+    /// The recording as the sensor delivers it (noise, bias, quantisation, clipping).
+    pub recording: Recording,
+    /// Events, strides, angles.
+    pub truth: LegTruth,
+    /// Noise-free dense kinematics.
+    pub dense: DenseTruth,
+}
+
+/// One simulated subject.
+#[derive(Debug, Clone)]
+pub struct SimSubject {
+    /// The parameters drawn or given.
+    pub params: SubjectParams,
+    /// Left shank.
+    pub left: SimLeg,
+    /// Right shank.
+    pub right: SimLeg,
+    /// The full parameters of a family B subject (`params` then holds a summary).
+    pub family_b: Option<family_b::SubjectParamsB>,
+}
 
 /// Version tag of the ground-truth JSON.
 pub const TRUTH_SCHEMA: &str = "ldh-sim-truth/1";
