@@ -15,7 +15,7 @@
 use std::path::Path;
 
 use super::format::{AccUnit, ColumnRef, Delimiter, FormatSpec, GyroUnit, TimeUnit};
-use super::reader::{detect_delimiter, split_header};
+use super::text::{detect_delimiter, split_header};
 use crate::error::{LdhError, Location, Result};
 
 /// Positions (0-based) of the columns a format reads.
