@@ -151,3 +151,68 @@ pub fn detect_clipping(ch: &[f64], range: Option<f64>, floor: f64) -> Vec<bool> 
     }
     flags
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SPEC: &str = r#"
+name = "t"
+[time]
+column = "t"
+unit = "s"
+[acc]
+columns = ["ax", "ay", "az"]
+unit = "g"
+scale = 0.5
+range = 16.0
+[gyro]
+columns = ["gx", "gy", "gz"]
+unit = "rad/s"
+[axes]
+map = ["-y", "+x", "+z"]
+"#;
+
+    #[test]
+    fn scaled_values_at_the_stated_range_are_clipped() {
+        let spec = FormatSpec::from_toml_str(SPEC, "test").unwrap();
+        let mut ch: [Vec<f64>; 6] = std::array::from_fn(|_| vec![0.0; 3]);
+        ch[0] = vec![32.0, 2.0, -40.0];
+        let mut notes = Vec::new();
+        let c = scale_and_flag_clipping(&mut ch, &spec, 3, &mut notes);
+        assert_eq!(ch[0], vec![16.0, 1.0, -20.0]);
+        assert_eq!(c.per_channel, [2, 0, 0, 0, 0, 0]);
+        assert_eq!(c.saturated, vec![true, false, true]);
+        assert_eq!(c.samples, 2);
+        assert_eq!(notes.len(), 1);
+    }
+
+    #[test]
+    fn units_and_the_axis_map_give_ldh_frame() {
+        let spec = FormatSpec::from_toml_str(SPEC, "test").unwrap();
+        let ch = [
+            vec![1.0],
+            vec![2.0],
+            vec![3.0],
+            vec![std::f64::consts::PI],
+            vec![0.5 * std::f64::consts::PI],
+            vec![0.0],
+        ];
+        let mut notes = Vec::new();
+        let (acc, gyro) = to_ldh_frame(ch, &spec, &mut notes).unwrap();
+        assert_eq!(acc, [vec![-2.0], vec![1.0], vec![3.0]]);
+        assert!((gyro[0][0] + 90.0).abs() < 1e-12 && (gyro[1][0] - 180.0).abs() < 1e-12);
+        assert_eq!(gyro[2][0], 0.0);
+        assert!(
+            notes[0].starts_with("axes mapped to ldh's frame"),
+            "{notes:?}"
+        );
+    }
+
+    #[test]
+    fn a_flat_run_at_a_large_extreme_is_clipping_a_still_sensor_is_not() {
+        let flags = detect_clipping(&[0.0, 250.0, 250.0, 250.0, 10.0], None, 200.0);
+        assert_eq!(flags, vec![false, true, true, true, false]);
+        assert!(!detect_clipping(&[1.0, 1.0, 1.0], None, 1.5).contains(&true));
+    }
+}

@@ -137,6 +137,7 @@ pub(super) fn check_median_rate(
 }
 
 /// The recording split at gaps: the kept segment (rows `start..end`) and what was not kept.
+#[derive(Debug)]
 pub(super) struct Segments {
     /// Gaps longer than `max_gap_s`.
     pub gaps: Vec<GapInfo>,
@@ -216,6 +217,7 @@ pub(super) fn split_at_gaps(
 }
 
 /// The uniform sampling grid fitted to the kept segment.
+#[derive(Debug)]
 pub(super) struct Grid {
     /// Sampling rate, Hz.
     pub fs: f64,
@@ -415,4 +417,106 @@ pub fn interp_linear(x: &[f64], y: &[f64], at: &[f64]) -> Vec<f64> {
         out.push(v);
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const BOUNDS: RateBounds = RateBounds {
+        min_hz: 20.0,
+        max_hz: 2000.0,
+    };
+
+    fn seconds() -> FormatSpec {
+        FormatSpec::builtin("ldh").expect("built-in")
+    }
+
+    fn path() -> &'static Path {
+        Path::new("t.csv")
+    }
+
+    #[test]
+    fn a_wrapping_counter_is_unwrapped_and_noted() {
+        let spec = FormatSpec::builtin("xsens-mtmanager")
+            .expect("built-in")
+            .with_rate_hz(100.0);
+        let mut notes = Vec::new();
+        let t = times_in_seconds(vec![65534.0, 65535.0, 0.0, 1.0], &spec, 4, &mut notes);
+        assert_eq!(t, vec![655.34, 655.35, 655.36, 655.37]);
+        assert_eq!(notes, ["sample counter wrapped 1 time(s)"]);
+    }
+
+    #[test]
+    fn repeated_time_and_a_millisecond_clock_are_refused() {
+        let e = check_monotonic(&[0.0, 0.01, 0.01], &[2, 3, 4], Some(0), path()).unwrap_err();
+        assert!(matches!(e, LdhError::NonMonotonicTime { .. }), "{e}");
+        assert!(e.to_string().starts_with("t.csv:4:1"), "{e}");
+        let ms: Vec<f64> = (0..10).map(|i| i as f64 * 10.0).collect();
+        let e = check_median_rate(&ms, BOUNDS, TimeUnit::Seconds, path()).unwrap_err();
+        assert!(
+            e.to_string().contains("milliseconds written as seconds?"),
+            "{e}"
+        );
+        let s: Vec<f64> = ms.iter().map(|t| t * 1e-3).collect();
+        assert!(check_median_rate(&s, BOUNDS, TimeUnit::Seconds, path()).is_ok());
+    }
+
+    #[test]
+    fn the_longest_segment_between_gaps_is_kept_or_the_gap_refused() {
+        // 0–1 s, a 0.5 s gap, 1.5–3.5 s, a 0.3 s gap, 3.8–4.3 s; 100 Hz.
+        let mut t: Vec<f64> = (0..=100).map(|i| i as f64 / 100.0).collect();
+        t.extend((0..=200).map(|i| 1.5 + i as f64 / 100.0));
+        t.extend((0..=50).map(|i| 3.8 + i as f64 / 100.0));
+        let lines: Vec<u64> = (2..).take(t.len()).collect();
+        let mut warnings = Vec::new();
+        let s = split_at_gaps(&t, &lines, 0.2, false, path(), &mut warnings).unwrap();
+        assert_eq!((s.start, s.end), (101, 302));
+        assert_eq!(s.gaps.len(), 2);
+        assert_eq!(s.gaps[0].line, 103);
+        assert_eq!(s.dropped, vec![(0.0, 1.0), (3.8, t[t.len() - 1])]);
+        assert_eq!(
+            warnings,
+            ["2 gap(s) longer than 0.2 s: kept the longest segment 1.50–3.50 s, dropped 2"]
+        );
+        let e = split_at_gaps(&t, &lines, 0.2, true, path(), &mut Vec::new()).unwrap_err();
+        assert!(matches!(e, LdhError::Gap { .. }), "{e}");
+    }
+
+    #[test]
+    fn the_rate_is_fitted_through_jitter_and_a_missing_row_is_resampled() {
+        let fs = 100.2;
+        // ±0.25 ms of jitter (5 % of a period): the rows stay as they are.
+        let jittered: Vec<f64> = (0..500)
+            .map(|i| i as f64 / fs + if i % 2 == 0 { 2.5e-4 } else { -2.5e-4 })
+            .collect();
+        let mut warnings = Vec::new();
+        let g = fit_grid(&jittered, &seconds(), BOUNDS, path(), &mut warnings).unwrap();
+        assert!((g.fs - fs).abs() < 1e-3, "{}", g.fs);
+        assert!(g.uniform && g.n_out == 500 && warnings.is_empty());
+
+        // One row missing: resampled onto the grid, which has the missing sample back.
+        let mut t: Vec<f64> = (0..500).map(|i| i as f64 / fs).collect();
+        t.remove(250);
+        let g = fit_grid(&t, &seconds(), BOUNDS, path(), &mut warnings).unwrap();
+        assert!((g.fs - fs).abs() < 1e-9 && !g.uniform && g.n_out == 500);
+        let raw: [Vec<f64>; 6] = std::array::from_fn(|k| t.iter().map(|x| k as f64 * x).collect());
+        let mut notes = Vec::new();
+        let ch = place_on_grid(&raw, 0..t.len(), &t, &g, &mut notes);
+        assert_eq!(ch[3].len(), 500);
+        for (i, v) in ch[3].iter().enumerate() {
+            let ti = g.t0 + i as f64 / g.fs;
+            assert!(
+                (v - 3.0 * ti).abs() < 1e-9,
+                "sample {i}: {v} vs {}",
+                3.0 * ti
+            );
+        }
+        assert!(notes[0].starts_with("timestamps not uniform"), "{notes:?}");
+
+        // Seconds that are really milliseconds: an implausible rate.
+        let slow: Vec<f64> = (0..10).map(|i| i as f64 * 10.0).collect();
+        let e = fit_grid(&slow, &seconds(), BOUNDS, path(), &mut warnings).unwrap_err();
+        assert!(matches!(e, LdhError::SamplingRate { .. }), "{e}");
+    }
 }
