@@ -266,7 +266,14 @@ pub fn markdown(acc: &[Accuracy]) -> String {
     for (name, f) in rows.iter() {
         s.push_str(&format!("| {name} |"));
         for a in acc {
-            s.push_str(&format!(" {} |", f(a)));
+            // A metric over no reported value (e.g. ACC-only stride length, never reported).
+            let cell = f(a);
+            let cell = if cell.contains("NaN") {
+                "— (none reported)".to_string()
+            } else {
+                cell
+            };
+            s.push_str(&format!(" {cell} |"));
         }
         s.push('\n');
     }

@@ -557,6 +557,10 @@ fn lengths_vouched(valid: usize, with_length: usize) -> bool {
         && with_length as f64 >= MIN_LENGTH_SHARE * valid as f64
 }
 
+/// The end of the reason [`withhold_unvouched_lengths`] gives a survivor, by which
+/// [`withhold_side_length`] still counts it as having passed its own checks.
+const SURVIVOR: &str = "valid strides pass the integration checks";
+
 /// Withholds the per-stride lengths (and speeds) of a leg whose lengths are not vouched for
 /// ([`lengths_vouched`]): the few strides that passed their own checks are survivors of the
 /// same faulty integration (on simulator family A the ACC-only model's 2 survivors of 616 were
@@ -576,9 +580,7 @@ pub fn withhold_unvouched_lengths(strides: &mut [Stride]) {
         s.speed_mps = f64::NAN;
         append_reason(
             s,
-            format!(
-                "stride length withheld: only {with_length} of the leg's {valid} valid strides pass the integration checks"
-            ),
+            format!("stride length withheld: only {with_length} of the leg's {valid} {SURVIVOR}"),
         );
     }
 }
@@ -590,8 +592,14 @@ fn withhold_side_length(out: &mut SideParameters, valid: &[&Stride], with_length
     if valid.is_empty() || lengths_vouched(valid.len(), with_length) {
         return;
     }
+    // Survivors withheld by `withhold_unvouched_lengths` passed their own checks.
+    let survivors = valid.iter().filter(|s| s.reason.contains(SURVIVOR)).count();
+    let passed = with_length + survivors;
     let mut why: std::collections::BTreeMap<String, usize> = Default::default();
-    for s in valid.iter().filter(|s| !s.stride_length_m.is_finite()) {
+    for s in valid
+        .iter()
+        .filter(|s| !s.stride_length_m.is_finite() && !s.reason.contains(SURVIVOR))
+    {
         let r = &s.reason;
         let key = [
             (
@@ -615,7 +623,7 @@ fn withhold_side_length(out: &mut SideParameters, valid: &[&Stride], with_length
         .map(|(r, _)| r.clone())
         .unwrap_or_default();
     let reason = format!(
-        "stride length vouched for on {with_length} of {} valid strides ({top})",
+        "stride length vouched for on {passed} of {} valid strides ({top})",
         valid.len()
     );
     out.stride_length_m = f64::NAN;
@@ -647,7 +655,12 @@ mod tests {
             .reason
             .contains("only 4 of the leg's 127 valid strides pass the integration checks"));
         let p = side_parameters(&st, None);
-        assert!(p.stride_length_m.is_nan() && p.withheld.contains_key("stride_length_m"));
+        assert!(p.stride_length_m.is_nan());
+        // the leg's reason still counts the survivors as having passed their own checks
+        assert_eq!(
+            p.withheld["stride_length_m"],
+            "stride length vouched for on 4 of 127 valid strides (velocity drift)"
+        );
         // a vouched leg is left alone
         let mut st = leg(20, 12);
         withhold_unvouched_lengths(&mut st);

@@ -164,6 +164,11 @@ pub fn apply_to_strides(st: &mut [Stride], warnings: &[Warning]) {
                 s.valid = false;
                 s.reason = w.code.replace('_', " ");
             }
+            // A blanked cell says why (the strides table gets "an empty cell with a reason").
+            let angles = [s.wqk_deg, s.pbi_deg, s.bdk_deg]
+                .iter()
+                .any(|v| v.is_finite());
+            let length = s.stride_length_m.is_finite();
             if has("wqk_deg") {
                 s.wqk_deg = f64::NAN;
             }
@@ -178,6 +183,16 @@ pub fn apply_to_strides(st: &mut [Stride], warnings: &[Warning]) {
             }
             if has("speed_mps") {
                 s.speed_mps = f64::NAN;
+            }
+            let what = match (angles && has("wqk_deg"), length && has("stride_length_m")) {
+                _ if all => None,
+                (true, true) => Some("angles and stride length"),
+                (true, false) => Some("angles"),
+                (false, true) => Some("stride length"),
+                (false, false) => None,
+            };
+            if let Some(what) = what {
+                add_reason(s, &format!("{what} withheld: {}", w.code.replace('_', " ")));
             }
         }
     }

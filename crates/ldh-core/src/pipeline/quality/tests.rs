@@ -323,3 +323,51 @@ fn running_needs_a_flight_phase_and_brisk_walking_is_walking() {
         vec![codes::IMPLAUSIBLE_CADENCE_FOR_RATE]
     );
 }
+
+/// A leg-level finding that withholds the angles and stride length blanks them per stride and
+/// says why in the stride's reason; one that withholds everything invalidates the stride.
+#[test]
+fn blanked_stride_cells_carry_the_findings_reason() {
+    let mut st: Vec<crate::gait::Stride> = (0..3).map(|i| stride(i, 1.0, 0.6)).collect();
+    st[1].stride_length_m = f64::NAN;
+    st[1].reason = "stride length withheld: velocity drift 1.00 m/s over the stride".into();
+    let w = Warning::new(
+        codes::ATTITUDE_DIVERGENCE,
+        Severity::Warning,
+        "the shank attitude drifts",
+    )
+    .withholding(&[
+        "wqk_deg",
+        "pbi_deg",
+        "bdk_deg",
+        "stride_length_m",
+        "speed_mps",
+    ]);
+    apply_to_strides(&mut st, std::slice::from_ref(&w));
+    assert!(st.iter().all(|s| s.valid && s.wqk_deg.is_nan()));
+    assert!(st.iter().all(|s| s.stride_length_m.is_nan()));
+    assert_eq!(
+        st[0].reason,
+        "angles and stride length withheld: attitude divergence"
+    );
+    assert_eq!(
+        st[1].reason,
+        "stride length withheld: velocity drift 1.00 m/s over the stride; angles withheld: attitude divergence"
+    );
+    // applied twice (leg, then pair): one reason
+    apply_to_strides(&mut st, &[w]);
+    assert_eq!(
+        st[0].reason,
+        "angles and stride length withheld: attitude divergence"
+    );
+    let all = Warning::new(
+        codes::GYRO_SCALE_FAULT,
+        Severity::Fault,
+        "gyroscope scale fault",
+    )
+    .withholding(&params::ALL);
+    apply_to_strides(&mut st, &[all]);
+    assert!(st
+        .iter()
+        .all(|s| !s.valid && s.reason == "gyro scale fault"));
+}
