@@ -638,7 +638,8 @@ pub fn read_recording_bytes(
 
     // Saturation, on the values in the file's units after scaling.
     let mut sat_per = [0usize; 6];
-    let mut saturated = vec![false; n_out];
+    // Per sensor (acc, gyro): preprocessing replaces only the channels of the sensor that clipped.
+    let mut saturated = [vec![false; n_out], vec![false; n_out]];
     for k in 0..6 {
         let (scale, range, floor) = if k < 3 {
             let floor = match spec.acc.unit {
@@ -661,11 +662,13 @@ pub fn read_recording_bytes(
         for (i, f) in flags.iter().enumerate() {
             if *f {
                 sat_per[k] += 1;
-                saturated[i] = true;
+                saturated[k / 3][i] = true;
             }
         }
     }
-    let saturated_samples = saturated.iter().filter(|&&s| s).count();
+    let saturated_samples = (0..n_out)
+        .filter(|&i| saturated[0][i] || saturated[1][i])
+        .count();
     if saturated_samples > 0 {
         notes.push(format!(
             "{saturated_samples} clipped sample(s) at the sensor range (acc x/y/z, gyro x/y/z: {sat_per:?}); treated as outliers"
@@ -713,10 +716,13 @@ pub fn read_recording_bytes(
 
     warnings.extend(flat_channel_warnings(&acc_g, &gyro_dps, fs, t0));
 
-    let mut rec = Recording::new(fs, acc_g, gyro_dps, saturated).map_err(|e| LdhError::Signal {
-        context: path.display().to_string(),
-        reason: e.to_string(),
-    })?;
+    let [acc_sat, gyro_sat] = saturated;
+    let mut rec = Recording::new(fs, acc_g, gyro_dps, vec![])
+        .and_then(|r| r.with_sensor_saturation(acc_sat, gyro_sat))
+        .map_err(|e| LdhError::Signal {
+            context: path.display().to_string(),
+            reason: e.to_string(),
+        })?;
     rec.t0_s = t0;
     rec.source = Some(path.to_path_buf());
     if params.check_units {
