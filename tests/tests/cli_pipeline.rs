@@ -260,6 +260,10 @@ fn evaluate_reports_accuracy_within_the_issue_targets() {
     assert!(v("stance_ratio_mae") < 0.01, "{f}");
     assert!(v("stride_length_mae_pct") < 2.0, "{f}");
     assert!(v("pitch_rmse_deg") < 1.5 && v("roll_rmse_deg") < 1.0, "{f}");
+    // No leg's angles withheld on family A: the all-legs figures are the same.
+    assert_eq!(f["angles_withheld"], 0, "{f}");
+    assert_eq!(v("pitch_rmse_all_deg"), v("pitch_rmse_deg"));
+    assert!(text(&o).contains("| legs with angles withheld (of recordings) | 0 / 12 |"));
     // The ACC-only baseline is worse where only the attitude differs.
     let a = &acc[1];
     assert_eq!(a["model"], "acc");

@@ -7,7 +7,10 @@
 //! strides whose length was withheld are counted, and so are reported lengths more than 15 %
 //! off (a clinical tool may withhold, never report a wrong number).
 //! Attitude errors are RMS over the whole recording, pitch against the true shank pitch θ and
-//! roll against the true anatomical roll.
+//! roll against the true anatomical roll. Like stride length, they are scored on the legs whose
+//! angles the pipeline reports: a leg whose angle parameters a quality check withheld (the
+//! attitude health checks, a clipped gyroscope) is counted, not scored; the mean over all legs
+//! is given beside it, so a runaway that was withheld stays visible.
 
 use serde::{Deserialize, Serialize};
 
@@ -59,10 +62,19 @@ pub struct Accuracy {
     /// Matched steady strides whose length was withheld (or the stride invalid).
     #[serde(default)]
     pub stride_length_withheld: usize,
-    /// Pitch RMSE (mean over recordings), deg.
+    /// Pitch RMSE (mean over the recordings whose angles are reported), deg.
     pub pitch_rmse_deg: f64,
-    /// Roll RMSE (mean over recordings), deg.
+    /// Roll RMSE (mean over the recordings whose angles are reported), deg.
     pub roll_rmse_deg: f64,
+    /// Recordings whose angle parameters were withheld (not scored in `pitch_rmse_deg`).
+    #[serde(default)]
+    pub angles_withheld: usize,
+    /// Pitch RMSE (mean over all recordings, withheld angles included), deg.
+    #[serde(default)]
+    pub pitch_rmse_all_deg: f64,
+    /// Roll RMSE (mean over all recordings, withheld angles included), deg.
+    #[serde(default)]
+    pub roll_rmse_all_deg: f64,
 }
 
 fn mean(v: &[f64]) -> f64 {
@@ -103,6 +115,9 @@ pub fn evaluate(results: &[SubjectResult], truths: &[SubjectTruth]) -> Accuracy 
     let mut sl = Vec::new();
     let mut pitch = Vec::new();
     let mut roll = Vec::new();
+    let mut pitch_all = Vec::new();
+    let mut roll_all = Vec::new();
+    let mut angles_withheld = 0;
     let mut missed = 0;
     let mut withheld = 0;
     let mut recs = 0;
@@ -138,8 +153,17 @@ pub fn evaluate(results: &[SubjectResult], truths: &[SubjectTruth]) -> Accuracy 
                     })
                     .sum::<f64>()
                     / n as f64;
-                pitch.push(ep.sqrt());
-                roll.push(er.sqrt());
+                pitch_all.push(ep.sqrt());
+                roll_all.push(er.sqrt());
+                let withheld = crate::pipeline::quality::params::ANGLES
+                    .iter()
+                    .any(|k| leg.parameters.withheld.contains_key(*k));
+                if withheld {
+                    angles_withheld += 1;
+                } else {
+                    pitch.push(ep.sqrt());
+                    roll.push(er.sqrt());
+                }
             }
         }
     }
@@ -170,6 +194,9 @@ pub fn evaluate(results: &[SubjectResult], truths: &[SubjectTruth]) -> Accuracy 
         stride_length_withheld: withheld,
         pitch_rmse_deg: mean(&pitch),
         roll_rmse_deg: mean(&roll),
+        angles_withheld,
+        pitch_rmse_all_deg: mean(&pitch_all),
+        roll_rmse_all_deg: mean(&roll_all),
     }
 }
 
@@ -222,7 +249,7 @@ pub fn markdown(acc: &[Accuracy]) -> String {
         s.push_str("---:|");
     }
     s.push('\n');
-    let rows: [AccuracyRow; 15] = [
+    let rows: [AccuracyRow; 17] = [
         ("recordings / steady strides", |a| {
             format!("{} / {}", a.recordings, a.strides)
         }),
@@ -260,8 +287,18 @@ pub fn markdown(acc: &[Accuracy]) -> String {
         ("stride lengths withheld (of steady strides)", |a| {
             format!("{} / {}", a.stride_length_withheld, a.strides)
         }),
-        ("pitch RMSE (deg)", |a| format!("{:.2}", a.pitch_rmse_deg)),
-        ("roll RMSE (deg)", |a| format!("{:.2}", a.roll_rmse_deg)),
+        ("pitch RMSE (deg), legs with angles reported", |a| {
+            format!("{:.2}", a.pitch_rmse_deg)
+        }),
+        ("roll RMSE (deg), legs with angles reported", |a| {
+            format!("{:.2}", a.roll_rmse_deg)
+        }),
+        ("legs with angles withheld (of recordings)", |a| {
+            format!("{} / {}", a.angles_withheld, a.recordings)
+        }),
+        ("pitch / roll RMSE (deg), all legs", |a| {
+            format!("{:.2} / {:.2}", a.pitch_rmse_all_deg, a.roll_rmse_all_deg)
+        }),
     ];
     for (name, f) in rows.iter() {
         s.push_str(&format!("| {name} |"));

@@ -252,6 +252,29 @@ pub fn no_strides_reason(omega_s_dps: &[f64], ev: &Events, p: &EventParams) -> S
     }
 }
 
+/// The late-stance landmarks before the mid-swing at `m`, searched in `[start, m)`: the
+/// late-stance peak of ω_s (index `l`, Aminian et al. 2002 and Salarian et al. 2004 take the
+/// largest such peak before mid-swing as the toe-off landmark; Trojaniello et al. 2014 likewise
+/// take the largest one in the search window) and the first downward zero crossing after it
+/// (index `z`, ω_s[z] ≥ 0 > ω_s[z + 1]: the pitch peak).
+///
+/// The peak is the largest positive local maximum of the window, not the last one: a stiff-knee
+/// swing can pause the shank just after toe off, and the small bump of ω_s that pause makes
+/// (with a second zero crossing) lies 100–200 ms after the toe off. `None` when the window has
+/// no positive local maximum followed by a zero crossing before `m`.
+fn late_stance(omega_s_dps: &[f64], start: usize, m: usize) -> Option<(usize, usize)> {
+    let start = start.max(1);
+    let l = (start..m)
+        .filter(|&i| {
+            omega_s_dps[i] > 0.0
+                && omega_s_dps[i] >= omega_s_dps[i + 1]
+                && omega_s_dps[i] > omega_s_dps[i - 1]
+        })
+        .max_by(|&a, &b| omega_s_dps[a].total_cmp(&omega_s_dps[b]))?;
+    let z = (l..m).find(|&i| omega_s_dps[i] >= 0.0 && omega_s_dps[i + 1] < 0.0)?;
+    Some((l, z))
+}
+
 /// Detect HS and TO from the pitch θ (deg) and the sagittal angular velocity ω_s (deg/s).
 pub fn detect(
     pitch_deg: &[f64],
@@ -330,15 +353,7 @@ pub fn detect(
         // TO: before mid-swing, within half a stride.
         let start = m.saturating_sub(half).max(1);
         if p.detector == EventDetector::GyroLandmarks {
-            let zc = (start..m)
-                .rev()
-                .find(|&i| omega_s_dps[i] >= 0.0 && omega_s_dps[i + 1] < 0.0);
-            let late = zc.and_then(|z| {
-                (start..=z).rev().find(|&i| {
-                    omega_s_dps[i] >= omega_s_dps[i + 1] && omega_s_dps[i] > omega_s_dps[i - 1]
-                })
-            });
-            if let (Some(z), Some(l)) = (zc, late) {
+            if let Some((l, z)) = late_stance(omega_s_dps, start, m) {
                 let tp =
                     (z as f64 + omega_s_dps[z] / (omega_s_dps[z] - omega_s_dps[z + 1])) / fs_hz;
                 let ts = parabolic(omega_s_dps, l) / fs_hz;
@@ -358,20 +373,10 @@ pub fn detect(
                 })
                 .filter(|&i| i > start && i < m)
                 .map(|i| i as f64),
-            EventDetector::GyroZeroCrossing => (start..m)
-                .rev()
-                .find(|&i| omega_s_dps[i] >= 0.0 && omega_s_dps[i + 1] < 0.0)
-                .map(|i| i as f64 + omega_s_dps[i] / (omega_s_dps[i] - omega_s_dps[i + 1])),
+            EventDetector::GyroZeroCrossing => late_stance(omega_s_dps, start, m)
+                .map(|(_, z)| z as f64 + omega_s_dps[z] / (omega_s_dps[z] - omega_s_dps[z + 1])),
             EventDetector::Salarian => {
-                let zc = (start..m)
-                    .rev()
-                    .find(|&i| omega_s_dps[i] >= 0.0 && omega_s_dps[i + 1] < 0.0);
-                zc.and_then(|z| {
-                    (start..=z).rev().find(|&i| {
-                        omega_s_dps[i] >= omega_s_dps[i + 1] && omega_s_dps[i] > omega_s_dps[i - 1]
-                    })
-                })
-                .map(|i| parabolic(omega_s_dps, i))
+                late_stance(omega_s_dps, start, m).map(|(l, _)| parabolic(omega_s_dps, l))
             }
         };
         if let Some(i) = to_idx {
@@ -384,4 +389,37 @@ pub fn detect(
         midswing_s: mid.iter().map(|&i| parabolic(&neg, i) / fs_hz).collect(),
         median_stride_s: t_med,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One stride of ω_s at 100 Hz around a mid-swing at sample 100: a late-stance peak of
+    /// 80 deg/s at 60, its zero crossing at 70, then (stiff-knee swing) a 9 deg/s bump at 85
+    /// with a second zero crossing at 90 before the −300 deg/s mid-swing.
+    fn stiff_knee_swing() -> Vec<f64> {
+        let bump = |i: f64, c: f64, w: f64, a: f64| a * (-((i - c) / w).powi(2)).exp();
+        (0..140)
+            .map(|i| {
+                let i = i as f64;
+                bump(i, 60.0, 6.0, 80.0) - bump(i, 76.0, 3.0, 40.0) + bump(i, 85.0, 2.5, 25.0)
+                    - bump(i, 100.0, 6.0, 300.0)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn late_stance_takes_the_largest_peak_and_its_own_zero_crossing() {
+        let w = stiff_knee_swing();
+        // The swing bump is a positive local maximum followed by a zero crossing.
+        assert!(w[85] > 0.0 && w[85] > w[84] && w[85] >= w[86], "{}", w[85]);
+        let (l, z) = late_stance(&w, 30, 100).expect("landmarks");
+        assert_eq!(l, 60);
+        assert!((66..76).contains(&z), "zero crossing at {z}");
+        assert!(w[z] >= 0.0 && w[z + 1] < 0.0);
+        // No positive peak in the window: no landmark.
+        let neg: Vec<f64> = w.iter().map(|x| -x.abs() - 1.0).collect();
+        assert_eq!(late_stance(&neg, 30, 100), None);
+    }
 }

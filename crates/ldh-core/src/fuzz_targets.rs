@@ -441,3 +441,50 @@ pub fn pipeline(data: &[u8]) {
         Err(e) => check_error(&e),
     }
 }
+
+/// Target `model_file`: arbitrary bytes as a model file (`ldh predict --model`), twice: as they
+/// are, and re-signed (the bytes parsed as JSON, the correct checksum written in) so that
+/// mutations get past the checksum to the schema and shape checks of
+/// [`crate::ml::model_check::validate`]. A refusal must carry a message; an accepted model must
+/// predict (or refuse with a message) three rows of its features without panicking, and its
+/// labels must be classes it has.
+pub fn model_file(data: &[u8]) {
+    use crate::ml::ModelFile;
+    let text = String::from_utf8_lossy(data);
+    check_model(ModelFile::from_json(&text, "fuzz"));
+    let Ok(mut v) = serde_json::from_str::<serde_json::Value>(&text) else {
+        return;
+    };
+    let sum = crate::ml::model_check::checksum(&v);
+    if let serde_json::Value::Object(m) = &mut v {
+        m.insert("checksum".into(), serde_json::Value::String(sum));
+    }
+    let signed = serde_json::to_string(&v).expect("a JSON value serialises");
+    check_model(ModelFile::from_json(&signed, "fuzz"));
+}
+
+/// The checks of [`model_file`] on one parse.
+fn check_model(m: std::result::Result<crate::ml::ModelFile, crate::ml::ModelError>) {
+    let m = match m {
+        Ok(m) => m,
+        Err(e) => {
+            assert!(!e.to_string().trim().is_empty(), "empty model error");
+            return;
+        }
+    };
+    let n = m.feature_names.len();
+    let x = ndarray::Array2::from_shape_fn((3, n), |(i, j)| [0.0, 1.0, 1e3][i] * (j + 1) as f64);
+    match m.predict(&x) {
+        Ok((labels, proba)) => {
+            assert_eq!(labels.len(), 3, "one label per row");
+            assert!(
+                labels.iter().all(|&l| l < m.class_names.len()),
+                "a label outside the model's classes"
+            );
+            if let Some(p) = proba {
+                assert_eq!(p.dim(), (3, m.class_names.len()), "probability shape");
+            }
+        }
+        Err(e) => check_error(&e),
+    }
+}

@@ -49,6 +49,28 @@ fn read_csv_seeds_and_regressions() {
 }
 
 #[test]
+fn model_file_seeds_and_regressions() {
+    assert!(replay("seeds", "model_file", fuzz_targets::model_file) >= 5);
+    replay("regressions", "model_file", fuzz_targets::model_file);
+}
+
+/// The model seeds are models `ldh train` wrote (rf, svm, mlp): they load and predict, so the
+/// fuzzer starts from inputs that reach the shape checks and the classifiers.
+#[test]
+fn model_seeds_load() {
+    let mut n = 0;
+    for (path, bytes) in inputs("seeds", "model_file") {
+        if path.extension().is_some_and(|e| e == "json") && bytes.len() > 1000 {
+            let text = String::from_utf8(bytes).unwrap();
+            let m = ldh_core::ml::ModelFile::from_json(&text, "seed");
+            assert!(m.is_ok(), "{}: {}", path.display(), m.unwrap_err());
+            n += 1;
+        }
+    }
+    assert_eq!(n, 3, "one trained model per classifier");
+}
+
+#[test]
 fn pipeline_seeds_and_regressions() {
     assert!(replay("seeds", "pipeline", fuzz_targets::pipeline) >= 5);
     replay("regressions", "pipeline", fuzz_targets::pipeline);

@@ -15,7 +15,7 @@
 use std::path::Path;
 
 use super::format::{AccUnit, ColumnRef, Delimiter, FormatSpec, GyroUnit, TimeUnit};
-use super::reader::{detect_delimiter, split_header};
+use super::text::{detect_delimiter, split_header};
 use crate::error::{LdhError, Location, Result};
 
 /// Positions (0-based) of the columns a format reads.
@@ -312,25 +312,14 @@ pub(crate) fn find_header(
     let mut sep_line: Option<u8> = None;
     let mut first_row = String::new();
     // Detection mode: the closest format for the first header-like row, for the message.
-    let mut closest: Option<(&FormatSpec, Vec<Missing>, usize)> = None;
-    let mut closest_fields: Vec<String> = Vec::new();
+    let mut closest: Option<Closest> = None;
     for (idx, (lineno, line)) in lines.iter().enumerate() {
         let trimmed = line.trim();
         if trimmed.is_empty() {
             continue;
         }
-        if let Some(rest) = trimmed
-            .strip_prefix("sep=")
-            .or_else(|| trimmed.strip_prefix("\"sep="))
-        {
-            let rest = rest.trim_end_matches('"');
-            sep_line = match rest {
-                "\\t" | "\t" | "" => Some(b'\t'),
-                r => r
-                    .bytes()
-                    .next()
-                    .filter(|b| Delimiter::from_byte(*b).is_some()),
-            };
+        if let Some(sep) = sep_line_delimiter(trimmed) {
+            sep_line = sep;
             notes.push(format!(
                 "'sep=' line found: delimiter {:?}",
                 sep_line.map(|b| b as char)
@@ -348,89 +337,173 @@ pub(crate) fn find_header(
             first_row = trimmed.chars().take(200).collect();
         }
         for f in &candidates {
-            let delim = f
-                .delimiter
-                .byte()
-                .or(sep_line)
-                .unwrap_or_else(|| detect_delimiter(line));
-            let fields = split_header(line, delim);
-            let by_index = all_by_index(f);
-            if !by_index && fields.iter().all(|x| x.is_empty() || is_number(x)) {
-                continue; // a data row: names cannot match (and suggestions would cost time)
-            }
-            let attempt = match resolve(f, &fields) {
-                Ok(c) => Ok(((*f).clone(), c)),
-                Err(e) => match unit_suffixed(f, &fields) {
-                    Some(g) => resolve(&g, &fields).map(|c| (g, c)),
-                    None => Err(e),
-                },
-            };
-            match attempt {
-                Ok((spec, cols)) => {
-                    let has_row = !(by_index && fields.iter().all(|x| is_number(x)));
-                    let fields = if has_row {
-                        fields
-                    } else {
-                        (1..=fields.len()).map(|i| format!("column {i}")).collect()
-                    };
-                    if spec.acc.columns != f.acc.columns || spec.gyro.columns != f.gyro.columns {
-                        notes.push(format!(
-                            "unit-suffixed column names: acceleration in {:?}, angular velocity in {:?}, time in {:?}",
-                            spec.acc.unit, spec.gyro.unit, spec.time.unit
-                        ));
-                    }
-                    return Ok(Header {
-                        index: idx,
-                        spec,
-                        delim,
-                        fields,
-                        cols,
-                        has_row,
-                        sep_line,
-                    });
-                }
-                Err(Unresolved::Duplicate { column, positions }) => {
-                    return Err(LdhError::DuplicateColumn {
-                        loc: Location::line(path, *lineno),
-                        column,
-                        positions,
-                    })
-                }
-                Err(Unresolved::Missing(m)) => {
-                    if !header_like(&fields) {
-                        continue;
-                    }
-                    if format.is_some() {
-                        let (missing, hint) = describe_missing(&m, &fields, f);
-                        return Err(LdhError::MissingColumn {
-                            loc: Location::line(path, *lineno),
-                            missing,
-                            by: format!("format '{}'{hint}", f.name),
-                        });
-                    }
+            let row = (idx, *lineno, *line);
+            match match_row(f, row, sep_line, format.is_some(), path, notes)? {
+                RowMatch::Found(header) => return Ok(*header),
+                RowMatch::No => {}
+                RowMatch::Missing(missing, fields) => {
                     // Only the first header-like row is described; among the formats,
                     // the one missing the fewest columns.
                     let replace = match &closest {
                         None => true,
-                        Some((_, prev, at)) => *at == idx && m.len() < prev.len(),
+                        Some(c) => c.at == idx && missing.len() < c.missing.len(),
                     };
                     if replace {
-                        closest = Some((f, m, idx));
-                        closest_fields = fields;
+                        closest = Some(Closest {
+                            format: f,
+                            missing,
+                            at: idx,
+                            fields,
+                        });
                     }
                 }
             }
         }
     }
+    Err(no_header(
+        lines,
+        closest,
+        &candidates,
+        format.is_some(),
+        path,
+        first_row,
+    ))
+}
+
+/// The delimiter a `sep=` line names (`Some(None)`: a `sep=` line naming no delimiter ldh
+/// knows); `None` when `trimmed` is not a `sep=` line.
+fn sep_line_delimiter(trimmed: &str) -> Option<Option<u8>> {
+    let rest = trimmed
+        .strip_prefix("sep=")
+        .or_else(|| trimmed.strip_prefix("\"sep="))?;
+    let rest = rest.trim_end_matches('"');
+    Some(match rest {
+        "\\t" | "\t" | "" => Some(b'\t'),
+        r => r
+            .bytes()
+            .next()
+            .filter(|b| Delimiter::from_byte(*b).is_some()),
+    })
+}
+
+/// What one candidate format makes of one row.
+enum RowMatch {
+    /// The format reads this row: the header (boxed: the enum stays small).
+    Found(Box<Header>),
+    /// Not this format's header: a data row, or a row that does not look like a header.
+    No,
+    /// A header-like row lacking the format's columns (detection mode), with its fields.
+    Missing(Vec<Missing>, Vec<String>),
+}
+
+/// The format that misses the fewest columns in the first header-like row (detection mode).
+struct Closest<'a> {
+    /// The format.
+    format: &'a FormatSpec,
+    /// What it misses.
+    missing: Vec<Missing>,
+    /// Index of the row (into the file's lines).
+    at: usize,
+    /// The row's fields.
+    fields: Vec<String>,
+}
+
+/// Try format `f` on `row` (index into the lines, 1-based line number, text), split at the
+/// format's delimiter, else the `sep=` line's, else the detected one. A duplicated column is an
+/// error; so is a header-like row missing columns when the format was given (`format_given`).
+fn match_row(
+    f: &FormatSpec,
+    row: (usize, u64, &str),
+    sep_line: Option<u8>,
+    format_given: bool,
+    path: &Path,
+    notes: &mut Vec<String>,
+) -> Result<RowMatch> {
+    let (idx, lineno, line) = row;
+    let delim = f
+        .delimiter
+        .byte()
+        .or(sep_line)
+        .unwrap_or_else(|| detect_delimiter(line));
+    let fields = split_header(line, delim);
+    let by_index = all_by_index(f);
+    if !by_index && fields.iter().all(|x| x.is_empty() || is_number(x)) {
+        // A data row: names cannot match (and suggestions would cost time).
+        return Ok(RowMatch::No);
+    }
+    let attempt = match resolve(f, &fields) {
+        Ok(c) => Ok((f.clone(), c)),
+        Err(e) => match unit_suffixed(f, &fields) {
+            Some(g) => resolve(&g, &fields).map(|c| (g, c)),
+            None => Err(e),
+        },
+    };
+    match attempt {
+        Ok((spec, cols)) => {
+            let has_row = !(by_index && fields.iter().all(|x| is_number(x)));
+            let fields = if has_row {
+                fields
+            } else {
+                (1..=fields.len()).map(|i| format!("column {i}")).collect()
+            };
+            if spec.acc.columns != f.acc.columns || spec.gyro.columns != f.gyro.columns {
+                notes.push(format!(
+                    "unit-suffixed column names: acceleration in {:?}, angular velocity in {:?}, time in {:?}",
+                    spec.acc.unit, spec.gyro.unit, spec.time.unit
+                ));
+            }
+            Ok(RowMatch::Found(Box::new(Header {
+                index: idx,
+                spec,
+                delim,
+                fields,
+                cols,
+                has_row,
+                sep_line,
+            })))
+        }
+        Err(Unresolved::Duplicate { column, positions }) => Err(LdhError::DuplicateColumn {
+            loc: Location::line(path, lineno),
+            column,
+            positions,
+        }),
+        Err(Unresolved::Missing(m)) => {
+            if !header_like(&fields) {
+                return Ok(RowMatch::No);
+            }
+            if format_given {
+                let (missing, hint) = describe_missing(&m, &fields, f);
+                return Err(LdhError::MissingColumn {
+                    loc: Location::line(path, lineno),
+                    missing,
+                    by: format!("format '{}'{hint}", f.name),
+                });
+            }
+            Ok(RowMatch::Missing(m, fields))
+        }
+    }
+}
+
+/// The error when no row is a header: [`LdhError::EmptyFile`] for blank content, otherwise
+/// [`LdhError::NoHeader`] naming the closest format's missing columns (or the only
+/// candidate's required ones) and the first row.
+fn no_header(
+    lines: &[(u64, &str)],
+    closest: Option<Closest>,
+    candidates: &[&FormatSpec],
+    format_given: bool,
+    path: &Path,
+    first_row: String,
+) -> LdhError {
     if lines.iter().all(|(_, l)| l.trim().is_empty()) {
-        return Err(LdhError::EmptyFile {
+        return LdhError::EmptyFile {
             path: path.to_path_buf(),
-        });
+        };
     }
     let (fmt, missing, hint) = match closest {
-        Some((f, m, _)) => {
-            let (missing, hint) = describe_missing(&m, &closest_fields, f);
-            (f.name.clone(), missing, hint)
+        Some(c) => {
+            let (missing, hint) = describe_missing(&c.missing, &c.fields, c.format);
+            (c.format.name.clone(), missing, hint)
         }
         None => (
             candidates[0].name.clone(),
@@ -438,9 +511,9 @@ pub(crate) fn find_header(
             String::new(),
         ),
     };
-    Err(LdhError::NoHeader {
+    LdhError::NoHeader {
         path: path.to_path_buf(),
-        format: if format.is_some() || candidates.len() == 1 {
+        format: if format_given || candidates.len() == 1 {
             fmt
         } else {
             format!(
@@ -455,7 +528,7 @@ pub(crate) fn find_header(
         missing,
         hint,
         first_row,
-    })
+    }
 }
 
 #[cfg(test)]

@@ -1,10 +1,17 @@
-//! Input and output of recordings: vendor formats ([`format`]), the CSV reader ([`reader`])
-//! and the writer ([`writer`]).
+//! Input and output of recordings: vendor formats ([`format`]), the CSV reader ([`reader`],
+//! whose stages live in `text`, `columns`, `rows`, `timebase`, `channels`, `checks` and
+//! `limits`) and the writer ([`writer`]).
 
+mod channels;
+mod checks;
 mod columns;
 pub mod format;
 mod inspect;
+mod limits;
 pub mod reader;
+mod rows;
+mod text;
+mod timebase;
 pub mod writer;
 
 pub use format::{ColumnRef, FormatSpec, SensorSelect, BUILTIN_FORMATS, DETECTED_FORMATS};

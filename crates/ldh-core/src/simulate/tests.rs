@@ -1,7 +1,8 @@
 //! Physics and determinism tests of the simulator.
 
 use super::*;
-use crate::recording::STANDARD_GRAVITY_MPS2;
+use crate::io::{FormatSpec, WriteOptions};
+use crate::recording::{Side, STANDARD_GRAVITY_MPS2};
 
 fn ideal_subject(fs_hz: f64, turn: bool) -> SimSubject {
     let mut p = SubjectParams::healthy("T01");

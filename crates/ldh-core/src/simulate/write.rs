@@ -1,14 +1,16 @@
 //! Writing a whole simulated cohort to a folder: the one loop behind `ldh simulate`,
-//! `ldh.simulate_cohort` in Python and the demo cohort's regeneration test.
+//! `ldh.simulate_cohort` in Python and the demo cohort's regeneration test; one subject's
+//! files ([`SimSubject::write`]) and the cohort manifest ([`ManifestRow`], [`manifest_csv`]).
 
 use std::path::Path;
 
 use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
 
 use super::family_b::CohortParamsB;
-use super::{manifest_csv, CohortParams, ManifestRow, SimSubject};
+use super::{CohortParams, Group, SimSubject};
 use crate::error::{LdhError, Result};
-use crate::io::{write_atomic, FormatSpec};
+use crate::io::{write_atomic, FormatSpec, WriteOptions};
 
 /// A cohort description either simulator family can write ([`CohortParams`] for family A,
 /// [`CohortParamsB`] for family B).
@@ -82,4 +84,103 @@ pub fn write_cohort<C: Cohort>(
     })?;
     write_atomic(out.join("cohort.json"), cohort.as_bytes())?;
     Ok(rows)
+}
+
+/// A cohort manifest row (SPEC §2).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ManifestRow {
+    /// Subject.
+    pub subject_id: String,
+    /// `healthy` or `ldh`.
+    pub group: Group,
+    /// `left`, `right` or `none`.
+    pub affected_side: String,
+    /// Left recording, relative to the manifest.
+    pub left: String,
+    /// Right recording, relative to the manifest.
+    pub right: String,
+    /// Sensor height above the ankle, m (optional column).
+    pub sensor_height_m: Option<f64>,
+    /// Overground or treadmill (optional column `setting`; written for family B only).
+    #[serde(default)]
+    pub setting: Option<crate::recording::Setting>,
+}
+
+impl ManifestRow {
+    /// The row of a simulated subject stored in `<subject_id>/`.
+    pub fn of(s: &SimSubject) -> ManifestRow {
+        let id = &s.params.subject_id;
+        ManifestRow {
+            subject_id: id.clone(),
+            group: s.params.group,
+            affected_side: s
+                .params
+                .affected_side
+                .map(|x| x.as_str().to_string())
+                .unwrap_or_else(|| "none".into()),
+            left: format!("{id}/left.csv"),
+            right: format!("{id}/right.csv"),
+            sensor_height_m: Some(
+                ((s.left.truth.sensor_height_m + s.right.truth.sensor_height_m) / 2.0 * 1000.0)
+                    .round()
+                    / 1000.0,
+            ),
+            setting: s.family_b.as_ref().map(|p| p.setting),
+        }
+    }
+}
+
+/// Render manifest rows as CSV text.
+/// The `setting` column is written only when a row has a setting (family B), so family A
+/// manifests keep their columns.
+pub fn manifest_csv(rows: &[ManifestRow]) -> String {
+    let with_setting = rows.iter().any(|r| r.setting.is_some());
+    let mut out = String::from("subject_id,group,affected_side,left,right,sensor_height_m");
+    out.push_str(if with_setting { ",setting\n" } else { "\n" });
+    for r in rows {
+        out.push_str(&format!(
+            "{},{},{},{},{},{}",
+            r.subject_id,
+            r.group.as_str(),
+            r.affected_side,
+            r.left,
+            r.right,
+            r.sensor_height_m.map(|h| h.to_string()).unwrap_or_default()
+        ));
+        if with_setting {
+            out.push(',');
+            out.push_str(r.setting.map(|s| s.as_str()).unwrap_or(""));
+        }
+        out.push('\n');
+    }
+    out
+}
+
+impl SimSubject {
+    /// Write `left.csv`, `right.csv` (in `format`) and `truth.json` into `dir`.
+    /// Formats without timestamps (a sample counter or no time) are written with the simulated
+    /// rate as their stated rate.
+    pub fn write(&self, dir: &Path, format: &FormatSpec) -> Result<()> {
+        let opts = WriteOptions::default();
+        let format = &match format.time.unit {
+            crate::io::format::TimeUnit::Counter | crate::io::format::TimeUnit::None => {
+                format.clone().with_rate_hz(self.params.fs_hz)
+            }
+            _ => format.clone(),
+        };
+        for leg in [&self.left, &self.right] {
+            let side = leg.truth.side.as_str();
+            crate::io::write_recording(
+                dir.join(format!("{side}.csv")),
+                &leg.recording,
+                format,
+                &opts,
+            )?;
+        }
+        let json = serde_json::to_string(&self.truth()).map_err(|e| LdhError::Write {
+            path: dir.join("truth.json"),
+            reason: e.to_string(),
+        })?;
+        write_atomic(dir.join("truth.json"), json.as_bytes())
+    }
 }

@@ -142,6 +142,91 @@ pub struct SubjectParamsB {
     pub right: LegParamsB,
 }
 
+/// What one family B leg's draw depends on besides the random stream.
+struct LegDraw {
+    /// The affected (paretic) leg of a patient.
+    paretic: bool,
+    /// The other leg of a patient.
+    other: bool,
+    /// The subject's walking speed, m/s.
+    speed_mps: f64,
+    /// The subject's stance ratio before the per-leg changes.
+    base_stance: f64,
+    /// The subject's mean sensor height above the ankle, m.
+    sensor_height_m: f64,
+}
+
+impl LegParamsB {
+    /// Draw one leg of [`SubjectParamsB::draw`]: the amplitude first, then the fields in the
+    /// order written here (the order of the draws from `rng` fixes every simulated number). A
+    /// paretic leg gets a stiff knee, a flat foot and circumduction; the other leg of a patient
+    /// a longer stance.
+    fn draw(c: &LegDraw, sensor: &SensorModelB, rng: &mut ChaCha8Rng) -> LegParamsB {
+        let nc = normal_clamped;
+        let (paretic, other, v, base_stance, h) = (
+            c.paretic,
+            c.other,
+            c.speed_mps,
+            c.base_stance,
+            c.sensor_height_m,
+        );
+        let amp = (0.4 + 0.5 * v).clamp(0.45, 1.2) * nc(rng, 1.0, 0.05, 0.9, 1.1);
+        LegParamsB {
+            stance_ratio: (base_stance
+                + if other { 0.06 } else { 0.0 }
+                + if paretic { -0.01 } else { 0.0 }
+                + nc(rng, 0.0, 0.01, -0.02, 0.02))
+            .clamp(0.55, 0.78),
+            amplitude: if paretic { amp * 0.85 } else { amp },
+            stiff_knee: if paretic {
+                rng.gen_range(0.15..0.45)
+            } else {
+                nc(rng, 0.0, 0.03, -0.05, 0.05)
+            },
+            foot_hs_deg: if paretic {
+                rng.gen_range(0.0..8.0)
+            } else {
+                (amp * nc(rng, 18.0, 3.0, 10.0, 25.0)).max(2.0)
+            },
+            foot_to_deg: if paretic {
+                rng.gen_range(25.0..40.0)
+            } else {
+                amp * nc(rng, 58.0, 5.0, 45.0, 70.0)
+            },
+            foot_flat: nc(rng, 0.17, 0.03, 0.1, 0.25),
+            heel_off: if paretic || v < 0.8 {
+                nc(rng, 0.68, 0.04, 0.6, 0.78)
+            } else {
+                nc(rng, 0.5, 0.04, 0.42, 0.6)
+            },
+            circumduction_m: if paretic {
+                rng.gen_range(0.03..0.06)
+            } else {
+                nc(rng, 0.01, 0.004, 0.0, 0.02)
+            },
+            swing_clearance_m: if paretic { 0.012 } else { 0.03 * amp },
+            roll_stance_deg: nc(rng, 1.5, 1.5, -2.0, 5.0),
+            roll_swing_deg: if paretic {
+                rng.gen_range(-8.0..-4.0)
+            } else {
+                nc(rng, -2.0, 0.7, -4.0, 0.0)
+            },
+            standing_pitch_deg: nc(rng, 0.0, 1.0, -2.0, 2.0),
+            sensor_height_m: (h + nc(rng, 0.0, 0.006, -0.012, 0.012)).clamp(0.05, 0.25),
+            sensor_lateral_m: rng.gen_range(0.03..0.055),
+            sensor_anterior_m: rng.gen_range(-0.01..0.02),
+            axial_deg: rng.gen_range(0.0..360.0),
+            tilt_deg: [
+                sensor.tilt_deg_sd * nc(rng, 0.0, 1.0, -3.0, 3.0),
+                sensor.tilt_deg_sd * nc(rng, 0.0, 1.0, -3.0, 3.0),
+            ],
+            hs_transient_mm: (v / 1.2) * rng.gen_range(0.4..1.5),
+            hs_transient_rot_deg: (v / 1.2) * rng.gen_range(0.2..0.8),
+            hs_transient_hz: rng.gen_range(14.0..22.0),
+        }
+    }
+}
+
 impl SubjectParamsB {
     /// Mean stride length, m.
     pub fn stride_length_m(&self) -> f64 {
@@ -194,60 +279,14 @@ impl SubjectParamsB {
         for side in [Side::Left, Side::Right] {
             let paretic = affected == Some(side);
             let other = patient && !paretic;
-            let amp = (0.4 + 0.5 * v).clamp(0.45, 1.2) * nc(rng, 1.0, 0.05, 0.9, 1.1);
-            legs.push(LegParamsB {
-                stance_ratio: (base_stance
-                    + if other { 0.06 } else { 0.0 }
-                    + if paretic { -0.01 } else { 0.0 }
-                    + nc(rng, 0.0, 0.01, -0.02, 0.02))
-                .clamp(0.55, 0.78),
-                amplitude: if paretic { amp * 0.85 } else { amp },
-                stiff_knee: if paretic {
-                    rng.gen_range(0.15..0.45)
-                } else {
-                    nc(rng, 0.0, 0.03, -0.05, 0.05)
-                },
-                foot_hs_deg: if paretic {
-                    rng.gen_range(0.0..8.0)
-                } else {
-                    (amp * nc(rng, 18.0, 3.0, 10.0, 25.0)).max(2.0)
-                },
-                foot_to_deg: if paretic {
-                    rng.gen_range(25.0..40.0)
-                } else {
-                    amp * nc(rng, 58.0, 5.0, 45.0, 70.0)
-                },
-                foot_flat: nc(rng, 0.17, 0.03, 0.1, 0.25),
-                heel_off: if paretic || v < 0.8 {
-                    nc(rng, 0.68, 0.04, 0.6, 0.78)
-                } else {
-                    nc(rng, 0.5, 0.04, 0.42, 0.6)
-                },
-                circumduction_m: if paretic {
-                    rng.gen_range(0.03..0.06)
-                } else {
-                    nc(rng, 0.01, 0.004, 0.0, 0.02)
-                },
-                swing_clearance_m: if paretic { 0.012 } else { 0.03 * amp },
-                roll_stance_deg: nc(rng, 1.5, 1.5, -2.0, 5.0),
-                roll_swing_deg: if paretic {
-                    rng.gen_range(-8.0..-4.0)
-                } else {
-                    nc(rng, -2.0, 0.7, -4.0, 0.0)
-                },
-                standing_pitch_deg: nc(rng, 0.0, 1.0, -2.0, 2.0),
-                sensor_height_m: (h + nc(rng, 0.0, 0.006, -0.012, 0.012)).clamp(0.05, 0.25),
-                sensor_lateral_m: rng.gen_range(0.03..0.055),
-                sensor_anterior_m: rng.gen_range(-0.01..0.02),
-                axial_deg: rng.gen_range(0.0..360.0),
-                tilt_deg: [
-                    sensor.tilt_deg_sd * nc(rng, 0.0, 1.0, -3.0, 3.0),
-                    sensor.tilt_deg_sd * nc(rng, 0.0, 1.0, -3.0, 3.0),
-                ],
-                hs_transient_mm: (v / 1.2) * rng.gen_range(0.4..1.5),
-                hs_transient_rot_deg: (v / 1.2) * rng.gen_range(0.2..0.8),
-                hs_transient_hz: rng.gen_range(14.0..22.0),
-            });
+            let leg = LegDraw {
+                paretic,
+                other,
+                speed_mps: v,
+                base_stance,
+                sensor_height_m: h,
+            };
+            legs.push(LegParamsB::draw(&leg, sensor, rng));
         }
         let right = legs.pop().expect("two");
         let left = legs.pop().expect("two");
