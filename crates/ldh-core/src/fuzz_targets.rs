@@ -393,6 +393,8 @@ pub fn decode_pipeline(data: &[u8]) -> Option<PipelineCase> {
             acc_g: acc,
             gyro_dps: gyro,
             saturated,
+            acc_saturated: Vec::new(),
+            gyro_saturated: Vec::new(),
         }
     } else {
         match Recording::new(fs_hz, acc, gyro, saturated) {

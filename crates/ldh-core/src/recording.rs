@@ -120,8 +120,17 @@ pub struct Recording {
     /// Angular velocity in deg/s, channels x, y, z of the sensor.
     pub gyro_dps: [Vec<f64>; 3],
     /// `true` for samples where any channel was at the sensor's range (clipped). Such samples
-    /// are outliers, not data: preprocessing replaces them by interpolation.
+    /// are outliers, not data: preprocessing replaces them by interpolation, on the channels of
+    /// the sensor that clipped (see `acc_saturated`, `gyro_saturated`).
     pub saturated: Vec<bool>,
+    /// `true` for samples where an accelerometer channel was clipped. Empty when the source did
+    /// not say which sensor clipped: every `saturated` sample then counts for both sensors.
+    /// Set with [`Recording::with_sensor_saturation`].
+    #[serde(default)]
+    pub acc_saturated: Vec<bool>,
+    /// `true` for samples where a gyroscope channel was clipped; empty as `acc_saturated`.
+    #[serde(default)]
+    pub gyro_saturated: Vec<bool>,
 }
 
 impl Recording {
@@ -148,9 +157,44 @@ impl Recording {
             acc_g,
             gyro_dps,
             saturated,
+            acc_saturated: Vec::new(),
+            gyro_saturated: Vec::new(),
         };
         rec.validate()?;
         Ok(rec)
+    }
+
+    /// Say which sensor clipped where: `acc` and `gyro` (one entry per sample each) replace the
+    /// sensor masks, and `saturated` becomes their union. Preprocessing then replaces each
+    /// sensor's channels only where that sensor clipped: a heel-strike impact beyond a ±2 g
+    /// accelerometer leaves the angular velocity of the same sample valid, and interpolating
+    /// the gyroscope over such samples removes rotation from the attitude's integral.
+    pub fn with_sensor_saturation(mut self, acc: Vec<bool>, gyro: Vec<bool>) -> Result<Self> {
+        self.saturated = acc.iter().zip(&gyro).map(|(a, g)| *a || *g).collect();
+        self.acc_saturated = acc;
+        self.gyro_saturated = gyro;
+        self.validate()?;
+        Ok(self)
+    }
+
+    /// Whether the accelerometer clipped at sample `i` (any clipped sample when the recording
+    /// does not say which sensor clipped).
+    pub fn acc_saturated_at(&self, i: usize) -> bool {
+        if self.acc_saturated.is_empty() {
+            self.saturated[i]
+        } else {
+            self.acc_saturated[i]
+        }
+    }
+
+    /// Whether the gyroscope clipped at sample `i` (any clipped sample when the recording does
+    /// not say which sensor clipped).
+    pub fn gyro_saturated_at(&self, i: usize) -> bool {
+        if self.gyro_saturated.is_empty() {
+            self.saturated[i]
+        } else {
+            self.gyro_saturated[i]
+        }
     }
 
     /// Check the invariants of [`Recording::new`] on a recording whose public fields may have
@@ -200,6 +244,25 @@ impl Recording {
                     self.saturated.len()
                 ),
             ));
+        }
+        for (name, mask) in [("acc", &self.acc_saturated), ("gyro", &self.gyro_saturated)] {
+            if !mask.is_empty() && mask.len() != n {
+                return Err(LdhError::signal(
+                    "recording",
+                    format!(
+                        "{name} saturation mask has {} entries for {n} samples",
+                        mask.len()
+                    ),
+                ));
+            }
+            if let Some(i) = (0..mask.len()).find(|&i| mask[i] && !self.saturated[i]) {
+                return Err(LdhError::signal(
+                    "recording",
+                    format!(
+                        "{name} saturated at sample {i}, which the saturation mask does not flag"
+                    ),
+                ));
+            }
         }
         Ok(())
     }
@@ -307,5 +370,61 @@ mod tests {
             assert!(e.contains(msg), "{e}");
         }
         assert!(ok().validate().is_ok());
+    }
+
+    /// A clipped accelerometer sample is replaced on the accelerometer only: the angular
+    /// velocity of the same sample is data (heel strike beyond ±2 g). A clipped gyroscope
+    /// sample is replaced on the gyroscope only. A recording that does not say which sensor
+    /// clipped has both replaced, as before.
+    #[test]
+    fn clipped_samples_are_replaced_on_the_sensor_that_clipped() {
+        let n = 200;
+        let fs = 100.0;
+        let wave = |f: f64, a: f64| -> Vec<f64> {
+            (0..n)
+                .map(|i| a * (2.0 * std::f64::consts::PI * f * i as f64 / fs).sin())
+                .collect()
+        };
+        let acc = [wave(1.0, 0.3), wave(1.3, 0.2), wave(0.7, 0.1)]
+            .map(|v| v.into_iter().map(|x| x + 1.0).collect::<Vec<f64>>());
+        let gyro = [wave(1.0, 300.0), wave(0.9, 40.0), wave(1.1, 20.0)];
+        let acc_sat: Vec<bool> = (0..n).map(|i| (23..28).contains(&i)).collect();
+        let gyro_sat: Vec<bool> = (0..n).map(|i| (74..78).contains(&i)).collect();
+        let clean = Recording::new(fs, acc.clone(), gyro.clone(), vec![]).unwrap();
+        let split = clean
+            .clone()
+            .with_sensor_saturation(acc_sat.clone(), gyro_sat.clone())
+            .unwrap();
+        let any: Vec<bool> = split.saturated.clone();
+        assert_eq!(split.saturated_count(), 9);
+        let merged = Recording::new(fs, acc, gyro, any).unwrap();
+        let p = crate::preprocess::PreprocessParams::default()
+            .outlier_sd(100.0)
+            .check(fs)
+            .unwrap();
+        let (c, s, m) = (
+            crate::preprocess::preprocess(&clean, &p).unwrap(),
+            crate::preprocess::preprocess(&split, &p).unwrap(),
+            crate::preprocess::preprocess(&merged, &p).unwrap(),
+        );
+        assert!(c.replaced.is_empty());
+        assert_eq!(s.replaced, vec![23, 24, 25, 26, 27]);
+        // gyro: untouched at the accelerometer's clipped samples, replaced at its own
+        let at = |x: &[Vec<f64>; 3], i: usize| x[0][i];
+        assert!((at(&s.gyro_dps, 25) - at(&c.gyro_dps, 25)).abs() < 1e-3);
+        assert!((at(&s.gyro_dps, 76) - at(&c.gyro_dps, 76)).abs() > 0.1);
+        // acc: replaced at its own clipped samples, untouched at the gyroscope's
+        assert!((at(&s.acc_g, 25) - at(&c.acc_g, 25)).abs() > 1e-4);
+        assert!((at(&s.acc_g, 76) - at(&c.acc_g, 76)).abs() < 1e-6);
+        // without the per-sensor masks both sensors are replaced at every clipped sample
+        assert_eq!(m.replaced.len(), 9);
+        assert!((at(&m.gyro_dps, 25) - at(&c.gyro_dps, 25)).abs() > 0.1);
+        // a sensor mask must agree with the mask of any clipped sample
+        let mut bad = split.clone();
+        bad.saturated[76] = false;
+        assert!(bad.validate().is_err());
+        assert!(clean
+            .with_sensor_saturation(vec![true], vec![true])
+            .is_err());
     }
 }

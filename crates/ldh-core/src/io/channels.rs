@@ -13,8 +13,11 @@ pub(super) type Axes = [Vec<f64>; 3];
 pub(super) struct Clipping {
     /// Clipped samples per channel: acc x, y, z, gyro x, y, z.
     pub per_channel: [usize; 6],
-    /// Per sample: any channel clipped.
-    pub saturated: Vec<bool>,
+    /// Per sample: an accelerometer channel clipped.
+    pub acc: Vec<bool>,
+    /// Per sample: a gyroscope channel clipped (kept apart from `acc`: preprocessing replaces
+    /// only the channels of the sensor that clipped).
+    pub gyro: Vec<bool>,
     /// Samples with any channel clipped.
     pub samples: usize,
 }
@@ -30,7 +33,7 @@ pub(super) fn scale_and_flag_clipping(
     notes: &mut Vec<String>,
 ) -> Clipping {
     let mut sat_per = [0usize; 6];
-    let mut saturated = vec![false; n_out];
+    let mut saturated = [vec![false; n_out], vec![false; n_out]];
     for k in 0..6 {
         let (scale, range, floor) = if k < 3 {
             let floor = match spec.acc.unit {
@@ -53,19 +56,23 @@ pub(super) fn scale_and_flag_clipping(
         for (i, f) in flags.iter().enumerate() {
             if *f {
                 sat_per[k] += 1;
-                saturated[i] = true;
+                saturated[k / 3][i] = true;
             }
         }
     }
-    let saturated_samples = saturated.iter().filter(|&&s| s).count();
+    let saturated_samples = (0..n_out)
+        .filter(|&i| saturated[0][i] || saturated[1][i])
+        .count();
     if saturated_samples > 0 {
         notes.push(format!(
             "{saturated_samples} clipped sample(s) at the sensor range (acc x/y/z, gyro x/y/z: {sat_per:?}); treated as outliers"
         ));
     }
+    let [acc, gyro] = saturated;
     Clipping {
         per_channel: sat_per,
-        saturated,
+        acc,
+        gyro,
         samples: saturated_samples,
     }
 }
@@ -182,7 +189,8 @@ map = ["-y", "+x", "+z"]
         let c = scale_and_flag_clipping(&mut ch, &spec, 3, &mut notes);
         assert_eq!(ch[0], vec![16.0, 1.0, -20.0]);
         assert_eq!(c.per_channel, [2, 0, 0, 0, 0, 0]);
-        assert_eq!(c.saturated, vec![true, false, true]);
+        assert_eq!(c.acc, vec![true, false, true]);
+        assert_eq!(c.gyro, vec![false; 3]);
         assert_eq!(c.samples, 2);
         assert_eq!(notes.len(), 1);
     }

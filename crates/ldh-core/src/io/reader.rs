@@ -292,12 +292,12 @@ pub fn read_recording_bytes(
         return Err(too_short(path, duration_s, grid.n_out, params));
     }
     warnings.extend(flat_channel_warnings(&acc_g, &gyro_dps, grid.fs, grid.t0));
-    let mut rec = Recording::new(grid.fs, acc_g, gyro_dps, clipping.saturated).map_err(|e| {
-        LdhError::Signal {
+    let mut rec = Recording::new(grid.fs, acc_g, gyro_dps, vec![])
+        .and_then(|r| r.with_sensor_saturation(clipping.acc, clipping.gyro))
+        .map_err(|e| LdhError::Signal {
             context: path.display().to_string(),
             reason: e.to_string(),
-        }
-    })?;
+        })?;
     rec.t0_s = grid.t0;
     rec.source = Some(path.to_path_buf());
     if params.check_units {
