@@ -187,6 +187,10 @@ pub(crate) struct Measured {
     pub(crate) gyro_dps: [Vec<f64>; 3],
     /// Samples where any axis was clipped at the range.
     pub(crate) saturated: Vec<bool>,
+    /// Samples where an accelerometer axis was clipped.
+    pub(crate) acc_saturated: Vec<bool>,
+    /// Samples where a gyroscope axis was clipped.
+    pub(crate) gyro_saturated: Vec<bool>,
     /// Gyroscope bias drawn, deg/s (drawn even when `noise` is off, then not applied).
     pub(crate) gyro_bias_dps: [f64; 3],
     /// Accelerometer bias drawn, g (as above).
@@ -207,25 +211,35 @@ pub(crate) fn measure(
     let acc_bias: [f64; 3] = std::array::from_fn(|_| sensor.acc_bias_g_sd * std_normal(rng));
     let acc_lsb = sensor.acc_range_g / 2f64.powi(sensor.bits as i32 - 1);
     let gyro_lsb = sensor.gyro_range_dps / 2f64.powi(sensor.bits as i32 - 1);
-    let mut saturated = vec![false; acc_clean[0].len()];
+    // One mask per sensor (as the reader gives): preprocessing replaces a clipped sample only
+    // on the sensor that clipped.
+    let mut acc_saturated = vec![false; acc_clean[0].len()];
+    let mut gyro_saturated = vec![false; acc_clean[0].len()];
     let acc = Channel {
         bias: acc_bias,
         noise_sd: sensor.acc_noise_g,
         lsb: acc_lsb,
         range: sensor.acc_range_g,
     };
-    let acc_g = acc.measure(sensor.noise, acc_clean, &mut saturated, rng);
+    let acc_g = acc.measure(sensor.noise, acc_clean, &mut acc_saturated, rng);
     let gyro = Channel {
         bias: gyro_bias,
         noise_sd: sensor.gyro_noise_dps,
         lsb: gyro_lsb,
         range: sensor.gyro_range_dps,
     };
-    let gyro_dps = gyro.measure(sensor.noise, gyro_clean, &mut saturated, rng);
+    let gyro_dps = gyro.measure(sensor.noise, gyro_clean, &mut gyro_saturated, rng);
+    let saturated = acc_saturated
+        .iter()
+        .zip(&gyro_saturated)
+        .map(|(a, g)| *a || *g)
+        .collect();
     Measured {
         acc_g,
         gyro_dps,
         saturated,
+        acc_saturated,
+        gyro_saturated,
         gyro_bias_dps: gyro_bias,
         acc_bias_g: acc_bias,
     }

@@ -301,6 +301,20 @@ fn saturation_is_applied_and_flagged() {
     assert!(r.saturated_count() > 10);
     assert_eq!(r.saturated_count(), s.left.truth.sensor.saturated_samples);
     assert!(r.gyro_dps.iter().flatten().all(|v| v.abs() <= 250.0));
+    // One mask per sensor, as the reader gives: each sensor clipped on its own samples, and
+    // the combined mask is their union.
+    let (a, g) = (&r.acc_saturated, &r.gyro_saturated);
+    assert_eq!((a.len(), g.len()), (r.len(), r.len()));
+    assert!(a.iter().any(|&x| x) && g.iter().any(|&x| x));
+    assert!(
+        a.iter().zip(g).any(|(a, g)| a != g),
+        "the sensors clip apart"
+    );
+    for i in 0..r.len() {
+        assert_eq!(r.saturated[i], a[i] || g[i]);
+        let at_range = |ch: &[Vec<f64>; 3], range: f64| ch.iter().any(|c| c[i].abs() >= range);
+        assert_eq!(a[i], at_range(&r.acc_g, 1.5), "acc sample {i}");
+    }
 }
 
 #[test]

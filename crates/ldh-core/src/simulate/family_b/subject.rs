@@ -257,11 +257,28 @@ fn simulate_leg(
         yaw.push(psi.to_degrees());
     }
     let strides = stride_truth(leg, walk, tl, &pitch, &roll, fs);
-    let mut sat = vec![false; n_out];
-    let (acc_m, acc_e) = measure(&acc, fs, sensor, false, p.acc_range_g, rng, &mut sat);
-    let (gyro_m, gyro_e) = measure(&gyro, fs, sensor, true, p.gyro_range_dps, rng, &mut sat);
+    // One mask per sensor (as the reader gives): preprocessing replaces a clipped sample only
+    // on the sensor that clipped.
+    let (mut acc_sat, mut gyro_sat) = (vec![false; n_out], vec![false; n_out]);
+    let (acc_m, acc_e) = measure(&acc, fs, sensor, false, p.acc_range_g, rng, &mut acc_sat);
+    let (gyro_m, gyro_e) = measure(
+        &gyro,
+        fs,
+        sensor,
+        true,
+        p.gyro_range_dps,
+        rng,
+        &mut gyro_sat,
+    );
+    let sat: Vec<bool> = acc_sat
+        .iter()
+        .zip(&gyro_sat)
+        .map(|(a, g)| *a || *g)
+        .collect();
     let saturated_samples = sat.iter().filter(|&&s| s).count();
-    let recording = Recording::new(fs, acc_m, gyro_m, sat)?.with_side(side);
+    let recording = Recording::new(fs, acc_m, gyro_m, sat)?
+        .with_sensor_saturation(acc_sat, gyro_sat)?
+        .with_side(side);
     let lp = &leg.p;
     let axial = lp.axial_deg.rem_euclid(360.0);
     let truth = LegTruth {

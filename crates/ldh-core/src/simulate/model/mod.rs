@@ -128,8 +128,9 @@ fn simulate_leg(
         rng,
     );
     let sat_count = m.saturated.iter().filter(|&&s| s).count();
-    let recording =
-        Recording::new(grid.fs_hz, m.acc_g, m.gyro_dps, m.saturated)?.with_side(leg.side);
+    let recording = Recording::new(grid.fs_hz, m.acc_g, m.gyro_dps, m.saturated)?
+        .with_sensor_saturation(m.acc_saturated, m.gyro_saturated)?
+        .with_side(leg.side);
     let mounting = &leg.mounting;
     let truth = LegTruth {
         side: leg.side,
