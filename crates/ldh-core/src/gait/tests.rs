@@ -1,0 +1,81 @@
+//! Unit tests of the per-leg stride-length rules of evidence (`gait::side_parameters`,
+//! `gait::withhold_unvouched_lengths`).
+
+use super::*;
+
+/// `n` valid 1.1 s strides of which the first `with_length` have a 1.30 m length.
+fn side(n: usize, with_length: usize) -> SideParameters {
+    side_parameters(&leg(n, with_length), None)
+}
+
+#[test]
+fn survivors_of_an_unvouched_leg_lose_their_lengths_too() {
+    let mut st = leg(127, 4);
+    withhold_unvouched_lengths(&mut st);
+    assert!(st
+        .iter()
+        .all(|s| s.stride_length_m.is_nan() && s.speed_mps.is_nan()));
+    assert!(st.iter().all(|s| s.valid), "timing stays valid");
+    assert!(st[0]
+        .reason
+        .contains("only 4 of the leg's 127 valid strides pass the integration checks"));
+    let p = side_parameters(&st, None);
+    assert!(p.stride_length_m.is_nan());
+    // the leg's reason still counts the survivors as having passed their own checks
+    assert_eq!(
+        p.withheld["stride_length_m"],
+        "stride length vouched for on 4 of 127 valid strides (velocity drift)"
+    );
+    // a vouched leg is left alone
+    let mut st = leg(20, 12);
+    withhold_unvouched_lengths(&mut st);
+    assert_eq!(
+        st.iter().filter(|s| s.stride_length_m.is_finite()).count(),
+        12
+    );
+}
+
+fn leg(n: usize, with_length: usize) -> Vec<Stride> {
+    (0..n)
+        .map(|k| Stride {
+            stride_index: k,
+            hs_time_s: 1.1 * k as f64,
+            to_time_s: 1.1 * k as f64 + 0.66,
+            next_hs_time_s: 1.1 * (k + 1) as f64,
+            stride_time_s: 1.1,
+            stance_ratio: 0.6,
+            stride_length_m: if k < with_length { 1.3 } else { f64::NAN },
+            speed_mps: if k < with_length { 1.3 / 1.1 } else { f64::NAN },
+            wqk_deg: 30.0,
+            pbi_deg: 45.0,
+            bdk_deg: 8.0,
+            heading_change_deg: 0.0,
+            bout: 0,
+            valid: true,
+            reason: if k < with_length {
+                String::new()
+            } else {
+                "stride length withheld: velocity drift 2.00 m/s over the stride".into()
+            },
+        })
+        .collect()
+}
+
+#[test]
+fn a_side_length_needs_most_strides_vouched_for() {
+    // 4 of 127 passing (HuGaDB 06_00's right leg): survivors, not a sample
+    let p = side(127, 4);
+    assert!(p.stride_length_m.is_nan() && p.speed_mps.is_nan());
+    assert_eq!(
+        p.withheld["stride_length_m"],
+        "stride length vouched for on 4 of 127 valid strides (velocity drift)"
+    );
+    assert!((p.stride_time_s - 1.1).abs() < 1e-12, "timing stays");
+    // half of them: reported
+    let p = side(20, 10);
+    assert!((p.stride_length_m - 1.3).abs() < 1e-12 && p.withheld.is_empty());
+    // short legs: half, and at least one
+    assert!((side(4, 2).stride_length_m - 1.3).abs() < 1e-12);
+    assert!(side(4, 1).stride_length_m.is_nan());
+    assert!(side(10, 3).stride_length_m.is_nan());
+}
