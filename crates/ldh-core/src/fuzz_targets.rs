@@ -250,28 +250,7 @@ pub struct PipelineCase {
 /// change of one channel or of the saturation mask.
 pub fn decode_pipeline(data: &[u8]) -> Option<PipelineCase> {
     let mut s = Stream { data, pos: 0 };
-    let flags = s.u8();
-    let compute_sta = flags & 1 != 0;
-    let side = if flags & 2 != 0 {
-        Side::Right
-    } else {
-        Side::Left
-    };
-    let model = if flags & 4 != 0 {
-        AttitudeModel::Acc
-    } else {
-        AttitudeModel::Fusion
-    };
-    let detector = [
-        EventDetector::GyroLandmarks,
-        EventDetector::GyroZeroCrossing,
-        EventDetector::Salarian,
-        EventDetector::PitchPeaks,
-    ][usize::from((flags >> 3) & 3)];
-    let hand_built = flags & 0x20 != 0;
-    let height_given = flags & 0x40 != 0;
-    let raw_mode = flags & 0x80 != 0;
-
+    let f = Flags::from_byte(s.u8());
     let sel = s.u8();
     let fs_hz = if sel >= 240 {
         s.f64()
@@ -279,7 +258,7 @@ pub fn decode_pipeline(data: &[u8]) -> Option<PipelineCase> {
         RATES[usize::from(sel) % RATES.len()]
     };
     let n = 2 + usize::from(s.u16()) % PIPELINE_MAX_SAMPLES;
-    let sensor_height_m = if height_given {
+    let sensor_height_m = if f.height_given {
         Some(match s.u8() {
             0 => s.f64(),
             b => f64::from(b) / 1000.0,
@@ -287,116 +266,24 @@ pub fn decode_pipeline(data: &[u8]) -> Option<PipelineCase> {
     } else {
         None
     };
-    let (t0_s, tweak) = if hand_built {
+    let (t0_s, tweak) = if f.hand_built {
         (s.f64(), (s.u8(), s.u8() as i8))
     } else {
         (0.0, (0, 0))
     };
-
-    let mut acc: [Vec<f64>; 3] = Default::default();
-    let mut gyro: [Vec<f64>; 3] = Default::default();
-    let mut saturated = Vec::new();
-    if raw_mode {
-        let rest = s.rest();
-        let values: Vec<f64> = rest
-            .chunks(8)
-            .map(|c| {
-                let mut b = [0u8; 8];
-                b[..c.len()].copy_from_slice(c);
-                f64::from_le_bytes(b)
-            })
-            .collect();
-        let value = |k: usize| {
-            if values.is_empty() {
-                0.0
-            } else {
-                values[k % values.len()]
-            }
-        };
-        for i in 0..n {
-            for c in 0..3 {
-                acc[c].push(value(6 * i + c));
-                gyro[c].push(value(6 * i + 3 + c));
-            }
-        }
+    let signals = if f.raw_mode {
+        raw_signals(&mut s, n)
     } else {
-        let bases = bases();
-        let base = &bases[usize::from(s.u8()) % bases.len()];
-        let offset = usize::from(s.u16()) % base.len();
-        let gains: [f64; 6] = std::array::from_fn(|_| match s.u8() {
-            0 => 0.0,
-            255 => -1.0,
-            b => f64::from(b) / 128.0,
-        });
-        let n_special = usize::from(s.u8() & 7);
-        let specials: Vec<(usize, usize, f64)> = (0..n_special)
-            .map(|_| {
-                let at = usize::from(s.u16()) % n;
-                let ch = usize::from(s.u8()) % 6;
-                (at, ch, SPECIALS[usize::from(s.u8()) % SPECIALS.len()])
-            })
-            .collect();
-        let sat_byte = s.u8();
-        let rest = s.rest();
-        let noise = |k: usize| -> f64 {
-            if rest.is_empty() {
-                0.0
-            } else {
-                f64::from(rest[k % rest.len()] as i8)
-            }
-        };
-        for i in 0..n {
-            let j = (offset + i) % base.len();
-            for c in 0..3 {
-                acc[c].push(base.acc_g[c][j] * gains[c] + 0.01 * noise(6 * i + c));
-                gyro[c].push(base.gyro_dps[c][j] * gains[3 + c] + 2.0 * noise(6 * i + 3 + c));
-            }
-        }
-        for (at, ch, v) in specials {
-            if ch < 3 {
-                acc[ch][at] = v;
-            } else {
-                gyro[ch - 3][at] = v;
-            }
-        }
-        if sat_byte != 0 {
-            saturated = (0..n)
-                .map(|i| !rest.is_empty() && rest[(6 * i + 4) % rest.len()] == sat_byte)
-                .collect();
-        }
-    }
-
-    let recording = if hand_built {
-        if saturated.is_empty() {
-            saturated = vec![false; n];
-        }
-        let (which, delta) = tweak;
-        if delta != 0 {
-            let resize = |v: &mut Vec<f64>| {
-                let len = v.len().saturating_add_signed(isize::from(delta));
-                v.resize(len, 0.5);
-            };
-            match which % 7 {
-                c @ 0..=2 => resize(&mut acc[usize::from(c)]),
-                c @ 3..=5 => resize(&mut gyro[usize::from(c) - 3]),
-                _ => {
-                    let len = saturated.len().saturating_add_signed(isize::from(delta));
-                    saturated.resize(len, true);
-                }
-            }
-        }
-        Recording {
-            source: None,
-            side: Some(side),
-            fs_hz,
-            t0_s,
-            acc_g: acc,
-            gyro_dps: gyro,
+        gait_like_signals(&mut s, n)
+    };
+    let recording = if f.hand_built {
+        hand_built_recording(signals, tweak, f.side, fs_hz, t0_s)
+    } else {
+        let Signals {
+            acc,
+            gyro,
             saturated,
-            acc_saturated: Vec::new(),
-            gyro_saturated: Vec::new(),
-        }
-    } else {
+        } = signals;
         match Recording::new(fs_hz, acc, gyro, saturated) {
             Ok(r) => r,
             Err(e) => {
@@ -406,18 +293,198 @@ pub fn decode_pipeline(data: &[u8]) -> Option<PipelineCase> {
         }
     };
     let mut params = AnalysisParams {
-        compute_sta,
+        compute_sta: f.compute_sta,
         ..AnalysisParams::default()
     };
-    params.attitude.model = model;
-    params.events.detector = detector;
+    params.attitude.model = f.model;
+    params.events.detector = f.detector;
     Some(PipelineCase {
         recording,
-        hand_built,
+        hand_built: f.hand_built,
         params,
-        side,
+        side: f.side,
         sensor_height_m,
     })
+}
+
+/// The flags byte of the pipeline target.
+struct Flags {
+    compute_sta: bool,
+    side: Side,
+    model: AttitudeModel,
+    detector: EventDetector,
+    hand_built: bool,
+    height_given: bool,
+    raw_mode: bool,
+}
+
+impl Flags {
+    fn from_byte(flags: u8) -> Flags {
+        Flags {
+            compute_sta: flags & 1 != 0,
+            side: if flags & 2 != 0 {
+                Side::Right
+            } else {
+                Side::Left
+            },
+            model: if flags & 4 != 0 {
+                AttitudeModel::Acc
+            } else {
+                AttitudeModel::Fusion
+            },
+            detector: [
+                EventDetector::GyroLandmarks,
+                EventDetector::GyroZeroCrossing,
+                EventDetector::Salarian,
+                EventDetector::PitchPeaks,
+            ][usize::from((flags >> 3) & 3)],
+            hand_built: flags & 0x20 != 0,
+            height_given: flags & 0x40 != 0,
+            raw_mode: flags & 0x80 != 0,
+        }
+    }
+}
+
+/// Decoded channels: acceleration, angular velocity and the saturation mask (empty: none).
+struct Signals {
+    acc: [Vec<f64>; 3],
+    gyro: [Vec<f64>; 3],
+    saturated: Vec<bool>,
+}
+
+/// Raw mode: `n` samples of little-endian f64 values read cyclically from the rest.
+fn raw_signals(s: &mut Stream, n: usize) -> Signals {
+    let mut acc: [Vec<f64>; 3] = Default::default();
+    let mut gyro: [Vec<f64>; 3] = Default::default();
+    let rest = s.rest();
+    let values: Vec<f64> = rest
+        .chunks(8)
+        .map(|c| {
+            let mut b = [0u8; 8];
+            b[..c.len()].copy_from_slice(c);
+            f64::from_le_bytes(b)
+        })
+        .collect();
+    let value = |k: usize| {
+        if values.is_empty() {
+            0.0
+        } else {
+            values[k % values.len()]
+        }
+    };
+    for i in 0..n {
+        for c in 0..3 {
+            acc[c].push(value(6 * i + c));
+            gyro[c].push(value(6 * i + 3 + c));
+        }
+    }
+    Signals {
+        acc,
+        gyro,
+        saturated: Vec::new(),
+    }
+}
+
+/// Gait-like mode: a simulated leg chosen and offset by the next bytes, per-channel gains, up to
+/// 7 injected special values, an i8 perturbation per value and maybe a saturation mask.
+fn gait_like_signals(s: &mut Stream, n: usize) -> Signals {
+    let mut acc: [Vec<f64>; 3] = Default::default();
+    let mut gyro: [Vec<f64>; 3] = Default::default();
+    let mut saturated = Vec::new();
+    let bases = bases();
+    let base = &bases[usize::from(s.u8()) % bases.len()];
+    let offset = usize::from(s.u16()) % base.len();
+    let gains: [f64; 6] = std::array::from_fn(|_| match s.u8() {
+        0 => 0.0,
+        255 => -1.0,
+        b => f64::from(b) / 128.0,
+    });
+    let n_special = usize::from(s.u8() & 7);
+    let specials: Vec<(usize, usize, f64)> = (0..n_special)
+        .map(|_| {
+            let at = usize::from(s.u16()) % n;
+            let ch = usize::from(s.u8()) % 6;
+            (at, ch, SPECIALS[usize::from(s.u8()) % SPECIALS.len()])
+        })
+        .collect();
+    let sat_byte = s.u8();
+    let rest = s.rest();
+    let noise = |k: usize| -> f64 {
+        if rest.is_empty() {
+            0.0
+        } else {
+            f64::from(rest[k % rest.len()] as i8)
+        }
+    };
+    for i in 0..n {
+        let j = (offset + i) % base.len();
+        for c in 0..3 {
+            acc[c].push(base.acc_g[c][j] * gains[c] + 0.01 * noise(6 * i + c));
+            gyro[c].push(base.gyro_dps[c][j] * gains[3 + c] + 2.0 * noise(6 * i + 3 + c));
+        }
+    }
+    for (at, ch, v) in specials {
+        if ch < 3 {
+            acc[ch][at] = v;
+        } else {
+            gyro[ch - 3][at] = v;
+        }
+    }
+    if sat_byte != 0 {
+        saturated = (0..n)
+            .map(|i| !rest.is_empty() && rest[(6 * i + 4) % rest.len()] == sat_byte)
+            .collect();
+    }
+    Signals {
+        acc,
+        gyro,
+        saturated,
+    }
+}
+
+/// A recording built with a struct literal, one channel's (or the mask's) length changed by
+/// `tweak` = (which, delta), so that the pipeline meets broken invariants.
+fn hand_built_recording(
+    signals: Signals,
+    tweak: (u8, i8),
+    side: Side,
+    fs_hz: f64,
+    t0_s: f64,
+) -> Recording {
+    let Signals {
+        mut acc,
+        mut gyro,
+        mut saturated,
+    } = signals;
+    if saturated.is_empty() {
+        saturated = vec![false; acc[0].len()];
+    }
+    let (which, delta) = tweak;
+    if delta != 0 {
+        let resize = |v: &mut Vec<f64>| {
+            let len = v.len().saturating_add_signed(isize::from(delta));
+            v.resize(len, 0.5);
+        };
+        match which % 7 {
+            c @ 0..=2 => resize(&mut acc[usize::from(c)]),
+            c @ 3..=5 => resize(&mut gyro[usize::from(c) - 3]),
+            _ => {
+                let len = saturated.len().saturating_add_signed(isize::from(delta));
+                saturated.resize(len, true);
+            }
+        }
+    }
+    Recording {
+        source: None,
+        side: Some(side),
+        fs_hz,
+        t0_s,
+        acc_g: acc,
+        gyro_dps: gyro,
+        saturated,
+        acc_saturated: Vec::new(),
+        gyro_saturated: Vec::new(),
+    }
 }
 
 /// Target `pipeline`: a recording decoded from arbitrary bytes ([`decode_pipeline`]) through
