@@ -83,39 +83,17 @@ fn generate(kind: &str, dir: &Path) -> Option<()> {
 
 fn check_case(name: &str, exp: &toml::Value) -> Result<(), String> {
     let tmp = tempfile::tempdir().unwrap();
-    let generated = exp
-        .get("generated")
-        .and_then(|x| x.as_bool())
-        .unwrap_or(false);
-    let dir = if generated {
-        let d = tmp.path().join(name);
-        std::fs::create_dir(&d).unwrap();
-        if generate(s(exp, "generate"), &d).is_none() {
-            return Ok(());
-        }
-        d
-    } else {
-        corpus().join(name)
+    let Some(dir) = case_dir(name, exp, tmp.path()) else {
+        return Ok(());
     };
-    let files: Vec<String> = strs(exp, "files")
-        .iter()
-        .map(|f| dir.join(f).display().to_string())
-        .collect();
-    let outcome = s(exp, "outcome");
     let out_dir = tmp.path().join("out");
-    let mut args: Vec<String> = match s(exp, "command") {
-        "inspect" => vec!["inspect".into(), "--json".into()],
-        "analyze" => vec![
-            "analyze".into(),
-            "--out".into(),
-            out_dir.display().to_string(),
-            "--jobs".into(),
-            "1".into(),
-        ],
-        c => return Err(format!("unknown command {c}")),
-    };
+    let mut args = command_args(exp, &out_dir)?;
     args.extend(strs(exp, "args"));
-    args.extend(files);
+    args.extend(
+        strs(exp, "files")
+            .iter()
+            .map(|f| dir.join(f).display().to_string()),
+    );
     let argv: Vec<&str> = args.iter().map(String::as_str).collect();
     let o = ldh(&argv);
     let all = text(&o);
@@ -130,139 +108,175 @@ fn check_case(name: &str, exp: &toml::Value) -> Result<(), String> {
     if code != Some(want) {
         return Err(format!("exit code {code:?}, expected {want}: {all}"));
     }
-    let has = |hay: &str, needles: &[String], what: &str| -> Result<(), String> {
-        for n in needles {
-            if !hay.contains(n.as_str()) {
-                return Err(format!("{what} lacks {n:?}: {hay}"));
-            }
-        }
-        Ok(())
-    };
     if s(exp, "command") == "inspect" {
-        let v: serde_json::Value = serde_json::from_slice(&o.stdout)
-            .map_err(|e| format!("inspect --json output is not JSON ({e}): {all}"))?;
-        let r = &v[0];
-        match outcome {
-            "error" => {
-                let e = r["error"]
-                    .as_str()
-                    .ok_or_else(|| format!("expected an error: {r}"))?;
-                has(e, &strs(exp, "message_contains"), "error")?;
-            }
-            _ => {
-                if r.get("error").is_some() {
-                    return Err(format!("unexpected error: {r}"));
-                }
-                let w: Vec<String> = r["read"]["warnings"]
-                    .as_array()
-                    .unwrap()
-                    .iter()
-                    .map(|x| x.as_str().unwrap().to_string())
-                    .collect();
-                if outcome == "ok" && !w.is_empty() {
-                    return Err(format!("unexpected warnings: {w:?}"));
-                }
-                if outcome == "warning" && w.is_empty() {
-                    return Err("expected warnings, got none".into());
-                }
-                has(&w.join(" | "), &strs(exp, "warnings_contain"), "warnings")?;
-                has(
-                    &r["read"]["notes"].to_string(),
-                    &strs(exp, "notes_contain"),
-                    "notes",
-                )?;
-                if let Some(n) = exp.get("outliers_min").and_then(|x| x.as_integer()) {
-                    let got = r["preprocess"]["outliers_replaced"].as_i64().unwrap();
-                    if got < n {
-                        return Err(format!("{got} outliers replaced, expected ≥ {n}"));
-                    }
-                }
-            }
-        }
+        check_inspect(exp, &o.stdout, &all)
     } else {
-        let rows = json(&out_dir.join("recordings.json"));
-        let rows: Vec<&serde_json::Value> = rows
-            .as_array()
-            .unwrap()
-            .iter()
-            .filter(|r| s(exp, "side").is_empty() || r["side"] == s(exp, "side"))
-            .collect();
-        if rows.is_empty() {
-            return Err("no recording rows".into());
+        check_analyze(exp, &out_dir)
+    }
+}
+
+/// The case's folder: the corpus's, or one generated into `tmp` (`None` when the generator is
+/// not available here).
+fn case_dir(name: &str, exp: &toml::Value, tmp: &Path) -> Option<PathBuf> {
+    let generated = exp
+        .get("generated")
+        .and_then(|x| x.as_bool())
+        .unwrap_or(false);
+    if !generated {
+        return Some(corpus().join(name));
+    }
+    let d = tmp.join(name);
+    std::fs::create_dir(&d).unwrap();
+    generate(s(exp, "generate"), &d)?;
+    Some(d)
+}
+
+/// The command and its fixed options (`inspect --json`, or `analyze` into `out_dir`).
+fn command_args(exp: &toml::Value, out_dir: &Path) -> Result<Vec<String>, String> {
+    match s(exp, "command") {
+        "inspect" => Ok(vec!["inspect".into(), "--json".into()]),
+        "analyze" => Ok(vec![
+            "analyze".into(),
+            "--out".into(),
+            out_dir.display().to_string(),
+            "--jobs".into(),
+            "1".into(),
+        ]),
+        c => Err(format!("unknown command {c}")),
+    }
+}
+
+/// Every needle is in `hay` (`what` names the haystack in the failure).
+fn has(hay: &str, needles: &[String], what: &str) -> Result<(), String> {
+    for n in needles {
+        if !hay.contains(n.as_str()) {
+            return Err(format!("{what} lacks {n:?}: {hay}"));
         }
-        match outcome {
-            "error" => {
-                let errs: Vec<&str> = rows
-                    .iter()
-                    .filter(|r| r["status"] == "error")
-                    .map(|r| r["error"].as_str().unwrap())
-                    .collect();
-                if errs.is_empty() {
-                    return Err(format!("expected a failed recording: {rows:?}"));
-                }
-                has(&errs.join(" | "), &strs(exp, "message_contains"), "error")?;
-            }
-            _ => {
-                for r in &rows {
-                    if r["status"] != "ok" {
-                        return Err(format!("recording failed: {r}"));
-                    }
-                    // Structured warnings (docs/quality.md): notes are worth knowing but
-                    // never make a case "not ok".
-                    let list = r["warnings"].as_array().cloned().unwrap_or_default();
-                    let serious: Vec<String> = list
-                        .iter()
-                        .filter(|x| x["severity"] != "note")
-                        .map(|x| {
-                            let f = |k: &str| x[k].as_str().unwrap_or("").to_string();
-                            format!("{} [{}]: {}", f("code"), f("severity"), f("message"))
-                        })
-                        .collect();
-                    let all: Vec<String> = list
-                        .iter()
-                        .map(|x| {
-                            let f = |k: &str| x[k].as_str().unwrap_or("").to_string();
-                            format!("{} [{}]: {}", f("code"), f("severity"), f("message"))
-                        })
-                        .collect();
-                    let flat = all.join(" | ");
-                    if outcome == "ok" && !serious.is_empty() {
-                        return Err(format!("unexpected warnings: {serious:?}"));
-                    }
-                    if outcome == "warning" && serious.is_empty() {
-                        return Err(format!("expected a warning, got {all:?}"));
-                    }
-                    has(&flat, &strs(exp, "warnings_contain"), "warnings")?;
-                    has(&flat, &strs(exp, "codes"), "warning codes")?;
-                    for c in strs(exp, "codes_absent") {
-                        if list.iter().any(|x| x["code"] == c.as_str()) {
-                            return Err(format!("unexpected {c}: {all:?}"));
-                        }
-                    }
-                    // Withheld parameters: an empty value (JSON null) and a reason.
-                    for c in strs(exp, "withheld") {
-                        if !r[c.as_str()].is_null() || r["withheld"][c.as_str()].as_str().is_none()
-                        {
-                            return Err(format!("{c} not withheld: {r}"));
-                        }
-                    }
-                    for c in strs(exp, "measured") {
-                        if !r[c.as_str()].is_number() {
-                            return Err(format!("{c} not measured: {r}"));
-                        }
-                    }
-                    if let Some(n) = exp.get("min_valid_strides").and_then(|x| x.as_integer()) {
-                        if r["strides_valid"].as_i64().unwrap() < n {
-                            return Err(format!("fewer than {n} valid strides: {r}"));
-                        }
-                    }
-                    if let Some(f) = exp.get("fs_hz").and_then(|x| x.as_float()) {
-                        if (r["fs_hz"].as_f64().unwrap() - f).abs() > 1e-6 {
-                            return Err(format!("fs_hz {} instead of {f}", r["fs_hz"]));
-                        }
-                    }
-                }
-            }
+    }
+    Ok(())
+}
+
+/// `inspect --json`'s output against the case (`all`: the whole output, for messages).
+fn check_inspect(exp: &toml::Value, stdout: &[u8], all: &str) -> Result<(), String> {
+    let outcome = s(exp, "outcome");
+    let v: serde_json::Value = serde_json::from_slice(stdout)
+        .map_err(|e| format!("inspect --json output is not JSON ({e}): {all}"))?;
+    let r = &v[0];
+    if outcome == "error" {
+        let e = r["error"]
+            .as_str()
+            .ok_or_else(|| format!("expected an error: {r}"))?;
+        return has(e, &strs(exp, "message_contains"), "error");
+    }
+    if r.get("error").is_some() {
+        return Err(format!("unexpected error: {r}"));
+    }
+    let w: Vec<String> = r["read"]["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_str().unwrap().to_string())
+        .collect();
+    if outcome == "ok" && !w.is_empty() {
+        return Err(format!("unexpected warnings: {w:?}"));
+    }
+    if outcome == "warning" && w.is_empty() {
+        return Err("expected warnings, got none".into());
+    }
+    has(&w.join(" | "), &strs(exp, "warnings_contain"), "warnings")?;
+    has(
+        &r["read"]["notes"].to_string(),
+        &strs(exp, "notes_contain"),
+        "notes",
+    )?;
+    if let Some(n) = exp.get("outliers_min").and_then(|x| x.as_integer()) {
+        let got = r["preprocess"]["outliers_replaced"].as_i64().unwrap();
+        if got < n {
+            return Err(format!("{got} outliers replaced, expected ≥ {n}"));
+        }
+    }
+    Ok(())
+}
+
+/// `analyze`'s recordings.json in `out_dir` against the case (the case's side, if it names one).
+fn check_analyze(exp: &toml::Value, out_dir: &Path) -> Result<(), String> {
+    let rows = json(&out_dir.join("recordings.json"));
+    let rows: Vec<&serde_json::Value> = rows
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|r| s(exp, "side").is_empty() || r["side"] == s(exp, "side"))
+        .collect();
+    if rows.is_empty() {
+        return Err("no recording rows".into());
+    }
+    if s(exp, "outcome") == "error" {
+        let errs: Vec<&str> = rows
+            .iter()
+            .filter(|r| r["status"] == "error")
+            .map(|r| r["error"].as_str().unwrap())
+            .collect();
+        if errs.is_empty() {
+            return Err(format!("expected a failed recording: {rows:?}"));
+        }
+        return has(&errs.join(" | "), &strs(exp, "message_contains"), "error");
+    }
+    rows.iter().try_for_each(|r| check_row(exp, r))
+}
+
+/// One analysed recording of a case expected to succeed: its warnings, withheld and measured
+/// parameters, valid strides and rate.
+fn check_row(exp: &toml::Value, r: &serde_json::Value) -> Result<(), String> {
+    let outcome = s(exp, "outcome");
+    if r["status"] != "ok" {
+        return Err(format!("recording failed: {r}"));
+    }
+    // Structured warnings (docs/quality.md): notes are worth knowing but never make a case
+    // "not ok".
+    let list = r["warnings"].as_array().cloned().unwrap_or_default();
+    let line = |x: &serde_json::Value| {
+        let f = |k: &str| x[k].as_str().unwrap_or("").to_string();
+        format!("{} [{}]: {}", f("code"), f("severity"), f("message"))
+    };
+    let serious: Vec<String> = list
+        .iter()
+        .filter(|x| x["severity"] != "note")
+        .map(line)
+        .collect();
+    let all: Vec<String> = list.iter().map(line).collect();
+    let flat = all.join(" | ");
+    if outcome == "ok" && !serious.is_empty() {
+        return Err(format!("unexpected warnings: {serious:?}"));
+    }
+    if outcome == "warning" && serious.is_empty() {
+        return Err(format!("expected a warning, got {all:?}"));
+    }
+    has(&flat, &strs(exp, "warnings_contain"), "warnings")?;
+    has(&flat, &strs(exp, "codes"), "warning codes")?;
+    for c in strs(exp, "codes_absent") {
+        if list.iter().any(|x| x["code"] == c.as_str()) {
+            return Err(format!("unexpected {c}: {all:?}"));
+        }
+    }
+    // Withheld parameters: an empty value (JSON null) and a reason.
+    for c in strs(exp, "withheld") {
+        if !r[c.as_str()].is_null() || r["withheld"][c.as_str()].as_str().is_none() {
+            return Err(format!("{c} not withheld: {r}"));
+        }
+    }
+    for c in strs(exp, "measured") {
+        if !r[c.as_str()].is_number() {
+            return Err(format!("{c} not measured: {r}"));
+        }
+    }
+    if let Some(n) = exp.get("min_valid_strides").and_then(|x| x.as_integer()) {
+        if r["strides_valid"].as_i64().unwrap() < n {
+            return Err(format!("fewer than {n} valid strides: {r}"));
+        }
+    }
+    if let Some(f) = exp.get("fs_hz").and_then(|x| x.as_float()) {
+        if (r["fs_hz"].as_f64().unwrap() - f).abs() > 1e-6 {
+            return Err(format!("fs_hz {} instead of {f}", r["fs_hz"]));
         }
     }
     Ok(())
