@@ -62,6 +62,27 @@ fn pins_file() -> PathBuf {
 fn outputs_of_every_command_are_pinned_byte_for_byte() {
     let t = tempfile::tempdir().unwrap();
     let d = t.path();
+    analyze_demo_and_cohort(d);
+    run_cohort_commands(d);
+    let got = output_hashes(d);
+    let text: String = got.iter().map(|(k, h)| format!("{h:016x} {k}\n")).collect();
+    if std::env::var_os("LDH_PIN_WRITE").is_some() {
+        std::fs::create_dir_all(pins_file().parent().unwrap()).unwrap();
+        std::fs::write(pins_file(), &text).unwrap();
+        eprintln!("wrote {} pins to {}", got.len(), pins_file().display());
+        return;
+    }
+    let diffs = differences_from_pins(&got);
+    assert!(
+        diffs.is_empty(),
+        "outputs differ from tests/pins/outputs.txt (regenerate with LDH_PIN_WRITE=1 only if the \
+         change is intended):\n{}",
+        diffs.join("\n")
+    );
+}
+
+/// In `d`: the demo and its analysis with reports, a 10 + 10 simulated cohort and its analysis.
+fn analyze_demo_and_cohort(d: &Path) {
     run(d, &["demo", "--out", "demo"], "demo.stdout", 0);
     run(
         d,
@@ -93,6 +114,11 @@ fn outputs_of_every_command_are_pinned_byte_for_byte() {
         "a_sim.stdout",
         0,
     );
+}
+
+/// In `d`, on the simulated cohort and its analysis: stats, train, predict, report, inspect,
+/// evaluate and formats.
+fn run_cohort_commands(d: &Path) {
     run(
         d,
         &["stats", "sim", "--out", "s_sim", "--compare", "acc"],
@@ -170,7 +196,10 @@ fn outputs_of_every_command_are_pinned_byte_for_byte() {
     );
     run(d, &["formats"], "formats.stdout", 0);
     run(d, &["formats", "ldh"], "formats_ldh.stdout", 0);
+}
 
+/// The hash of every output file under `d` (path relative to `d` → FNV-1a), without the inputs.
+fn output_hashes(d: &Path) -> BTreeMap<String, u64> {
     let mut all = Vec::new();
     files(d, d, &mut all);
     let mut got = BTreeMap::new();
@@ -182,13 +211,11 @@ fn outputs_of_every_command_are_pinned_byte_for_byte() {
         }
         got.insert(key, fnv1a(&std::fs::read(d.join(&f)).unwrap()));
     }
-    let text: String = got.iter().map(|(k, h)| format!("{h:016x} {k}\n")).collect();
-    if std::env::var_os("LDH_PIN_WRITE").is_some() {
-        std::fs::create_dir_all(pins_file().parent().unwrap()).unwrap();
-        std::fs::write(pins_file(), &text).unwrap();
-        eprintln!("wrote {} pins to {}", got.len(), pins_file().display());
-        return;
-    }
+    got
+}
+
+/// What differs between `got` and the pinned hashes: new, changed and missing files.
+fn differences_from_pins(got: &BTreeMap<String, u64>) -> Vec<String> {
     let want = std::fs::read_to_string(pins_file()).expect("tests/pins/outputs.txt");
     let want: BTreeMap<String, String> = want
         .lines()
@@ -196,7 +223,7 @@ fn outputs_of_every_command_are_pinned_byte_for_byte() {
         .map(|(h, k)| (k.to_string(), h.to_string()))
         .collect();
     let mut diffs = Vec::new();
-    for (k, h) in &got {
+    for (k, h) in got {
         match want.get(k) {
             None => diffs.push(format!("new file {k}")),
             Some(w) if *w != format!("{h:016x}") => diffs.push(format!("changed {k}")),
@@ -206,10 +233,5 @@ fn outputs_of_every_command_are_pinned_byte_for_byte() {
     for k in want.keys().filter(|k| !got.contains_key(*k)) {
         diffs.push(format!("missing {k}"));
     }
-    assert!(
-        diffs.is_empty(),
-        "outputs differ from tests/pins/outputs.txt (regenerate with LDH_PIN_WRITE=1 only if the \
-         change is intended):\n{}",
-        diffs.join("\n")
-    );
+    diffs
 }
