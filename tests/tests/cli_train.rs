@@ -2,6 +2,7 @@
 
 mod common;
 use common::*;
+use std::path::Path;
 
 #[test]
 fn train_reports_grouped_and_stratified_cv_and_predict_uses_the_model() {
@@ -24,6 +25,15 @@ fn train_reports_grouped_and_stratified_cv_and_predict_uses_the_model() {
     ]);
     assert!(o.status.success(), "{}", text(&o));
     let out = d.path().join("train");
+    train_reports_both_cvs_reproducibly(d.path(), &c, &out);
+    let pred = d.path().join("pred");
+    predict_labels_every_recording(&c, &out, &pred);
+    predict_refuses_models_that_do_not_fit(d.path(), &c, &out, &pred);
+}
+
+/// `train` into `out`: the report, 6 CV results above chance, the figures and models, and the
+/// same CV results and model again with the same seed.
+fn train_reports_both_cvs_reproducibly(d: &Path, c: &Path, out: &Path) {
     let args = [
         "train",
         c.to_str().unwrap(),
@@ -63,7 +73,7 @@ fn train_reports_grouped_and_stratified_cv_and_predict_uses_the_model() {
         assert!(out.join(f).exists(), "{f}");
     }
     // Same seed: byte-identical CV results.
-    let out2 = d.path().join("train2");
+    let out2 = d.join("train2");
     let mut args2 = args.to_vec();
     args2[3] = out2.to_str().unwrap();
     assert!(ldh(&args2).status.success());
@@ -75,9 +85,10 @@ fn train_reports_grouped_and_stratified_cv_and_predict_uses_the_model() {
         std::fs::read(out.join("model_rf.json")).unwrap(),
         std::fs::read(out2.join("model_rf.json")).unwrap()
     );
+}
 
-    // Predict with the forest: labels and probabilities for every recording.
-    let pred = d.path().join("pred");
+/// `predict` with the forest: labels and probabilities for every recording into `pred`.
+fn predict_labels_every_recording(c: &Path, out: &Path, pred: &Path) {
     let o = ldh(&[
         "predict",
         "--model",
@@ -104,10 +115,12 @@ fn train_reports_grouped_and_stratified_cv_and_predict_uses_the_model() {
         .filter(|l| l.starts_with('L') && l.contains(",ok,LDHE,"))
         .count();
     assert!(affected_found >= 6, "{p}");
+}
 
-    // A model from another schema, or with features the input lacks, is refused.
+/// A model from another schema, or with features the input lacks, is refused.
+fn predict_refuses_models_that_do_not_fit(d: &Path, c: &Path, out: &Path, pred: &Path) {
     let m = std::fs::read_to_string(out.join("model_rf.json")).unwrap();
-    let old = d.path().join("old.json");
+    let old = d.join("old.json");
     std::fs::write(&old, m.replace("ldh-model/2", "ldh-model/0")).unwrap();
     let o = ldh(&[
         "predict",
@@ -124,7 +137,7 @@ fn train_reports_grouped_and_stratified_cv_and_predict_uses_the_model() {
         text(&o)
     );
     // Features from the ACC-only model do not fit a model trained on fusion features.
-    let acc = d.path().join("acc");
+    let acc = d.join("acc");
     assert!(ldh(&[
         "analyze",
         c.to_str().unwrap(),
