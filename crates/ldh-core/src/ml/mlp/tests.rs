@@ -532,7 +532,11 @@ fn data_errors_are_clear() {
         "{e}"
     );
     assert!(e.to_string().contains("row 2, column 1"), "{e}");
+}
 
+#[test]
+fn training_that_cannot_succeed_is_refused_or_reported() {
+    let x = array![[0.0, 1.0], [1.0, 0.0], [1.0, 1.0], [0.0, 0.0]];
     // early stopping that leaves no training rows: ceil(0.99 * 4) = 4 validation rows
     let pe = MlpParams::default()
         .early_stopping(true)
@@ -572,8 +576,16 @@ fn data_errors_are_clear() {
         ),
         Err(e) => panic!("unexpected {e}"),
     }
+}
 
-    // prediction errors
+#[test]
+fn prediction_errors_are_clear() {
+    let p = MlpParams::default()
+        .hidden_layer_sizes([4])
+        .max_iter(5)
+        .check()
+        .unwrap();
+    let x = array![[0.0, 1.0], [1.0, 0.0], [1.0, 1.0], [0.0, 0.0]];
     let model = Mlp::fit(&p, x.view(), &[0, 1, 1, 0]).unwrap();
     let e = model.predict(Array2::<f64>::zeros((2, 3))).unwrap_err();
     assert!(matches!(
