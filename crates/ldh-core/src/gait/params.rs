@@ -102,4 +102,17 @@ impl ValidStrideParams {
     pub fn params(&self) -> &StrideParams {
         &self.0
     }
+
+    /// These parameters with a subject's sensor height, m (the height belongs to the subject:
+    /// checked here, with the same rule and message as [`StrideParams::check`]).
+    pub fn with_sensor_height_m(&self, sensor_height_m: f64) -> Result<ValidStrideParams> {
+        self.0.clone().sensor_height_m(sensor_height_m).check()
+    }
+
+    /// These parameters with no stride a turn (`turn_deg` = 180, a treadmill).
+    pub fn without_turns(&self) -> ValidStrideParams {
+        let mut p = self.0.clone();
+        p.turn_deg = 180.0;
+        ValidStrideParams(p)
+    }
 }

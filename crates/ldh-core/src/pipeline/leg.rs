@@ -71,7 +71,9 @@ pub fn analyze_leg(
 }
 
 /// [`analyze_leg`], adding the wall time of each stage to `t` and 1 to `t.recordings`
-/// (timing never changes the result).
+/// (timing never changes the result). Checks `params` first (the recording, then the
+/// preprocessing at its rate, then the other stages); a run over many legs checks once and
+/// calls [`analyze_leg_checked`].
 pub fn analyze_leg_timed(
     rec: &Recording,
     side: Side,
@@ -79,6 +81,30 @@ pub fn analyze_leg_timed(
     sensor_height_m: Option<f64>,
     t: &mut StageTimings,
 ) -> Result<(LegResult, Vec<f64>)> {
+    let checked = rec
+        .validate()
+        .and_then(|_| params.preprocess.check(rec.fs_hz))
+        .and_then(|_| params.check());
+    match checked {
+        Ok(v) => analyze_leg_checked(rec, side, &v, sensor_height_m, t),
+        Err(e) => {
+            t.recordings += 1;
+            Err(e)
+        }
+    }
+}
+
+/// [`analyze_leg_timed`] with parameters checked once per run ([`AnalysisParams::check`]);
+/// only what belongs to the recording (its rate, for preprocessing) and to the subject (its
+/// sensor height) is checked here.
+pub fn analyze_leg_checked(
+    rec: &Recording,
+    side: Side,
+    v: &ValidAnalysisParams,
+    sensor_height_m: Option<f64>,
+    t: &mut StageTimings,
+) -> Result<(LegResult, Vec<f64>)> {
+    let params = v.params();
     t.recordings += 1;
     let mut clock = Instant::now();
     // The fields are public: a recording built by hand may break the invariants.
@@ -86,22 +112,17 @@ pub fn analyze_leg_timed(
     let pp = params.preprocess.check(rec.fs_hz)?;
     let pre = preprocess(rec, &pp)?;
     t.lap(Stage::Preprocess, &mut clock);
-    let al = align(&pre, &params.align.check()?)?;
+    let al = align(&pre, v.align())?;
     t.lap(Stage::Align, &mut clock);
-    let att = estimate(&al, &params.attitude.check()?)?;
+    let att = estimate(&al, v.attitude())?;
     t.lap(Stage::Attitude, &mut clock);
     let fs = rec.fs_hz;
     // Events come from the gyroscope's sagittal rate in both models (the ACC-only model replaces
     // the attitude only, so the comparison isolates it; SPEC §3.7).
     let omega = al.gyro_dps[1].clone();
-    let ev_params = params.events.clone();
-    let ev = detect(&att.pitch_deg, &omega, fs, &ev_params.check()?)?;
+    let ev = detect(&att.pitch_deg, &omega, fs, v.events())?;
     t.lap(Stage::Events, &mut clock);
-    let mut sp = params.strides.clone();
-    if let Some(h) = sensor_height_m {
-        sp.sensor_height_m = h;
-    }
-    let mut st = strides(side, &al, &att, &ev, &sp.check()?)?;
+    let mut st = strides(side, &al, &att, &ev, &v.strides(sensor_height_m)?)?;
     let before = side_parameters(&st, None);
     let checks = leg_checks(rec, &al, &att, &mut st, &before);
     withhold_unvouched_lengths(&mut st);
@@ -128,7 +149,7 @@ pub fn analyze_leg_timed(
     let mut warnings = checks.warnings;
     if st.is_empty() {
         // Why no stride was found (too slow for the mid-swing threshold, too short…).
-        let reason = crate::events::no_strides_reason(&omega, &ev, &ev_params);
+        let reason = crate::events::no_strides_reason(&omega, &ev, v.events().params());
         warnings.push(quality::Warning::new(
             "no_strides",
             quality::Severity::Warning,

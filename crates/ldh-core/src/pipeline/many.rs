@@ -9,7 +9,9 @@ use std::path::Path;
 
 use rayon::prelude::*;
 
-use super::{analyze_subject, AnalysisParams, SubjectInput, SubjectResult};
+use super::{
+    analyze_subject, analyze_subject_checked, AnalysisParams, SubjectInput, SubjectResult,
+};
 use crate::error::Result;
 use crate::io::{FormatSpec, ValidReadParams};
 use crate::output::{self, RecordingRow, TableSink};
@@ -23,9 +25,13 @@ pub fn analyze_many(
     format: Option<&FormatSpec>,
     read: &ValidReadParams,
 ) -> Vec<SubjectResult> {
+    let checked = params.check().ok();
     subjects
         .par_iter()
-        .map(|s| analyze_subject(s, params, format, read))
+        .map(|s| match &checked {
+            Some(v) => analyze_subject_checked(s, v, format, read),
+            None => analyze_subject(s, params, format, read),
+        })
         .collect()
 }
 
@@ -93,11 +99,15 @@ pub fn analyze_to_folder(
     let mut events = TableSink::create(out, "events", &output::EVENT_COLUMNS, false)?;
     let mut recordings = TableSink::create(out, "recordings", &[], true)?;
     let mut sum = FolderSummary::default();
+    let checked = params.check().ok();
     for part in subjects.chunks(opts.chunk.max(1)) {
         let tables: Vec<Result<(output::Tables, StageTimings)>> = part
             .par_iter()
             .map(|s| {
-                let r = analyze_subject(s, params, format, read);
+                let r = match &checked {
+                    Some(v) => analyze_subject_checked(s, v, format, read),
+                    None => analyze_subject(s, params, format, read),
+                };
                 let mut spent = r.timings;
                 let tables = spent.time(Stage::Write, || -> Result<output::Tables> {
                     if let Some(tp) = opts.traces {

@@ -24,7 +24,7 @@ pub use inputs::{
     demo_inputs, discover, discover_with, is_manifest, read_manifest, subject_id_from_files,
     InputOptions, Source, SubjectInput,
 };
-pub use leg::{analyze_leg, analyze_leg_timed, memory_report, LegResult};
+pub use leg::{analyze_leg, analyze_leg_checked, analyze_leg_timed, memory_report, LegResult};
 pub use manifest::{is_manifest_text, GroupLabel, MANIFEST_COLUMNS};
 pub use many::{
     analyze_many, analyze_to_folder, bounded_jobs, recording_rows_many, FolderOptions,
@@ -34,15 +34,18 @@ pub use quality::{
     all_leg_warnings, codes, leg_checks, leg_warnings, pair_warnings, params as quality_params,
     withhold, LegChecks, Severity, Warning, WarningList, WithheldList, RUNNING_STRIDE_TIME_S,
 };
-pub use subject::{analyze_pair, analyze_simulated, analyze_subject, LoadedLeg, SubjectResult};
+pub use subject::{
+    analyze_pair, analyze_pair_checked, analyze_simulated, analyze_subject,
+    analyze_subject_checked, LoadedLeg, SubjectResult,
+};
 
 use serde::{Deserialize, Serialize};
 
-use crate::align::AlignParams;
-use crate::attitude::{AttitudeModel, AttitudeParams};
+use crate::align::{AlignParams, ValidAlignParams};
+use crate::attitude::{AttitudeModel, AttitudeParams, ValidAttitudeParams};
 use crate::error::Result;
-use crate::events::EventParams;
-use crate::gait::StrideParams;
+use crate::events::{EventParams, ValidEventParams};
+use crate::gait::{StrideParams, ValidStrideParams};
 use crate::nonlinear::GaitStaParams;
 use crate::preprocess::PreprocessParams;
 
@@ -126,12 +129,66 @@ impl AnalysisParams {
         Ok(self)
     }
 
-    /// Validate every stage's parameters that do not depend on the recording.
-    pub fn check(&self) -> Result<()> {
-        self.align.check()?;
-        self.attitude.check()?;
-        self.events.check()?;
-        self.strides.check()?;
-        Ok(())
+    /// Validate every stage's parameters that do not depend on the recording, once per run:
+    /// the checked parameters are what [`analyze_leg_checked`], [`analyze_pair_checked`] and
+    /// [`analyze_subject_checked`] take, so no stage re-checks per leg. Preprocessing needs the
+    /// recording's rate, so it is checked with it at the call ([`PreprocessParams::check`]).
+    pub fn check(&self) -> Result<ValidAnalysisParams> {
+        Ok(ValidAnalysisParams {
+            align: self.align.check()?,
+            attitude: self.attitude.check()?,
+            events: self.events.check()?,
+            strides: self.strides.check()?,
+            params: self.clone(),
+        })
+    }
+}
+
+/// Every stage's checked parameters ([`AnalysisParams::check`]). The preprocessing parameters
+/// and the STA parameters are held as given: preprocessing is checked with the recording's rate
+/// at the call, STA with the series' rate and mean stride time inside
+/// [`crate::nonlinear::gait_sta`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct ValidAnalysisParams {
+    params: AnalysisParams,
+    align: ValidAlignParams,
+    attitude: ValidAttitudeParams,
+    events: ValidEventParams,
+    strides: ValidStrideParams,
+}
+
+impl ValidAnalysisParams {
+    /// The parameters as given.
+    pub fn params(&self) -> &AnalysisParams {
+        &self.params
+    }
+    /// The checked alignment parameters.
+    pub fn align(&self) -> &ValidAlignParams {
+        &self.align
+    }
+    /// The checked attitude parameters.
+    pub fn attitude(&self) -> &ValidAttitudeParams {
+        &self.attitude
+    }
+    /// The checked event parameters.
+    pub fn events(&self) -> &ValidEventParams {
+        &self.events
+    }
+    /// The checked stride parameters with a subject's sensor height, m, when it has one (the
+    /// height belongs to the subject, so it is checked here, at the call).
+    pub fn strides(&self, sensor_height_m: Option<f64>) -> Result<ValidStrideParams> {
+        match sensor_height_m {
+            None => Ok(self.strides.clone()),
+            Some(h) => self.strides.with_sensor_height_m(h),
+        }
+    }
+    /// These parameters for a walk on a treadmill: no stride is a turn (as
+    /// [`AnalysisParams::for_treadmill`]).
+    pub fn for_treadmill(&self) -> Self {
+        ValidAnalysisParams {
+            params: self.params.for_treadmill(),
+            strides: self.strides.without_turns(),
+            ..self.clone()
+        }
     }
 }

@@ -77,6 +77,30 @@ pub fn analyze_subject(
     format: Option<&FormatSpec>,
     read: &ValidReadParams,
 ) -> SubjectResult {
+    load_and_pair(input, format, read, |l, r| {
+        analyze_pair(input, l, r, params)
+    })
+}
+
+/// [`analyze_subject`] with parameters checked once per run ([`AnalysisParams::check`]).
+pub fn analyze_subject_checked(
+    input: &SubjectInput,
+    params: &ValidAnalysisParams,
+    format: Option<&FormatSpec>,
+    read: &ValidReadParams,
+) -> SubjectResult {
+    load_and_pair(input, format, read, |l, r| {
+        analyze_pair_checked(input, l, r, params)
+    })
+}
+
+/// Read both legs of `input`, then `pair` them; the read time is added to the result's.
+fn load_and_pair(
+    input: &SubjectInput,
+    format: Option<&FormatSpec>,
+    read: &ValidReadParams,
+    pair: impl FnOnce(LoadedLeg, LoadedLeg) -> SubjectResult,
+) -> SubjectResult {
     let load = |src: &Option<Source>,
                 own: Option<&FormatSpec>,
                 side: Side|
@@ -94,7 +118,7 @@ pub fn analyze_subject(
             load(&input.right, input.right_format.as_ref(), Side::Right),
         )
     });
-    let mut out = analyze_pair(input, left, right, params);
+    let mut out = pair(left, right);
     out.timings.add(&read_time);
     out
 }
@@ -102,7 +126,8 @@ pub fn analyze_subject(
 /// The read outcome of one leg: the recording, what the reader found and a label, or the error.
 pub type LoadedLeg = std::result::Result<(Recording, ReadReport, String), String>;
 
-/// Analyse one subject from recordings already read (or their read errors).
+/// Analyse one subject from recordings already read (or their read errors). Parameters that
+/// fail their check are each leg's error, naming its file.
 pub fn analyze_pair(
     input: &SubjectInput,
     left: LoadedLeg,
@@ -117,13 +142,49 @@ pub fn analyze_pair(
         }
         _ => params,
     };
+    match params.check() {
+        Ok(v) => pair_legs(input, left, right, params, Some(&v)),
+        Err(_) => pair_legs(input, left, right, params, None),
+    }
+}
+
+/// [`analyze_pair`] with parameters checked once per run ([`AnalysisParams::check`]).
+pub fn analyze_pair_checked(
+    input: &SubjectInput,
+    left: LoadedLeg,
+    right: LoadedLeg,
+    params: &ValidAnalysisParams,
+) -> SubjectResult {
+    let own;
+    let params = match input.setting {
+        Some(crate::recording::Setting::Treadmill) => {
+            own = params.for_treadmill();
+            &own
+        }
+        _ => params,
+    };
+    pair_legs(input, left, right, params.params(), Some(params))
+}
+
+/// Analyse both legs and pair them: with `checked` parameters (`params` checked), or without
+/// (`params` failed their check: each leg read gets the error, in the order a leg checks them).
+fn pair_legs(
+    input: &SubjectInput,
+    left: LoadedLeg,
+    right: LoadedLeg,
+    params: &AnalysisParams,
+    checked: Option<&ValidAnalysisParams>,
+) -> SubjectResult {
     let mut timings = StageTimings::default();
+    let h = input.sensor_height_m;
     let mut run =
         |loaded: LoadedLeg, side: Side| -> std::result::Result<(LegResult, Vec<f64>), String> {
             let (rec, report, label) = loaded?;
-            let (mut leg, hs) =
-                analyze_leg_timed(&rec, side, params, input.sensor_height_m, &mut timings)
-                    .map_err(|e| format!("{label}: {e}"))?;
+            let (mut leg, hs) = match checked {
+                Some(v) => analyze_leg_checked(&rec, side, v, h, &mut timings),
+                None => analyze_leg_timed(&rec, side, params, h, &mut timings),
+            }
+            .map_err(|e| format!("{label}: {e}"))?;
             leg.read = report;
             leg.source = label;
             Ok((leg, hs))
@@ -132,7 +193,9 @@ pub fn analyze_pair(
     let mut r = run(right, Side::Right);
     // The pairing below (turns from both legs, step times, the pair's checks) counts as strides.
     let clock = std::time::Instant::now();
-    bilateral_turns(&mut l, &mut r, input, params);
+    if let Some(v) = checked {
+        bilateral_turns(&mut l, &mut r, input, v);
+    }
     // The other leg's heel strikes on this leg's clock: event times count from each file's own
     // first sample, and the two files may start at different times.
     let t0 = |x: &std::result::Result<(LegResult, Vec<f64>), String>| {
@@ -230,7 +293,12 @@ fn heading_change(leg: &LegResult, t0: f64, t1: f64) -> Option<f64> {
 /// heading also changes by more than half of `turn_deg` over the same interval (yaw drift on
 /// one leg is not a turn); on a treadmill (`input.setting`) no stride is a turn. With one leg,
 /// its own heading decides (as before).
-fn bilateral_turns(l: &mut LegRun, r: &mut LegRun, input: &SubjectInput, params: &AnalysisParams) {
+fn bilateral_turns(
+    l: &mut LegRun,
+    r: &mut LegRun,
+    input: &SubjectInput,
+    params: &ValidAnalysisParams,
+) {
     let treadmill = input.setting == Some(crate::recording::Setting::Treadmill);
     let (Ok((ll, _)), Ok((rl, _))) = (&*l, &*r) else {
         if !treadmill {
@@ -242,11 +310,7 @@ fn bilateral_turns(l: &mut LegRun, r: &mut LegRun, input: &SubjectInput, params:
         return;
     };
     let (ll, rl) = (ll.clone(), rl.clone());
-    let mut sp = params.strides.clone();
-    if let Some(h) = input.sensor_height_m {
-        sp.sensor_height_m = h;
-    }
-    let turn_deg = sp.turn_deg;
+    let turn_deg = params.params().strides.turn_deg;
     for (x, other) in [(l, &rl), (r, &ll)] {
         let Ok((leg, _)) = x else { continue };
         let shift = leg.t0_s - other.t0_s;
@@ -264,17 +328,15 @@ fn bilateral_turns(l: &mut LegRun, r: &mut LegRun, input: &SubjectInput, params:
 fn resegment(
     leg: &mut LegResult,
     input: &SubjectInput,
-    params: &AnalysisParams,
+    params: &ValidAnalysisParams,
     test: &crate::gait::TurnTest,
 ) {
     let (Some(al), Some(att)) = (&leg.signals, &leg.attitude) else {
         return;
     };
-    let mut sp = params.strides.clone();
-    if let Some(h) = input.sensor_height_m {
-        sp.sensor_height_m = h;
-    }
-    let Ok(sp) = sp.check() else { return };
+    let Ok(sp) = params.strides(input.sensor_height_m) else {
+        return;
+    };
     if let Ok(st) = crate::gait::strides_with_turns(leg.side, al, att, &leg.events, &sp, test) {
         leg.strides = st;
     }
