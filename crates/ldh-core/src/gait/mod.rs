@@ -353,6 +353,7 @@ pub fn strides_with_turns(
                 length_m: f64::NAN,
                 drift_mps: f64::NAN,
                 vertical_m: f64::NAN,
+                clipped_samples: 0,
             },
         };
         let pendulum = if to.is_finite() {
@@ -606,6 +607,7 @@ fn withhold_side_length(out: &mut SideParameters, valid: &[&Stride], with_length
                 "ACC-only",
                 "the ACC-only attitude cannot separate gravity from motion",
             ),
+            ("clipped", "accelerometer clipped"),
             ("drift", "velocity drift"),
             ("floor", "ankle off the floor level"),
             ("pendulum", "disagrees with the shank-pendulum estimate"),
