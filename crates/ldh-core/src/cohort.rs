@@ -21,8 +21,11 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::attitude::AttitudeModel;
 use crate::error::{LdhError, Result};
-use crate::output::RecordingRow;
+use crate::output::{AffectedSide, Label, RecordingRow};
+use crate::pipeline::GroupLabel;
+use crate::Side;
 
 mod offsets;
 mod outcome;
@@ -157,9 +160,9 @@ pub fn value(row: &RecordingRow, column: &str) -> Option<f64> {
 /// duration and stride counts are the trials' sums, its `source` and `warnings` each trial's
 /// (`t2: ...`), its `trial_id` says `mean of 2 trials (t1, t2)`. When no trial of that side was
 /// analysed, the first failed row (its error says why).
-pub fn person_row(rows: &[&RecordingRow], side: &str) -> Option<RecordingRow> {
+pub fn person_row(rows: &[&RecordingRow], side: Side) -> Option<RecordingRow> {
     let all: Vec<&RecordingRow> = rows.iter().copied().filter(|r| r.side == side).collect();
-    let ok: Vec<&RecordingRow> = all.iter().copied().filter(|r| r.status == "ok").collect();
+    let ok: Vec<&RecordingRow> = all.iter().copied().filter(|r| r.is_ok()).collect();
     if all.len() <= 1 || ok.is_empty() {
         return all.first().map(|r| (*r).clone());
     }
@@ -243,8 +246,8 @@ pub struct SubjectValues {
 /// The cohort split into groups; subjects that cannot be used are listed in `excluded`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Cohort {
-    /// Attitude model of the rows.
-    pub model: String,
+    /// Attitude model of the rows (empty `Other` when there are none).
+    pub model: Label<AttitudeModel>,
     /// LDH subjects with both sides analysed (a = unaffected, b = affected).
     pub ldh: Vec<SubjectValues>,
     /// Healthy subjects with both legs analysed (a = left, b = right).
@@ -260,7 +263,9 @@ impl Cohort {
     /// Split per-recording rows (one model) into groups. Errors when a group has fewer than
     /// [`MIN_GROUP_SIZE`] usable subjects, naming what is missing.
     pub fn from_rows(rows: &[RecordingRow]) -> Result<Cohort> {
-        let model = rows.first().map(|r| r.model.clone()).unwrap_or_default();
+        let model = rows
+            .first()
+            .map_or(Label::Other(String::new()), |r| r.model.clone());
         let mut subjects = crate::output::rows_by_subject(rows);
         subjects.sort_unstable_by(|a, b| a.0.cmp(b.0));
         let mut c = Cohort {
@@ -270,15 +275,16 @@ impl Cohort {
             excluded: vec![],
         };
         for (id, rows) in subjects {
-            let (l_own, r_own) = (person_row(&rows, "left"), person_row(&rows, "right"));
+            let (l_own, r_own) = (
+                person_row(&rows, Side::Left),
+                person_row(&rows, Side::Right),
+            );
             let (l, r) = (l_own.as_ref(), r_own.as_ref());
-            let group = l.or(r).map(|x| x.group.clone()).unwrap_or_default();
+            let group = l.or(r).and_then(|x| x.group.clone());
             let problem = |x: Option<&RecordingRow>, side: &str| -> Option<String> {
                 match x {
                     None => Some(format!("{id}: no {side} recording")),
-                    Some(x) if x.status != "ok" => {
-                        Some(format!("{id}: {side} failed ({})", x.error))
-                    }
+                    Some(x) if !x.is_ok() => Some(format!("{id}: {side} failed ({})", x.error)),
                     _ => None,
                 }
             };
@@ -287,32 +293,34 @@ impl Cohort {
                 continue;
             }
             let (l, r) = (l.expect("checked").clone(), r.expect("checked").clone());
-            match group.as_str() {
-                "healthy" => c.healthy.push(SubjectValues {
+            let affected = l.affected_side.as_ref();
+            match group {
+                Some(GroupLabel::Healthy) => c.healthy.push(SubjectValues {
                     subject_id: id.into(),
                     a: l,
                     b: r,
                 }),
-                "ldh" => match l.affected_side.as_str() {
-                    "left" => c.ldh.push(SubjectValues {
+                Some(GroupLabel::Ldh) => match affected.and_then(Label::known) {
+                    Some(AffectedSide::Left) => c.ldh.push(SubjectValues {
                         subject_id: id.into(),
                         a: r,
                         b: l,
                     }),
-                    "right" => c.ldh.push(SubjectValues {
+                    Some(AffectedSide::Right) => c.ldh.push(SubjectValues {
                         subject_id: id.into(),
                         a: l,
                         b: r,
                     }),
-                    other => c.excluded.push(format!(
-                        "{id}: LDH subject without an affected side ('{other}')"
+                    _ => c.excluded.push(format!(
+                        "{id}: LDH subject without an affected side ('{}')",
+                        affected.map_or("", Label::as_str)
                     )),
                 },
-                "" => c.excluded.push(format!(
-                    "{id}: no group (give a manifest with group and affected_side)"
-                )),
-                other => c.excluded.push(format!(
+                Some(GroupLabel::Other(other)) if !other.is_empty() => c.excluded.push(format!(
                     "{id}: group '{other}' is not compared (the statistics compare ldh with healthy)"
+                )),
+                _ => c.excluded.push(format!(
+                    "{id}: no group (give a manifest with group and affected_side)"
                 )),
             }
         }

@@ -28,7 +28,7 @@ pub struct ModelOffsets {
 /// z-normalisation against the healthy baseline (eq. 18) and the offsets (eq. 19).
 pub fn offsets(c: &Cohort) -> ModelOffsets {
     let mut out = ModelOffsets {
-        model: c.model.clone(),
+        model: c.model.to_string(),
         codes: vec![],
         z_ldhh: vec![],
         z_ldhe: vec![],

@@ -33,7 +33,7 @@ pub fn stats(models: &[Vec<RecordingRow>]) -> Result<StatsOutcome> {
             cohort.model,
             table3_markdown(&t3, &cohort)
         ));
-        all_rows.extend(table3_rows(&cohort.model, &t3));
+        all_rows.extend(table3_rows(cohort.model.as_str(), &t3));
         let off = offsets(&cohort);
         let series = [
             ("LDHH".to_string(), off.z_ldhh.clone()),
@@ -46,7 +46,7 @@ pub fn stats(models: &[Vec<RecordingRow>]) -> Result<StatsOutcome> {
             &series,
         )?;
         files.push((format!("radar_{}.svg", cohort.model), radar));
-        if cohort.model == AttitudeModel::Fusion.as_str() {
+        if cohort.model == AttitudeModel::Fusion {
             files.extend(box_plots(&cohort)?);
         }
         offs.push(off);

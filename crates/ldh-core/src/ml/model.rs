@@ -324,7 +324,10 @@ impl ModelFile {
     /// class and a note naming what is missing (the STA status when STA is the missing one);
     /// rows of another attitude model are an error for the whole call.
     pub fn predict_rows(&self, rows: &[crate::output::RecordingRow]) -> Result<Vec<Prediction>> {
-        if let Some(r) = rows.iter().find(|r| r.model != self.attitude_model) {
+        if let Some(r) = rows
+            .iter()
+            .find(|r| r.model.as_str() != self.attitude_model)
+        {
             return Err(LdhError::param(
                 "model",
                 &r.model,
@@ -343,7 +346,7 @@ impl ModelFile {
                 .collect();
             let mut p = Prediction {
                 subject_id: r.subject_id.clone(),
-                side: r.side.clone(),
+                side: r.side.to_string(),
                 predicted_class: None,
                 probabilities: None,
                 note: String::new(),
@@ -359,7 +362,7 @@ impl ModelFile {
                         p.note = "no probabilities for this model".into();
                     }
                 }
-                _ if r.status != "ok" => p.note = r.error.clone(),
+                _ if !r.is_ok() => p.note = r.error.clone(),
                 _ => {
                     let missing: Vec<&String> = self
                         .feature_names

@@ -56,10 +56,10 @@ fn manifest_columns_quoting_formats_settings_and_groups() {
         &crate::io::ReadParams::default().check().unwrap(),
     );
     let rows = crate::output::recording_rows(&[r]);
-    assert_eq!(rows[0].group, "stroke");
-    assert_eq!(rows[0].affected_side, "");
-    assert_eq!(rows[0].side_role, "");
-    assert_eq!(rows[0].setting, "overground");
+    assert_eq!(rows[0].group, Some(GroupLabel::Other("stroke".into())));
+    assert_eq!(rows[0].affected_side, None);
+    assert_eq!(rows[0].side_role, None);
+    assert_eq!(rows[0].setting, Some(Setting::Overground.into()));
     let opts = InputOptions {
         setting: Some(Setting::Treadmill),
         ..InputOptions::default()

@@ -172,13 +172,17 @@ impl Reference {
         let passes = passes_every_check;
         let healthy_legs = rows
             .iter()
-            .filter(|x| x.group == "healthy" && x.status == "ok")
+            .filter(|x| matches!(x.group, Some(crate::pipeline::GroupLabel::Healthy)) && x.is_ok())
             .count();
         let healthy: Vec<Vec<&RecordingRow>> = crate::output::rows_by_subject(rows)
             .into_iter()
             .map(|(_, v)| {
                 v.into_iter()
-                    .filter(|x| x.group == "healthy" && x.status == "ok" && passes(x))
+                    .filter(|x| {
+                        matches!(x.group, Some(crate::pipeline::GroupLabel::Healthy))
+                            && x.is_ok()
+                            && passes(x)
+                    })
                     .collect::<Vec<_>>()
             })
             .filter(|v| !v.is_empty())

@@ -24,8 +24,8 @@ pub fn subject_html(
 ) -> Result<String> {
     // One row per side; a person's several trials averaged (docs/input.md "Trials").
     let all: Vec<&RecordingRow> = s.recordings.iter().collect();
-    let own: Vec<RecordingRow> = ["left", "right"]
-        .iter()
+    let own: Vec<RecordingRow> = [crate::Side::Left, crate::Side::Right]
+        .into_iter()
         .filter_map(|side| crate::cohort::person_row(&all, side))
         .collect();
     let sides: Vec<&RecordingRow> = own.iter().collect();
@@ -80,13 +80,13 @@ impl Citations {
 fn header(s: &SubjectReport, sides: &[&RecordingRow]) -> Markup {
     let group = sides
         .iter()
-        .map(|r| r.group.as_str())
+        .map(|r| crate::output::labels::text(&r.group))
         .find(|g| !g.is_empty())
         .unwrap_or("");
     let model = sides.first().map(|r| r.model.as_str()).unwrap_or("");
     let affected = sides
         .iter()
-        .map(|r| r.affected_side.as_str())
+        .map(|r| crate::output::labels::text(&r.affected_side))
         .find(|a| !a.is_empty() && *a != "none");
     html! {
         h1 { "Gait report: subject " (s.subject_id) } "\n"
@@ -133,9 +133,9 @@ fn warning_box(sides: &[&RecordingRow]) -> Markup {
 fn missing(s: &SubjectReport) -> Vec<String> {
     let mut missing: Vec<String> = Vec::new();
     for side in ["left", "right"] {
-        match s.recordings.iter().find(|r| r.side == side) {
+        match s.recordings.iter().find(|r| r.side.as_str() == side) {
             None => missing.push(format!("No {side} recording was given.")),
-            Some(r) if r.status != "ok" => missing.push(format!(
+            Some(r) if !r.is_ok() => missing.push(format!(
                 "The {side} recording could not be analysed: {}",
                 r.error
             )),
@@ -177,7 +177,7 @@ fn facts(r: &RecordingRow) -> [String; 10] {
     };
     [
         r.source.clone(),
-        if r.status == "ok" {
+        if r.is_ok() {
             "analysed".into()
         } else {
             format!("failed: {}", r.error)
@@ -334,7 +334,7 @@ fn range_text(
 
 /// A side's value of a parameter (`None` for a failed side).
 fn side_value(r: &RecordingRow, column: &str) -> Option<f64> {
-    if r.status == "ok" {
+    if r.is_ok() {
         value(r, column)
     } else {
         None
@@ -347,8 +347,12 @@ fn parameter_table(
     citations: &Citations,
     p: &ValidReportParams,
 ) -> Markup {
-    let left = sides.iter().find(|r| r.side == "left" && r.status == "ok");
-    let right = sides.iter().find(|r| r.side == "right" && r.status == "ok");
+    let left = sides
+        .iter()
+        .find(|r| r.side == crate::Side::Left && r.is_ok());
+    let right = sides
+        .iter()
+        .find(|r| r.side == crate::Side::Right && r.is_ok());
     let mut out_of_range = 0usize;
     let mut rows: Vec<Markup> = Vec::new();
     for par in PARAMETERS.iter() {
@@ -418,7 +422,7 @@ fn subject_radar(
     let ranges: Vec<&ReferenceRange> = reference.ranges.iter().filter(|r| r.sd.is_some()).collect();
     let series: Vec<(String, Vec<f64>)> = sides
         .iter()
-        .filter(|r| r.status == "ok")
+        .filter(|r| r.is_ok())
         .map(|r| {
             (
                 side_label(r),

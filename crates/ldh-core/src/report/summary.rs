@@ -86,7 +86,7 @@ const ASYMMETRY: [(&str, &str); 4] = [
 /// Why a side has no value of `column` (the quality check's reason first), or `None` when it
 /// has one.
 pub(crate) fn not_measured(r: &RecordingRow, column: &str) -> Option<String> {
-    if r.status != "ok" {
+    if !r.is_ok() {
         return Some("not analysed (see above)".into());
     }
     if let Some(why) = r.withheld.reason(column) {
@@ -213,8 +213,8 @@ pub(crate) fn clinical_summary(
     citations: &Citations,
     p: &ValidReportParams,
 ) -> Markup {
-    let left = sides.iter().find(|r| r.side == "left");
-    let right = sides.iter().find(|r| r.side == "right");
+    let left = sides.iter().find(|r| r.side == crate::Side::Left);
+    let right = sides.iter().find(|r| r.side == crate::Side::Right);
     let limit = p.0.asymmetry_flag_pct;
     let si = |column: &str| -> Result<f64, String> {
         let (l, r) = (

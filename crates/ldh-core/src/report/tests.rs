@@ -103,7 +103,7 @@ fn a_subject_without_anything_still_renders() {
 fn text_from_files_is_escaped_and_control_characters_dropped() {
     let p = ReportParams::default().check().unwrap();
     let mut bad = row("S<1>&\"x\"", "ldh", "left", 1.0);
-    bad.status = "error".into();
+    bad.status = crate::output::Status::Error.into();
     bad.error = "bad value \u{1}<script>alert('x')</script> at line 3".into();
     let s = SubjectReport {
         subject_id: bad.subject_id.clone(),
@@ -148,7 +148,11 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
     };
     let res = crate::pipeline::analyze_simulated(&sub, &params);
     let tables = crate::output::Tables::of(std::slice::from_ref(&res));
-    let left = tables.recordings.iter().find(|r| r.side == "left").unwrap();
+    let left = tables
+        .recordings
+        .iter()
+        .find(|r| r.side == crate::Side::Left)
+        .unwrap();
     assert!(left
         .warnings
         .iter()
