@@ -37,121 +37,10 @@ pub use table3::{
     table3, table3_markdown, table3_rows, ParameterStats, Summary, Table3Row, TestResult,
 };
 
-/// A gait parameter of the cohort tables.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-pub struct Parameter {
-    /// Code in the paper's Table 2 (PBI is ldh's addition).
-    pub code: &'static str,
-    /// Column of the per-recording table.
-    pub column: &'static str,
-    /// Name.
-    pub name: &'static str,
-    /// Unit.
-    pub unit: &'static str,
-}
+pub use crate::output::{Parameter, UnknownParameter};
 
 /// The parameters, in the order of the paper's Table 3 (plus PBI).
-pub const PARAMETERS: [Parameter; 13] = [
-    Parameter {
-        code: "SF",
-        column: "step_frequency_steps_per_s",
-        name: "step frequency",
-        unit: "steps/s",
-    },
-    Parameter {
-        code: "SL",
-        column: "stride_length_m",
-        name: "stride length",
-        unit: "m",
-    },
-    Parameter {
-        code: "SS",
-        column: "speed_mps",
-        name: "stride speed",
-        unit: "m/s",
-    },
-    Parameter {
-        code: "STT",
-        column: "step_time_s",
-        name: "step time",
-        unit: "s",
-    },
-    Parameter {
-        code: "ST",
-        column: "stride_time_s",
-        name: "stride time",
-        unit: "s",
-    },
-    Parameter {
-        code: "STP",
-        column: "stance_ratio",
-        name: "stance phase",
-        unit: "ratio",
-    },
-    Parameter {
-        code: "SWP",
-        column: "swing_ratio",
-        name: "swing phase",
-        unit: "ratio",
-    },
-    Parameter {
-        code: "SV",
-        column: "stride_length_cv",
-        name: "stride length variability",
-        unit: "ratio",
-    },
-    Parameter {
-        code: "STV",
-        column: "stride_time_cv",
-        name: "stride time variability",
-        unit: "ratio",
-    },
-    Parameter {
-        code: "STA",
-        column: "sta_per_s",
-        name: "gait stability (Lyapunov)",
-        unit: "1/s",
-    },
-    Parameter {
-        code: "WQK",
-        column: "wqk_deg",
-        name: "max shank flexion",
-        unit: "deg",
-    },
-    Parameter {
-        code: "PBI",
-        column: "pbi_deg",
-        name: "peak backward inclination",
-        unit: "deg",
-    },
-    Parameter {
-        code: "BDK",
-        column: "bdk_deg",
-        name: "swing roll excursion",
-        unit: "deg",
-    },
-];
-
-/// The value of a parameter in a per-recording row.
-pub fn value(row: &RecordingRow, column: &str) -> Option<f64> {
-    match column {
-        "step_frequency_steps_per_s" => row.step_frequency_steps_per_s,
-        "stride_length_m" => row.stride_length_m,
-        "speed_mps" => row.speed_mps,
-        "step_time_s" => row.step_time_s,
-        "stride_time_s" => row.stride_time_s,
-        "stance_ratio" => row.stance_ratio,
-        "swing_ratio" => row.swing_ratio,
-        "stride_length_cv" => row.stride_length_cv,
-        "stride_time_cv" => row.stride_time_cv,
-        "sta_per_s" => row.sta_per_s,
-        "wqk_deg" => row.wqk_deg,
-        "pbi_deg" => row.pbi_deg,
-        "bdk_deg" => row.bdk_deg,
-        _ => None,
-    }
-    .filter(|v| v.is_finite())
-}
+pub const PARAMETERS: [Parameter; 13] = Parameter::ALL;
 
 /// One person's row for one side: the row itself when the person has one trial; with several
 /// trials (rows sharing `subject_id`), the mean over the trials analysed (`status` ok) of each
@@ -172,11 +61,7 @@ pub fn person_row(rows: &[&RecordingRow], side: Side) -> Option<RecordingRow> {
     let mut out = ok[0].clone();
     let mean = |v: Vec<f64>| (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64);
     for p in PARAMETERS {
-        set_value(
-            &mut out,
-            p.column,
-            mean(ok.iter().filter_map(|r| value(r, p.column)).collect()),
-        );
+        out.set_value(p, mean(ok.iter().filter_map(|r| r.value(p)).collect()));
     }
     out.sta_per_stride = mean(ok.iter().filter_map(|r| r.sta_per_stride).collect());
     let sum = |f: fn(&RecordingRow) -> Option<usize>| ok.iter().map(|r| f(r)).sum();
@@ -209,27 +94,6 @@ pub fn person_row(rows: &[&RecordingRow], side: Side) -> Option<RecordingRow> {
             .join(", ")
     );
     Some(out)
-}
-
-/// Set a parameter of [`PARAMETERS`] in a per-recording row.
-fn set_value(row: &mut RecordingRow, column: &str, v: Option<f64>) {
-    let slot = match column {
-        "step_frequency_steps_per_s" => &mut row.step_frequency_steps_per_s,
-        "stride_length_m" => &mut row.stride_length_m,
-        "speed_mps" => &mut row.speed_mps,
-        "step_time_s" => &mut row.step_time_s,
-        "stride_time_s" => &mut row.stride_time_s,
-        "stance_ratio" => &mut row.stance_ratio,
-        "swing_ratio" => &mut row.swing_ratio,
-        "stride_length_cv" => &mut row.stride_length_cv,
-        "stride_time_cv" => &mut row.stride_time_cv,
-        "sta_per_s" => &mut row.sta_per_s,
-        "wqk_deg" => &mut row.wqk_deg,
-        "pbi_deg" => &mut row.pbi_deg,
-        "bdk_deg" => &mut row.bdk_deg,
-        _ => return,
-    };
-    *slot = v;
 }
 
 /// One subject's values for the cohort analysis.
@@ -342,8 +206,8 @@ impl Cohort {
 
     /// Values of one parameter: (LDHH, LDHE, H = mean of both legs, healthy left, healthy right),
     /// subjects with a missing value dropped pairwise.
-    pub fn groups(&self, column: &str) -> Groups {
-        let pair = |s: &SubjectValues| Some((value(&s.a, column)?, value(&s.b, column)?));
+    pub fn groups(&self, p: Parameter) -> Groups {
+        let pair = |s: &SubjectValues| Some((s.a.value(p)?, s.b.value(p)?));
         let ldh: Vec<(f64, f64)> = self.ldh.iter().filter_map(pair).collect();
         let h: Vec<(f64, f64)> = self.healthy.iter().filter_map(pair).collect();
         Groups {

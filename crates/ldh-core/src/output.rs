@@ -7,6 +7,10 @@
 //! `step_frequency_steps_per_s`, STP `stance_ratio`, SWP `swing_ratio`, SL `stride_length_m`,
 //! SS `speed_mps`, SV `stride_length_cv`, STV `stride_time_cv`, STA `sta_per_s` /
 //! `sta_per_stride`, WQK `wqk_deg`, PBI `pbi_deg`, BDK `bdk_deg`.
+//!
+//! [`RecordingRow`] is the typed per-recording value that cohort, ml and report consume, and
+//! also its own serialisation (see its doc for why there is no separate `Features` struct):
+//! label columns are enums ([`labels`]), parameters are reached by [`Parameter`].
 
 use serde::{Deserialize, Serialize};
 use std::io::Write;
@@ -17,9 +21,11 @@ use crate::pipeline::{SubjectResult, Warning, WarningList, WithheldList};
 
 pub mod labels;
 pub mod names;
+mod parameter;
 
 use labels::empty_is_none;
 pub use labels::{AffectedSide, Known, Label, SideRole, Status};
+pub use parameter::{Parameter, UnknownParameter};
 
 fn num(x: f64, decimals: i32) -> Option<f64> {
     if x.is_finite() {
@@ -80,7 +86,7 @@ pub struct StrideRow {
 /// Why one type and not a `Features` value beside a string row: the row is the only thing that
 /// both the pipeline writes and `ldh stats`/`train`/`report` read back from `recordings.json`,
 /// so typing its fields (labels as enums in [`labels`], parameters reached by
-/// [`crate::cohort::Parameter`]) gives the consumers their types without a second struct and a
+/// [`Parameter`]) gives the consumers their types without a second struct and a
 /// conversion in each direction; serde attributes keep the bytes of the CSV and JSON as they
 /// were.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

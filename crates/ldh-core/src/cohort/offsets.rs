@@ -37,7 +37,7 @@ pub fn offsets(c: &Cohort) -> ModelOffsets {
         off1: f64::NAN,
     };
     for p in PARAMETERS {
-        let g = c.groups(p.column);
+        let g = c.groups(p);
         let (Ok(mu), Ok(sd)) = (stats::mean(&g.h), stats::std_dev(&g.h)) else {
             continue;
         };
@@ -45,7 +45,7 @@ pub fn offsets(c: &Cohort) -> ModelOffsets {
             continue;
         }
         let z = |v: &[f64]| v.iter().map(|x| (x - mu) / sd).sum::<f64>() / v.len() as f64;
-        out.codes.push(p.code.into());
+        out.codes.push(p.code().into());
         out.z_ldhh.push(z(&g.ldhh));
         out.z_ldhe.push(z(&g.ldhe));
         out.z_h.push(z(&g.h));

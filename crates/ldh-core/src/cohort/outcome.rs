@@ -73,20 +73,20 @@ pub fn stats(models: &[Vec<RecordingRow>]) -> Result<StatsOutcome> {
 fn box_plots(cohort: &Cohort) -> Result<Vec<(String, String)>> {
     let mut files = Vec::new();
     for p in PARAMETERS {
-        let g = cohort.groups(p.column);
+        let g = cohort.groups(p);
         if g.h.is_empty() {
             continue;
         }
         let svg = plots::boxplot_svg(
-            &format!("{} — {}", p.code, p.name),
-            &format!("{} ({})", p.name, p.unit),
+            &format!("{} — {}", p.code(), p.name()),
+            &format!("{} ({})", p.name(), p.unit()),
             &[
                 ("LDHH".into(), g.ldhh),
                 ("LDHE".into(), g.ldhe),
                 ("H".into(), g.h),
             ],
         )?;
-        files.push((format!("box_{}.svg", p.code), svg));
+        files.push((format!("box_{}.svg", p.code()), svg));
     }
     Ok(files)
 }

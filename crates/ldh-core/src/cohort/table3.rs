@@ -132,12 +132,12 @@ pub fn table3(c: &Cohort) -> Vec<ParameterStats> {
     let mut rows: Vec<ParameterStats> = PARAMETERS
         .iter()
         .map(|p| {
-            let g = c.groups(p.column);
+            let g = c.groups(*p);
             let three: [&[f64]; 3] = [&g.ldhh, &g.ldhe, &g.h];
             ParameterStats {
-                code: p.code.into(),
-                column: p.column.into(),
-                unit: p.unit.into(),
+                code: p.code().into(),
+                column: p.column().into(),
+                unit: p.unit().into(),
                 ldhh: summary(&g.ldhh),
                 ldhe: summary(&g.ldhe),
                 h: summary(&g.h),

@@ -102,17 +102,17 @@ fn triage_row<'a>(id: &'a str, recs: &[&'a RecordingRow], reference: &Reference)
         faults: 0,
     };
     for r in &ok {
-        for par in PARAMETERS.iter() {
-            if r.withheld.reason(par.column).is_some() {
+        for par in PARAMETERS {
+            if r.withheld.reason(par.column()).is_some() {
                 t.not_measured += 1;
                 continue;
             }
-            let Some(v) = cohort::value(r, par.column) else {
+            let Some(v) = r.value(par) else {
                 t.not_measured += 1;
                 continue;
             };
             t.measured += 1;
-            let rr = reference.ranges.iter().find(|x| x.column == par.column);
+            let rr = reference.range(par);
             if rr.and_then(|rr| rr.outside(v)) == Some(true) {
                 t.abnormal += 1;
             }
@@ -281,13 +281,13 @@ fn radars(offs: &[ModelOffsets]) -> Result<Markup> {
 fn boxplots(co: &Cohort) -> Result<Markup> {
     let mut figs: Vec<Markup> = Vec::new();
     for par in PARAMETERS {
-        let g = co.groups(par.column);
+        let g = co.groups(par);
         if g.h.is_empty() {
             continue;
         }
-        let ylab = format!("{} ({})", par.name, par.unit);
+        let ylab = format!("{} ({})", par.name(), par.unit());
         let svg = plots::boxplot_svg(
-            &format!("{} — {}", par.code, par.name),
+            &format!("{} — {}", par.code(), par.name()),
             &ylab,
             &[
                 ("LDHH".into(), g.ldhh),
@@ -297,7 +297,7 @@ fn boxplots(co: &Cohort) -> Result<Markup> {
         )?;
         figs.push(figure(
             &svg,
-            &format!("{}: box = quartiles, whiskers 1.5 IQR.", par.name),
+            &format!("{}: box = quartiles, whiskers 1.5 IQR.", par.name()),
             &[plots::BOX_GROUP_LABEL, &ylab],
         ));
     }

@@ -139,8 +139,9 @@ impl CycleReference {
 /// Why a leg has no curve because of its row: failed, or its shank angles withheld.
 fn no_angles(row: Option<&&RecordingRow>) -> Option<String> {
     let r = row?;
-    not_measured(r, "wqk_deg")
-        .filter(|_| !r.is_ok() || r.withheld.reason("wqk_deg").is_some())
+    let wqk = crate::output::Parameter::Wqk;
+    not_measured(r, wqk)
+        .filter(|_| !r.is_ok() || r.withheld.reason(wqk.column()).is_some())
         .map(|why| format!("shank angles not measured: {why}"))
 }
 

@@ -11,7 +11,7 @@ use super::html::{count, decimals, figure, fmt, page, red_box, side_label, VERSI
 use super::summary::clinical_summary;
 use super::{symmetry_index_pct, Reference, ReferenceRange, ReferenceSource, SubjectReport};
 use super::{LegTrace, ValidReportParams};
-use crate::cohort::{value, PARAMETERS};
+use crate::cohort::{Parameter, PARAMETERS};
 use crate::error::Result;
 use crate::output::{RecordingRow, StrideRow};
 use crate::plots::{self, EventMarks, Panel};
@@ -62,7 +62,7 @@ impl Citations {
                 high: Some(_),
                 source: ReferenceSource::Published(c),
                 ..
-            }) = reference.ranges.iter().find(|r| r.column == par.column)
+            }) = reference.range(*par)
             {
                 if !v.contains(c) {
                     v.push(c.clone());
@@ -333,9 +333,9 @@ fn range_text(
 }
 
 /// A side's value of a parameter (`None` for a failed side).
-fn side_value(r: &RecordingRow, column: &str) -> Option<f64> {
+fn side_value(r: &RecordingRow, p: Parameter) -> Option<f64> {
     if r.is_ok() {
-        value(r, column)
+        r.value(p)
     } else {
         None
     }
@@ -356,14 +356,14 @@ fn parameter_table(
     let mut out_of_range = 0usize;
     let mut rows: Vec<Markup> = Vec::new();
     for par in PARAMETERS.iter() {
-        let rr = reference.ranges.iter().find(|r| r.column == par.column);
-        let dec = decimals(par.unit);
+        let rr = reference.range(*par);
+        let dec = decimals(par.unit());
         let cells: Vec<(Option<f64>, Option<&str>, Option<&str>)> = sides
             .iter()
-            .map(|r| match r.withheld.reason(par.column) {
+            .map(|r| match r.withheld.reason(par.column()) {
                 Some(why) => (None, None, Some(why)),
                 None => {
-                    let v = side_value(r, par.column);
+                    let v = side_value(r, *par);
                     (v, out_mark(v, rr), None)
                 }
             })
@@ -371,8 +371,10 @@ fn parameter_table(
         out_of_range += cells.iter().filter(|c| c.1.is_some()).count();
         let si = match (left, right) {
             (Some(l), Some(r)) => match (
-                value(l, par.column).filter(|_| l.withheld.reason(par.column).is_none()),
-                value(r, par.column).filter(|_| r.withheld.reason(par.column).is_none()),
+                l.value(*par)
+                    .filter(|_| l.withheld.reason(par.column()).is_none()),
+                r.value(*par)
+                    .filter(|_| r.withheld.reason(par.column()).is_none()),
             ) {
                 (Some(a), Some(c)) => symmetry_index_pct(a, c),
                 _ => None,
@@ -382,7 +384,7 @@ fn parameter_table(
         let flag = si.is_some_and(|v| v.abs() > p.0.asymmetry_flag_pct);
         rows.push(html! {
             tr {
-                td { (par.code) " — " (par.name) } td { (par.unit) }
+                td { (par.code()) " — " (par.name()) } td { (par.unit()) }
                 @for (v, out, why) in &cells {
                     @if let Some(why) = why {
                         td.withheld { "not measured: " (why) }
@@ -429,7 +431,9 @@ fn subject_radar(
                 ranges
                     .iter()
                     .map(|rr| {
-                        value(r, &rr.column)
+                        Parameter::from_column(&rr.column)
+                            .ok()
+                            .and_then(|p| r.value(p))
                             .filter(|_| r.withheld.reason(&rr.column).is_none())
                             .and_then(|v| rr.z(v))
                             .unwrap_or(f64::NAN)

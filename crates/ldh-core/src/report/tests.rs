@@ -181,8 +181,8 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
     let mut checked = 0;
     for par in crate::cohort::PARAMETERS.iter() {
         let start = table
-            .find(&format!("<td>{} — ", par.code))
-            .unwrap_or_else(|| panic!("{} not in the table", par.code));
+            .find(&format!("<td>{} — ", par.code()))
+            .unwrap_or_else(|| panic!("{} not in the table", par.code()));
         let row = &table[start..];
         let row = &row[..row.find("</tr>").unwrap()];
         // Cells: parameter, unit, left, right, range, SI.
@@ -191,7 +191,7 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
         assert!(
             left_cell.contains("not measured: gyro scale fault"),
             "{}: {left_cell}",
-            par.code
+            par.code()
         );
         assert!(
             !left_cell.contains('▲') && !left_cell.contains('▼'),
@@ -206,10 +206,10 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
                 .next()
                 .is_some_and(|ch| ch.is_ascii_digit() || ch == '-'),
             "{}: a number: {left_cell}",
-            par.code
+            par.code()
         );
         // No symmetry index from a withheld value.
-        assert!(cells[6].contains(">–<"), "{}: SI {}", par.code, cells[6]);
+        assert!(cells[6].contains(">–<"), "{}: SI {}", par.code(), cells[6]);
         checked += 1;
     }
     assert_eq!(checked, crate::cohort::PARAMETERS.len());
