@@ -162,9 +162,9 @@ pub(crate) fn cycle_section(
     let mut series: Vec<plots::CycleSeries> = Vec::new();
     let mut reasons: Vec<String> = Vec::new();
     let mut clipped = 0usize;
-    for side in ["left", "right"] {
-        let leg = t.legs.iter().find(|l| l.side == side);
-        let row = sides.iter().find(|r| r.side.as_str() == side);
+    for side in [crate::Side::Left, crate::Side::Right] {
+        let leg = t.legs.iter().find(|l| l.side == side.as_str());
+        let row = sides.iter().find(|r| r.side == side);
         let why = match (no_angles(row), leg) {
             (Some(why), _) => Some(why),
             (None, None) => Some("no signal trace for this leg".into()),
