@@ -35,3 +35,5 @@ pub const MAX_ABS_SIGNAL: f64 = 1e12;
 mod tests;
 #[cfg(test)]
 mod tests_columns;
+#[cfg(test)]
+mod tests_stream;
