@@ -176,6 +176,11 @@ pub struct Preprocessed {
     /// and samples where the accelerometer clipped); the gyroscope channels are replaced where
     /// the gyroscope clipped, and at the outliers too with [`OutlierChannels::All`].
     pub replaced: Vec<usize>,
+    /// Indices of the samples where the accelerometer clipped (sorted; empty when it never
+    /// did). Their acceleration is unknown whatever replaced it, so no velocity or stride length
+    /// integrated over them is reported ([`crate::gait::stride_length`]).
+    #[serde(default)]
+    pub acc_clipped: Vec<usize>,
     /// Mean of the raw magnitude, g.
     pub raw_norm_mean_g: f64,
     /// SD (ddof = 0) of the raw magnitude, g.
@@ -429,6 +434,9 @@ pub fn preprocess(rec: &Recording, params: &ValidPreprocessParams) -> Result<Pre
         gyro_dps: gyro_f,
         acc_norm_g,
         replaced,
+        acc_clipped: (0..rec.len())
+            .filter(|&i| rec.acc_saturated_at(i))
+            .collect(),
         raw_norm_mean_g: m,
         raw_norm_sd_g: sd,
     })

@@ -11,7 +11,7 @@ use super::html::{count, decimals, figure, fmt, page, red_box, side_label, VERSI
 use super::summary::clinical_summary;
 use super::{symmetry_index_pct, Reference, ReferenceRange, ReferenceSource, SubjectReport};
 use super::{LegTrace, ValidReportParams};
-use crate::cohort::{value, PARAMETERS};
+use crate::cohort::{Parameter, PARAMETERS};
 use crate::error::Result;
 use crate::output::{RecordingRow, StrideRow};
 use crate::plots::{self, EventMarks, Panel};
@@ -24,8 +24,8 @@ pub fn subject_html(
 ) -> Result<String> {
     // One row per side; a person's several trials averaged (docs/input.md "Trials").
     let all: Vec<&RecordingRow> = s.recordings.iter().collect();
-    let own: Vec<RecordingRow> = ["left", "right"]
-        .iter()
+    let own: Vec<RecordingRow> = [crate::Side::Left, crate::Side::Right]
+        .into_iter()
         .filter_map(|side| crate::cohort::person_row(&all, side))
         .collect();
     let sides: Vec<&RecordingRow> = own.iter().collect();
@@ -62,7 +62,7 @@ impl Citations {
                 high: Some(_),
                 source: ReferenceSource::Published(c),
                 ..
-            }) = reference.ranges.iter().find(|r| r.column == par.column)
+            }) = reference.range(*par)
             {
                 if !v.contains(c) {
                     v.push(c.clone());
@@ -80,13 +80,13 @@ impl Citations {
 fn header(s: &SubjectReport, sides: &[&RecordingRow]) -> Markup {
     let group = sides
         .iter()
-        .map(|r| r.group.as_str())
+        .map(|r| crate::output::labels::text(&r.group))
         .find(|g| !g.is_empty())
         .unwrap_or("");
     let model = sides.first().map(|r| r.model.as_str()).unwrap_or("");
     let affected = sides
         .iter()
-        .map(|r| r.affected_side.as_str())
+        .map(|r| crate::output::labels::text(&r.affected_side))
         .find(|a| !a.is_empty() && *a != "none");
     html! {
         h1 { "Gait report: subject " (s.subject_id) } "\n"
@@ -133,9 +133,9 @@ fn warning_box(sides: &[&RecordingRow]) -> Markup {
 fn missing(s: &SubjectReport) -> Vec<String> {
     let mut missing: Vec<String> = Vec::new();
     for side in ["left", "right"] {
-        match s.recordings.iter().find(|r| r.side == side) {
+        match s.recordings.iter().find(|r| r.side.as_str() == side) {
             None => missing.push(format!("No {side} recording was given.")),
-            Some(r) if r.status != "ok" => missing.push(format!(
+            Some(r) if !r.is_ok() => missing.push(format!(
                 "The {side} recording could not be analysed: {}",
                 r.error
             )),
@@ -177,7 +177,7 @@ fn facts(r: &RecordingRow) -> [String; 10] {
     };
     [
         r.source.clone(),
-        if r.status == "ok" {
+        if r.is_ok() {
             "analysed".into()
         } else {
             format!("failed: {}", r.error)
@@ -333,9 +333,9 @@ fn range_text(
 }
 
 /// A side's value of a parameter (`None` for a failed side).
-fn side_value(r: &RecordingRow, column: &str) -> Option<f64> {
-    if r.status == "ok" {
-        value(r, column)
+fn side_value(r: &RecordingRow, p: Parameter) -> Option<f64> {
+    if r.is_ok() {
+        r.value(p)
     } else {
         None
     }
@@ -347,19 +347,23 @@ fn parameter_table(
     citations: &Citations,
     p: &ValidReportParams,
 ) -> Markup {
-    let left = sides.iter().find(|r| r.side == "left" && r.status == "ok");
-    let right = sides.iter().find(|r| r.side == "right" && r.status == "ok");
+    let left = sides
+        .iter()
+        .find(|r| r.side == crate::Side::Left && r.is_ok());
+    let right = sides
+        .iter()
+        .find(|r| r.side == crate::Side::Right && r.is_ok());
     let mut out_of_range = 0usize;
     let mut rows: Vec<Markup> = Vec::new();
     for par in PARAMETERS.iter() {
-        let rr = reference.ranges.iter().find(|r| r.column == par.column);
-        let dec = decimals(par.unit);
+        let rr = reference.range(*par);
+        let dec = decimals(par.unit());
         let cells: Vec<(Option<f64>, Option<&str>, Option<&str>)> = sides
             .iter()
-            .map(|r| match r.withheld.reason(par.column) {
+            .map(|r| match r.withheld.reason(par.column()) {
                 Some(why) => (None, None, Some(why)),
                 None => {
-                    let v = side_value(r, par.column);
+                    let v = side_value(r, *par);
                     (v, out_mark(v, rr), None)
                 }
             })
@@ -367,8 +371,10 @@ fn parameter_table(
         out_of_range += cells.iter().filter(|c| c.1.is_some()).count();
         let si = match (left, right) {
             (Some(l), Some(r)) => match (
-                value(l, par.column).filter(|_| l.withheld.reason(par.column).is_none()),
-                value(r, par.column).filter(|_| r.withheld.reason(par.column).is_none()),
+                l.value(*par)
+                    .filter(|_| l.withheld.reason(par.column()).is_none()),
+                r.value(*par)
+                    .filter(|_| r.withheld.reason(par.column()).is_none()),
             ) {
                 (Some(a), Some(c)) => symmetry_index_pct(a, c),
                 _ => None,
@@ -378,7 +384,7 @@ fn parameter_table(
         let flag = si.is_some_and(|v| v.abs() > p.0.asymmetry_flag_pct);
         rows.push(html! {
             tr {
-                td { (par.code) " — " (par.name) } td { (par.unit) }
+                td { (par.code()) " — " (par.name()) } td { (par.unit()) }
                 @for (v, out, why) in &cells {
                     @if let Some(why) = why {
                         td.withheld { "not measured: " (why) }
@@ -418,14 +424,16 @@ fn subject_radar(
     let ranges: Vec<&ReferenceRange> = reference.ranges.iter().filter(|r| r.sd.is_some()).collect();
     let series: Vec<(String, Vec<f64>)> = sides
         .iter()
-        .filter(|r| r.status == "ok")
+        .filter(|r| r.is_ok())
         .map(|r| {
             (
                 side_label(r),
                 ranges
                     .iter()
                     .map(|rr| {
-                        value(r, &rr.column)
+                        Parameter::from_column(&rr.column)
+                            .ok()
+                            .and_then(|p| r.value(p))
                             .filter(|_| r.withheld.reason(&rr.column).is_none())
                             .and_then(|v| rr.z(v))
                             .unwrap_or(f64::NAN)

@@ -1,0 +1,350 @@
+//! Stride segmentation (paper §3.2; SPEC §3.5): heel strike to heel strike of one leg, the
+//! per-stride parameters (time, stance ratio, length, speed, WQK, PBI, BDK, heading change),
+//! walking bouts split at pauses and turns, and the per-stride reasons a stride or its length
+//! is not used.
+
+use super::{
+    anatomical_roll_deg, append_reason, pendulum_length_m, stride_length, zero_velocity_sample,
+    LengthEstimate, Stride, StrideParams, ValidStrideParams,
+};
+use crate::align::Aligned;
+use crate::attitude::{Attitude, AttitudeModel};
+use crate::error::Result;
+use crate::events::Events;
+use crate::recording::Side;
+
+/// Segment one leg into strides and compute the per-stride parameters.
+pub fn strides(
+    side: Side,
+    al: &Aligned,
+    att: &Attitude,
+    ev: &Events,
+    params: &ValidStrideParams,
+) -> Result<Vec<Stride>> {
+    let turn_deg = params.0.turn_deg;
+    strides_with_turns(side, al, att, ev, params, &|_, _, d| d.abs() > turn_deg)
+}
+
+/// Why the ACC-only model never reports a stride length: its attitude is the accelerometer's
+/// own tilt, which walking accelerations corrupt, so gravity cannot be removed before the
+/// integration. On both simulator families its few lengths that passed the per-stride checks
+/// were 86-99 % short (docs/accuracy.md); the paper uses this model for angles only.
+pub const ACC_ONLY_LENGTH: &str = "stride length withheld: the ACC-only attitude cannot separate gravity from motion, so the acceleration is not integrated";
+
+/// The turn test of [`strides_with_turns`]: (HS time s, next HS time s, this leg's heading
+/// change over the stride deg) → the stride is part of a turn.
+pub type TurnTest<'a> = dyn Fn(f64, f64, f64) -> bool + 'a;
+
+/// As [`strides`], with the turn decision made by `is_turn` (e.g. from both legs: a turn
+/// rotates both shanks at the same time, yaw drift on one leg does not; none on a treadmill).
+pub fn strides_with_turns(
+    side: Side,
+    al: &Aligned,
+    att: &Attitude,
+    ev: &Events,
+    params: &ValidStrideParams,
+    is_turn: &TurnTest,
+) -> Result<Vec<Stride>> {
+    let p = &params.0;
+    let leg = Leg::new(side, al, att, ev, p);
+    let mut hs = ev.hs_s.clone();
+    hs.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+    let mut out: Vec<Stride> = Vec::new();
+    // Why a stride's length is withheld (the stride stays valid for its timing and angles).
+    let mut length_notes: Vec<Option<String>> = Vec::new();
+    // Whether a stride is part of a turn (a turn ends a walking bout).
+    let mut turns: Vec<bool> = Vec::new();
+    for (k, w) in hs.windows(2).enumerate() {
+        let m = leg.measure(k, w[0], w[1], is_turn);
+        out.push(m.stride);
+        length_notes.push(m.length_note);
+        turns.push(m.turn);
+    }
+    let bouts = assign_bouts(&out, &turns, p.max_stride_s);
+    if p.drop_bout_edges {
+        flag_bout_edges(&mut out, &bouts);
+    }
+    for (s, b) in out.iter_mut().zip(&bouts) {
+        s.bout = b.unwrap_or(0);
+        s.valid = s.reason.is_empty();
+    }
+    for (s, note) in out.iter_mut().zip(length_notes) {
+        if let Some(r) = note {
+            append_reason(s, r);
+        }
+    }
+    withhold_length_outliers(&mut out, p.max_length_deviation);
+    Ok(out)
+}
+
+/// One measured stride, before bouts are known.
+struct Measured {
+    /// The stride, `bout` 0 and `valid` true for now; `reason` holds the timing and turn reasons.
+    stride: Stride,
+    /// Why its length is withheld, if it is.
+    length_note: Option<String>,
+    /// Whether it is part of a turn.
+    turn: bool,
+}
+
+/// One leg's signals and the stride parameters: what measuring a stride reads.
+struct Leg<'a> {
+    side: Side,
+    al: &'a Aligned,
+    att: &'a Attitude,
+    ev: &'a Events,
+    p: &'a StrideParams,
+    /// Samples of the attitude.
+    n: usize,
+    /// |ω|, deg/s, per sample (for the zero-velocity instant).
+    w_norm: Vec<f64>,
+}
+
+impl<'a> Leg<'a> {
+    fn new(
+        side: Side,
+        al: &'a Aligned,
+        att: &'a Attitude,
+        ev: &'a Events,
+        p: &'a StrideParams,
+    ) -> Self {
+        let n = att.pitch_deg.len();
+        let w_norm: Vec<f64> = (0..n)
+            .map(|i| {
+                (al.gyro_dps[0][i].powi(2) + al.gyro_dps[1][i].powi(2) + al.gyro_dps[2][i].powi(2))
+                    .sqrt()
+            })
+            .collect();
+        Leg {
+            side,
+            al,
+            att,
+            ev,
+            p,
+            n,
+            w_norm,
+        }
+    }
+
+    /// The sample at time `t` s, clamped to the recording.
+    fn idx(&self, t: f64) -> usize {
+        ((t * self.al.fs_hz).round().max(0.0) as usize).min(self.n.saturating_sub(1))
+    }
+
+    /// Mid-stance (zero-velocity) sample after the heel strike at `h` s.
+    fn zero_velocity_after(&self, h: f64) -> Option<usize> {
+        let to = self
+            .ev
+            .to_s
+            .iter()
+            .copied()
+            .find(|&t| t > h && t - h < 0.75 * self.p.max_stride_s);
+        let end = to.unwrap_or(h + 0.6 * self.ev.median_stride_s.max(0.5));
+        zero_velocity_sample(
+            self.p.zero_velocity,
+            self.al,
+            &self.w_norm,
+            self.idx(h),
+            self.idx(end),
+        )
+    }
+
+    /// Stride `k` from the heel strike at `h0` s to the next at `h1` s.
+    fn measure(&self, k: usize, h0: f64, h1: f64, is_turn: &TurnTest) -> Measured {
+        let (p, att, n) = (self.p, self.att, self.n);
+        let st = h1 - h0;
+        let mut reasons: Vec<String> = Vec::new();
+        if st < p.min_stride_s || st > p.max_stride_s {
+            reasons.push(format!(
+                "stride time {st:.2} s outside [{}, {}] s",
+                p.min_stride_s, p.max_stride_s
+            ));
+        }
+        let to = self.toe_off(h0, h1, &mut reasons);
+        let (a, b) = (self.idx(h0), self.idx(h1));
+        let (mut mx, mut mn) = (f64::MIN, f64::MAX);
+        for i in a..b.max(a + 1).min(n) {
+            mx = mx.max(att.pitch_deg[i]);
+            mn = mn.min(att.pitch_deg[i]);
+        }
+        let bdk = self.roll_excursion(to, b);
+        let mut dpsi = att.yaw_deg[b.min(n - 1)] - att.yaw_deg[a];
+        dpsi = (dpsi + 180.0).rem_euclid(360.0) - 180.0;
+        let turn = is_turn(h0, h1, dpsi);
+        if turn {
+            reasons.push(format!("turning ({dpsi:.0} deg heading change)"));
+        }
+        let (length, length_note) = self.length(h0, h1, to, a);
+        Measured {
+            stride: Stride {
+                stride_index: k,
+                hs_time_s: h0,
+                to_time_s: to,
+                next_hs_time_s: h1,
+                stride_time_s: st,
+                stance_ratio: (to - h0) / st,
+                stride_length_m: length,
+                speed_mps: length / st,
+                wqk_deg: mx,
+                pbi_deg: -mn,
+                bdk_deg: bdk,
+                heading_change_deg: dpsi,
+                bout: 0,
+                valid: true,
+                reason: reasons.join("; "),
+            },
+            length_note,
+            turn,
+        }
+    }
+
+    /// The toe off between the heel strikes at `h0` and `h1` s (the first when several, NaN
+    /// when none), adding the reason to `reasons` unless there is exactly one.
+    fn toe_off(&self, h0: f64, h1: f64, reasons: &mut Vec<String>) -> f64 {
+        let tos: Vec<f64> = self
+            .ev
+            .to_s
+            .iter()
+            .copied()
+            .filter(|&t| t > h0 && t < h1)
+            .collect();
+        match tos.as_slice() {
+            [] => {
+                reasons.push("no toe off".into());
+                f64::NAN
+            }
+            [t] => *t,
+            [t, ..] => {
+                reasons.push(format!("{} toe offs", tos.len()));
+                *t
+            }
+        }
+    }
+
+    /// BDK: range of anatomical roll from the toe off at `to` s to the sample `b` of the next
+    /// heel strike, deg (NaN without a toe off).
+    fn roll_excursion(&self, to: f64, b: usize) -> f64 {
+        if !to.is_finite() {
+            return f64::NAN;
+        }
+        let (mut rmx, mut rmn) = (f64::MIN, f64::MAX);
+        for i in self.idx(to)..b.max(self.idx(to) + 1).min(self.n) {
+            let r = anatomical_roll_deg(self.att.roll_deg[i], self.side);
+            rmx = rmx.max(r);
+            rmn = rmn.min(r);
+        }
+        rmx - rmn
+    }
+
+    /// The stride length, m, between the zero-velocity instants after `h0` and `h1` s (sample
+    /// `a` is `h0`'s), NaN with the reason when it is withheld.
+    fn length(&self, h0: f64, h1: f64, to: f64, a: usize) -> (f64, Option<String>) {
+        let (att, st) = (self.att, h1 - h0);
+        let est = match (self.zero_velocity_after(h0), self.zero_velocity_after(h1)) {
+            (Some(z0), Some(z1)) if z1 > z0 + 1 => {
+                stride_length(self.al, att, z0, z1, self.p.sensor_height_m)
+            }
+            _ => LengthEstimate {
+                length_m: f64::NAN,
+                drift_mps: f64::NAN,
+                vertical_m: f64::NAN,
+                clipped_samples: 0,
+            },
+        };
+        let pendulum = if to.is_finite() {
+            pendulum_length_m(
+                att.pitch_deg[a],
+                att.pitch_deg[self.idx(to)],
+                (to - h0) / st,
+            )
+        } else {
+            f64::NAN
+        };
+        let note = if att.model == AttitudeModel::Acc {
+            Some(ACC_ONLY_LENGTH.to_string())
+        } else {
+            est.implausible(pendulum)
+        };
+        let length = if note.is_some() {
+            f64::NAN
+        } else {
+            est.length_m
+        };
+        (length, note)
+    }
+}
+
+/// Walking bouts: numbered from 0, split at pauses (a stride longer than `max_stride_s`) and at
+/// turns; a stride that breaks a bout belongs to none (`None`).
+fn assign_bouts(out: &[Stride], turns: &[bool], max_stride_s: f64) -> Vec<Option<usize>> {
+    let mut bout = 0usize;
+    let mut prev_break = true;
+    out.iter()
+        .zip(turns)
+        .map(|(s, &turn)| {
+            if s.stride_time_s > max_stride_s || turn {
+                if !prev_break {
+                    bout += 1;
+                }
+                prev_break = true;
+                None
+            } else {
+                prev_break = false;
+                Some(bout)
+            }
+        })
+        .collect()
+}
+
+/// Flag the first and last stride of every bout (strides in no bout are left alone).
+fn flag_bout_edges(out: &mut [Stride], bouts: &[Option<usize>]) {
+    let m = out.len();
+    for i in 0..m {
+        if bouts[i].is_none() {
+            continue;
+        }
+        let first = i == 0 || bouts[i - 1] != bouts[i];
+        let last = i + 1 == m || bouts[i + 1] != bouts[i];
+        if first || last {
+            let r = if first {
+                "first stride of a walking bout"
+            } else {
+                "last stride of a walking bout"
+            };
+            append_reason(&mut out[i], r.to_string());
+        }
+    }
+}
+
+/// Valid strides whose length differs from the median length of their bout's valid strides by
+/// more than `max_dev` (fraction): the length (and speed) is withheld with the reason; the
+/// stride stays valid for its timing and angles. Bouts with fewer than 3 lengths are left alone
+/// (no median to trust).
+fn withhold_length_outliers(out: &mut [Stride], max_dev: f64) {
+    let bouts: std::collections::BTreeSet<usize> = out.iter().map(|s| s.bout).collect();
+    for b in bouts {
+        let mut l: Vec<f64> = out
+            .iter()
+            .filter(|s| s.bout == b && s.valid && s.stride_length_m.is_finite())
+            .map(|s| s.stride_length_m)
+            .collect();
+        if l.len() < 3 {
+            continue;
+        }
+        l.sort_by(f64::total_cmp);
+        let med = l[l.len() / 2];
+        for s in out.iter_mut().filter(|s| s.bout == b && s.valid) {
+            let dev = (s.stride_length_m - med) / med;
+            if s.stride_length_m.is_finite() && dev.abs() > max_dev {
+                let r = format!(
+                    "stride length withheld: {:.2} m is {:+.0} % from its bout's median {med:.2} m",
+                    s.stride_length_m,
+                    dev * 100.0
+                );
+                append_reason(s, r);
+                s.stride_length_m = f64::NAN;
+                s.speed_mps = f64::NAN;
+            }
+        }
+    }
+}
