@@ -54,6 +54,20 @@ pub fn write_two_hour(src: &Path, out: &Path) {
     }
 }
 
+/// 2500 rows (~90 kB) with a NUL byte in acc_y on line 2001, past the first 64 KiB.
+fn nul_late() -> String {
+    let mut t = String::from("time_s,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z\n");
+    for i in 0..2500 {
+        let acc_y = if i == 1999 { "0.0\u{0}10" } else { "0.010" };
+        t.push_str(&format!(
+            "{}.{:02},1.000,{acc_y},0.020,0.5,0.6,0.7\n",
+            i / 100,
+            i % 100
+        ));
+    }
+    t
+}
+
 /// Make a generated case's input in `dir`; `None` when it cannot be checked here (with the
 /// reason printed).
 fn generate(kind: &str, dir: &Path) -> Option<()> {
@@ -76,6 +90,7 @@ fn generate(kind: &str, dir: &Path) -> Option<()> {
             std::os::unix::fs::symlink(dir.join("data.csv"), dir.join("loop.csv")).unwrap();
         }
         "two_hour" => write_two_hour(&corpus().join("baseline_ok"), dir),
+        "nul_late" => std::fs::write(dir.join("data.csv"), nul_late()).unwrap(),
         other => panic!("unknown generator {other}"),
     }
     Some(())

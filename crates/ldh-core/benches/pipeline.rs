@@ -1,5 +1,7 @@
 //! Per-stage and end-to-end timing of the per-recording pipeline (issue 3) on one 25 s, 100 Hz
-//! recording of the embedded demo cohort.
+//! recording of the embedded demo cohort, and (group `leg_30s`, issue 17) on one simulated 30 s
+//! leg at 100 Hz as `ldh analyze` reads it from CSV: the attitude, STA over the whole leg and
+//! the whole per-leg pipeline.
 //!
 //! Run: `cargo bench -p ldh-core --bench pipeline`
 
@@ -8,10 +10,11 @@ use ldh_core::align::{align, AlignParams};
 use ldh_core::attitude::{estimate, AttitudeModel, AttitudeParams};
 use ldh_core::events::{detect, EventParams};
 use ldh_core::gait::{side_parameters, strides, StrideParams};
-use ldh_core::io::{read_recording_bytes, ReadParams};
+use ldh_core::io::{read_recording_bytes, FormatSpec, ReadParams};
 use ldh_core::nonlinear::{gait_sta, GaitStaParams};
 use ldh_core::pipeline::{analyze_leg, AnalysisParams};
 use ldh_core::preprocess::{preprocess, PreprocessParams};
+use ldh_core::simulate::CohortParams;
 use ldh_core::Side;
 use std::hint::black_box;
 use std::path::Path;
@@ -113,5 +116,63 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench);
+/// One simulated healthy subject's left leg, 30 s at 100 Hz, as CSV bytes in the default format.
+fn leg_30s_csv() -> Vec<u8> {
+    let c = CohortParams {
+        healthy: 1,
+        ldh: 0,
+        seed: 17,
+        duration_s: 30.0,
+        ..CohortParams::default()
+    };
+    let s = c.simulate(0).expect("simulate");
+    let dir = std::env::temp_dir().join(format!("ldh-bench-leg30-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    s.write(&dir, &FormatSpec::default()).expect("write");
+    let bytes = std::fs::read(dir.join("left.csv")).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    bytes
+}
+
+/// Issue 17's targets: STA ≤ 2 ms per 30 s leg at 100 Hz, the whole per-leg pipeline ≤ 3 ms.
+fn bench_leg_30s(c: &mut Criterion) {
+    let bytes = leg_30s_csv();
+    let rp = ReadParams::default().check().unwrap();
+    let (rec, _) = read_recording_bytes(&bytes, Path::new("left.csv"), None, &rp).unwrap();
+    let pre = preprocess(&rec, &PreprocessParams::default().check(rec.fs_hz).unwrap()).unwrap();
+    let al = align(&pre, &AlignParams::default().check().unwrap()).unwrap();
+    let fusion = AttitudeParams::default().check().unwrap();
+    let mut g = c.benchmark_group("leg_30s");
+    g.bench_function("attitude_fusion_rts", |b| {
+        b.iter(|| estimate(black_box(&al), &fusion).unwrap())
+    });
+    g.bench_function("sta", |b| {
+        b.iter(|| {
+            gait_sta(
+                black_box(&al.gyro_dps[1]),
+                rec.fs_hz,
+                1.1,
+                &GaitStaParams::default(),
+            )
+        })
+    });
+    let no_sta = AnalysisParams {
+        compute_sta: false,
+        ..AnalysisParams::default()
+    };
+    let with_sta = AnalysisParams::default();
+    for (name, params) in [("leg_without_sta", &no_sta), ("leg_with_sta", &with_sta)] {
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                let (r, _) =
+                    read_recording_bytes(black_box(&bytes), Path::new("left.csv"), None, &rp)
+                        .unwrap();
+                analyze_leg(&r, Side::Left, params, None).unwrap()
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench, bench_leg_30s);
 criterion_main!(benches);

@@ -110,6 +110,9 @@ pub struct Aligned {
     pub acc_g: [Vec<f64>; 3],
     /// Angular velocity in F, deg/s (bias removed).
     pub gyro_dps: [Vec<f64>; 3],
+    /// Samples where the accelerometer clipped (sorted indices, from
+    /// [`Preprocessed::acc_clipped`]).
+    pub acc_clipped: Vec<usize>,
     /// The alignment.
     pub alignment: Alignment,
 }
@@ -189,6 +192,7 @@ pub fn align(pre: &Preprocessed, params: &ValidAlignParams) -> Result<Aligned> {
         fs_hz: fs,
         acc_g: acc_f,
         gyro_dps: gyro_f,
+        acc_clipped: pre.acc_clipped.clone(),
         alignment: Alignment {
             r_f_from_device: r,
             gyro_bias_dps: quiet.bias,

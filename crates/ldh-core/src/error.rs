@@ -90,6 +90,17 @@ pub enum LdhError {
         /// The limit, MB.
         limit_mb: f64,
     },
+    /// A recording has more samples than `max_samples` (the memory of its analysis grows with
+    /// them); refused while reading, before the samples past the limit are stored.
+    #[error("{}: {rows} data rows, above the limit of {limit} samples per recording (the analysis takes about 150 bytes of memory per sample); raise it with --max-samples or `max_samples`, or split the recording", path.display())]
+    TooManySamples {
+        /// The file.
+        path: PathBuf,
+        /// Its data rows (counted to the end of the file).
+        rows: u64,
+        /// The limit, samples.
+        limit: usize,
+    },
     /// The memory to read a file could not be had (its buffers are reserved fallibly, so one
     /// huge recording fails alone instead of aborting the batch).
     #[error("{}: not enough memory to read it ({needed_mb:.0} MB more were needed); analyse it alone, on a machine with more memory, or split it", path.display())]
@@ -114,11 +125,12 @@ pub enum LdhError {
         /// The file.
         path: PathBuf,
     },
-    /// The file looks like binary data, not text.
-    #[error("{}: this is not a text file (byte 0x{byte:02x} at offset {offset}); expected a CSV export", path.display())]
+    /// The file looks like binary data, not text: a control byte in its first 64 KiB, or a NUL
+    /// byte anywhere.
+    #[error("{loc}: this is not a text file (byte 0x{byte:02x} at offset {offset}); expected a CSV export")]
     Binary {
-        /// The file.
-        path: PathBuf,
+        /// The file and the line of the byte.
+        loc: Location,
         /// Offset of the first offending byte.
         offset: u64,
         /// The offending byte.

@@ -7,6 +7,10 @@
 //! `step_frequency_steps_per_s`, STP `stance_ratio`, SWP `swing_ratio`, SL `stride_length_m`,
 //! SS `speed_mps`, SV `stride_length_cv`, STV `stride_time_cv`, STA `sta_per_s` /
 //! `sta_per_stride`, WQK `wqk_deg`, PBI `pbi_deg`, BDK `bdk_deg`.
+//!
+//! [`RecordingRow`] is the typed per-recording value that cohort, ml and report consume, and
+//! also its own serialisation (see its doc for why there is no separate `Features` struct):
+//! label columns are enums ([`labels`]), parameters are reached by [`Parameter`].
 
 use serde::{Deserialize, Serialize};
 use std::io::Write;
@@ -15,7 +19,13 @@ use crate::error::{LdhError, Result};
 use crate::pipeline::quality::flat;
 use crate::pipeline::{SubjectResult, Warning, WarningList, WithheldList};
 
+pub mod labels;
 pub mod names;
+mod parameter;
+
+use labels::empty_is_none;
+pub use labels::{AffectedSide, Known, Label, SideRole, Status};
+pub use parameter::{Parameter, UnknownParameter};
 
 fn num(x: f64, decimals: i32) -> Option<f64> {
     if x.is_finite() {
@@ -70,25 +80,36 @@ pub struct StrideRow {
     pub trial_id: String,
 }
 
-/// A row of the per-recording table (one per subject and side).
+/// A row of the per-recording table (one per subject and side): the typed per-recording value
+/// that cohort, ml and report consume, and its serialisation (field order = column order).
+///
+/// Why one type and not a `Features` value beside a string row: the row is the only thing that
+/// both the pipeline writes and `ldh stats`/`train`/`report` read back from `recordings.json`,
+/// so typing its fields (labels as enums in [`labels`], parameters reached by
+/// [`Parameter`]) gives the consumers their types without a second struct and a
+/// conversion in each direction; serde attributes keep the bytes of the CSV and JSON as they
+/// were.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RecordingRow {
     /// Subject.
     pub subject_id: String,
     /// `left` or `right`.
-    pub side: String,
+    pub side: Label<crate::Side>,
     /// Attitude model.
-    pub model: String,
-    /// `healthy`, `ldh` or empty.
-    pub group: String,
+    pub model: Label<crate::attitude::AttitudeModel>,
+    /// `healthy`, `ldh`, another label, or empty (`None`).
+    #[serde(with = "empty_is_none")]
+    pub group: Option<crate::pipeline::GroupLabel>,
     /// `left`, `right`, `none` or empty.
-    pub affected_side: String,
+    #[serde(with = "empty_is_none")]
+    pub affected_side: Option<Label<AffectedSide>>,
     /// `affected`, `unaffected`, `healthy` or empty: this side's role in the cohort analysis.
-    pub side_role: String,
+    #[serde(with = "empty_is_none")]
+    pub side_role: Option<Label<SideRole>>,
     /// The file.
     pub source: String,
     /// `ok` or `error`.
-    pub status: String,
+    pub status: Label<Status>,
     /// The error, when status is `error`.
     pub error: String,
     /// What the quality checks found, most severe first (docs/quality.md): the leg's (sensor
@@ -153,8 +174,15 @@ pub struct RecordingRow {
     #[serde(default)]
     pub trial_id: String,
     /// `overground`, `treadmill`, or empty when not said (analysed as overground).
-    #[serde(default)]
-    pub setting: String,
+    #[serde(default, with = "empty_is_none")]
+    pub setting: Option<Label<crate::Setting>>,
+}
+
+impl RecordingRow {
+    /// The recording was analysed (`status` is `ok`).
+    pub fn is_ok(&self) -> bool {
+        self.status == Status::Ok
+    }
 }
 
 /// The per-stride rows of a set of results.
@@ -198,28 +226,26 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
         for (side, leg) in r.legs() {
             use crate::pipeline::GroupLabel;
             let role = match (&r.group, r.affected_side) {
-                (Some(GroupLabel::Healthy), _) => "healthy",
-                (Some(GroupLabel::Ldh), Some(a)) if a == side => "affected",
-                (Some(GroupLabel::Ldh), Some(_)) => "unaffected",
-                _ => "",
+                (Some(GroupLabel::Healthy), _) => Some(SideRole::Healthy),
+                (Some(GroupLabel::Ldh), Some(a)) if a == side => Some(SideRole::Affected),
+                (Some(GroupLabel::Ldh), Some(_)) => Some(SideRole::Unaffected),
+                _ => None,
             };
             let mut row = RecordingRow {
                 subject_id: r.subject_id.clone(),
-                side: side.as_str().into(),
-                model: r.model.as_str().into(),
-                group: r
-                    .group
-                    .as_ref()
-                    .map(|g| g.as_str().to_string())
-                    .unwrap_or_default(),
+                side: side.into(),
+                model: r.model.into(),
+                group: r.group.clone(),
                 affected_side: match (&r.group, r.affected_side) {
-                    (_, Some(s)) => s.as_str().into(),
-                    (Some(_), None) if !r.affected_side_unknown => "none".into(),
-                    _ => String::new(),
+                    (_, Some(s)) => Some(AffectedSide::from(s).into()),
+                    (Some(_), None) if !r.affected_side_unknown => {
+                        Some(AffectedSide::Neither.into())
+                    }
+                    _ => None,
                 },
-                side_role: role.into(),
+                side_role: role.map(Label::from),
                 source: String::new(),
-                status: "ok".into(),
+                status: Status::Ok.into(),
                 error: String::new(),
                 warnings: WarningList::default(),
                 withheld: WithheldList::default(),
@@ -247,14 +273,11 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
                 outliers_replaced: None,
                 clipped_samples: None,
                 trial_id: r.trial_id.clone().unwrap_or_default(),
-                setting: r
-                    .setting
-                    .map(|s| s.as_str().to_string())
-                    .unwrap_or_default(),
+                setting: r.setting.map(Label::from),
             };
             match leg {
                 Err(e) => {
-                    row.status = "error".into();
+                    row.status = Status::Error.into();
                     row.error = e.clone();
                 }
                 Ok(l) => {

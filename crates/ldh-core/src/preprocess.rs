@@ -176,6 +176,11 @@ pub struct Preprocessed {
     /// and samples where the accelerometer clipped); the gyroscope channels are replaced where
     /// the gyroscope clipped, and at the outliers too with [`OutlierChannels::All`].
     pub replaced: Vec<usize>,
+    /// Indices of the samples where the accelerometer clipped (sorted; empty when it never
+    /// did). Their acceleration is unknown whatever replaced it, so no velocity or stride length
+    /// integrated over them is reported ([`crate::gait::stride_length`]).
+    #[serde(default)]
+    pub acc_clipped: Vec<usize>,
     /// Mean of the raw magnitude, g.
     pub raw_norm_mean_g: f64,
     /// SD (ddof = 0) of the raw magnitude, g.
@@ -330,8 +335,30 @@ pub fn butter_filtfilt(x: &[f64], order: usize, cutoff_hz: f64, fs_hz: f64) -> R
     sosfiltfilt(&p.sos, x)
 }
 
-/// Run the preprocessing stage on a recording.
-pub fn preprocess(rec: &Recording, params: &ValidPreprocessParams) -> Result<Preprocessed> {
+/// What preprocessing finds in a recording before filtering it (`ldh inspect` reports this
+/// without the filtered copies of the channels).
+#[derive(Debug, Clone, PartialEq)]
+pub struct OutlierSummary {
+    /// Samples whose acceleration is replaced (outliers and clipped samples).
+    pub replaced: Vec<usize>,
+    /// Mean of the raw acceleration norm, g.
+    pub raw_norm_mean_g: f64,
+    /// SD of the raw acceleration norm, g.
+    pub raw_norm_sd_g: f64,
+}
+
+/// The checks of [`preprocess`] and its outlier search, without the filtering: what
+/// `preprocess(rec, params)` reports in `replaced`, `raw_norm_mean_g` and `raw_norm_sd_g`
+/// (memory: one norm per sample).
+pub fn outlier_summary(rec: &Recording, params: &ValidPreprocessParams) -> Result<OutlierSummary> {
+    Ok(norm_and_outliers(rec, params)?.1)
+}
+
+/// The checks of [`preprocess`], the raw acceleration norm and the outliers.
+fn norm_and_outliers(
+    rec: &Recording,
+    params: &ValidPreprocessParams,
+) -> Result<(Vec<f64>, OutlierSummary)> {
     rec.validate()?;
     if (params.fs_hz - rec.fs_hz).abs() > 1e-9 * rec.fs_hz {
         return Err(LdhError::param(
@@ -356,14 +383,31 @@ pub fn preprocess(rec: &Recording, params: &ValidPreprocessParams) -> Result<Pre
     }
     let raw_norm = magnitude(&rec.acc_g[0], &rec.acc_g[1], &rec.acc_g[2]);
     let (m, sd) = mean_sd(&raw_norm);
-    let mut acc = rec.acc_g.clone();
-    let mut gyro = rec.gyro_dps.clone();
     let mut replaced = Vec::new();
     if params.params.replace_outliers {
         let k = params.params.outlier_sd;
         replaced = (0..rec.len())
             .filter(|&i| (raw_norm[i] - m).abs() > k * sd || rec.acc_saturated_at(i))
             .collect();
+    }
+    let summary = OutlierSummary {
+        replaced,
+        raw_norm_mean_g: m,
+        raw_norm_sd_g: sd,
+    };
+    Ok((raw_norm, summary))
+}
+
+/// Run the preprocessing stage on a recording.
+pub fn preprocess(rec: &Recording, params: &ValidPreprocessParams) -> Result<Preprocessed> {
+    let ctx = || format!("preprocess {}", rec.label());
+    let (raw_norm, found) = norm_and_outliers(rec, params)?;
+    let (m, sd) = (found.raw_norm_mean_g, found.raw_norm_sd_g);
+    let replaced = found.replaced;
+    let mut acc = rec.acc_g.clone();
+    let mut gyro = rec.gyro_dps.clone();
+    if params.params.replace_outliers {
+        let k = params.params.outlier_sd;
         for ch in acc.iter_mut() {
             interpolate_over(ch, &replaced);
         }
@@ -390,6 +434,9 @@ pub fn preprocess(rec: &Recording, params: &ValidPreprocessParams) -> Result<Pre
         gyro_dps: gyro_f,
         acc_norm_g,
         replaced,
+        acc_clipped: (0..rec.len())
+            .filter(|&i| rec.acc_saturated_at(i))
+            .collect(),
         raw_norm_mean_g: m,
         raw_norm_sd_g: sd,
     })

@@ -76,6 +76,11 @@ def generate(kind, d):
         os.symlink(d / "data.csv", d / "loop.csv")
     elif kind == "two_hour":
         write_two_hour(CORPUS / "baseline_ok", d)
+    elif kind == "nul_late":
+        # 2500 rows (~90 kB) with a NUL byte in acc_y on line 2001, past the first 64 KiB.
+        rows = [f"{i // 100}.{i % 100:02d},1.000,{'0.0' + chr(0) + '10' if i == 1999 else '0.010'},0.020,0.5,0.6,0.7"
+                for i in range(2500)]
+        (d / "data.csv").write_text("time_s,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z\n" + "\n".join(rows) + "\n")
     else:
         raise AssertionError(f"unknown generator {kind}")
     return None

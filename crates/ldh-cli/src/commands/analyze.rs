@@ -29,6 +29,7 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
     let defaults = ReadParams::default();
     let read = ReadParams {
         max_file_size_mb: a.max_file_size_mb.unwrap_or(defaults.max_file_size_mb),
+        max_samples: a.max_samples.map_or(defaults.max_samples, |n| n as usize),
         ..defaults
     }
     .check()?;

@@ -23,6 +23,9 @@ pub fn run(a: InspectArgs) -> Result<ExitCode> {
         max_file_size_mb: a
             .max_file_size_mb
             .unwrap_or(ReadParams::default().max_file_size_mb),
+        max_samples: a
+            .max_samples
+            .map_or(ReadParams::default().max_samples, |n| n as usize),
         ..ReadParams::default()
     }
     .check()?;

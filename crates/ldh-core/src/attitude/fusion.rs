@@ -21,25 +21,48 @@
 
 use nalgebra::{Matrix2, Matrix3, SMatrix, SVector, Vector2, Vector3};
 
+mod products;
+mod rts;
+
 use super::anchor::quasi_static_windows;
 use super::{acc_tilt, wrap, Attitude, AttitudeModel, AttitudeParams};
 use crate::align::Aligned;
 use crate::error::{LdhError, Result};
+use rts::{smooth, SegmentStore, SEGMENT};
 
 type V5 = SVector<f64, 5>;
 type M5 = SMatrix<f64, 5, 5>;
-type M2x5 = SMatrix<f64, 2, 5>;
 type M5x2 = SMatrix<f64, 5, 2>;
 
 /// Euler-angle rates (eq. 7) and their Jacobian with respect to (φ, θ, ψ).
 pub(super) fn euler_rates(x: &Vector3<f64>, w: &Vector3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
-    let (sp, cp) = x[0].sin_cos();
-    let (st, ct) = x[1].sin_cos();
-    let ct = if ct.abs() < 1e-6 {
-        1e-6f64.copysign(ct)
-    } else {
-        ct
-    };
+    euler_rates_of(&SinCos::of(x[0], x[1]), w)
+}
+
+/// sin φ, cos φ, sin θ and cos θ (kept away from 0) of the tilt angles.
+struct SinCos {
+    sp: f64,
+    cp: f64,
+    st: f64,
+    ct: f64,
+}
+
+impl SinCos {
+    fn of(phi: f64, theta: f64) -> SinCos {
+        let (sp, cp) = phi.sin_cos();
+        let (st, ct) = theta.sin_cos();
+        let ct = if ct.abs() < 1e-6 {
+            1e-6f64.copysign(ct)
+        } else {
+            ct
+        };
+        SinCos { sp, cp, st, ct }
+    }
+}
+
+/// [`euler_rates`] from the sines and cosines of the tilt.
+fn euler_rates_of(sc: &SinCos, w: &Vector3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
+    let SinCos { sp, cp, st, ct } = *sc;
     let tt = st / ct;
     let a = sp * w[1] + cp * w[2];
     let b = cp * w[1] - sp * w[2];
@@ -61,19 +84,13 @@ pub(super) fn euler_rates(x: &Vector3<f64>, w: &Vector3<f64>) -> (Vector3<f64>, 
 /// One prediction step: the state, its covariance and the transition Jacobian.
 fn predict(x: &V5, p: &M5, w_mid: &Vector3<f64>, dt: f64, q: &M5) -> (V5, M5, M5) {
     let wc = w_mid - Vector3::new(x[3], x[4], 0.0);
-    let ang = Vector3::new(x[0], x[1], x[2]);
-    let (rates, j) = euler_rates(&ang, &wc);
+    let sc = SinCos::of(x[0], x[1]);
+    let (rates, j) = euler_rates_of(&sc, &wc);
     let mut f = M5::identity();
     let mut fa = f.fixed_view_mut::<3, 3>(0, 0);
     fa += j * dt;
     // ∂rates/∂b = −(columns x and y of the Euler-rate matrix).
-    let (sp, cp) = x[0].sin_cos();
-    let (st, ct) = x[1].sin_cos();
-    let ct = if ct.abs() < 1e-6 {
-        1e-6f64.copysign(ct)
-    } else {
-        ct
-    };
+    let SinCos { sp, cp, st, ct } = sc;
     f[(0, 3)] = -dt;
     f[(0, 4)] = -sp * st / ct * dt;
     f[(1, 4)] = -cp * dt;
@@ -83,9 +100,107 @@ fn predict(x: &V5, p: &M5, w_mid: &Vector3<f64>, dt: f64, q: &M5) -> (V5, M5, M5
         xp[i] += rates[i] * dt;
     }
     xp[2] = wrap(xp[2]);
-    (xp, f * p * f.transpose() + q, f)
+    (xp, products::propagate(&f, p) + q, f)
 }
 
+/// The fixed quantities of one run: inputs, model matrices and parameters.
+struct Model<'a> {
+    al: &'a Aligned,
+    p: &'a AttitudeParams,
+    dt: f64,
+    q: M5,
+    r0: f64,
+    rlo: f64,
+    rhi: f64,
+    anchor: Vec<bool>,
+    r_anchor: f64,
+}
+
+/// What the update of sample k needs from the inputs.
+struct Sample {
+    z: Vector2<f64>,
+    wm: Vector3<f64>,
+    infl: f64,
+    dyn_dev: f64,
+    anchor: bool,
+}
+
+impl<'a> Model<'a> {
+    fn new(al: &'a Aligned, p: &'a AttitudeParams) -> Model<'a> {
+        let n = al.acc_g[0].len();
+        let dt = 1.0 / al.fs_hz;
+        let mut q = M5::zeros();
+        let qa = (p.gyro_noise_dps.to_radians() * dt).powi(2);
+        let qb = p.gyro_bias_walk_dps.to_radians().powi(2) * dt;
+        for i in 0..5 {
+            q[(i, i)] = if i < 3 { qa } else { qb };
+        }
+        let (anchor, anchor_len) = if p.reacquire_gravity {
+            quasi_static_windows(
+                &al.acc_g,
+                &al.gyro_dps,
+                al.fs_hz,
+                p.anchor_acc_g,
+                p.anchor_gyro_dps,
+                p.anchor_window_s,
+            )
+        } else {
+            (vec![false; n], 1)
+        };
+        Model {
+            al,
+            p,
+            dt,
+            q,
+            r0: p.acc_tilt_noise_deg.to_radians().powi(2),
+            rlo: p.acc_tilt_noise_bounds_deg[0].to_radians().powi(2),
+            rhi: p.acc_tilt_noise_bounds_deg[1].to_radians().powi(2),
+            anchor,
+            r_anchor: p.anchor_tilt_noise_deg.to_radians().powi(2) * anchor_len as f64,
+        }
+    }
+
+    fn f_at(&self, i: usize) -> [f64; 3] {
+        let a = &self.al.acc_g;
+        [a[0][i], a[1][i], a[2][i]]
+    }
+
+    fn w_at(&self, i: usize) -> Vector3<f64> {
+        let g = &self.al.gyro_dps;
+        Vector3::new(g[0][i], g[1][i], g[2][i]) * (std::f64::consts::PI / 180.0)
+    }
+
+    /// Angular velocity between samples k − 1 and k, rad/s.
+    fn w_mid(&self, k: usize) -> Vector3<f64> {
+        if k == 0 {
+            self.w_at(0)
+        } else {
+            (self.w_at(k - 1) + self.w_at(k)) * 0.5
+        }
+    }
+
+    fn sample(&self, k: usize) -> Sample {
+        let (p, g) = (self.p, &self.al.gyro_dps);
+        let f = self.f_at(k);
+        let norm = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
+        let dyn_dev = (norm - 1.0).abs();
+        let w_norm_dps = (g[0][k].powi(2) + g[1][k].powi(2) + g[2][k].powi(2)).sqrt();
+        let infl = 1.0
+            + (dyn_dev / p.dynamic_scale_g).powi(2)
+            + (w_norm_dps / p.rotation_scale_dps).powi(2);
+        let (zphi, zth) = acc_tilt(f);
+        Sample {
+            z: Vector2::new(zphi, zth),
+            wm: self.w_mid(k),
+            infl,
+            dyn_dev,
+            anchor: self.anchor[k],
+        }
+    }
+}
+
+/// One filter of the bank: its state, covariance and adapted measurement noise.
+#[derive(Clone)]
 struct Filter {
     x: V5,
     p: M5,
@@ -93,221 +208,208 @@ struct Filter {
     gate2: f64,
     logw: f64,
     rejected: usize,
-    // For the smoother (the predictions are recomputed in the backward pass).
-    xs: Vec<V5>,
-    ps: Vec<M5>,
 }
 
+impl Filter {
+    /// Predict to sample k (none at k = 0) and update with its tilt unless gated out; `d_k` is
+    /// the Sage–Husa weight of this sample.
+    fn step(&mut self, m: &Model, s: &Sample, k: usize, d_k: f64) {
+        let p = m.p;
+        let (xp, pp) = if k == 0 {
+            (self.x, self.p)
+        } else {
+            let (xp, pp, _) = predict(&self.x, &self.p, &s.wm, m.dt, &m.q);
+            (xp, pp)
+        };
+        // H selects (φ, θ): H x, H P Hᵀ and P Hᵀ are sub-blocks (bit for bit, see products)
+        let mut nu = s.z - Vector2::new(xp[0], xp[1]);
+        nu[0] = wrap(nu[0]);
+        nu[1] = wrap(nu[1]);
+        let hph: Matrix2<f64> = pp.fixed_view::<2, 2>(0, 0).into_owned();
+        let mut rk = self.r * s.infl;
+        if s.anchor {
+            // Gravity re-acquisition: the tilt is trusted to σ_anchor per window.
+            for i in 0..2 {
+                rk[(i, i)] = rk[(i, i)].min(m.r_anchor);
+            }
+        }
+        let sm = hph + rk;
+        let s_inv = sm
+            .try_inverse()
+            .unwrap_or_else(|| Matrix2::from_diagonal_element(1.0 / m.r0));
+        let d2 = (nu.transpose() * s_inv * nu)[0];
+        let det = sm.determinant().max(1e-300);
+        self.logw += -0.5 * d2 - 0.5 * (det * (std::f64::consts::TAU).powi(2)).ln();
+        let reacquire = self.rejected as f64 * m.dt >= p.reacquire_s;
+        let (xu, pu) = if d2 <= self.gate2 || reacquire || s.anchor {
+            self.rejected = 0;
+            let kg = products::gain(&pp, &s_inv);
+            let xu = xp + kg * nu;
+            let pu = products::joseph(&pp, &kg, &rk);
+            // Sage–Husa adaptation of R from quasi-static innovations.
+            if s.dyn_dev < 2.0 * p.dynamic_scale_g {
+                for i in 0..2 {
+                    let est = nu[i] * nu[i] - hph[(i, i)];
+                    let v = ((1.0 - d_k) * self.r[(i, i)] + d_k * est).clamp(m.rlo, m.rhi);
+                    self.r[(i, i)] = v;
+                }
+            }
+            (xu, pu)
+        } else {
+            self.rejected += 1;
+            (xp, pp)
+        };
+        self.x = xu;
+        self.x[2] = wrap(self.x[2]);
+        self.p = pu;
+    }
+}
+
+/// The bank of filters and its weights after the last step: everything the forward pass
+/// carries from one sample to the next (a smoother checkpoint is a copy of it).
+#[derive(Clone)]
+struct Bank {
+    filters: Vec<Filter>,
+    /// b^k, for the Sage–Husa weight d_k = (1 − b) / (1 − b^k).
+    bpow: f64,
+    weights: Vec<f64>,
+}
+
+impl Bank {
+    fn new(m: &Model) -> Bank {
+        let p = m.p;
+        let (phi0, th0) = acc_tilt(m.f_at(0));
+        let x0 = V5::from_column_slice(&[phi0, th0, 0.0, 0.0, 0.0]);
+        let b0 = p.gyro_bias_sd_dps.to_radians().powi(2);
+        let r0 = m.r0;
+        let p0 = M5::from_diagonal(&V5::from_column_slice(&[r0, r0, 1e-6, b0, b0]));
+        let filters: Vec<Filter> = p
+            .gates_sigma
+            .iter()
+            .map(|g| Filter {
+                x: x0,
+                p: p0,
+                r: Matrix2::from_diagonal_element(r0),
+                gate2: g * g,
+                logw: 0.0,
+                rejected: 0,
+            })
+            .collect();
+        let weights = vec![0.0; filters.len()];
+        Bank {
+            filters,
+            bpow: 1.0,
+            weights,
+        }
+    }
+
+    /// Filter sample k with every filter and re-weight the bank.
+    fn step(&mut self, m: &Model, k: usize) {
+        let s = m.sample(k);
+        let b = m.p.forgetting;
+        self.bpow *= b;
+        let d_k = (1.0 - b) / (1.0 - self.bpow);
+        for flt in self.filters.iter_mut() {
+            flt.step(m, &s, k, d_k);
+        }
+        bank_weights(&mut self.filters, m.p.min_weight, &mut self.weights);
+    }
+}
+
+/// Roll, pitch and yaw in degrees, filled one sample at a time.
+struct Angles {
+    roll: Vec<f64>,
+    pitch: Vec<f64>,
+    yaw: Vec<f64>,
+}
+
+impl Angles {
+    fn new(n: usize) -> Angles {
+        Angles {
+            roll: vec![0.0; n],
+            pitch: vec![0.0; n],
+            yaw: vec![0.0; n],
+        }
+    }
+
+    fn set(&mut self, k: usize, x: &V5) {
+        self.roll[k] = x[0].to_degrees();
+        self.pitch[k] = x[1].to_degrees();
+        self.yaw[k] = x[2].to_degrees();
+    }
+}
+
+/// The fused (and, with `p.smoother`, smoothed) attitude of one aligned recording.
 pub(super) fn fusion(al: &Aligned, p: &AttitudeParams) -> Result<Attitude> {
+    fusion_segmented(al, p, SEGMENT)
+}
+
+/// [`fusion`] with the smoother's storage in segments of `seg_len` samples (the numbers do not
+/// depend on it).
+fn fusion_segmented(al: &Aligned, p: &AttitudeParams, seg_len: usize) -> Result<Attitude> {
     let n = al.acc_g[0].len();
     if n < 2 {
         return Err(LdhError::signal("attitude", "fewer than 2 samples"));
     }
-    let dt = 1.0 / al.fs_hz;
-    let mut h = M2x5::zeros();
-    h[(0, 0)] = 1.0;
-    h[(1, 1)] = 1.0;
-    let f_at = |i: usize| [al.acc_g[0][i], al.acc_g[1][i], al.acc_g[2][i]];
-    let w_at = |i: usize| {
-        Vector3::new(al.gyro_dps[0][i], al.gyro_dps[1][i], al.gyro_dps[2][i])
-            * (std::f64::consts::PI / 180.0)
-    };
-    let w_mid = |k: usize| {
-        if k == 0 {
-            w_at(0)
-        } else {
-            (w_at(k - 1) + w_at(k)) * 0.5
-        }
-    };
-    let mut q = M5::zeros();
-    let qa = (p.gyro_noise_dps.to_radians() * dt).powi(2);
-    let qb = p.gyro_bias_walk_dps.to_radians().powi(2) * dt;
-    for i in 0..5 {
-        q[(i, i)] = if i < 3 { qa } else { qb };
-    }
-    let r0 = p.acc_tilt_noise_deg.to_radians().powi(2);
-    let (rlo, rhi) = (
-        p.acc_tilt_noise_bounds_deg[0].to_radians().powi(2),
-        p.acc_tilt_noise_bounds_deg[1].to_radians().powi(2),
-    );
-    let (anchor, anchor_len) = if p.reacquire_gravity {
-        quasi_static_windows(
-            &al.acc_g,
-            &al.gyro_dps,
-            al.fs_hz,
-            p.anchor_acc_g,
-            p.anchor_gyro_dps,
-            p.anchor_window_s,
-        )
-    } else {
-        (vec![false; n], 1)
-    };
-    let r_anchor = p.anchor_tilt_noise_deg.to_radians().powi(2) * anchor_len as f64;
-    let (phi0, th0) = acc_tilt(f_at(0));
-    let x0 = V5::from_column_slice(&[phi0, th0, 0.0, 0.0, 0.0]);
-    let b0 = p.gyro_bias_sd_dps.to_radians().powi(2);
-    let p0 = M5::from_diagonal(&V5::from_column_slice(&[r0, r0, 1e-6, b0, b0]));
+    let m = Model::new(al, p);
+    let mut bank = Bank::new(&m);
+    let nf = bank.filters.len();
     let keep = p.smoother;
-    let mut bank: Vec<Filter> = p
-        .gates_sigma
-        .iter()
-        .map(|g| Filter {
-            x: x0,
-            p: p0,
-            r: Matrix2::from_diagonal_element(r0),
-            gate2: g * g,
-            logw: 0.0,
-            rejected: 0,
-            xs: Vec::with_capacity(if keep { n } else { 0 }),
-            ps: Vec::with_capacity(if keep { n } else { 0 }),
-        })
-        .collect();
-    let mut weights_t: Vec<Vec<f64>> = Vec::with_capacity(n);
-    let mut fused: Vec<V5> = Vec::with_capacity(n);
-    let b = p.forgetting;
-    let mut bpow = 1.0;
+    let mut out = Angles::new(n);
+    let mut store = SegmentStore::new(nf, if keep { seg_len.min(n) } else { 0 });
+    let mut checkpoints: Vec<Bank> = Vec::new();
+    let mut states: Vec<V5> = Vec::with_capacity(nf);
     for k in 0..n {
-        let f = f_at(k);
-        let norm = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
-        let dyn_dev = (norm - 1.0).abs();
-        let w_norm_dps =
-            (al.gyro_dps[0][k].powi(2) + al.gyro_dps[1][k].powi(2) + al.gyro_dps[2][k].powi(2))
-                .sqrt();
-        let infl = 1.0
-            + (dyn_dev / p.dynamic_scale_g).powi(2)
-            + (w_norm_dps / p.rotation_scale_dps).powi(2);
-        let (zphi, zth) = acc_tilt(f);
-        let z = Vector2::new(zphi, zth);
-        let wm = w_mid(k);
-        bpow *= b;
-        let d_k = (1.0 - b) / (1.0 - bpow);
-        for flt in bank.iter_mut() {
-            let (xp, pp) = if k == 0 {
-                (flt.x, flt.p)
-            } else {
-                let (xp, pp, _) = predict(&flt.x, &flt.p, &wm, dt, &q);
-                (xp, pp)
-            };
-            let mut nu = z - h * xp;
-            nu[0] = wrap(nu[0]);
-            nu[1] = wrap(nu[1]);
-            let hph = h * pp * h.transpose();
-            let mut rk = flt.r * infl;
-            if anchor[k] {
-                // Gravity re-acquisition: the tilt is trusted to σ_anchor per window.
-                for i in 0..2 {
-                    rk[(i, i)] = rk[(i, i)].min(r_anchor);
-                }
-            }
-            let s = hph + rk;
-            let s_inv = s
-                .try_inverse()
-                .unwrap_or_else(|| Matrix2::from_diagonal_element(1.0 / r0));
-            let d2 = (nu.transpose() * s_inv * nu)[0];
-            let det = s.determinant().max(1e-300);
-            flt.logw += -0.5 * d2 - 0.5 * (det * (std::f64::consts::TAU).powi(2)).ln();
-            let reacquire = flt.rejected as f64 * dt >= p.reacquire_s;
-            let (xu, pu) = if d2 <= flt.gate2 || reacquire || anchor[k] {
-                flt.rejected = 0;
-                let kg: M5x2 = pp * h.transpose() * s_inv;
-                let ikh = M5::identity() - kg * h;
-                let xu = xp + kg * nu;
-                let pu = ikh * pp * ikh.transpose() + kg * rk * kg.transpose();
-                // Sage–Husa adaptation of R from quasi-static innovations.
-                if dyn_dev < 2.0 * p.dynamic_scale_g {
-                    for i in 0..2 {
-                        let est = nu[i] * nu[i] - hph[(i, i)];
-                        let v = ((1.0 - d_k) * flt.r[(i, i)] + d_k * est).clamp(rlo, rhi);
-                        flt.r[(i, i)] = v;
-                    }
-                }
-                (xu, pu)
-            } else {
-                flt.rejected += 1;
-                (xp, pp)
-            };
-            flt.x = xu;
-            flt.x[2] = wrap(flt.x[2]);
-            flt.p = pu;
-            if keep {
-                flt.xs.push(flt.x);
-                flt.ps.push(flt.p);
-            }
+        if keep && k % seg_len == 0 {
+            checkpoints.push(bank.clone());
+            store.clear();
         }
-        let w = bank_weights(&mut bank, p.min_weight);
-        fused.push(weighted(&bank.iter().map(|f| f.x).collect::<Vec<_>>(), &w));
-        weights_t.push(w);
+        bank.step(&m, k);
+        if keep {
+            store.push(&bank);
+        } else {
+            states.clear();
+            states.extend(bank.filters.iter().map(|f| f.x));
+            out.set(k, &weighted(&states, &bank.weights));
+        }
     }
-    let final_bias = fused
-        .last()
-        .map_or([0.0; 2], |x| [x[3].to_degrees(), x[4].to_degrees()]);
+    states.clear();
+    states.extend(bank.filters.iter().map(|f| f.x));
+    let last = weighted(&states, &bank.weights);
     if keep {
-        smooth(&bank, &mut fused, &weights_t, &w_mid, dt, &q);
+        smooth(&m, &checkpoints, &mut store, seg_len, &mut out);
     }
     Ok(Attitude {
         model: AttitudeModel::Fusion,
         fs_hz: al.fs_hz,
-        roll_deg: fused.iter().map(|x| x[0].to_degrees()).collect(),
-        pitch_deg: fused.iter().map(|x| x[1].to_degrees()).collect(),
-        yaw_deg: fused.iter().map(|x| x[2].to_degrees()).collect(),
-        final_weights: weights_t.last().cloned().unwrap_or_default(),
+        roll_deg: out.roll,
+        pitch_deg: out.pitch,
+        yaw_deg: out.yaw,
+        final_weights: bank.weights.clone(),
         final_tilt_noise_deg: bank
+            .filters
             .iter()
             .map(|f| ((f.r[(0, 0)] + f.r[(1, 1)]) / 2.0).sqrt().to_degrees())
             .collect(),
-        gyro_bias_dps: final_bias,
-        gravity_windows: count_runs(&anchor),
+        gyro_bias_dps: [last[3].to_degrees(), last[4].to_degrees()],
+        gravity_windows: count_runs(&m.anchor),
     })
 }
 
-/// Normalised likelihood weights with a floor (eq. 15); the filters' log-weights are reset to
-/// them.
-fn bank_weights(bank: &mut [Filter], floor: f64) -> Vec<f64> {
+/// Normalised likelihood weights with a floor (eq. 15) into `w`; the filters' log-weights are
+/// reset to them.
+fn bank_weights(bank: &mut [Filter], floor: f64, w: &mut [f64]) {
     let mx = bank.iter().map(|f| f.logw).fold(f64::MIN, f64::max);
-    let mut w: Vec<f64> = bank.iter().map(|f| (f.logw - mx).exp()).collect();
+    for (wi, f) in w.iter_mut().zip(bank.iter()) {
+        *wi = (f.logw - mx).exp();
+    }
     let sum: f64 = w.iter().sum();
     w.iter_mut().for_each(|x| *x /= sum);
     w.iter_mut().for_each(|x| *x = x.max(floor));
     let sum: f64 = w.iter().sum();
     w.iter_mut().for_each(|x| *x /= sum);
-    for (f, wi) in bank.iter_mut().zip(&w) {
+    for (f, wi) in bank.iter_mut().zip(w.iter()) {
         f.logw = wi.ln();
-    }
-    w
-}
-
-/// Rauch–Tung–Striebel backward pass per filter, fused with the forward weights. The
-/// predictions are recomputed from the filtered states (the same deterministic step as the
-/// forward pass), so only the filtered states and covariances are stored.
-fn smooth(
-    bank: &[Filter],
-    fused: &mut [V5],
-    weights_t: &[Vec<f64>],
-    w_mid: &dyn Fn(usize) -> Vector3<f64>,
-    dt: f64,
-    q: &M5,
-) {
-    let n = fused.len();
-    let smoothed: Vec<Vec<V5>> = bank
-        .iter()
-        .map(|flt| {
-            let mut xs = flt.xs.clone();
-            for k in (0..n - 1).rev() {
-                let (xp, pp, fj) = predict(&flt.xs[k], &flt.ps[k], &w_mid(k + 1), dt, q);
-                let Some(inv) = pp.try_inverse() else {
-                    continue;
-                };
-                let c = flt.ps[k] * fj.transpose() * inv;
-                let mut diff = xs[k + 1] - xp;
-                diff[2] = wrap(diff[2]);
-                xs[k] = flt.xs[k] + c * diff;
-            }
-            xs
-        })
-        .collect();
-    for (k, fk) in fused.iter_mut().enumerate() {
-        let xs: Vec<V5> = smoothed.iter().map(|s| s[k]).collect();
-        *fk = weighted(&xs, &weights_t[k]);
     }
 }
 
@@ -333,7 +435,8 @@ fn weighted(xs: &[V5], w: &[f64]) -> V5 {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{estimate, AttitudeParams};
+    use super::super::{estimate, Attitude, AttitudeParams};
+    use super::{fusion_segmented, SEGMENT};
     use crate::align::{align, AlignParams, Aligned};
     use crate::preprocess::{preprocess, PreprocessParams};
     use crate::simulate::CohortParams;
@@ -401,6 +504,33 @@ mod tests {
             e0 > 1.5 * e,
             "without the additions: pitch RMSE {e0:.2} vs {e:.2} deg"
         );
+    }
+
+    /// The smoother's segments only trade memory for time: any segment length gives the same
+    /// attitude bit for bit (the refiltered segments repeat the forward pass exactly).
+    #[test]
+    fn the_smoothed_attitude_does_not_depend_on_the_segment_length() {
+        let (mut al, _) = walk();
+        al.gyro_dps[1].iter_mut().for_each(|w| *w += 3.0);
+        let p = AttitudeParams::default().check().unwrap().params().clone();
+        let bits = |a: &Attitude| -> Vec<u64> {
+            a.roll_deg
+                .iter()
+                .chain(&a.pitch_deg)
+                .chain(&a.yaw_deg)
+                .chain(&a.final_weights)
+                .chain(&a.final_tilt_noise_deg)
+                .chain(&a.gyro_bias_dps)
+                .map(|v| v.to_bits())
+                .collect()
+        };
+        let whole = fusion_segmented(&al, &p, usize::MAX).unwrap();
+        // 7 001 samples: one segment by default, 2–7 001 here
+        for seg in [1, 7, 1000, 4001, SEGMENT] {
+            let a = fusion_segmented(&al, &p, seg).unwrap();
+            assert!(bits(&a) == bits(&whole), "segments of {seg} samples");
+            assert_eq!(a.gravity_windows, whole.gravity_windows);
+        }
     }
 
     #[test]

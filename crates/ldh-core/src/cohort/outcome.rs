@@ -33,7 +33,7 @@ pub fn stats(models: &[Vec<RecordingRow>]) -> Result<StatsOutcome> {
             cohort.model,
             table3_markdown(&t3, &cohort)
         ));
-        all_rows.extend(table3_rows(&cohort.model, &t3));
+        all_rows.extend(table3_rows(cohort.model.as_str(), &t3));
         let off = offsets(&cohort);
         let series = [
             ("LDHH".to_string(), off.z_ldhh.clone()),
@@ -46,7 +46,7 @@ pub fn stats(models: &[Vec<RecordingRow>]) -> Result<StatsOutcome> {
             &series,
         )?;
         files.push((format!("radar_{}.svg", cohort.model), radar));
-        if cohort.model == AttitudeModel::Fusion.as_str() {
+        if cohort.model == AttitudeModel::Fusion {
             files.extend(box_plots(&cohort)?);
         }
         offs.push(off);
@@ -73,20 +73,20 @@ pub fn stats(models: &[Vec<RecordingRow>]) -> Result<StatsOutcome> {
 fn box_plots(cohort: &Cohort) -> Result<Vec<(String, String)>> {
     let mut files = Vec::new();
     for p in PARAMETERS {
-        let g = cohort.groups(p.column);
+        let g = cohort.groups(p);
         if g.h.is_empty() {
             continue;
         }
         let svg = plots::boxplot_svg(
-            &format!("{} — {}", p.code, p.name),
-            &format!("{} ({})", p.name, p.unit),
+            &format!("{} — {}", p.code(), p.name()),
+            &format!("{} ({})", p.name(), p.unit()),
             &[
                 ("LDHH".into(), g.ldhh),
                 ("LDHE".into(), g.ldhe),
                 ("H".into(), g.h),
             ],
         )?;
-        files.push((format!("box_{}.svg", p.code), svg));
+        files.push((format!("box_{}.svg", p.code()), svg));
     }
     Ok(files)
 }

@@ -32,7 +32,7 @@ use serde::{Deserialize, Serialize};
 use crate::recording::Side;
 pub use length::{
     pendulum_length_m, stride_length, zero_velocity_sample, LengthEstimate, ZeroVelocity,
-    MAX_DRIFT_MPS, MAX_VERTICAL_M, PENDULUM_GAIN, SHANK_LENGTH_M,
+    MAX_DRIFT_MPS, MAX_VERTICAL_M, MAX_VERTICAL_SHARE, PENDULUM_GAIN, SHANK_LENGTH_M,
 };
 pub use params::{check_stride_range, StrideParams, ValidStrideParams, DEFAULT_SENSOR_HEIGHT_M};
 pub use segment::{strides, strides_with_turns, TurnTest, ACC_ONLY_LENGTH};

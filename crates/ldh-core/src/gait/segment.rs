@@ -248,6 +248,7 @@ impl<'a> Leg<'a> {
                 length_m: f64::NAN,
                 drift_mps: f64::NAN,
                 vertical_m: f64::NAN,
+                clipped_samples: 0,
             },
         };
         let pendulum = if to.is_finite() {

@@ -145,6 +145,7 @@ fn withhold_side_length(out: &mut SideParameters, valid: &[&Stride], with_length
                 "ACC-only",
                 "the ACC-only attitude cannot separate gravity from motion",
             ),
+            ("clipped", "accelerometer clipped"),
             ("drift", "velocity drift"),
             ("floor", "ankle off the floor level"),
             ("pendulum", "disagrees with the shank-pendulum estimate"),

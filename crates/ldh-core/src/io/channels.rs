@@ -94,20 +94,18 @@ pub(super) fn to_ldh_frame(
     };
     let map = spec.axis_map()?;
     let [c0, c1, c2, c3, c4, c5] = channels;
-    let acc_in = [c0, c1, c2];
-    let gyro_in = [c3, c4, c5];
-    let acc_g: Axes = std::array::from_fn(|i| {
-        acc_in[map.index[i]]
-            .iter()
-            .map(|v| v * acc_to_g * map.sign[i])
-            .collect()
-    });
-    let gyro_dps: Axes = std::array::from_fn(|i| {
-        gyro_in[map.index[i]]
-            .iter()
-            .map(|v| v * gyro_to_dps * map.sign[i])
-            .collect()
-    });
+    // In place: the map is a permutation (checked by `axis_map`), each input taken once.
+    let convert = |mut input: Axes, to: f64| -> Axes {
+        std::array::from_fn(|i| {
+            let mut ch = std::mem::take(&mut input[map.index[i]]);
+            for v in &mut ch {
+                *v = *v * to * map.sign[i];
+            }
+            ch
+        })
+    };
+    let acc_g = convert([c0, c1, c2], acc_to_g);
+    let gyro_dps = convert([c3, c4, c5], gyro_to_dps);
     if map != AxisMap::IDENTITY {
         notes.push(format!("axes mapped to ldh's frame as {:?}", spec.axes.map));
     }

@@ -12,10 +12,11 @@
 //! `acc_x_m_s2`, `gyro_x_dps`, `gyro_x_deg_s`, `gyro_x_rads`, `gyro_x_rad_s`, `time_s`,
 //! `time_ms`), the names ldh's Python API writes; see [`unit_suffixed`].
 
+use std::io::BufRead;
 use std::path::Path;
 
 use super::format::{AccUnit, ColumnRef, Delimiter, FormatSpec, GyroUnit, TimeUnit};
-use super::text::{detect_delimiter, split_header};
+use super::text::{detect_delimiter, split_header, Lines};
 use crate::error::{LdhError, Location, Result};
 
 /// Positions (0-based) of the columns a format reads.
@@ -264,9 +265,9 @@ pub(crate) fn unit_suffixed(spec: &FormatSpec, header: &[String]) -> Option<Form
 /// The header row found in a file and the format that reads it.
 #[derive(Debug, Clone)]
 pub(crate) struct Header {
-    /// Index (into the file's lines) of the header row; of the first data row when the file has
-    /// no header row (`has_row` false).
-    pub index: usize,
+    /// 1-based line of the header row; of the first data row when the file has no header row
+    /// (`has_row` false).
+    pub line: u64,
     /// The format (a detected built-in, the given one, or `ldh` adapted to unit-suffixed names).
     pub spec: FormatSpec,
     /// Field delimiter.
@@ -277,6 +278,8 @@ pub(crate) struct Header {
     pub cols: Columns,
     /// The file has a header row (false only for maps that give every column by number).
     pub has_row: bool,
+    /// Without a header row: the first data row (its line and text), to be read as data.
+    pub first_row: Option<(u64, String)>,
     /// Delimiter named by a `sep=` line.
     pub sep_line: Option<u8>,
 }
@@ -290,13 +293,13 @@ fn header_like(fields: &[String]) -> bool {
     fields.len() >= 3 && fields.iter().filter(|f| !is_number(f)).count() >= 3
 }
 
-/// Find the header row of `lines` (1-based line number, text) and the format that reads it:
+/// Find the header row of `lines`, reading up to it, and the format that reads it:
 /// the given format, or the first detected built-in whose columns are all in a row (the `ldh`
 /// map also in its unit-suffixed form). Refuses a row with a duplicated column; with a given
 /// format, the first header-like row missing columns; otherwise says which columns the closest
 /// built-in lacks in the first header-like row.
-pub(crate) fn find_header(
-    lines: &[(u64, &str)],
+pub(super) fn find_header<R: BufRead>(
+    lines: &mut Lines<R>,
     format: Option<&FormatSpec>,
     path: &Path,
     notes: &mut Vec<String>,
@@ -313,11 +316,13 @@ pub(crate) fn find_header(
     let mut first_row = String::new();
     // Detection mode: the closest format for the first header-like row, for the message.
     let mut closest: Option<Closest> = None;
-    for (idx, (lineno, line)) in lines.iter().enumerate() {
+    let mut all_blank = true;
+    while let Some((lineno, line)) = lines.next_line()? {
         let trimmed = line.trim();
         if trimmed.is_empty() {
             continue;
         }
+        all_blank = false;
         if let Some(sep) = sep_line_delimiter(trimmed) {
             sep_line = sep;
             notes.push(format!(
@@ -337,7 +342,7 @@ pub(crate) fn find_header(
             first_row = trimmed.chars().take(200).collect();
         }
         for f in &candidates {
-            let row = (idx, *lineno, *line);
+            let row = (lineno, line);
             match match_row(f, row, sep_line, format.is_some(), path, notes)? {
                 RowMatch::Found(header) => return Ok(*header),
                 RowMatch::No => {}
@@ -346,13 +351,13 @@ pub(crate) fn find_header(
                     // the one missing the fewest columns.
                     let replace = match &closest {
                         None => true,
-                        Some(c) => c.at == idx && missing.len() < c.missing.len(),
+                        Some(c) => c.at == lineno && missing.len() < c.missing.len(),
                     };
                     if replace {
                         closest = Some(Closest {
                             format: f,
                             missing,
-                            at: idx,
+                            at: lineno,
                             fields,
                         });
                     }
@@ -361,7 +366,7 @@ pub(crate) fn find_header(
         }
     }
     Err(no_header(
-        lines,
+        all_blank,
         closest,
         &candidates,
         format.is_some(),
@@ -402,24 +407,24 @@ struct Closest<'a> {
     format: &'a FormatSpec,
     /// What it misses.
     missing: Vec<Missing>,
-    /// Index of the row (into the file's lines).
-    at: usize,
+    /// Line of the row.
+    at: u64,
     /// The row's fields.
     fields: Vec<String>,
 }
 
-/// Try format `f` on `row` (index into the lines, 1-based line number, text), split at the
+/// Try format `f` on `row` (1-based line number, text), split at the
 /// format's delimiter, else the `sep=` line's, else the detected one. A duplicated column is an
 /// error; so is a header-like row missing columns when the format was given (`format_given`).
 fn match_row(
     f: &FormatSpec,
-    row: (usize, u64, &str),
+    row: (u64, &str),
     sep_line: Option<u8>,
     format_given: bool,
     path: &Path,
     notes: &mut Vec<String>,
 ) -> Result<RowMatch> {
-    let (idx, lineno, line) = row;
+    let (lineno, line) = row;
     let delim = f
         .delimiter
         .byte()
@@ -452,14 +457,16 @@ fn match_row(
                     spec.acc.unit, spec.gyro.unit, spec.time.unit
                 ));
             }
+            let first_row = (!has_row).then(|| (lineno, line.to_string()));
             Ok(RowMatch::Found(Box::new(Header {
-                index: idx,
+                line: lineno,
                 spec,
                 delim,
                 fields,
                 cols,
                 has_row,
                 sep_line,
+                first_row,
             })))
         }
         Err(Unresolved::Duplicate { column, positions }) => Err(LdhError::DuplicateColumn {
@@ -484,18 +491,18 @@ fn match_row(
     }
 }
 
-/// The error when no row is a header: [`LdhError::EmptyFile`] for blank content, otherwise
+/// The error when no row is a header: [`LdhError::EmptyFile`] for blank content (`all_blank`), otherwise
 /// [`LdhError::NoHeader`] naming the closest format's missing columns (or the only
 /// candidate's required ones) and the first row.
 fn no_header(
-    lines: &[(u64, &str)],
+    all_blank: bool,
     closest: Option<Closest>,
     candidates: &[&FormatSpec],
     format_given: bool,
     path: &Path,
     first_row: String,
 ) -> LdhError {
-    if lines.iter().all(|(_, l)| l.trim().is_empty()) {
+    if all_blank {
         return LdhError::EmptyFile {
             path: path.to_path_buf(),
         };

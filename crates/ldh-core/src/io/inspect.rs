@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use super::{read_recording, FormatSpec, ReadReport, ValidReadParams};
 use crate::error::Result;
-use crate::preprocess::{preprocess, PreprocessParams};
+use crate::preprocess::{outlier_summary, PreprocessParams};
 
 /// Preprocessing facts of an inspected file.
 #[derive(Debug, Clone, Serialize)]
@@ -31,7 +31,8 @@ pub struct Inspection {
 }
 
 /// Read `file` (with `format`, or a detected built-in one) and preprocess it with the default
-/// parameters.
+/// parameters (the outlier search only: the filtered channels are not reported, and not
+/// keeping them holds the memory to the recording's).
 pub fn inspect(
     file: &Path,
     format: Option<&FormatSpec>,
@@ -39,7 +40,7 @@ pub fn inspect(
 ) -> Result<Inspection> {
     let (rec, read) = read_recording(file, format, rp)?;
     let pp = PreprocessParams::default().check(rec.fs_hz)?;
-    let pre = preprocess(&rec, &pp)?;
+    let pre = outlier_summary(&rec, &pp)?;
     Ok(Inspection {
         file: file.to_path_buf(),
         read,

@@ -1,5 +1,6 @@
-//! The reader's memory bounds (docs/robustness.md): a file is read only up to a size limit,
-//! and buffers sized from the input are reserved fallibly, so that a file too large for the
+//! The reader's memory bounds (docs/robustness.md): a file is read only up to a size limit
+//! (and streamed: its bytes are never held whole), and buffers sized from the input are
+//! reserved fallibly, so that a file too large for the
 //! memory fails alone with a message ([`LdhError::FileTooLarge`], [`LdhError::OutOfMemory`])
 //! instead of aborting the process and the batch with it.
 
@@ -7,10 +8,15 @@ use std::path::Path;
 
 use crate::error::{LdhError, Result};
 
-/// The bytes of a regular file of at most `max_mb` MB. Folders, FIFOs and devices are refused
-/// (a FIFO would block forever, `/dev/zero` never ends); so is a larger file, before it is read.
-/// The read itself is bounded too, for files whose stated size is not their content (`/proc`).
-pub(super) fn read_limited(path: &Path, max_mb: f64) -> Result<Vec<u8>> {
+/// A regular file of at most `max_mb` MB, opened for buffered reading. Folders, FIFOs and
+/// devices are refused (a FIFO would block forever, `/dev/zero` never ends); so is a larger
+/// file, before it is read. The read itself is bounded too (one byte past the limit), for files
+/// whose stated size is not their content (`/proc`): [`super::text::Lines`] refuses the content
+/// once it passes the limit.
+pub(super) fn open_limited(
+    path: &Path,
+    max_mb: f64,
+) -> Result<std::io::BufReader<std::io::Take<std::fs::File>>> {
     use std::io::Read;
     let io = |source| LdhError::Io {
         path: path.to_path_buf(),
@@ -24,30 +30,24 @@ pub(super) fn read_limited(path: &Path, max_mb: f64) -> Result<Vec<u8>> {
         )));
     }
     let limit = (max_mb * 1e6) as u64;
-    let too_large = |size: u64| LdhError::FileTooLarge {
-        path: path.to_path_buf(),
-        size_mb: size as f64 / 1e6,
-        limit_mb: max_mb,
-    };
     if meta.len() > limit {
-        return Err(too_large(meta.len()));
+        return Err(LdhError::FileTooLarge {
+            path: path.to_path_buf(),
+            size_mb: meta.len() as f64 / 1e6,
+            limit_mb: max_mb,
+        });
     }
-    let mut bytes = Vec::new();
-    reserve(&mut bytes, meta.len() as usize + 1, path)?;
-    std::fs::File::open(path)
-        .map_err(io)?
-        .take(limit + 1)
-        .read_to_end(&mut bytes)
-        .map_err(io)?;
-    if bytes.len() as u64 > limit {
-        return Err(too_large(bytes.len() as u64));
-    }
-    Ok(bytes)
+    let file = std::fs::File::open(path).map_err(io)?;
+    Ok(std::io::BufReader::with_capacity(
+        1 << 16,
+        file.take(limit.saturating_add(1)),
+    ))
 }
 
-/// Memory the reading and the analysis of one leg need at their peak, bytes per sample
-/// (measured: a 2-hour pair of 720 000 samples per leg peaks at 1.0 GB, docs/robustness.md),
-/// with a margin. Checked with a fallible reservation once the rows are parsed.
+/// Memory the reading and the analysis of one leg need at their peak, bytes per sample, with a
+/// wide margin (measured when this was set: a 2-hour pair of 720 000 samples per leg peaked at
+/// 1.0 GB; since the attitude smoother keeps less per sample, 0.23 GB, docs/robustness.md).
+/// Checked with a fallible reservation once the rows are parsed.
 const HEADROOM_BYTES_PER_SAMPLE: usize = 1024;
 
 /// Reserve room for `n` more items in `v`, or [`LdhError::OutOfMemory`] naming `path`.

@@ -11,11 +11,14 @@
 //! recordings too short to hold three strides, and units that are physically implausible
 //! (e.g. angular velocity in rad/s declared as deg/s).
 //!
-//! [`read_recording_bytes`] runs the stages in order, each in its own file: bytes to numbered
-//! lines (`text.rs`), the header and the format (`columns.rs`), the data rows into columns
+//! [`read_recording_from`] runs the stages in order, each in its own file, streaming: a byte
+//! stream to numbered lines read one at a time (`text.rs`), the header and the format (`columns.rs`), the data rows into columns
 //! (`rows.rs`), the time base — seconds, gaps, the fitted rate and the uniform grid
 //! (`timebase.rs`) —, the scale, clipping flags, units and axes (`channels.rs`), then the
-//! plausibility checks (`checks.rs`); the memory bounds are in `limits.rs`.
+//! plausibility checks (`checks.rs`); the memory bounds are in `limits.rs`. The file's bytes
+//! are never held whole: memory is the seven columns kept (time and six channels, 56 bytes a
+//! row) plus what the later stages allocate, and a recording with more rows than
+//! `max_samples` is refused while reading.
 //!
 //! Timing: every row of the kept segment gets an integer sample index (each interval rounded to
 //! a whole number of median periods), and the period is the least-squares slope of time against
@@ -24,13 +27,14 @@
 //! linear interpolation (gaps up to `max_gap_s` are bridged that way).
 
 use serde::{Deserialize, Serialize};
+use std::io::BufRead;
 use std::path::{Path, PathBuf};
 
 use super::channels::{scale_and_flag_clipping, to_ldh_frame};
 use super::format::{Delimiter, FormatSpec};
-use super::limits::{check_headroom, read_limited};
+use super::limits::{check_headroom, open_limited};
 use super::rows::{parse_rows, Layout};
-use super::text::{decode_text, numbered_lines};
+use super::text::Lines;
 use super::timebase::{
     check_median_rate, check_monotonic, fit_grid, place_on_grid, split_at_gaps, times_in_seconds,
     RateBounds,
@@ -43,6 +47,7 @@ pub use super::channels::detect_clipping;
 pub use super::checks::{check_units_plausible, flat_channel_warnings};
 pub use super::timebase::{interp_linear, parse_iso8601, GapInfo};
 // For the unit tests.
+#[cfg(test)]
 pub(crate) use super::limits::reserve;
 
 /// What to do with a gap in the timestamps longer than `max_gap_s`.
@@ -77,7 +82,17 @@ pub struct ReadParams {
     /// at 1000 Hz. A larger file is refused with a message before it is read, so that `/dev/zero`
     /// or a mistaken multi-gigabyte export cannot exhaust the memory.
     pub max_file_size_mb: f64,
+    /// Most data rows (samples) in one recording. Default 2 500 000: 6.9 h at 100 Hz, 42 min at
+    /// 1000 Hz. The analysis keeps per-sample state, about 150 bytes per sample of a pair at
+    /// its peak (measured: a pair of 720 000-sample legs 0.23 GB, of 2 000 000-sample legs
+    /// 0.62 GB, `--jobs 1`), so the default keeps one subject under 1 GB. A longer recording
+    /// is refused while it is read, naming its row count, before the rows past the limit are
+    /// stored: a 10-million-row file costs no more memory than the limit.
+    pub max_samples: usize,
 }
+
+/// Default [`ReadParams::max_samples`].
+pub const DEFAULT_MAX_SAMPLES: usize = 2_500_000;
 
 impl Default for ReadParams {
     fn default() -> Self {
@@ -89,6 +104,7 @@ impl Default for ReadParams {
             max_rate_hz: 2000.0,
             check_units: true,
             max_file_size_mb: 256.0,
+            max_samples: DEFAULT_MAX_SAMPLES,
         }
     }
 }
@@ -144,6 +160,9 @@ impl ReadParams {
                 p.max_file_size_mb,
                 "must be > 0",
             ));
+        }
+        if p.max_samples == 0 {
+            return Err(LdhError::param("max_samples", p.max_samples, "must be ≥ 1"));
         }
         Ok(ValidReadParams(self.clone()))
     }
@@ -208,18 +227,39 @@ pub fn read_recording(
     params: &ValidReadParams,
 ) -> Result<(Recording, ReadReport)> {
     let path = path.as_ref();
-    let bytes = read_limited(path, params.max_file_size_mb)?;
-    read_recording_bytes(&bytes, path, format, params)
+    let file = open_limited(path, params.max_file_size_mb)?;
+    read_from(file, Some(params.max_file_size_mb), path, format, params)
 }
 
-/// As [`read_recording`], from bytes in memory; `path` is used in messages.
-///
-/// The stages, in order: decode and number the lines, find the header and the format, parse
-/// the rows, put the time in seconds and check it, split at gaps, fit the grid and place the
-/// channels on it, scale and flag clipping, convert to g and deg/s in ldh's frame, then the
-/// duration, flat-channel and unit checks.
+/// As [`read_recording`], from bytes in memory (no size limit); `path` is used in messages.
 pub fn read_recording_bytes(
     bytes: &[u8],
+    path: &Path,
+    format: Option<&FormatSpec>,
+    params: &ValidReadParams,
+) -> Result<(Recording, ReadReport)> {
+    read_from(bytes, None, path, format, params)
+}
+
+/// As [`read_recording`], from any buffered byte stream (read once, line by line; no size
+/// limit); `path` is used in messages.
+pub fn read_recording_from(
+    src: impl BufRead,
+    path: &Path,
+    format: Option<&FormatSpec>,
+    params: &ValidReadParams,
+) -> Result<(Recording, ReadReport)> {
+    read_from(src, None, path, format, params)
+}
+
+/// The reader. The stages, in order: check the first bytes and stream numbered lines, find the
+/// header and the format, parse the rows, put the time in seconds and check it, split at gaps,
+/// fit the grid and place the channels on it, scale and flag clipping, convert to g and deg/s
+/// in ldh's frame, then the duration, flat-channel and unit checks. `limit_mb`: the content's
+/// size limit.
+fn read_from(
+    src: impl BufRead,
+    limit_mb: Option<f64>,
     path: &Path,
     format: Option<&FormatSpec>,
     params: &ValidReadParams,
@@ -227,22 +267,27 @@ pub fn read_recording_bytes(
     if let Some(f) = format {
         f.validate()?;
     }
-    let text = decode_text(bytes, path)?;
-    let bom = text.len() + 3 == bytes.len() && bytes.starts_with(&[0xEF, 0xBB, 0xBF]);
+    let mut lines = Lines::new(src, path, limit_mb)?;
+    let bom = lines.bom;
     let mut notes = Vec::new();
     let mut warnings = Vec::new();
     if bom {
         notes.push("UTF-8 byte-order mark found and ignored".to_string());
     }
-    let lines = numbered_lines(bytes, text, path)?;
 
     // The header row and the format (column resolution: `columns.rs`).
-    let found = super::columns::find_header(&lines, format, path, &mut notes)?;
+    let mut found = super::columns::find_header(&mut lines, format, path, &mut notes)?;
     let delim_name = header_notes(&found, format.is_none(), &mut notes);
     let spec = &found.spec;
 
-    // Data rows into columns.
-    let first_data = found.index + usize::from(found.has_row) + spec.skip_rows_after_header;
+    // Data rows into columns: after the header row and the rows the format skips (counted from
+    // the first data row when the file has no header row).
+    let mut first_row = found.first_row.take();
+    for _ in 0..spec.skip_rows_after_header {
+        if first_row.take().is_none() && lines.next_line()?.is_none() {
+            break;
+        }
+    }
     let layout = Layout {
         path,
         spec,
@@ -250,7 +295,8 @@ pub fn read_recording_bytes(
         header_fields: &found.fields,
         cols: found.cols,
     };
-    let rows = parse_rows(&lines, first_data, &layout)?;
+    let rows = parse_rows(&mut lines, first_row, &layout, params.max_samples)?;
+    drop(lines);
     let n_rows = rows.row_lines.len();
     check_headroom(n_rows, path)?;
     if n_rows == 0 {
@@ -281,7 +327,7 @@ pub fn read_recording_bytes(
         return Err(too_short(path, span.max(0.0), seg_t.len(), params));
     }
     let grid = fit_grid(seg_t, spec, bounds, path, &mut warnings)?;
-    let mut channels = place_on_grid(&rows.raw, seg, seg_t, &grid, &mut notes);
+    let mut channels = place_on_grid(rows.raw, seg, seg_t, &grid, &mut notes);
 
     // Channel values: scale, clipping, units and axes.
     let clipping = scale_and_flag_clipping(&mut channels, spec, grid.n_out, &mut notes);
@@ -310,7 +356,7 @@ pub fn read_recording_bytes(
         format_detected: format.is_none(),
         delimiter: delim_name.to_string(),
         bom,
-        header_line: lines[found.index].0,
+        header_line: found.line,
         rows: n_rows,
         fs_hz: grid.fs,
         max_jitter_ms: grid.max_jitter_s * 1e3,

@@ -3,12 +3,13 @@
 //! A row with the wrong number of fields, a cell that is not a finite number or a magnitude
 //! beyond [`super::MAX_ABS_SIGNAL`] is refused with FILE:LINE[:COL].
 
+use std::io::BufRead;
 use std::path::Path;
 
 use super::columns::Columns;
 use super::format::{FormatSpec, TimeUnit};
-use super::reader::reserve;
-use super::text::{parse_number, split_fields, CellAt};
+use super::limits::reserve;
+use super::text::{parse_number, split_fields, CellAt, Lines};
 use super::timebase::parse_iso8601;
 use crate::error::{LdhError, Location, Result};
 
@@ -20,7 +21,53 @@ pub(super) struct Rows {
     /// acc x, y, z then gyro x, y, z, in the file's units before the format's scale.
     pub raw: [Vec<f64>; 6],
     /// The 1-based file line of each row.
-    pub row_lines: Vec<u64>,
+    pub row_lines: RowLines,
+}
+
+/// The 1-based file line of each row, stored as runs of consecutive lines (a few bytes for a
+/// whole file without comment or blank lines between its rows).
+#[derive(Debug, Default)]
+pub(super) struct RowLines {
+    /// (first row, its line) of each run.
+    runs: Vec<(usize, u64)>,
+    /// Rows.
+    n: usize,
+}
+
+impl RowLines {
+    /// Append the next row's line.
+    pub fn push(&mut self, line: u64) {
+        let follows = self
+            .runs
+            .last()
+            .is_some_and(|&(r, l)| l + (self.n - r) as u64 == line);
+        if !follows {
+            self.runs.push((self.n, line));
+        }
+        self.n += 1;
+    }
+
+    /// The line of row `i` (< [`Self::len`]).
+    pub fn get(&self, i: usize) -> u64 {
+        let k = self.runs.partition_point(|&(r, _)| r <= i) - 1;
+        let (r, l) = self.runs[k];
+        l + (i - r) as u64
+    }
+
+    /// Rows.
+    pub fn len(&self) -> usize {
+        self.n
+    }
+}
+
+impl FromIterator<u64> for RowLines {
+    fn from_iter<I: IntoIterator<Item = u64>>(iter: I) -> Self {
+        let mut r = RowLines::default();
+        for l in iter {
+            r.push(l);
+        }
+        r
+    }
 }
 
 /// Where and how to read the data rows: the header's fields, the delimiter and the columns.
@@ -37,71 +84,137 @@ pub(super) struct Layout<'a> {
     pub cols: Columns,
 }
 
-/// Parse the data rows `lines[first_data..]` (numbered lines, see
-/// [`super::text::numbered_lines`]); blank lines and comment lines are skipped. The column
-/// buffers are reserved fallibly from the number of lines.
-pub(super) fn parse_rows(
-    lines: &[(u64, &str)],
-    first_data: usize,
+/// An empty vector with `v`'s allocation, for borrows of another lifetime.
+fn recycle<'b>(mut v: Vec<&str>) -> Vec<&'b str> {
+    v.clear();
+    v.into_iter().map(|_| "").collect()
+}
+
+/// Parse the data rows: `first` (a row already read, for a file without a header row), then
+/// the lines left in `lines`; blank lines and comment lines are skipped. Only the format's
+/// columns are kept; the buffers grow fallibly. More than `max_rows` rows are refused
+/// ([`LdhError::TooManySamples`], the rows left counted without parsing them).
+pub(super) fn parse_rows<R: BufRead>(
+    lines: &mut Lines<R>,
+    first: Option<(u64, String)>,
     layout: &Layout,
+    max_rows: usize,
 ) -> Result<Rows> {
-    let (path, spec, delim) = (layout.path, layout.spec, layout.delim);
-    let expected = layout.header_fields.len();
     let mut rows = Rows {
         time_raw: Vec::new(),
         raw: Default::default(),
-        row_lines: Vec::new(),
+        row_lines: RowLines::default(),
     };
-    let n_rows = lines.len().saturating_sub(first_data);
-    reserve(&mut rows.time_raw, n_rows, path)?;
-    reserve(&mut rows.row_lines, n_rows, path)?;
-    for r in &mut rows.raw {
-        reserve(r, n_rows, path)?;
-    }
-    let mut fields: Vec<&str> = Vec::with_capacity(expected);
-    for &(lineno, line) in lines.iter().skip(first_data) {
-        let trimmed = line.trim();
-        if trimmed.is_empty()
-            || spec
-                .comment_prefixes
-                .iter()
-                .any(|p| trimmed.starts_with(p.as_str()))
-        {
-            continue;
+    let mut fields: Vec<&str> = Vec::with_capacity(layout.header_fields.len() + 1);
+    if let Some((lineno, line)) = &first {
+        if !parse_row(*lineno, line, &mut fields, &mut rows, layout, max_rows)? {
+            let line = line.clone();
+            return Err(field_count_error(lines, *lineno, &line, layout));
         }
-        split_fields(line, delim, &mut fields);
-        if fields.len() != expected {
-            // Tolerate one trailing empty field (a trailing delimiter).
-            let trailing_empty =
-                fields.len() == expected + 1 && fields.last().is_some_and(|f| f.is_empty());
-            if !trailing_empty {
-                return Err(field_count_error(lines, lineno, line, &fields, layout));
+    }
+    loop {
+        let mut f = recycle(fields);
+        let Some((lineno, line)) = lines.next_line()? else {
+            return Ok(rows);
+        };
+        match parse_row(lineno, line, &mut f, &mut rows, layout, max_rows) {
+            Ok(true) => {}
+            Ok(false) => {
+                let line = line.to_string();
+                return Err(field_count_error(lines, lineno, &line, layout));
             }
+            Err(LdhError::TooManySamples { path, limit, .. }) => {
+                let left = lines.count_rows_left(&layout.spec.comment_prefixes)?;
+                return Err(LdhError::TooManySamples {
+                    path,
+                    rows: limit as u64 + 1 + left,
+                    limit,
+                });
+            }
+            Err(e) => return Err(e),
         }
-        if let Some(tc) = layout.cols.time {
-            rows.time_raw
-                .push(parse_time_cell(fields[tc], lineno, tc, layout)?);
-        }
-        let signal_cols = layout.cols.acc.iter().chain(layout.cols.gyro.iter());
-        for (k, &c) in signal_cols.enumerate() {
-            let v = parse_signal_cell(fields[c], lineno, c, layout)?;
-            rows.raw[k].push(v);
-        }
-        rows.row_lines.push(lineno);
+        fields = recycle(f);
     }
-    Ok(rows)
 }
 
-/// The [`LdhError::FieldCount`] of row `lineno` (its `fields` split from `line`), with a hint
-/// when the cause is likely: decimal commas in a comma-separated file, or a truncated last line.
-fn field_count_error(
-    lines: &[(u64, &str)],
+/// Parse one line into `rows` (`fields`: a reused buffer). `Ok(false)`: the line has the wrong
+/// number of fields (one trailing empty field, a trailing delimiter, is tolerated).
+fn parse_row<'l>(
+    lineno: u64,
+    line: &'l str,
+    fields: &mut Vec<&'l str>,
+    rows: &mut Rows,
+    layout: &Layout,
+    max_rows: usize,
+) -> Result<bool> {
+    let trimmed = line.trim();
+    if trimmed.is_empty()
+        || layout
+            .spec
+            .comment_prefixes
+            .iter()
+            .any(|p| trimmed.starts_with(p.as_str()))
+    {
+        return Ok(true);
+    }
+    split_fields(line, layout.delim, fields);
+    let expected = layout.header_fields.len();
+    if fields.len() != expected {
+        let trailing_empty =
+            fields.len() == expected + 1 && fields.last().is_some_and(|f| f.is_empty());
+        if !trailing_empty {
+            return Ok(false);
+        }
+    }
+    let n = rows.row_lines.len();
+    if n >= max_rows {
+        return Err(LdhError::TooManySamples {
+            path: layout.path.to_path_buf(),
+            rows: n as u64 + 1,
+            limit: max_rows,
+        });
+    }
+    if n == rows.raw[0].capacity() {
+        grow(rows, layout)?;
+    }
+    if let Some(tc) = layout.cols.time {
+        rows.time_raw
+            .push(parse_time_cell(fields[tc], lineno, tc, layout)?);
+    }
+    let signal_cols = layout.cols.acc.iter().chain(layout.cols.gyro.iter());
+    for (k, &c) in signal_cols.enumerate() {
+        let v = parse_signal_cell(fields[c], lineno, c, layout)?;
+        rows.raw[k].push(v);
+    }
+    rows.row_lines.push(lineno);
+    Ok(true)
+}
+
+/// Double the room of every column (at least 4096 rows), fallibly: a file too large for the
+/// memory is this file's [`LdhError::OutOfMemory`], not an abort.
+fn grow(rows: &mut Rows, layout: &Layout) -> Result<()> {
+    let more = rows.raw[0].capacity().max(4096);
+    if layout.cols.time.is_some() {
+        reserve(&mut rows.time_raw, more, layout.path)?;
+    }
+    for r in &mut rows.raw {
+        reserve(r, more, layout.path)?;
+    }
+    Ok(())
+}
+
+/// The [`LdhError::FieldCount`] of row `lineno` (`line`), with a hint when the cause is
+/// likely: decimal commas in a comma-separated file, or a truncated last line (the lines left
+/// in `lines` are read to know).
+fn field_count_error<R: BufRead>(
+    lines: &mut Lines<R>,
     lineno: u64,
     line: &str,
-    fields: &[&str],
     layout: &Layout,
 ) -> LdhError {
     let expected = layout.header_fields.len();
+    let mut fields = Vec::new();
+    split_fields(line, layout.delim, &mut fields);
     // Decimal commas in a comma-separated file double the fields.
     let hint = if layout.delim == b','
         && fields.len() > expected
@@ -109,13 +222,7 @@ fn field_count_error(
         && fields.iter().all(|f| f.parse::<f64>().is_ok())
     {
         "; the row has no '.' but more commas than the header: decimal commas in a comma-separated file? Export with '.' as decimal separator or ';' as delimiter".to_string()
-    } else if fields.len() < expected
-        && lines
-            .iter()
-            .rev()
-            .find(|(_, l)| !l.trim().is_empty())
-            .is_some_and(|(n, _)| *n == lineno)
-    {
+    } else if fields.len() < expected && lines.rest_is_blank().unwrap_or(false) {
         "; it is the last line: the file looks truncated (an interrupted export or copy?)"
             .to_string()
     } else {

@@ -1,48 +1,203 @@
-//! The reader's text layer (SPEC §2): bytes to numbered lines, lines to fields, cells to
-//! numbers. Empty, binary, UTF-16 and non-UTF-8 content is refused here with the file and the
-//! byte offset or line; a cell that is not a number with its line and column.
+//! The reader's text layer (SPEC §2): a byte stream to numbered lines, read one at a time
+//! ([`Lines`]), lines to fields, cells to numbers. Empty, binary, UTF-16 and non-UTF-8 content
+//! is refused here with the file and the line and byte offset; a NUL byte anywhere with its
+//! line; a cell that is not a number with its line and column.
+//!
+//! Streaming: only the current line is held, so reading takes memory for the columns kept, not
+//! for the file. The first 64 KiB are checked as a whole before any line is parsed (binary
+//! bytes, UTF-16, UTF-8): in a small file a text-level fault is reported before any other, as
+//! when the whole file was decoded first; further on, the first fault in file order is.
 
+use std::io::{BufRead, Read};
 use std::path::Path;
 
 use super::format::Decimal;
-use super::reader::reserve;
 use crate::error::{LdhError, Location, Result};
 
-/// Refuse empty, binary and non-UTF-8 content; strip a BOM.
-pub(super) fn decode_text<'a>(bytes: &'a [u8], path: &Path) -> Result<&'a str> {
-    if bytes.is_empty() {
+/// Bytes checked as a whole before parsing: binary bytes, UTF-16 and UTF-8 validity.
+const HEAD_BYTES: usize = 1 << 16;
+
+/// The lines of a byte stream, numbered from 1, read one at a time: a trailing `\n`, `\r\n`
+/// and one more `\r` removed, a NUL byte and invalid UTF-8 refused with the line, a UTF-8
+/// byte-order mark skipped, and the bytes counted against the file-size limit.
+pub(super) struct Lines<'p, R> {
+    src: std::io::Chain<std::io::Cursor<Vec<u8>>, R>,
+    buf: Vec<u8>,
+    path: &'p Path,
+    /// Number of the line in `buf` (0 before the first).
+    lineno: u64,
+    /// Bytes consumed, BOM included (the file offset of the next line).
+    offset: u64,
+    /// The size limit in bytes and in MB as given (for [`LdhError::FileTooLarge`]).
+    limit: Option<(u64, f64)>,
+    /// A UTF-8 byte-order mark was found.
+    pub bom: bool,
+}
+
+impl<'p, R: BufRead> Lines<'p, R> {
+    /// Start reading `src` (the content of `path`): the first 64 KiB are read and checked —
+    /// empty, UTF-16, binary bytes, invalid UTF-8 — and a BOM is skipped. `limit_mb`: refuse
+    /// the content once it exceeds this many MB (10^6 bytes).
+    pub fn new(mut src: R, path: &'p Path, limit_mb: Option<f64>) -> Result<Self> {
+        let io = |source| LdhError::Io {
+            path: path.to_path_buf(),
+            source,
+        };
+        let mut head = Vec::new();
+        (&mut src)
+            .take(HEAD_BYTES as u64 + 3)
+            .read_to_end(&mut head)
+            .map_err(io)?;
+        let more = !src.fill_buf().map_err(io)?.is_empty();
+        check_head(&head, more, path)?;
+        let bom = head.starts_with(&[0xEF, 0xBB, 0xBF]);
+        let mut cursor = std::io::Cursor::new(head);
+        if bom {
+            cursor.set_position(3);
+        }
+        Ok(Lines {
+            src: cursor.chain(src),
+            buf: Vec::new(),
+            path,
+            lineno: 0,
+            offset: if bom { 3 } else { 0 },
+            limit: limit_mb.map(|mb| ((mb * 1e6) as u64, mb)),
+            bom,
+        })
+    }
+
+    /// The raw bytes of the next line, newline included (empty at the end); counted.
+    fn next_raw(&mut self) -> Result<u64> {
+        self.buf.clear();
+        let n = self
+            .src
+            .read_until(b'\n', &mut self.buf)
+            .map_err(|source| LdhError::Io {
+                path: self.path.to_path_buf(),
+                source,
+            })?;
+        let start = self.offset;
+        self.offset += n as u64;
+        if let Some((limit, limit_mb)) = self.limit {
+            if self.offset > limit {
+                return Err(LdhError::FileTooLarge {
+                    path: self.path.to_path_buf(),
+                    size_mb: self.offset as f64 / 1e6,
+                    limit_mb,
+                });
+            }
+        }
+        if n > 0 {
+            self.lineno += 1;
+        }
+        Ok(start)
+    }
+
+    /// The next line (1-based number, text without its line ending), `None` at the end.
+    pub fn next_line(&mut self) -> Result<Option<(u64, &str)>> {
+        let start = self.next_raw()?;
+        if self.buf.is_empty() {
+            return Ok(None);
+        }
+        // `contains` on bytes is a memchr; the position only when there is one.
+        if let Some(p) = self
+            .buf
+            .contains(&0)
+            .then(|| self.buf.iter().position(|&b| b == 0))
+            .flatten()
+        {
+            return Err(LdhError::Binary {
+                loc: Location::line(self.path, self.lineno),
+                offset: start + p as u64,
+                byte: 0,
+            });
+        }
+        let mut line = &self.buf[..];
+        if let Some(l) = line.strip_suffix(b"\n") {
+            line = l.strip_suffix(b"\r").unwrap_or(l);
+        }
+        line = line.strip_suffix(b"\r").unwrap_or(line);
+        match std::str::from_utf8(line) {
+            Ok(s) => Ok(Some((self.lineno, s))),
+            Err(e) => Err(LdhError::NotUtf8 {
+                loc: Location::line(self.path, self.lineno),
+                offset: start + e.valid_up_to() as u64,
+            }),
+        }
+    }
+
+    /// Whether every line left is blank (whitespace only); reads them all.
+    pub fn rest_is_blank(&mut self) -> Result<bool> {
+        loop {
+            self.next_raw()?;
+            if self.buf.is_empty() {
+                return Ok(true);
+            }
+            if !String::from_utf8_lossy(&self.buf).trim().is_empty() {
+                return Ok(false);
+            }
+        }
+    }
+
+    /// The number of lines left that are neither blank nor start (after blanks) with one of
+    /// `comment_prefixes`: the data rows left, counted without parsing them.
+    pub fn count_rows_left(&mut self, comment_prefixes: &[String]) -> Result<u64> {
+        let mut n = 0;
+        loop {
+            self.next_raw()?;
+            if self.buf.is_empty() {
+                return Ok(n);
+            }
+            let t = self.buf.trim_ascii();
+            if !t.is_empty() && !comment_prefixes.iter().any(|p| t.starts_with(p.as_bytes())) {
+                n += 1;
+            }
+        }
+    }
+}
+
+/// Refuse empty, UTF-16, binary and non-UTF-8 content in the first bytes of a file (`head`, up
+/// to 64 KiB after a BOM; `more`: the file goes on), with the line and byte offset.
+fn check_head(head: &[u8], more: bool, path: &Path) -> Result<()> {
+    if head.is_empty() {
         return Err(LdhError::EmptyFile {
             path: path.to_path_buf(),
         });
     }
-    let body = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]).unwrap_or(bytes);
+    let body = head.strip_prefix(&[0xEF, 0xBB, 0xBF]).unwrap_or(head);
+    let bom_len = (head.len() - body.len()) as u64;
+    let more = more || body.len() > HEAD_BYTES;
+    let body = &body[..body.len().min(HEAD_BYTES)];
     // UTF-16 (byte-order mark, or every other byte zero in the first line's ASCII text): a
     // common export mistake, named as such rather than as a binary file.
-    if let Some(big_endian) = utf16_order(bytes) {
+    if let Some(big_endian) = utf16_order(head) {
         return Err(LdhError::Utf16 {
             path: path.to_path_buf(),
             big_endian,
         });
     }
+    let line_at = |off: usize| body[..off].iter().filter(|&&b| b == b'\n').count() as u64 + 1;
     if let Some(off) = body
         .iter()
-        .take(1 << 16)
         .position(|&b| b == 0 || (b < 0x09) || (0x0E..0x20).contains(&b) && b != 0x1B)
     {
         return Err(LdhError::Binary {
-            path: path.to_path_buf(),
-            offset: off as u64 + (bytes.len() - body.len()) as u64,
+            loc: Location::line(path, line_at(off)),
+            offset: off as u64 + bom_len,
             byte: body[off],
         });
     }
-    std::str::from_utf8(body).map_err(|e| {
-        let off = e.valid_up_to();
-        let line = body[..off].iter().filter(|&&b| b == b'\n').count() as u64 + 1;
-        LdhError::NotUtf8 {
-            loc: Location::line(path, line),
-            offset: off as u64 + (bytes.len() - body.len()) as u64,
+    match std::str::from_utf8(body) {
+        // A character cut by the end of the head is checked with its line.
+        Err(e) if !(more && e.error_len().is_none()) => {
+            let off = e.valid_up_to();
+            Err(LdhError::NotUtf8 {
+                loc: Location::line(path, line_at(off)),
+                offset: off as u64 + bom_len,
+            })
         }
-    })
+        _ => Ok(()),
+    }
 }
 
 /// `Some(big_endian)` when `bytes` look like UTF-16: a byte-order mark, or (without one) the
@@ -67,31 +222,6 @@ fn utf16_order(bytes: &[u8]) -> Option<bool> {
     } else {
         None
     }
-}
-
-/// Number of lines of `bytes` (newlines, plus one for a last line without one).
-fn bytecount_lines(bytes: &[u8]) -> usize {
-    bytes.iter().filter(|&&b| b == b'\n').count() + usize::from(!bytes.ends_with(b"\n"))
-}
-
-/// The lines of `text` (decoded from `bytes`) with their 1-based numbers, a trailing `\r`
-/// removed. Borrowed from `text`, no copy. The buffer, sized from the input, is reserved
-/// fallibly: a file too large for the memory is this file's [`LdhError::OutOfMemory`], not an
-/// abort.
-pub(super) fn numbered_lines<'a>(
-    bytes: &[u8],
-    text: &'a str,
-    path: &Path,
-) -> Result<Vec<(u64, &'a str)>> {
-    let n_lines = bytecount_lines(bytes);
-    let mut lines: Vec<(u64, &str)> = Vec::new();
-    reserve(&mut lines, n_lines, path)?;
-    lines.extend(
-        text.lines()
-            .enumerate()
-            .map(|(i, l)| (i as u64 + 1, l.strip_suffix('\r').unwrap_or(l))),
-    );
-    Ok(lines)
 }
 
 /// The most frequent of `,` `;` tab in a header line (ties: tab, `;`, `,`).
@@ -148,10 +278,21 @@ pub(super) struct CellAt<'a> {
 /// Inf/NaN ([`LdhError::NonFinite`]) and text ([`LdhError::NotANumber`], with a hint for an
 /// empty cell or a decimal comma when `delim` is not a comma).
 pub(super) fn parse_number(cell: &str, decimal: Decimal, delim: u8, at: &CellAt) -> Result<f64> {
+    // A decimal comma becomes a point in a stack buffer (no allocation per cell).
+    let mut buf = [0u8; 64];
     let owned;
-    let s = if decimal == Decimal::Comma {
-        owned = cell.replace(',', ".");
-        owned.as_str()
+    let s = if decimal == Decimal::Comma && cell.contains(',') {
+        if cell.len() <= buf.len() {
+            let b = &mut buf[..cell.len()];
+            for (o, &c) in b.iter_mut().zip(cell.as_bytes()) {
+                *o = if c == b',' { b'.' } else { c };
+            }
+            // ASCII replaced by ASCII: still UTF-8.
+            std::str::from_utf8(b).unwrap_or(cell)
+        } else {
+            owned = cell.replace(',', ".");
+            owned.as_str()
+        }
     } else {
         cell
     };

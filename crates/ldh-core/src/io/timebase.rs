@@ -12,6 +12,7 @@ use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 use super::format::{FormatSpec, TimeUnit};
+use super::rows::RowLines;
 use crate::error::{LdhError, Location, Result};
 
 /// A gap found in the timestamps.
@@ -91,14 +92,14 @@ pub(super) fn times_in_seconds(
 /// time column (`time_col`, 0-based; column 1 without one).
 pub(super) fn check_monotonic(
     times: &[f64],
-    row_lines: &[u64],
+    row_lines: &RowLines,
     time_col: Option<usize>,
     path: &Path,
 ) -> Result<()> {
     for i in 1..times.len() {
         if times[i] <= times[i - 1] {
             return Err(LdhError::NonMonotonicTime {
-                loc: Location::cell(path, row_lines[i], time_col.map_or(1, |c| c + 1)),
+                loc: Location::cell(path, row_lines.get(i), time_col.map_or(1, |c| c + 1)),
                 value: times[i],
                 previous: times[i - 1],
             });
@@ -118,14 +119,14 @@ pub(super) fn check_median_rate(
 ) -> Result<()> {
     if times.len() >= 3 {
         let mut dts: Vec<f64> = times.windows(2).map(|w| w[1] - w[0]).collect();
-        dts.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
-        let rate = 1.0 / dts[dts.len() / 2];
+        let median_dt = median_of(&mut dts);
+        let rate = 1.0 / median_dt;
         if !bounds.contains(rate) {
             return Err(LdhError::SamplingRate {
                 path: path.to_path_buf(),
                 reason: format!(
                     "the median interval between timestamps is {:.6} s ({rate:.3} Hz), outside the plausible {}–{} Hz; check the time unit ({:?} declared: milliseconds written as seconds?)",
-                    dts[dts.len() / 2],
+                    median_dt,
                     bounds.min_hz,
                     bounds.max_hz,
                     unit
@@ -134,6 +135,16 @@ pub(super) fn check_median_rate(
         }
     }
     Ok(())
+}
+
+/// The element at `v.len() / 2` of `v` sorted (the upper median), in linear time; `v` is
+/// reordered. The values are finite: the same number as after a full sort.
+pub(super) fn median_of(v: &mut [f64]) -> f64 {
+    let k = v.len() / 2;
+    *v.select_nth_unstable_by(k, |a, b| {
+        a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal)
+    })
+    .1
 }
 
 /// The recording split at gaps: the kept segment (rows `start..end`) and what was not kept.
@@ -154,7 +165,7 @@ pub(super) struct Segments {
 /// dropped. With `reject_gaps`, the first such gap is an [`LdhError::Gap`] instead.
 pub(super) fn split_at_gaps(
     times: &[f64],
-    row_lines: &[u64],
+    row_lines: &RowLines,
     max_gap_s: f64,
     reject_gaps: bool,
     path: &Path,
@@ -167,7 +178,7 @@ pub(super) fn split_at_gaps(
         if dt > max_gap_s {
             if reject_gaps {
                 return Err(LdhError::Gap {
-                    loc: Location::line(path, row_lines[i]),
+                    loc: Location::line(path, row_lines.get(i)),
                     gap_s: dt,
                     from_s: times[i - 1],
                     max_gap_s,
@@ -176,7 +187,7 @@ pub(super) fn split_at_gaps(
             gaps.push(GapInfo {
                 from_s: times[i - 1],
                 gap_s: dt,
-                line: row_lines[i],
+                line: row_lines.get(i),
             });
             cuts.push(i);
         }
@@ -252,8 +263,7 @@ fn rate_and_index(seg_t: &[f64], spec: &FormatSpec) -> (f64, Vec<f64>) {
         }
         _ => {
             let mut dts: Vec<f64> = seg_t.windows(2).map(|w| w[1] - w[0]).collect();
-            dts.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
-            let median_dt = dts[dts.len() / 2];
+            let median_dt = median_of(&mut dts);
             let mut index = Vec::with_capacity(n_seg);
             let mut k = 0.0;
             index.push(0.0);
@@ -326,26 +336,29 @@ pub(super) fn fit_grid(
     })
 }
 
-/// The six channels' segment (`raw[k][seg]`, timestamps `seg_t`) on the grid: copied when the
-/// grid is uniform, otherwise resampled at `t0 + i / fs` by linear interpolation (noted).
+/// The six channels' segment (`raw[k][seg]`, timestamps `seg_t`; `raw` consumed) on the grid:
+/// kept in place when the grid is uniform, otherwise resampled at `t0 + i / fs` by linear
+/// interpolation (noted), one channel at a time (memory: one channel more than `raw`).
 pub(super) fn place_on_grid(
-    raw: &[Vec<f64>; 6],
+    raw: [Vec<f64>; 6],
     seg: std::ops::Range<usize>,
     seg_t: &[f64],
     grid: &Grid,
     notes: &mut Vec<String>,
 ) -> [Vec<f64>; 6] {
-    let mut channels: [Vec<f64>; 6] = Default::default();
+    let mut channels = raw;
     if grid.uniform {
-        for k in 0..6 {
-            channels[k] = raw[k][seg.clone()].to_vec();
+        for ch in &mut channels {
+            ch.truncate(seg.end);
+            ch.drain(..seg.start);
         }
     } else {
         let grid_t: Vec<f64> = (0..grid.n_out)
             .map(|i| grid.t0 + i as f64 / grid.fs)
             .collect();
-        for k in 0..6 {
-            channels[k] = interp_linear(seg_t, &raw[k][seg.clone()], &grid_t);
+        for ch in &mut channels {
+            let placed = interp_linear(seg_t, &ch[seg.clone()], &grid_t);
+            *ch = placed;
         }
         notes.push(format!(
             "timestamps not uniform (max deviation {:.2} ms): resampled to {:.3} Hz by linear interpolation",
@@ -449,9 +462,15 @@ mod tests {
 
     #[test]
     fn repeated_time_and_a_millisecond_clock_are_refused() {
-        let e = check_monotonic(&[0.0, 0.01, 0.01], &[2, 3, 4], Some(0), path()).unwrap_err();
+        let e = check_monotonic(
+            &[0.0, 0.01, 0.01],
+            &[2, 3, 5].into_iter().collect(),
+            Some(0),
+            path(),
+        )
+        .unwrap_err();
         assert!(matches!(e, LdhError::NonMonotonicTime { .. }), "{e}");
-        assert!(e.to_string().starts_with("t.csv:4:1"), "{e}");
+        assert!(e.to_string().starts_with("t.csv:5:1"), "{e}");
         let ms: Vec<f64> = (0..10).map(|i| i as f64 * 10.0).collect();
         let e = check_median_rate(&ms, BOUNDS, TimeUnit::Seconds, path()).unwrap_err();
         assert!(
@@ -468,7 +487,7 @@ mod tests {
         let mut t: Vec<f64> = (0..=100).map(|i| i as f64 / 100.0).collect();
         t.extend((0..=200).map(|i| 1.5 + i as f64 / 100.0));
         t.extend((0..=50).map(|i| 3.8 + i as f64 / 100.0));
-        let lines: Vec<u64> = (2..).take(t.len()).collect();
+        let lines: RowLines = (2..).take(t.len()).collect();
         let mut warnings = Vec::new();
         let s = split_at_gaps(&t, &lines, 0.2, false, path(), &mut warnings).unwrap();
         assert_eq!((s.start, s.end), (101, 302));
@@ -502,7 +521,7 @@ mod tests {
         assert!((g.fs - fs).abs() < 1e-9 && !g.uniform && g.n_out == 500);
         let raw: [Vec<f64>; 6] = std::array::from_fn(|k| t.iter().map(|x| k as f64 * x).collect());
         let mut notes = Vec::new();
-        let ch = place_on_grid(&raw, 0..t.len(), &t, &g, &mut notes);
+        let ch = place_on_grid(raw, 0..t.len(), &t, &g, &mut notes);
         assert_eq!(ch[3].len(), 500);
         for (i, v) in ch[3].iter().enumerate() {
             let ti = g.t0 + i as f64 / g.fs;

@@ -6,7 +6,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
-use crate::cohort::{value, Cohort, PARAMETERS};
+use crate::cohort::{Cohort, Parameter};
 use crate::error::{LdhError, Result};
 use crate::output::RecordingRow;
 
@@ -78,7 +78,7 @@ pub struct Dataset {
 
 /// The default features: the 13 parameters of Table 3 by their columns.
 pub fn default_features() -> Vec<String> {
-    PARAMETERS.iter().map(|p| p.column.to_string()).collect()
+    Parameter::columns().into_iter().map(String::from).collect()
 }
 
 impl Dataset {
@@ -89,15 +89,11 @@ impl Dataset {
         task: Task,
         features: &[String],
     ) -> Result<Dataset> {
-        for f in features {
-            if !PARAMETERS.iter().any(|p| p.column == f) {
-                return Err(LdhError::param(
-                    "features",
-                    f,
-                    format!("unknown feature; known: {}", default_features().join(", ")),
-                ));
-            }
-        }
+        // The names become parameters here, once.
+        let features: Vec<Parameter> = features
+            .iter()
+            .map(|f| Parameter::from_column(f))
+            .collect::<std::result::Result<_, _>>()?;
         let cohort = Cohort::from_rows(rows)?;
         let mut x: Vec<Vec<f64>> = Vec::new();
         let (mut y, mut groups, mut ids, mut dropped) = (vec![], vec![], vec![], vec![]);
@@ -112,7 +108,7 @@ impl Dataset {
             None => dropped.push(format!("{subject}/{what}: a feature is missing")),
         };
         let get = |r: &RecordingRow| -> Option<Vec<f64>> {
-            features.iter().map(|f| value(r, f)).collect()
+            features.iter().map(|&p| r.value(p)).collect()
         };
         for s in &cohort.ldh {
             if task == Task::ThreeClass {
@@ -144,7 +140,7 @@ impl Dataset {
             .map_err(|e| LdhError::signal("dataset", e.to_string()))?;
         let ds = Dataset {
             task,
-            feature_names: features.to_vec(),
+            feature_names: features.iter().map(|p| p.column().to_string()).collect(),
             class_names: task.class_names(),
             x,
             y,

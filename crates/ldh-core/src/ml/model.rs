@@ -15,6 +15,7 @@ use super::mlp::{Mlp, MlpParams};
 pub use super::model_check::ModelError;
 use super::svm::{SvmModel, SvmParams};
 use crate::error::{LdhError, Result};
+use crate::output::Parameter;
 use serde_json::Value;
 
 /// Version tag of the model file (2: with a checksum, validated on load).
@@ -324,7 +325,10 @@ impl ModelFile {
     /// class and a note naming what is missing (the STA status when STA is the missing one);
     /// rows of another attitude model are an error for the whole call.
     pub fn predict_rows(&self, rows: &[crate::output::RecordingRow]) -> Result<Vec<Prediction>> {
-        if let Some(r) = rows.iter().find(|r| r.model != self.attitude_model) {
+        if let Some(r) = rows
+            .iter()
+            .find(|r| r.model.as_str() != self.attitude_model)
+        {
             return Err(LdhError::param(
                 "model",
                 &r.model,
@@ -334,16 +338,19 @@ impl ModelFile {
                 ),
             ));
         }
+        // The model file's feature names become parameters here, once: a model trained on
+        // other columns (arrays from Python) cannot classify per-recording rows.
+        let features: Vec<Parameter> = self
+            .feature_names
+            .iter()
+            .map(|f| Parameter::from_column(f))
+            .collect::<std::result::Result<_, _>>()?;
         let mut out = Vec::with_capacity(rows.len());
         for r in rows {
-            let vals: Option<Vec<f64>> = self
-                .feature_names
-                .iter()
-                .map(|f| crate::cohort::value(r, f))
-                .collect();
+            let vals: Option<Vec<f64>> = features.iter().map(|&f| r.value(f)).collect();
             let mut p = Prediction {
                 subject_id: r.subject_id.clone(),
-                side: r.side.clone(),
+                side: r.side.to_string(),
                 predicted_class: None,
                 probabilities: None,
                 note: String::new(),
@@ -359,12 +366,12 @@ impl ModelFile {
                         p.note = "no probabilities for this model".into();
                     }
                 }
-                _ if r.status != "ok" => p.note = r.error.clone(),
+                _ if !r.is_ok() => p.note = r.error.clone(),
                 _ => {
-                    let missing: Vec<&String> = self
-                        .feature_names
+                    let missing: Vec<&str> = features
                         .iter()
-                        .filter(|f| crate::cohort::value(r, f).is_none())
+                        .filter(|&&f| r.value(f).is_none())
+                        .map(|f| f.column())
                         .collect();
                     let sta = if r.sta_status.is_empty() {
                         String::new()

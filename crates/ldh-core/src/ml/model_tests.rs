@@ -252,3 +252,15 @@ fn class_and_scaler_tampering_is_refused() {
     m.scaling.min[0] = f64::NAN;
     assert!(super::model_check::validate(&m, "mem").is_err());
 }
+
+#[test]
+fn feature_names_become_parameters_once_with_a_typed_error() {
+    let (mut m, _, _) = trained("rf");
+    assert!(m.predict_rows(&[]).unwrap().is_empty(), "the 13 columns");
+    m.feature_names[3] = "height_cm".into();
+    let e = m.predict_rows(&[]).unwrap_err().to_string();
+    assert!(
+        e.contains("height_cm") && e.contains("unknown feature"),
+        "{e}"
+    );
+}

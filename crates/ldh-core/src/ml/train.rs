@@ -98,7 +98,10 @@ pub struct TrainOutcome {
 pub fn train(rows: &[RecordingRow], p: &TrainParams) -> Result<TrainOutcome> {
     let features = p.features.clone().unwrap_or_else(dataset::default_features);
     let ds = Dataset::from_recordings(rows, p.task, &features)?;
-    let attitude_model = rows.first().map(|r| r.model.clone()).unwrap_or_default();
+    let attitude_model = rows
+        .first()
+        .map(|r| r.model.to_string())
+        .unwrap_or_default();
     let clfs: Vec<Classifier> = p.classifiers.iter().map(|c| c.classifier(p.seed)).collect();
     let mut reports = Vec::new();
     for kind in [CvKind::Grouped, CvKind::Stratified] {

@@ -367,23 +367,7 @@ pub(crate) fn rosenstein_core(
     let m = orbit.len() / dim;
     let ntraj = m + 1 - trajectory_len;
     let nb = nearest_outside_window(&orbit[..ntraj * dim], dim, min_tsep);
-    let row = |i: usize| &orbit[i * dim..(i + 1) * dim];
-    let div: Vec<f64> = (0..trajectory_len)
-        .into_par_iter()
-        .map(|k| {
-            let logs: Vec<f64> = (0..ntraj)
-                .filter_map(|i| {
-                    let d = np_euclidean(row(i + k), row(nb[i] + k));
-                    (d != 0.0).then(|| d.ln())
-                })
-                .collect();
-            if logs.is_empty() {
-                f64::NEG_INFINITY
-            } else {
-                np_sum(&logs) / logs.len() as f64
-            }
-        })
-        .collect();
+    let div = divergence(orbit, dim, &nb, trajectory_len);
     let (ks, divergence): (Vec<usize>, Vec<f64>) = div
         .iter()
         .enumerate()
@@ -410,6 +394,63 @@ pub(crate) fn rosenstein_core(
         slope,
         intercept,
     })
+}
+
+/// Rows at or above which the log distances of one step are computed in parallel.
+const PAR_ROWS: usize = 1 << 14;
+
+/// The mean log divergence `div[k]` (k = 0..trajectory_len) of the pairs (i + k, nb[i] + k):
+/// the mean over i of ln ‖row(i + k) − row(nb[i] + k)‖, pairs at distance 0 left out (−∞ when
+/// every pair is), summed in numpy's order over i as nolds does.
+///
+/// On a continuous trajectory the neighbour of row i + 1 is usually the neighbour of row i
+/// shifted by one (nb[i + 1] = nb[i] + 1); then pair (i + 1, k) is pair (i, k + 1), and its
+/// distance and logarithm (the bulk of the cost) are taken from step k + 1 instead of being
+/// computed again. Steps run from the last to the first so that step k + 1 is at hand; the
+/// values, and the order in which they are summed, are those of the direct computation.
+fn divergence(orbit: &[f64], dim: usize, nb: &[usize], trajectory_len: usize) -> Vec<f64> {
+    let ntraj = nb.len();
+    let row = |i: usize| &orbit[i * dim..(i + 1) * dim];
+    let log_dist = |a: usize, b: usize| {
+        let d = np_euclidean(row(a), row(b));
+        // ln d is finite for every d > 0; −∞ marks a pair left out
+        if d == 0.0 {
+            f64::NEG_INFINITY
+        } else {
+            d.ln()
+        }
+    };
+    let shifted: Vec<bool> = (0..ntraj)
+        .map(|i| i > 0 && nb[i] == nb[i - 1] + 1)
+        .collect();
+    let mut cur = vec![0.0; ntraj];
+    let mut next = vec![0.0; ntraj];
+    let mut logs = Vec::with_capacity(ntraj);
+    let mut div = vec![0.0; trajectory_len];
+    for k in (0..trajectory_len).rev() {
+        let reuse = k + 1 < trajectory_len;
+        let fill = |i: usize, v: &mut f64| {
+            *v = if reuse && shifted[i] {
+                next[i - 1]
+            } else {
+                log_dist(i + k, nb[i] + k)
+            };
+        };
+        if ntraj >= PAR_ROWS {
+            cur.par_iter_mut().enumerate().for_each(|(i, v)| fill(i, v));
+        } else {
+            cur.iter_mut().enumerate().for_each(|(i, v)| fill(i, v));
+        }
+        logs.clear();
+        logs.extend(cur.iter().copied().filter(|v| *v != f64::NEG_INFINITY));
+        div[k] = if logs.is_empty() {
+            f64::NEG_INFINITY
+        } else {
+            np_sum(&logs) / logs.len() as f64
+        };
+        std::mem::swap(&mut cur, &mut next);
+    }
+    div
 }
 
 /// Ordinary least-squares line `y ≈ slope·x + intercept` (same solution as

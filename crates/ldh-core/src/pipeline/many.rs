@@ -128,11 +128,11 @@ pub fn analyze_to_folder(
             events.push(&t.events)?;
             recordings.push(&t.recordings)?;
             sum.recordings += t.recordings.len();
-            sum.failed += t.recordings.iter().filter(|r| r.status != "ok").count();
+            sum.failed += t.recordings.iter().filter(|r| !r.is_ok()).count();
             sum.flagged.extend(
                 t.recordings
                     .into_iter()
-                    .filter(|r| r.status != "ok" || !r.warnings.is_empty()),
+                    .filter(|r| !r.is_ok() || !r.warnings.is_empty()),
             );
             sum.timings.write_s += clock.elapsed().as_secs_f64();
         }
@@ -153,7 +153,7 @@ impl FolderSummary {
     }
     /// Recordings whose analysis failed, in output order.
     pub fn failures(&self) -> impl Iterator<Item = &RecordingRow> {
-        self.flagged.iter().filter(|r| r.status != "ok")
+        self.flagged.iter().filter(|r| !r.is_ok())
     }
 }
 

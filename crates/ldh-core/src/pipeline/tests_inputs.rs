@@ -56,10 +56,10 @@ fn manifest_columns_quoting_formats_settings_and_groups() {
         &crate::io::ReadParams::default().check().unwrap(),
     );
     let rows = crate::output::recording_rows(&[r]);
-    assert_eq!(rows[0].group, "stroke");
-    assert_eq!(rows[0].affected_side, "");
-    assert_eq!(rows[0].side_role, "");
-    assert_eq!(rows[0].setting, "overground");
+    assert_eq!(rows[0].group, Some(GroupLabel::Other("stroke".into())));
+    assert_eq!(rows[0].affected_side, None);
+    assert_eq!(rows[0].side_role, None);
+    assert_eq!(rows[0].setting, Some(Setting::Overground.into()));
     let opts = InputOptions {
         setting: Some(Setting::Treadmill),
         ..InputOptions::default()
@@ -216,9 +216,9 @@ fn cohort_rows(n: usize, trials: usize) -> Vec<RecordingRow> {
                         "clipped_samples": 0, "trial_id": format!("t{t}")
                     }))
                     .unwrap();
-                    for (k, p) in crate::cohort::PARAMETERS.iter().enumerate() {
+                    for (k, p) in crate::cohort::PARAMETERS.into_iter().enumerate() {
                         let x = v * (1.0 + k as f64 * 0.1) + ((i * 7 + k) % 5) as f64 * 0.01;
-                        set(&mut r, p.column, x);
+                        r.set_value(p, Some(x));
                     }
                     out.push(r);
                 }
@@ -228,15 +228,9 @@ fn cohort_rows(n: usize, trials: usize) -> Vec<RecordingRow> {
     out
 }
 
-fn set(r: &mut RecordingRow, column: &str, x: f64) {
-    let mut j = serde_json::to_value(&*r).unwrap();
-    j[column] = serde_json::json!(x);
-    *r = serde_json::from_value(j).unwrap();
-}
-
 #[test]
 fn statistics_and_cv_count_each_person_once_whatever_the_trials() {
-    use crate::cohort::{table3, value, Cohort};
+    use crate::cohort::{table3, Cohort, Parameter};
     use crate::ml::{cross_validate, Classifier, CvParams, Dataset, Task};
     let one = cohort_rows(6, 1);
     let two = cohort_rows(6, 2);
@@ -250,8 +244,8 @@ fn statistics_and_cv_count_each_person_once_whatever_the_trials() {
     // The person's value is the mean of the two trials.
     for (a, b) in c1.healthy.iter().zip(&c2.healthy) {
         let (x1, x2) = (
-            value(&a.a, "stride_time_s").unwrap(),
-            value(&b.a, "stride_time_s").unwrap(),
+            a.a.value(Parameter::StrideTime).unwrap(),
+            b.a.value(Parameter::StrideTime).unwrap(),
         );
         let step = 1.0 + 4.0 * 0.1; // stride_time_s is the 5th parameter: trial t adds t × 1.4
         assert!((x2 - (x1 + 0.5 * step)).abs() < 1e-9, "{x1} {x2}");

@@ -174,7 +174,11 @@ fn cycle_reference(
 ) -> Result<CycleReference> {
     let legs: HashSet<(&str, &str)> = rows
         .iter()
-        .filter(|r| r.group == "healthy" && r.status == "ok" && passes_every_check(r))
+        .filter(|r| {
+            matches!(r.group, Some(crate::pipeline::GroupLabel::Healthy))
+                && r.is_ok()
+                && passes_every_check(r)
+        })
         .map(|r| (r.subject_id.as_str(), r.side.as_str()))
         .collect();
     let subjects: HashSet<&str> = legs.iter().map(|l| l.0).collect();

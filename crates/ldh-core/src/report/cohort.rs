@@ -11,8 +11,9 @@ use super::{CohortReport, Reference, ReportParams};
 use crate::cohort::{self, Cohort, ModelOffsets, PARAMETERS};
 use crate::error::Result;
 use crate::ml::{CvKind, CvReport};
-use crate::output::RecordingRow;
+use crate::output::{labels, RecordingRow};
 use crate::plots;
+use crate::Side;
 
 /// The cohort report as an HTML page.
 pub fn cohort_html(c: &CohortReport) -> Result<String> {
@@ -32,7 +33,7 @@ fn header(rows: &[RecordingRow]) -> Markup {
     let mut subjects: Vec<&str> = rows.iter().map(|r| r.subject_id.as_str()).collect();
     subjects.sort_unstable();
     subjects.dedup();
-    let failed = rows.iter().filter(|r| r.status != "ok").count();
+    let failed = rows.iter().filter(|r| !r.is_ok()).count();
     let model = rows.first().map(|r| r.model.as_str()).unwrap_or("");
     html! {
         h1 { "Cohort gait report" } "\n"
@@ -45,7 +46,7 @@ fn header(rows: &[RecordingRow]) -> Markup {
 }
 
 fn failed_box(rows: &[RecordingRow]) -> Markup {
-    let failed: Vec<&RecordingRow> = rows.iter().filter(|r| r.status != "ok").collect();
+    let failed: Vec<&RecordingRow> = rows.iter().filter(|r| !r.is_ok()).collect();
     html! {
         @if !failed.is_empty() {
             div.missing {
@@ -72,17 +73,17 @@ struct TriageRow<'a> {
 }
 
 fn triage_row<'a>(id: &'a str, recs: &[&'a RecordingRow], reference: &Reference) -> TriageRow<'a> {
-    let sides: Vec<RecordingRow> = ["left", "right"]
-        .iter()
+    let sides: Vec<RecordingRow> = [Side::Left, Side::Right]
+        .into_iter()
         .filter_map(|side| cohort::person_row(recs, side))
         .collect();
-    let ok: Vec<&RecordingRow> = sides.iter().filter(|r| r.status == "ok").collect();
+    let ok: Vec<&RecordingRow> = sides.iter().filter(|r| r.is_ok()).collect();
     let (rank, status) = match (ok.len(), sides.len()) {
         (0, _) => (0, "not analysed".to_string()),
         (1, 2) => {
             let bad = sides
                 .iter()
-                .find(|r| r.status != "ok")
+                .find(|r| !r.is_ok())
                 .map_or("", |r| r.side.as_str());
             (1, format!("{bad} side failed"))
         }
@@ -91,7 +92,7 @@ fn triage_row<'a>(id: &'a str, recs: &[&'a RecordingRow], reference: &Reference)
     };
     let mut t = TriageRow {
         id,
-        group: recs.first().map_or("", |r| r.group.as_str()),
+        group: recs.first().map_or("", |r| labels::text(&r.group)),
         rank,
         status,
         abnormal: 0,
@@ -101,17 +102,17 @@ fn triage_row<'a>(id: &'a str, recs: &[&'a RecordingRow], reference: &Reference)
         faults: 0,
     };
     for r in &ok {
-        for par in PARAMETERS.iter() {
-            if r.withheld.reason(par.column).is_some() {
+        for par in PARAMETERS {
+            if r.withheld.reason(par.column()).is_some() {
                 t.not_measured += 1;
                 continue;
             }
-            let Some(v) = cohort::value(r, par.column) else {
+            let Some(v) = r.value(par) else {
                 t.not_measured += 1;
                 continue;
             };
             t.measured += 1;
-            let rr = reference.ranges.iter().find(|x| x.column == par.column);
+            let rr = reference.range(par);
             if rr.and_then(|rr| rr.outside(v)) == Some(true) {
                 t.abnormal += 1;
             }
@@ -280,13 +281,13 @@ fn radars(offs: &[ModelOffsets]) -> Result<Markup> {
 fn boxplots(co: &Cohort) -> Result<Markup> {
     let mut figs: Vec<Markup> = Vec::new();
     for par in PARAMETERS {
-        let g = co.groups(par.column);
+        let g = co.groups(par);
         if g.h.is_empty() {
             continue;
         }
-        let ylab = format!("{} ({})", par.name, par.unit);
+        let ylab = format!("{} ({})", par.name(), par.unit());
         let svg = plots::boxplot_svg(
-            &format!("{} — {}", par.code, par.name),
+            &format!("{} — {}", par.code(), par.name()),
             &ylab,
             &[
                 ("LDHH".into(), g.ldhh),
@@ -296,7 +297,7 @@ fn boxplots(co: &Cohort) -> Result<Markup> {
         )?;
         figs.push(figure(
             &svg,
-            &format!("{}: box = quartiles, whiskers 1.5 IQR.", par.name),
+            &format!("{}: box = quartiles, whiskers 1.5 IQR.", par.name()),
             &[plots::BOX_GROUP_LABEL, &ylab],
         ));
     }
@@ -364,8 +365,8 @@ fn recordings_table(c: &CohortReport) -> Markup {
                         @if let Some(href) = links.get(r.subject_id.as_str()) { a href=(href) { (r.subject_id) } }
                         @else { (r.subject_id) }
                     }
-                    td { (r.group) } td { (side_label(r)) }
-                    td { (if r.status == "ok" { "analysed" } else { &r.error }) }
+                    td { (labels::text(&r.group)) } td { (side_label(r)) }
+                    td { (if r.is_ok() { "analysed" } else { &r.error }) }
                     td.num { (count(r.strides_valid)) } td.num { (fmt(r.duration_s, 1)) }
                     td { (r.warnings) }
                 }

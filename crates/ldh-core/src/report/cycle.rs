@@ -139,8 +139,9 @@ impl CycleReference {
 /// Why a leg has no curve because of its row: failed, or its shank angles withheld.
 fn no_angles(row: Option<&&RecordingRow>) -> Option<String> {
     let r = row?;
-    not_measured(r, "wqk_deg")
-        .filter(|_| r.status != "ok" || r.withheld.reason("wqk_deg").is_some())
+    let wqk = crate::output::Parameter::Wqk;
+    not_measured(r, wqk)
+        .filter(|_| !r.is_ok() || r.withheld.reason(wqk.column()).is_some())
         .map(|why| format!("shank angles not measured: {why}"))
 }
 
@@ -161,8 +162,8 @@ pub(crate) fn cycle_section(
     let mut series: Vec<plots::CycleSeries> = Vec::new();
     let mut reasons: Vec<String> = Vec::new();
     let mut clipped = 0usize;
-    for side in ["left", "right"] {
-        let leg = t.legs.iter().find(|l| l.side == side);
+    for side in [crate::Side::Left, crate::Side::Right] {
+        let leg = t.legs.iter().find(|l| l.side == side.as_str());
         let row = sides.iter().find(|r| r.side == side);
         let why = match (no_angles(row), leg) {
             (Some(why), _) => Some(why),

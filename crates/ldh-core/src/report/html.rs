@@ -121,9 +121,10 @@ pub(crate) fn decimals(unit: &str) -> usize {
 
 /// `left` or `right`, with the manifest's role when there is one (`right (affected)`).
 pub(crate) fn side_label(r: &RecordingRow) -> String {
-    match r.side_role.as_str() {
-        "" | "healthy" => r.side.clone(),
-        role => format!("{} ({role})", r.side),
+    use crate::output::{Label, SideRole};
+    match &r.side_role {
+        None | Some(Label::Known(SideRole::Healthy)) => r.side.to_string(),
+        Some(role) => format!("{} ({role})", r.side),
     }
 }
 

@@ -12,7 +12,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::ValidReportParams;
-use crate::cohort::{value, PARAMETERS};
+use crate::cohort::{Parameter, PARAMETERS};
 use crate::output::RecordingRow;
 
 /// Where a reference range comes from.
@@ -126,6 +126,11 @@ pub const HAUSDORFF: &str =
     "Hausdorff JM. Gait variability: methods, modeling and meaning. J NeuroEng Rehabil 2005;2:19";
 
 impl Reference {
+    /// The range of `p`, when the reference has one.
+    pub fn range(&self, p: Parameter) -> Option<&ReferenceRange> {
+        self.ranges.iter().find(|r| r.column == p.column())
+    }
+
     /// Published ranges only (see [`PUBLISHED`]); parameters without one have no range.
     pub fn published(p: &ValidReportParams) -> Reference {
         let z = p.0.reference_z;
@@ -133,10 +138,10 @@ impl Reference {
             .iter()
             .map(|par| {
                 let mut r = ReferenceRange {
-                    code: par.code.into(),
-                    column: par.column.into(),
-                    name: par.name.into(),
-                    unit: par.unit.into(),
+                    code: par.code().into(),
+                    column: par.column().into(),
+                    name: par.name().into(),
+                    unit: par.unit().into(),
                     low: None,
                     high: None,
                     mean: None,
@@ -144,7 +149,7 @@ impl Reference {
                     source: ReferenceSource::None,
                     n_reference: 0,
                 };
-                if let Some(&(_, lo, hi, cite)) = PUBLISHED.iter().find(|x| x.0 == par.column) {
+                if let Some(&(_, lo, hi, cite)) = PUBLISHED.iter().find(|x| x.0 == par.column()) {
                     r.low = Some(lo);
                     r.high = Some(hi);
                     r.mean = Some(0.5 * (lo + hi));
@@ -172,24 +177,29 @@ impl Reference {
         let passes = passes_every_check;
         let healthy_legs = rows
             .iter()
-            .filter(|x| x.group == "healthy" && x.status == "ok")
+            .filter(|x| matches!(x.group, Some(crate::pipeline::GroupLabel::Healthy)) && x.is_ok())
             .count();
         let healthy: Vec<Vec<&RecordingRow>> = crate::output::rows_by_subject(rows)
             .into_iter()
             .map(|(_, v)| {
                 v.into_iter()
-                    .filter(|x| x.group == "healthy" && x.status == "ok" && passes(x))
+                    .filter(|x| {
+                        matches!(x.group, Some(crate::pipeline::GroupLabel::Healthy))
+                            && x.is_ok()
+                            && passes(x)
+                    })
                     .collect::<Vec<_>>()
             })
             .filter(|v| !v.is_empty())
             .collect();
         let used_legs: usize = healthy.iter().map(Vec::len).sum();
         let mut any_cohort = 0usize;
-        for r in out.ranges.iter_mut() {
+        // `published` made one range per parameter, in `PARAMETERS` order.
+        for (r, par) in out.ranges.iter_mut().zip(PARAMETERS) {
             let vals: Vec<f64> = healthy
                 .iter()
                 .filter_map(|legs| {
-                    let v: Vec<f64> = legs.iter().filter_map(|x| value(x, &r.column)).collect();
+                    let v: Vec<f64> = legs.iter().filter_map(|x| x.value(par)).collect();
                     (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
                 })
                 .collect();

@@ -29,8 +29,8 @@ pub fn subject_html(
 ) -> Result<String> {
     // One row per side; a person's several trials averaged (docs/input.md "Trials").
     let all: Vec<&RecordingRow> = s.recordings.iter().collect();
-    let own: Vec<RecordingRow> = ["left", "right"]
-        .iter()
+    let own: Vec<RecordingRow> = [crate::Side::Left, crate::Side::Right]
+        .into_iter()
         .filter_map(|side| crate::cohort::person_row(&all, side))
         .collect();
     let sides: Vec<&RecordingRow> = own.iter().collect();
@@ -67,7 +67,7 @@ impl Citations {
                 high: Some(_),
                 source: ReferenceSource::Published(c),
                 ..
-            }) = reference.ranges.iter().find(|r| r.column == par.column)
+            }) = reference.range(*par)
             {
                 if !v.contains(c) {
                     v.push(c.clone());
@@ -85,13 +85,13 @@ impl Citations {
 fn header(s: &SubjectReport, sides: &[&RecordingRow]) -> Markup {
     let group = sides
         .iter()
-        .map(|r| r.group.as_str())
+        .map(|r| crate::output::labels::text(&r.group))
         .find(|g| !g.is_empty())
         .unwrap_or("");
     let model = sides.first().map(|r| r.model.as_str()).unwrap_or("");
     let affected = sides
         .iter()
-        .map(|r| r.affected_side.as_str())
+        .map(|r| crate::output::labels::text(&r.affected_side))
         .find(|a| !a.is_empty() && *a != "none");
     html! {
         h1 { "Gait report: subject " (s.subject_id) } "\n"
@@ -138,9 +138,9 @@ fn warning_box(sides: &[&RecordingRow]) -> Markup {
 fn missing(s: &SubjectReport) -> Vec<String> {
     let mut missing: Vec<String> = Vec::new();
     for side in ["left", "right"] {
-        match s.recordings.iter().find(|r| r.side == side) {
+        match s.recordings.iter().find(|r| r.side.as_str() == side) {
             None => missing.push(format!("No {side} recording was given.")),
-            Some(r) if r.status != "ok" => missing.push(format!(
+            Some(r) if !r.is_ok() => missing.push(format!(
                 "The {side} recording could not be analysed: {}",
                 r.error
             )),
@@ -182,7 +182,7 @@ fn facts(r: &RecordingRow) -> [String; 10] {
     };
     [
         r.source.clone(),
-        if r.status == "ok" {
+        if r.is_ok() {
             "analysed".into()
         } else {
             format!("failed: {}", r.error)

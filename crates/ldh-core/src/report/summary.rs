@@ -13,8 +13,7 @@ use maud::{html, Markup};
 use super::html::fmt;
 use super::subject::Citations;
 use super::{symmetry_index_pct, Reference, ReferenceRange, ReferenceSource, ValidReportParams};
-use crate::cohort::value;
-use crate::output::RecordingRow;
+use crate::output::{Parameter, RecordingRow};
 
 /// One line of the summary: a parameter column shown in clinical units.
 pub(crate) struct Measure {
@@ -22,8 +21,8 @@ pub(crate) struct Measure {
     pub label: &'static str,
     /// The clinical unit.
     pub unit: &'static str,
-    /// Column of the per-recording table.
-    pub column: &'static str,
+    /// The parameter.
+    pub parameter: Parameter,
     /// Factor from the table's unit to the clinical unit.
     pub scale: f64,
     /// Decimals shown.
@@ -33,14 +32,14 @@ pub(crate) struct Measure {
 const fn m(
     label: &'static str,
     unit: &'static str,
-    column: &'static str,
+    parameter: Parameter,
     scale: f64,
     decimals: usize,
 ) -> Measure {
     Measure {
         label,
         unit,
-        column,
+        parameter,
         scale,
         decimals,
     }
@@ -48,54 +47,54 @@ const fn m(
 
 /// The summary's measures, in clinical units.
 pub(crate) const MEASURES: [Measure; 7] = [
+    m("Cadence", "steps/min", Parameter::StepFrequency, 60.0, 0),
+    m("Walking speed", "m/s", Parameter::Speed, 1.0, 2),
+    m("Stride length", "m", Parameter::StrideLength, 1.0, 2),
+    m("Stride time", "s", Parameter::StrideTime, 1.0, 2),
     m(
-        "Cadence",
-        "steps/min",
-        "step_frequency_steps_per_s",
-        60.0,
-        0,
+        "Stance",
+        "% of gait cycle",
+        Parameter::StanceRatio,
+        100.0,
+        1,
     ),
-    m("Walking speed", "m/s", "speed_mps", 1.0, 2),
-    m("Stride length", "m", "stride_length_m", 1.0, 2),
-    m("Stride time", "s", "stride_time_s", 1.0, 2),
-    m("Stance", "% of gait cycle", "stance_ratio", 100.0, 1),
     m(
         "Stride time variability",
         "CV %",
-        "stride_time_cv",
+        Parameter::StrideTimeCv,
         100.0,
         1,
     ),
     m(
         "Stride length variability",
         "CV %",
-        "stride_length_cv",
+        Parameter::StrideLengthCv,
         100.0,
         1,
     ),
 ];
 
-/// Left-right asymmetry lines: (label, column).
-const ASYMMETRY: [(&str, &str); 4] = [
-    ("Step time asymmetry", "step_time_s"),
-    ("Stance asymmetry", "stance_ratio"),
-    ("Stride length asymmetry", "stride_length_m"),
-    ("Shank swing asymmetry (WQK)", "wqk_deg"),
+/// Left-right asymmetry lines: (label, parameter).
+const ASYMMETRY: [(&str, Parameter); 4] = [
+    ("Step time asymmetry", Parameter::StepTime),
+    ("Stance asymmetry", Parameter::StanceRatio),
+    ("Stride length asymmetry", Parameter::StrideLength),
+    ("Shank swing asymmetry (WQK)", Parameter::Wqk),
 ];
 
-/// Why a side has no value of `column` (the quality check's reason first), or `None` when it
-/// has one.
-pub(crate) fn not_measured(r: &RecordingRow, column: &str) -> Option<String> {
-    if r.status != "ok" {
+/// Why a side has no value of `p` (the quality check's reason first), or `None` when it has
+/// one.
+pub(crate) fn not_measured(r: &RecordingRow, p: Parameter) -> Option<String> {
+    if !r.is_ok() {
         return Some("not analysed (see above)".into());
     }
-    if let Some(why) = r.withheld.reason(column) {
+    if let Some(why) = r.withheld.reason(p.column()) {
         return Some(why.to_string());
     }
-    if value(r, column).is_some() {
+    if r.value(p).is_some() {
         return None;
     }
-    if column == "sta_per_s" && !r.sta_status.is_empty() {
+    if p == Parameter::Sta && !r.sta_status.is_empty() {
         return Some(r.sta_status.clone());
     }
     Some(match r.strides_valid {
@@ -160,10 +159,10 @@ fn side_cell(r: Option<&&RecordingRow>, m: &Measure, rr: Option<&ReferenceRange>
     let Some(r) = r else {
         return html! { td.nm { "not measured: no recording" } };
     };
-    if let Some(why) = not_measured(r, m.column) {
+    if let Some(why) = not_measured(r, m.parameter) {
         return html! { td.nm { "not measured: " (why) } };
     }
-    let v = value(r, m.column).unwrap_or(f64::NAN);
+    let v = r.value(m.parameter).unwrap_or(f64::NAN);
     let (mark, words) = judged(v, rr);
     html! {
         td.num.out[mark.is_some()] {
@@ -178,12 +177,12 @@ fn headline(sides: &[&RecordingRow], reference: &Reference) -> Markup {
     let mut outside: Vec<String> = Vec::new();
     let mut missing: Vec<String> = Vec::new();
     for m in &MEASURES {
-        let rr = reference.ranges.iter().find(|r| r.column == m.column);
+        let rr = reference.range(m.parameter);
         for r in sides {
-            match not_measured(r, m.column) {
+            match not_measured(r, m.parameter) {
                 Some(_) => missing.push(format!("{} ({})", m.label.to_lowercase(), r.side)),
                 None => {
-                    let v = value(r, m.column).unwrap_or(f64::NAN);
+                    let v = r.value(m.parameter).unwrap_or(f64::NAN);
                     if let (Some(_), words) = judged(v, rr) {
                         outside.push(format!("{} {words} ({})", m.label.to_lowercase(), r.side));
                     }
@@ -213,23 +212,23 @@ pub(crate) fn clinical_summary(
     citations: &Citations,
     p: &ValidReportParams,
 ) -> Markup {
-    let left = sides.iter().find(|r| r.side == "left");
-    let right = sides.iter().find(|r| r.side == "right");
+    let left = sides.iter().find(|r| r.side == crate::Side::Left);
+    let right = sides.iter().find(|r| r.side == crate::Side::Right);
     let limit = p.0.asymmetry_flag_pct;
-    let si = |column: &str| -> Result<f64, String> {
+    let si = |p: Parameter| -> Result<f64, String> {
         let (l, r) = (
             left.ok_or("no left recording")?,
             right.ok_or("no right recording")?,
         );
-        if let Some(w) = not_measured(l, column) {
+        if let Some(w) = not_measured(l, p) {
             return Err(format!("left {w}"));
         }
-        if let Some(w) = not_measured(r, column) {
+        if let Some(w) = not_measured(r, p) {
             return Err(format!("right {w}"));
         }
         let (a, b) = (
-            value(l, column).unwrap_or(f64::NAN),
-            value(r, column).unwrap_or(f64::NAN),
+            l.value(p).unwrap_or(f64::NAN),
+            r.value(p).unwrap_or(f64::NAN),
         );
         symmetry_index_pct(a, b).ok_or_else(|| "not defined for these values".into())
     };
@@ -240,7 +239,7 @@ pub(crate) fn clinical_summary(
             "\n"
             tr { th { "measure (unit)" } th { "left" } th { "right" } th { "normal range" } th { "judged against" } } "\n"
             @for m in &MEASURES {
-                @let rr = reference.ranges.iter().find(|r| r.column == m.column);
+                @let rr = reference.range(m.parameter);
                 @let (range, src) = range_cells(rr, m, citations);
                 tr {
                     td { b { (m.label) } " (" (m.unit) ")" }
@@ -249,10 +248,10 @@ pub(crate) fn clinical_summary(
                 }
                 "\n"
             }
-            @for (label, column) in ASYMMETRY {
+            @for (label, parameter) in ASYMMETRY {
                 tr {
                     td { b { (label) } " (SI %, left vs right)" }
-                    @match si(column) {
+                    @match si(parameter) {
                         Ok(v) => {
                             @let flag = v.abs() > limit;
                             td.num.out[flag] colspan="2" {

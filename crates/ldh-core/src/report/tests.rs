@@ -103,7 +103,7 @@ fn a_subject_without_anything_still_renders() {
 fn text_from_files_is_escaped_and_control_characters_dropped() {
     let p = ReportParams::default().check().unwrap();
     let mut bad = row("S<1>&\"x\"", "ldh", "left", 1.0);
-    bad.status = "error".into();
+    bad.status = crate::output::Status::Error.into();
     bad.error = "bad value \u{1}<script>alert('x')</script> at line 3".into();
     let s = SubjectReport {
         subject_id: bad.subject_id.clone(),
@@ -148,7 +148,11 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
     };
     let res = crate::pipeline::analyze_simulated(&sub, &params);
     let tables = crate::output::Tables::of(std::slice::from_ref(&res));
-    let left = tables.recordings.iter().find(|r| r.side == "left").unwrap();
+    let left = tables
+        .recordings
+        .iter()
+        .find(|r| r.side == crate::Side::Left)
+        .unwrap();
     assert!(left
         .warnings
         .iter()
@@ -177,8 +181,8 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
     let mut checked = 0;
     for par in crate::cohort::PARAMETERS.iter() {
         let start = table
-            .find(&format!("<td>{} — ", par.code))
-            .unwrap_or_else(|| panic!("{} not in the table", par.code));
+            .find(&format!("<td>{} — ", par.code()))
+            .unwrap_or_else(|| panic!("{} not in the table", par.code()));
         let row = &table[start..];
         let row = &row[..row.find("</tr>").unwrap()];
         // Cells: parameter, unit, left, right, range, SI.
@@ -187,7 +191,7 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
         assert!(
             left_cell.contains("not measured: gyro scale fault"),
             "{}: {left_cell}",
-            par.code
+            par.code()
         );
         assert!(
             !left_cell.contains('▲') && !left_cell.contains('▼'),
@@ -202,10 +206,10 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
                 .next()
                 .is_some_and(|ch| ch.is_ascii_digit() || ch == '-'),
             "{}: a number: {left_cell}",
-            par.code
+            par.code()
         );
         // No symmetry index from a withheld value.
-        assert!(cells[6].contains(">–<"), "{}: SI {}", par.code, cells[6]);
+        assert!(cells[6].contains(">–<"), "{}: SI {}", par.code(), cells[6]);
         checked += 1;
     }
     assert_eq!(checked, crate::cohort::PARAMETERS.len());

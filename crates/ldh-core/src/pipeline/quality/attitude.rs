@@ -155,6 +155,7 @@ mod tests {
             fs_hz: FS,
             acc_g: Default::default(),
             gyro_dps: Default::default(),
+            acc_clipped: vec![],
             alignment: Alignment {
                 r_f_from_device: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
                 gyro_bias_dps: [0.0; 3],

@@ -5,7 +5,7 @@
 use maud::{html, Markup};
 
 use super::Citations;
-use crate::cohort::{value, PARAMETERS};
+use crate::cohort::{Parameter, PARAMETERS};
 use crate::error::Result;
 use crate::output::RecordingRow;
 use crate::plots;
@@ -60,9 +60,9 @@ fn range_text(
 }
 
 /// A side's value of a parameter (`None` for a failed side).
-fn side_value(r: &RecordingRow, column: &str) -> Option<f64> {
-    if r.status == "ok" {
-        value(r, column)
+fn side_value(r: &RecordingRow, p: Parameter) -> Option<f64> {
+    if r.is_ok() {
+        r.value(p)
     } else {
         None
     }
@@ -76,19 +76,23 @@ pub(super) fn parameter_table(
     citations: &Citations,
     p: &ValidReportParams,
 ) -> Markup {
-    let left = sides.iter().find(|r| r.side == "left" && r.status == "ok");
-    let right = sides.iter().find(|r| r.side == "right" && r.status == "ok");
+    let left = sides
+        .iter()
+        .find(|r| r.side == crate::Side::Left && r.is_ok());
+    let right = sides
+        .iter()
+        .find(|r| r.side == crate::Side::Right && r.is_ok());
     let mut out_of_range = 0usize;
     let mut rows: Vec<Markup> = Vec::new();
     for par in PARAMETERS.iter() {
-        let rr = reference.ranges.iter().find(|r| r.column == par.column);
-        let dec = decimals(par.unit);
+        let rr = reference.range(*par);
+        let dec = decimals(par.unit());
         let cells: Vec<(Option<f64>, Option<&str>, Option<&str>)> = sides
             .iter()
-            .map(|r| match r.withheld.reason(par.column) {
+            .map(|r| match r.withheld.reason(par.column()) {
                 Some(why) => (None, None, Some(why)),
                 None => {
-                    let v = side_value(r, par.column);
+                    let v = side_value(r, *par);
                     (v, out_mark(v, rr), None)
                 }
             })
@@ -96,8 +100,10 @@ pub(super) fn parameter_table(
         out_of_range += cells.iter().filter(|c| c.1.is_some()).count();
         let si = match (left, right) {
             (Some(l), Some(r)) => match (
-                value(l, par.column).filter(|_| l.withheld.reason(par.column).is_none()),
-                value(r, par.column).filter(|_| r.withheld.reason(par.column).is_none()),
+                l.value(*par)
+                    .filter(|_| l.withheld.reason(par.column()).is_none()),
+                r.value(*par)
+                    .filter(|_| r.withheld.reason(par.column()).is_none()),
             ) {
                 (Some(a), Some(c)) => symmetry_index_pct(a, c),
                 _ => None,
@@ -107,7 +113,7 @@ pub(super) fn parameter_table(
         let flag = si.is_some_and(|v| v.abs() > p.0.asymmetry_flag_pct);
         rows.push(html! {
             tr {
-                td { (par.code) " — " (par.name) } td { (par.unit) }
+                td { (par.code()) " — " (par.name()) } td { (par.unit()) }
                 @for (v, out, why) in &cells {
                     @if let Some(why) = why {
                         td.withheld { "not measured: " (why) }
@@ -147,14 +153,16 @@ pub(super) fn subject_radar(
     let ranges: Vec<&ReferenceRange> = reference.ranges.iter().filter(|r| r.sd.is_some()).collect();
     let series: Vec<(String, Vec<f64>)> = sides
         .iter()
-        .filter(|r| r.status == "ok")
+        .filter(|r| r.is_ok())
         .map(|r| {
             (
                 side_label(r),
                 ranges
                     .iter()
                     .map(|rr| {
-                        value(r, &rr.column)
+                        Parameter::from_column(&rr.column)
+                            .ok()
+                            .and_then(|p| r.value(p))
                             .filter(|_| r.withheld.reason(&rr.column).is_none())
                             .and_then(|v| rr.z(v))
                             .unwrap_or(f64::NAN)
