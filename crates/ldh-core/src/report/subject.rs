@@ -249,9 +249,12 @@ fn excluded_strides(strides: &[StrideRow]) -> Markup {
     let mut excl: Vec<(String, String, usize)> = Vec::new();
     for st in strides.iter().filter(|st| !st.valid) {
         let reason = reason_kind(&st.reason);
-        match excl.iter_mut().find(|e| e.0 == st.side && e.1 == reason) {
+        match excl
+            .iter_mut()
+            .find(|e| e.0 == st.side.as_str() && e.1 == reason)
+        {
             Some(e) => e.2 += 1,
-            None => excl.push((st.side.clone(), reason, 1)),
+            None => excl.push((st.side.to_string(), reason, 1)),
         }
     }
     html! {
@@ -643,7 +646,7 @@ fn stride_by_stride(strides: &[StrideRow]) -> Result<Markup> {
                     side.to_string(),
                     strides
                         .iter()
-                        .filter(|r| r.side == *side)
+                        .filter(|r| r.side.as_str() == *side)
                         .filter_map(|r| Some((r.hs_time_s?, get(r)?, r.valid)))
                         .filter(|p| p.1.is_finite())
                         .map(|(t, v, ok)| {
