@@ -9,9 +9,8 @@ continuous time, and times, median of `--repeats`:
 
 - reading: `ldh inspect FILE` (stream, parse, time base, checks, outlier search) at 1 M / 2 M and
   5 M / 10 M rows (limits raised: `--max-file-size-mb 2000 --max-samples 20000000`);
-- the whole analysis: `ldh analyze PAIR --jobs 1` of a pair whose legs have 300 k / 600 k rows
-  (`--max-samples` default 750 000: the analysis keeps ~1.5 kB a sample, so 1 M-row legs would
-  need ~3 GB).
+- the whole analysis: `ldh analyze PAIR --jobs 1` of a pair whose legs have 1 M / 2 M rows
+  (within the default `max_samples`, 2 500 000; about 150 bytes a sample).
 
 Wall time and CPU time (user + system of the child, from `os.wait4`) and the child's peak RSS.
 Prints a Markdown table; the ratio column is time(2N) / time(N): 2.0 is linear.
@@ -82,7 +81,7 @@ def main():
                 f.unlink()
             rows_out.append(("read (`ldh inspect`)", res))
         res = []
-        for rows in (300_000, 600_000):
+        for rows in (1_000_000, 2_000_000):
             subj = tmp / f"S{rows}"
             subj.mkdir()
             for side in ("left.csv", "right.csv"):

@@ -205,8 +205,8 @@ fn impossible_simulation_sizes_are_refused_with_the_declared_limit() {
 /// One leg too large for the memory (here: a 100 MB, 2.4 M-row file, within the file-size
 /// limit, under a 500 MB address-space limit) fails alone with its reason; the other leg and
 /// the other subject are analysed and written, exit 1 (it used to abort the batch, exit 134).
-/// `--max-samples` is raised: with the default (750 000) the leg is refused by its row count
-/// before its memory is asked for (`tests/tests/memory.rs`).
+/// `--max-samples` is raised so that the leg is never refused by its row count instead
+/// (`max_samples`, `tests/tests/memory.rs`), whatever the default.
 #[test]
 fn a_leg_too_large_for_the_memory_fails_alone() {
     use std::io::Write;

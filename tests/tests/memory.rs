@@ -4,7 +4,7 @@
 //!
 //! What a user gets (docs/robustness.md, "Size limits"):
 //! - with the defaults: refused by size (`max_file_size_mb`, 256 MB) before any byte is read;
-//! - with `--max-file-size-mb 2000`: refused by `max_samples` (750 000) while streaming, the
+//! - with `--max-file-size-mb 2000`: refused by `max_samples` (2 500 000) while streaming, the
 //!   rows past the limit counted but not stored — `ldh inspect` and `ldh analyze` alike;
 //! - with `--max-samples` raised too, `ldh inspect` reads all 10 M rows in under 1 GB: the file
 //!   is streamed and only the seven columns are kept.
@@ -104,7 +104,7 @@ fn a_ten_million_row_file_is_refused_or_read_in_under_one_gigabyte() {
             vec!["inspect", b, "--max-file-size-mb", "2000"],
             1,
             vec![format!(
-                "{b}: {ROWS} data rows, above the limit of 750000 samples per recording"
+                "{b}: {ROWS} data rows, above the limit of 2500000 samples per recording"
             )],
         ),
         (
@@ -121,7 +121,7 @@ fn a_ten_million_row_file_is_refused_or_read_in_under_one_gigabyte() {
             ],
             1,
             vec![format!(
-                "{ROWS} data rows, above the limit of 750000 samples per recording"
+                "{ROWS} data rows, above the limit of 2500000 samples per recording"
             )],
         ),
         (

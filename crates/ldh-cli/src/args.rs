@@ -163,8 +163,8 @@ pub struct AnalyzeArgs {
     /// Largest sensor file read, MB (default 256); larger files are refused before reading.
     #[arg(long, value_name = "MB")]
     pub max_file_size_mb: Option<f64>,
-    /// Most samples (data rows) in one sensor file (default 750000: 2 h at 100 Hz); the
-    /// analysis keeps about 1.5 kB per sample, so longer files are refused while being read.
+    /// Most samples (data rows) in one sensor file (default 2500000: 6.9 h at 100 Hz); the
+    /// analysis keeps about 150 bytes per sample, so longer files are refused while being read.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub max_samples: Option<u64>,
     /// Print the wall time of each stage (read, preprocess, align, attitude, events, strides,
@@ -350,8 +350,8 @@ pub struct InspectArgs {
     /// Largest sensor file read, MB (default 256); larger files are refused before reading.
     #[arg(long, value_name = "MB")]
     pub max_file_size_mb: Option<f64>,
-    /// Most samples (data rows) in one sensor file (default 750000: 2 h at 100 Hz); the
-    /// analysis keeps about 1.5 kB per sample, so longer files are refused while being read.
+    /// Most samples (data rows) in one sensor file (default 2500000: 6.9 h at 100 Hz); the
+    /// analysis keeps about 150 bytes per sample, so longer files are refused while being read.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub max_samples: Option<u64>,
     /// Print JSON instead of one line per file.

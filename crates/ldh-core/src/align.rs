@@ -164,64 +164,126 @@ fn runs(mask: &[bool]) -> Vec<(usize, usize)> {
 /// Find the alignment of one sensor from its preprocessed signals.
 pub fn align(pre: &Preprocessed, params: &ValidAlignParams) -> Result<Aligned> {
     let p = &params.0;
-    let n = pre.acc_norm_g.len();
     let fs = pre.fs_hz;
     let mut notes = Vec::new();
-    let mask = still_mask(pre, p);
-    let still = runs(&mask);
+    let still = runs(&still_mask(pre, p));
+    let quiet = quiet_standing(pre, p, &still, &mut notes);
+    let e3 = shank_axis(quiet.gravity)?;
+    let (e2, share) = sagittal_axis(pre, p, quiet.bias, e3)?;
+    let e1 = e2.cross(&e3).normalize();
+    let e2 = e3.cross(&e1);
+    let r = [[e1.x, e1.y, e1.z], [e2.x, e2.y, e2.z], [e3.x, e3.y, e3.z]];
+    let mirrored = e1.y < 0.0;
+    // Axial rotation: angle of e1 in the device's y–z plane from ±y.
+    let axial = if mirrored {
+        (-e1.z).atan2(-e1.y)
+    } else {
+        e1.z.atan2(e1.y)
+    };
+    let tilt = e3.x.clamp(-1.0, 1.0).acos().to_degrees();
+    notes.push(format!(
+        "shank axis at {tilt:.1} deg from the device x axis; sagittal rotation axis explains {:.0} % of walking rotation; device {} about the shank by {:.1} deg",
+        share * 100.0,
+        if mirrored { "mirrored (y backwards), rotated" } else { "rotated" },
+        axial.to_degrees()
+    ));
+    let (acc_f, gyro_f) = rotate(pre, &r, quiet.bias);
+    Ok(Aligned {
+        fs_hz: fs,
+        acc_g: acc_f,
+        gyro_dps: gyro_f,
+        acc_clipped: pre.acc_clipped.clone(),
+        alignment: Alignment {
+            r_f_from_device: r,
+            gyro_bias_dps: quiet.bias,
+            quiet_standing_s: quiet.first_s,
+            still_periods_s: still
+                .iter()
+                .map(|&(a, b)| (a as f64 / fs, b as f64 / fs))
+                .collect(),
+            mirrored,
+            axial_rotation_deg: axial.to_degrees(),
+            shank_axis_tilt_deg: tilt,
+            sagittal_variance_share: share,
+            notes,
+        },
+    })
+}
+
+/// What the still periods give: gravity (g) and the gyroscope bias (deg/s) in device axes, and
+/// the first quiet-standing period (s), if any.
+struct QuietStanding {
+    gravity: [f64; 3],
+    bias: [f64; 3],
+    first_s: Option<(f64, f64)>,
+}
+
+/// The mean of `ch` over the sample ranges `idx`.
+fn mean_over(ch: &[f64], idx: &[(usize, usize)]) -> f64 {
+    let (mut s, mut c) = (0.0, 0usize);
+    for &(a, b) in idx {
+        s += ch[a..b].iter().sum::<f64>();
+        c += b - a;
+    }
+    s / c.max(1) as f64
+}
+
+/// Step 1: gravity and the gyroscope bias from all still periods of at least `min_still_s`
+/// (standing at the start and at the end); without any, gravity from the whole recording and
+/// no bias removed. Says which in `notes`.
+fn quiet_standing(
+    pre: &Preprocessed,
+    p: &AlignParams,
+    still: &[(usize, usize)],
+    notes: &mut Vec<String>,
+) -> QuietStanding {
+    let fs = pre.fs_hz;
     let min_len = (p.min_still_s * fs) as usize;
     let long: Vec<(usize, usize)> = still
         .iter()
         .copied()
         .filter(|(a, b)| b - a >= min_len)
         .collect();
-    let mean_over = |ch: &[f64], idx: &[(usize, usize)]| -> f64 {
-        let (mut s, mut c) = (0.0, 0usize);
-        for &(a, b) in idx {
-            s += ch[a..b].iter().sum::<f64>();
-            c += b - a;
-        }
-        s / c.max(1) as f64
+    let means = |ch: &[Vec<f64>; 3], idx: &[(usize, usize)]| {
+        [
+            mean_over(&ch[0], idx),
+            mean_over(&ch[1], idx),
+            mean_over(&ch[2], idx),
+        ]
     };
-    let (gravity, bias, quiet) = if long.is_empty() {
+    if long.is_empty() {
         notes.push(format!(
             "no quiet standing of {} s found: gyroscope bias not removed, shank axis from the mean acceleration of the whole recording",
             p.min_still_s
         ));
-        let all = [(0, n)];
-        (
-            [
-                mean_over(&pre.acc_g[0], &all),
-                mean_over(&pre.acc_g[1], &all),
-                mean_over(&pre.acc_g[2], &all),
-            ],
-            [0.0; 3],
-            None,
-        )
-    } else {
-        // All long still periods: standing at the start and at the end.
-        let g = [
-            mean_over(&pre.acc_g[0], &long),
-            mean_over(&pre.acc_g[1], &long),
-            mean_over(&pre.acc_g[2], &long),
-        ];
-        let b = [
-            mean_over(&pre.gyro_dps[0], &long),
-            mean_over(&pre.gyro_dps[1], &long),
-            mean_over(&pre.gyro_dps[2], &long),
-        ];
-        let total: usize = long.iter().map(|(a, b)| b - a).sum();
-        notes.push(format!(
-            "quiet standing: {:.1} s in {} period(s); gyroscope bias ({:.2}, {:.2}, {:.2}) deg/s removed",
-            total as f64 / fs,
-            long.len(),
-            b[0],
-            b[1],
-            b[2]
-        ));
-        let first = long[0];
-        (g, b, Some((first.0 as f64 / fs, first.1 as f64 / fs)))
-    };
+        return QuietStanding {
+            gravity: means(&pre.acc_g, &[(0, pre.acc_norm_g.len())]),
+            bias: [0.0; 3],
+            first_s: None,
+        };
+    }
+    let g = means(&pre.acc_g, &long);
+    let b = means(&pre.gyro_dps, &long);
+    let total: usize = long.iter().map(|(a, b)| b - a).sum();
+    notes.push(format!(
+        "quiet standing: {:.1} s in {} period(s); gyroscope bias ({:.2}, {:.2}, {:.2}) deg/s removed",
+        total as f64 / fs,
+        long.len(),
+        b[0],
+        b[1],
+        b[2]
+    ));
+    let first = long[0];
+    QuietStanding {
+        gravity: g,
+        bias: b,
+        first_s: Some((first.0 as f64 / fs, first.1 as f64 / fs)),
+    }
+}
+
+/// The shank axis e3: the unit gravity direction (refused when the accelerometer reads almost
+/// nothing at rest).
+fn shank_axis(gravity: [f64; 3]) -> Result<Vector3<f64>> {
     let e3 = Vector3::from(gravity);
     if e3.norm() < 0.3 {
         return Err(LdhError::signal(
@@ -232,20 +294,31 @@ pub fn align(pre: &Preprocessed, params: &ValidAlignParams) -> Result<Aligned> {
             ),
         ));
     }
-    let e3 = e3.normalize();
+    Ok(e3.normalize())
+}
 
-    // Principal axis of the walking angular velocity.
+/// The bias-corrected angular velocity at sample `i`, deg/s, device axes.
+fn gyro_at(pre: &Preprocessed, bias: [f64; 3], i: usize) -> Vector3<f64> {
+    Vector3::new(
+        pre.gyro_dps[0][i] - bias[0],
+        pre.gyro_dps[1][i] - bias[1],
+        pre.gyro_dps[2][i] - bias[2],
+    )
+}
+
+/// Steps 2–3: the sagittal axis e2 (the principal axis of the walking angular velocity made
+/// orthogonal to `e3`, pointing left) and the share of the walking rotation about it.
+fn sagittal_axis(
+    pre: &Preprocessed,
+    p: &AlignParams,
+    bias: [f64; 3],
+    e3: Vector3<f64>,
+) -> Result<(Vector3<f64>, f64)> {
+    let (n, fs) = (pre.acc_norm_g.len(), pre.fs_hz);
     let mut c = Matrix3::<f64>::zeros();
     let mut count = 0usize;
-    let w_at = |i: usize| {
-        Vector3::new(
-            pre.gyro_dps[0][i] - bias[0],
-            pre.gyro_dps[1][i] - bias[1],
-            pre.gyro_dps[2][i] - bias[2],
-        )
-    };
     for i in 0..n {
-        let w = w_at(i);
+        let w = gyro_at(pre, bias, i);
         if w.norm() > p.walking_gyro_dps {
             c += w * w.transpose();
             count += 1;
@@ -277,7 +350,7 @@ pub fn align(pre: &Preprocessed, params: &ValidAlignParams) -> Result<Aligned> {
     }
     e2 = e2.normalize();
     // Sign: the mid-swing excursions about +e2 are negative.
-    let mut proj: Vec<f64> = (0..n).map(|i| w_at(i).dot(&e2)).collect();
+    let mut proj: Vec<f64> = (0..n).map(|i| gyro_at(pre, bias, i).dot(&e2)).collect();
     proj.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
     let k = (n / 100).max(1);
     let low = -proj[..k].iter().sum::<f64>() / k as f64;
@@ -285,23 +358,13 @@ pub fn align(pre: &Preprocessed, params: &ValidAlignParams) -> Result<Aligned> {
     if high > low {
         e2 = -e2;
     }
-    let e1 = e2.cross(&e3).normalize();
-    let e2 = e3.cross(&e1);
-    let r = [[e1.x, e1.y, e1.z], [e2.x, e2.y, e2.z], [e3.x, e3.y, e3.z]];
-    let mirrored = e1.y < 0.0;
-    // Axial rotation: angle of e1 in the device's y–z plane from ±y.
-    let axial = if mirrored {
-        (-e1.z).atan2(-e1.y)
-    } else {
-        e1.z.atan2(e1.y)
-    };
-    let tilt = e3.x.clamp(-1.0, 1.0).acos().to_degrees();
-    notes.push(format!(
-        "shank axis at {tilt:.1} deg from the device x axis; sagittal rotation axis explains {:.0} % of walking rotation; device {} about the shank by {:.1} deg",
-        share * 100.0,
-        if mirrored { "mirrored (y backwards), rotated" } else { "rotated" },
-        axial.to_degrees()
-    ));
+    Ok((e2, share))
+}
+
+/// The acceleration (g) and bias-corrected angular velocity (deg/s) rotated into frame F by
+/// `r` (rows e1, e2, e3 in device axes).
+fn rotate(pre: &Preprocessed, r: &[[f64; 3]; 3], bias: [f64; 3]) -> ([Vec<f64>; 3], [Vec<f64>; 3]) {
+    let n = pre.acc_norm_g.len();
     let acc_f: [Vec<f64>; 3] = std::array::from_fn(|row| {
         (0..n)
             .map(|i| {
@@ -314,29 +377,10 @@ pub fn align(pre: &Preprocessed, params: &ValidAlignParams) -> Result<Aligned> {
     let gyro_f: [Vec<f64>; 3] = std::array::from_fn(|row| {
         (0..n)
             .map(|i| {
-                let w = w_at(i);
+                let w = gyro_at(pre, bias, i);
                 r[row][0] * w.x + r[row][1] * w.y + r[row][2] * w.z
             })
             .collect()
     });
-    Ok(Aligned {
-        fs_hz: fs,
-        acc_g: acc_f,
-        gyro_dps: gyro_f,
-        acc_clipped: pre.acc_clipped.clone(),
-        alignment: Alignment {
-            r_f_from_device: r,
-            gyro_bias_dps: bias,
-            quiet_standing_s: quiet,
-            still_periods_s: still
-                .iter()
-                .map(|&(a, b)| (a as f64 / fs, b as f64 / fs))
-                .collect(),
-            mirrored,
-            axial_rotation_deg: axial.to_degrees(),
-            shank_axis_tilt_deg: tilt,
-            sagittal_variance_share: share,
-            notes,
-        },
-    })
+    (acc_f, gyro_f)
 }

@@ -92,7 +92,7 @@ pub enum LdhError {
     },
     /// A recording has more samples than `max_samples` (the memory of its analysis grows with
     /// them); refused while reading, before the samples past the limit are stored.
-    #[error("{}: {rows} data rows, above the limit of {limit} samples per recording (analysing a leg takes about 1.5 kB of memory per sample); raise it with --max-samples or `max_samples`, or split the recording", path.display())]
+    #[error("{}: {rows} data rows, above the limit of {limit} samples per recording (the analysis takes about 150 bytes of memory per sample); raise it with --max-samples or `max_samples`, or split the recording", path.display())]
     TooManySamples {
         /// The file.
         path: PathBuf,

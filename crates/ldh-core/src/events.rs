@@ -294,9 +294,57 @@ pub fn detect(
     }
     let p = &params.p;
     let neg: Vec<f64> = omega_s_dps.iter().map(|w| -w).collect();
+    let mid = midswings(&neg, p, fs_hz);
+    if mid.len() < 2 {
+        return Ok(Events {
+            midswing_s: mid.iter().map(|&i| i as f64 / fs_hz).collect(),
+            ..Events::default()
+        });
+    }
+    let t_med = median_stride_s(&mid, fs_hz, p.max_stride_s);
+    let half = ((0.5 * t_med) * fs_hz) as usize;
+    let sig = Signals {
+        pitch_deg,
+        omega_s_dps,
+        neg: &neg,
+        fs_hz,
+    };
+    let mut hs = Vec::new();
+    let mut to = Vec::new();
+    for &m in &mid {
+        // HS: after mid-swing, within half a stride.
+        let end = (m + half).min(n - 1);
+        if let Some(i) = heel_strike(&sig, p.detector, m, end) {
+            hs.push(i / fs_hz + params.hs_offset * t_med);
+        }
+        // TO: before mid-swing, within half a stride.
+        let start = m.saturating_sub(half).max(1);
+        if let Some(t) = toe_off_s(&sig, params, t_med, start, m) {
+            to.push(t);
+        }
+    }
+    Ok(Events {
+        hs_s: hs,
+        to_s: to,
+        midswing_s: mid.iter().map(|&i| parabolic(&neg, i) / fs_hz).collect(),
+        median_stride_s: t_med,
+    })
+}
+
+/// The signals the event rules read: pitch (deg), ω_s (deg/s), −ω_s and the rate (Hz).
+struct Signals<'a> {
+    pitch_deg: &'a [f64],
+    omega_s_dps: &'a [f64],
+    neg: &'a [f64],
+    fs_hz: f64,
+}
+
+/// Mid-swing samples: peaks of −ω_s above the threshold, at least 0.8 × the shortest stride
+/// apart, in order.
+fn midswings(neg: &[f64], p: &EventParams, fs_hz: f64) -> Vec<usize> {
     let min_dist = ((p.min_stride_s * 0.8) * fs_hz).max(1.0) as usize;
-    let threshold = midswing_threshold_dps(&neg, p);
-    let mut pf = PeakFinder::new(&neg);
+    let threshold = midswing_threshold_dps(neg, p);
+    let mut pf = PeakFinder::new(neg);
     pf.with_min_height(threshold)
         .with_min_prominence(threshold)
         .with_min_distance(min_dist);
@@ -306,89 +354,85 @@ pub fn detect(
         .map(|pk| pk.middle_position())
         .collect();
     mid.sort_unstable();
-    if mid.len() < 2 {
-        return Ok(Events {
-            midswing_s: mid.iter().map(|&i| i as f64 / fs_hz).collect(),
-            ..Events::default()
-        });
-    }
+    mid
+}
+
+/// The median interval between mid-swings no longer than `max_stride_s`, s (1.1 s when none).
+fn median_stride_s(mid: &[usize], fs_hz: f64, max_stride_s: f64) -> f64 {
     let mut iv: Vec<f64> = mid
         .windows(2)
         .map(|w| (w[1] - w[0]) as f64 / fs_hz)
-        .filter(|d| *d <= p.max_stride_s)
+        .filter(|d| *d <= max_stride_s)
         .collect();
     iv.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
-    let t_med = if iv.is_empty() { 1.1 } else { iv[iv.len() / 2] };
-    let half = ((0.5 * t_med) * fs_hz) as usize;
-    let mut hs = Vec::new();
-    let mut to = Vec::new();
-    for &m in &mid {
-        // HS: after mid-swing, within half a stride.
-        let end = (m + half).min(n - 1);
-        let hs_idx: Option<f64> = match p.detector {
-            EventDetector::PitchPeaks => (m..=end)
-                .min_by(|&a, &b| {
-                    pitch_deg[a]
-                        .partial_cmp(&pitch_deg[b])
-                        .unwrap_or(std::cmp::Ordering::Equal)
+    if iv.is_empty() {
+        1.1
+    } else {
+        iv[iv.len() / 2]
+    }
+}
+
+/// The heel strike after the mid-swing at sample `m` and before `end`, as a fractional sample.
+fn heel_strike(sig: &Signals, detector: EventDetector, m: usize, end: usize) -> Option<f64> {
+    let (pitch_deg, omega_s_dps) = (sig.pitch_deg, sig.omega_s_dps);
+    match detector {
+        EventDetector::PitchPeaks => (m..=end)
+            .min_by(|&a, &b| {
+                pitch_deg[a]
+                    .partial_cmp(&pitch_deg[b])
+                    .unwrap_or(std::cmp::Ordering::Equal)
+            })
+            .filter(|&i| i > m && i < end)
+            .map(|i| i as f64),
+        EventDetector::GyroZeroCrossing | EventDetector::GyroLandmarks => (m..end)
+            .find(|&i| omega_s_dps[i] < 0.0 && omega_s_dps[i + 1] >= 0.0)
+            .map(|i| i as f64 + (-omega_s_dps[i]) / (omega_s_dps[i + 1] - omega_s_dps[i])),
+        EventDetector::Salarian => {
+            let zc = (m..end).find(|&i| omega_s_dps[i] < 0.0 && omega_s_dps[i + 1] >= 0.0);
+            zc.and_then(|z| {
+                (z + 1..end).find(|&i| {
+                    omega_s_dps[i] >= omega_s_dps[i - 1] && omega_s_dps[i] > omega_s_dps[i + 1]
                 })
-                .filter(|&i| i > m && i < end)
-                .map(|i| i as f64),
-            EventDetector::GyroZeroCrossing | EventDetector::GyroLandmarks => (m..end)
-                .find(|&i| omega_s_dps[i] < 0.0 && omega_s_dps[i + 1] >= 0.0)
-                .map(|i| i as f64 + (-omega_s_dps[i]) / (omega_s_dps[i + 1] - omega_s_dps[i])),
-            EventDetector::Salarian => {
-                let zc = (m..end).find(|&i| omega_s_dps[i] < 0.0 && omega_s_dps[i + 1] >= 0.0);
-                zc.and_then(|z| {
-                    (z + 1..end).find(|&i| {
-                        omega_s_dps[i] >= omega_s_dps[i - 1] && omega_s_dps[i] > omega_s_dps[i + 1]
-                    })
-                })
-                .map(|i| parabolic(omega_s_dps, i))
-            }
-        };
-        if let Some(i) = hs_idx {
-            hs.push(i / fs_hz + params.hs_offset * t_med);
-        }
-        // TO: before mid-swing, within half a stride.
-        let start = m.saturating_sub(half).max(1);
-        if p.detector == EventDetector::GyroLandmarks {
-            if let Some((l, z)) = late_stance(omega_s_dps, start, m) {
-                let tp =
-                    (z as f64 + omega_s_dps[z] / (omega_s_dps[z] - omega_s_dps[z + 1])) / fs_hz;
-                let ts = parabolic(omega_s_dps, l) / fs_hz;
-                let tm = parabolic(&neg, m) / fs_hz;
-                let [_, b, c] = TO_LANDMARK_COEFFS;
-                to.push(tp + params.to_offset * t_med + b * (tm - tp) + c * (tp - ts));
-            }
-            continue;
-        }
-        let to_idx: Option<f64> = match p.detector {
-            EventDetector::GyroLandmarks => unreachable!("handled above"),
-            EventDetector::PitchPeaks => (start..=m)
-                .max_by(|&a, &b| {
-                    pitch_deg[a]
-                        .partial_cmp(&pitch_deg[b])
-                        .unwrap_or(std::cmp::Ordering::Equal)
-                })
-                .filter(|&i| i > start && i < m)
-                .map(|i| i as f64),
-            EventDetector::GyroZeroCrossing => late_stance(omega_s_dps, start, m)
-                .map(|(_, z)| z as f64 + omega_s_dps[z] / (omega_s_dps[z] - omega_s_dps[z + 1])),
-            EventDetector::Salarian => {
-                late_stance(omega_s_dps, start, m).map(|(l, _)| parabolic(omega_s_dps, l))
-            }
-        };
-        if let Some(i) = to_idx {
-            to.push(i / fs_hz + params.to_offset * t_med);
+            })
+            .map(|i| parabolic(omega_s_dps, i))
         }
     }
-    Ok(Events {
-        hs_s: hs,
-        to_s: to,
-        midswing_s: mid.iter().map(|&i| parabolic(&neg, i) / fs_hz).collect(),
-        median_stride_s: t_med,
-    })
+}
+
+/// The toe off between sample `start` and the mid-swing at sample `m`, s, offsets applied
+/// (`t_med`: the median stride time, s).
+fn toe_off_s(
+    sig: &Signals,
+    params: &ValidEventParams,
+    t_med: f64,
+    start: usize,
+    m: usize,
+) -> Option<f64> {
+    let (pitch_deg, omega_s_dps, fs_hz) = (sig.pitch_deg, sig.omega_s_dps, sig.fs_hz);
+    let to_idx: Option<f64> = match params.p.detector {
+        EventDetector::GyroLandmarks => {
+            let (l, z) = late_stance(omega_s_dps, start, m)?;
+            let tp = (z as f64 + omega_s_dps[z] / (omega_s_dps[z] - omega_s_dps[z + 1])) / fs_hz;
+            let ts = parabolic(omega_s_dps, l) / fs_hz;
+            let tm = parabolic(sig.neg, m) / fs_hz;
+            let [_, b, c] = TO_LANDMARK_COEFFS;
+            return Some(tp + params.to_offset * t_med + b * (tm - tp) + c * (tp - ts));
+        }
+        EventDetector::PitchPeaks => (start..=m)
+            .max_by(|&a, &b| {
+                pitch_deg[a]
+                    .partial_cmp(&pitch_deg[b])
+                    .unwrap_or(std::cmp::Ordering::Equal)
+            })
+            .filter(|&i| i > start && i < m)
+            .map(|i| i as f64),
+        EventDetector::GyroZeroCrossing => late_stance(omega_s_dps, start, m)
+            .map(|(_, z)| z as f64 + omega_s_dps[z] / (omega_s_dps[z] - omega_s_dps[z + 1])),
+        EventDetector::Salarian => {
+            late_stance(omega_s_dps, start, m).map(|(l, _)| parabolic(omega_s_dps, l))
+        }
+    };
+    to_idx.map(|i| i / fs_hz + params.to_offset * t_med)
 }
 
 #[cfg(test)]

@@ -21,6 +21,7 @@
 
 use nalgebra::{Matrix2, Matrix3, SMatrix, SVector, Vector2, Vector3};
 
+mod products;
 mod rts;
 
 use super::anchor::quasi_static_windows;
@@ -31,18 +32,37 @@ use rts::{smooth, SegmentStore, SEGMENT};
 
 type V5 = SVector<f64, 5>;
 type M5 = SMatrix<f64, 5, 5>;
-type M2x5 = SMatrix<f64, 2, 5>;
 type M5x2 = SMatrix<f64, 5, 2>;
 
 /// Euler-angle rates (eq. 7) and their Jacobian with respect to (φ, θ, ψ).
 pub(super) fn euler_rates(x: &Vector3<f64>, w: &Vector3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
-    let (sp, cp) = x[0].sin_cos();
-    let (st, ct) = x[1].sin_cos();
-    let ct = if ct.abs() < 1e-6 {
-        1e-6f64.copysign(ct)
-    } else {
-        ct
-    };
+    euler_rates_of(&SinCos::of(x[0], x[1]), w)
+}
+
+/// sin φ, cos φ, sin θ and cos θ (kept away from 0) of the tilt angles.
+struct SinCos {
+    sp: f64,
+    cp: f64,
+    st: f64,
+    ct: f64,
+}
+
+impl SinCos {
+    fn of(phi: f64, theta: f64) -> SinCos {
+        let (sp, cp) = phi.sin_cos();
+        let (st, ct) = theta.sin_cos();
+        let ct = if ct.abs() < 1e-6 {
+            1e-6f64.copysign(ct)
+        } else {
+            ct
+        };
+        SinCos { sp, cp, st, ct }
+    }
+}
+
+/// [`euler_rates`] from the sines and cosines of the tilt.
+fn euler_rates_of(sc: &SinCos, w: &Vector3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
+    let SinCos { sp, cp, st, ct } = *sc;
     let tt = st / ct;
     let a = sp * w[1] + cp * w[2];
     let b = cp * w[1] - sp * w[2];
@@ -64,19 +84,13 @@ pub(super) fn euler_rates(x: &Vector3<f64>, w: &Vector3<f64>) -> (Vector3<f64>, 
 /// One prediction step: the state, its covariance and the transition Jacobian.
 fn predict(x: &V5, p: &M5, w_mid: &Vector3<f64>, dt: f64, q: &M5) -> (V5, M5, M5) {
     let wc = w_mid - Vector3::new(x[3], x[4], 0.0);
-    let ang = Vector3::new(x[0], x[1], x[2]);
-    let (rates, j) = euler_rates(&ang, &wc);
+    let sc = SinCos::of(x[0], x[1]);
+    let (rates, j) = euler_rates_of(&sc, &wc);
     let mut f = M5::identity();
     let mut fa = f.fixed_view_mut::<3, 3>(0, 0);
     fa += j * dt;
     // ∂rates/∂b = −(columns x and y of the Euler-rate matrix).
-    let (sp, cp) = x[0].sin_cos();
-    let (st, ct) = x[1].sin_cos();
-    let ct = if ct.abs() < 1e-6 {
-        1e-6f64.copysign(ct)
-    } else {
-        ct
-    };
+    let SinCos { sp, cp, st, ct } = sc;
     f[(0, 3)] = -dt;
     f[(0, 4)] = -sp * st / ct * dt;
     f[(1, 4)] = -cp * dt;
@@ -86,7 +100,7 @@ fn predict(x: &V5, p: &M5, w_mid: &Vector3<f64>, dt: f64, q: &M5) -> (V5, M5, M5
         xp[i] += rates[i] * dt;
     }
     xp[2] = wrap(xp[2]);
-    (xp, f * p * f.transpose() + q, f)
+    (xp, products::propagate(&f, p) + q, f)
 }
 
 /// The fixed quantities of one run: inputs, model matrices and parameters.
@@ -94,7 +108,6 @@ struct Model<'a> {
     al: &'a Aligned,
     p: &'a AttitudeParams,
     dt: f64,
-    h: M2x5,
     q: M5,
     r0: f64,
     rlo: f64,
@@ -116,9 +129,6 @@ impl<'a> Model<'a> {
     fn new(al: &'a Aligned, p: &'a AttitudeParams) -> Model<'a> {
         let n = al.acc_g[0].len();
         let dt = 1.0 / al.fs_hz;
-        let mut h = M2x5::zeros();
-        h[(0, 0)] = 1.0;
-        h[(1, 1)] = 1.0;
         let mut q = M5::zeros();
         let qa = (p.gyro_noise_dps.to_radians() * dt).powi(2);
         let qb = p.gyro_bias_walk_dps.to_radians().powi(2) * dt;
@@ -141,7 +151,6 @@ impl<'a> Model<'a> {
             al,
             p,
             dt,
-            h,
             q,
             r0: p.acc_tilt_noise_deg.to_radians().powi(2),
             rlo: p.acc_tilt_noise_bounds_deg[0].to_radians().powi(2),
@@ -205,17 +214,18 @@ impl Filter {
     /// Predict to sample k (none at k = 0) and update with its tilt unless gated out; `d_k` is
     /// the Sage–Husa weight of this sample.
     fn step(&mut self, m: &Model, s: &Sample, k: usize, d_k: f64) {
-        let (p, h) = (m.p, &m.h);
+        let p = m.p;
         let (xp, pp) = if k == 0 {
             (self.x, self.p)
         } else {
             let (xp, pp, _) = predict(&self.x, &self.p, &s.wm, m.dt, &m.q);
             (xp, pp)
         };
-        let mut nu = s.z - h * xp;
+        // H selects (φ, θ): H x, H P Hᵀ and P Hᵀ are sub-blocks (bit for bit, see products)
+        let mut nu = s.z - Vector2::new(xp[0], xp[1]);
         nu[0] = wrap(nu[0]);
         nu[1] = wrap(nu[1]);
-        let hph = h * pp * h.transpose();
+        let hph: Matrix2<f64> = pp.fixed_view::<2, 2>(0, 0).into_owned();
         let mut rk = self.r * s.infl;
         if s.anchor {
             // Gravity re-acquisition: the tilt is trusted to σ_anchor per window.
@@ -233,10 +243,9 @@ impl Filter {
         let reacquire = self.rejected as f64 * m.dt >= p.reacquire_s;
         let (xu, pu) = if d2 <= self.gate2 || reacquire || s.anchor {
             self.rejected = 0;
-            let kg: M5x2 = pp * h.transpose() * s_inv;
-            let ikh = M5::identity() - kg * h;
+            let kg = products::gain(&pp, &s_inv);
             let xu = xp + kg * nu;
-            let pu = ikh * pp * ikh.transpose() + kg * rk * kg.transpose();
+            let pu = products::joseph(&pp, &kg, &rk);
             // Sage–Husa adaptation of R from quasi-static innovations.
             if s.dyn_dev < 2.0 * p.dynamic_scale_g {
                 for i in 0..2 {

@@ -23,8 +23,7 @@ pub fn check_units_plausible(rec: &Recording, spec: &FormatSpec, path: &Path) ->
         .collect();
     let mean = mag.iter().sum::<f64>() / n as f64;
     let sd = (mag.iter().map(|m| (m - mean).powi(2)).sum::<f64>() / n as f64).sqrt();
-    mag.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
-    let median = mag[n / 2];
+    let median = super::timebase::median_of(&mut mag);
     let declared_acc = match spec.acc.unit {
         AccUnit::G => "g",
         AccUnit::Mps2 => "m/s2",

@@ -44,9 +44,10 @@ pub(super) fn open_limited(
     ))
 }
 
-/// Memory the reading and the analysis of one leg need at their peak, bytes per sample
-/// (measured: a 2-hour pair of 720 000 samples per leg peaks at 1.0 GB, docs/robustness.md),
-/// with a margin. Checked with a fallible reservation once the rows are parsed.
+/// Memory the reading and the analysis of one leg need at their peak, bytes per sample, with a
+/// wide margin (measured when this was set: a 2-hour pair of 720 000 samples per leg peaked at
+/// 1.0 GB; since the attitude smoother keeps less per sample, 0.23 GB, docs/robustness.md).
+/// Checked with a fallible reservation once the rows are parsed.
 const HEADROOM_BYTES_PER_SAMPLE: usize = 1024;
 
 /// Reserve room for `n` more items in `v`, or [`LdhError::OutOfMemory`] naming `path`.

@@ -17,8 +17,8 @@ pub mod writer;
 pub use format::{ColumnRef, FormatSpec, SensorSelect, BUILTIN_FORMATS, DETECTED_FORMATS};
 pub use inspect::{inspect, Inspection, PreprocessSummary};
 pub use reader::{
-    flat_channel_warnings, read_recording, read_recording_bytes, GapPolicy, ReadParams, ReadReport,
-    ValidReadParams,
+    flat_channel_warnings, read_recording, read_recording_bytes, read_recording_from, GapPolicy,
+    ReadParams, ReadReport, ValidReadParams, DEFAULT_MAX_SAMPLES,
 };
 pub use writer::{
     recording_to_csv, remove_stale_temp_files, write_atomic, write_recording, AtomicFile,
@@ -35,3 +35,5 @@ pub const MAX_ABS_SIGNAL: f64 = 1e12;
 mod tests;
 #[cfg(test)]
 mod tests_columns;
+#[cfg(test)]
+mod tests_stream;

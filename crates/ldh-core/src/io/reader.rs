@@ -82,17 +82,17 @@ pub struct ReadParams {
     /// at 1000 Hz. A larger file is refused with a message before it is read, so that `/dev/zero`
     /// or a mistaken multi-gigabyte export cannot exhaust the memory.
     pub max_file_size_mb: f64,
-    /// Most data rows (samples) in one recording. Default 750 000: 2 h 5 min at 100 Hz,
-    /// 12.5 min at 1000 Hz. The analysis of a pair keeps per-sample state (the attitude
-    /// smoother's among it), about 1.5 kB a sample of each leg at its peak (a 2-hour pair of
-    /// 720 000 samples a leg peaks at about 1 GB, docs/robustness.md). A longer recording is
-    /// refused while it is read, naming its row count, before the rows past the limit are
+    /// Most data rows (samples) in one recording. Default 2 500 000: 6.9 h at 100 Hz, 42 min at
+    /// 1000 Hz. The analysis keeps per-sample state, about 150 bytes per sample of a pair at
+    /// its peak (measured: a pair of 720 000-sample legs 0.23 GB, of 2 000 000-sample legs
+    /// 0.62 GB, `--jobs 1`), so the default keeps one subject under 1 GB. A longer recording
+    /// is refused while it is read, naming its row count, before the rows past the limit are
     /// stored: a 10-million-row file costs no more memory than the limit.
     pub max_samples: usize,
 }
 
 /// Default [`ReadParams::max_samples`].
-pub const DEFAULT_MAX_SAMPLES: usize = 750_000;
+pub const DEFAULT_MAX_SAMPLES: usize = 2_500_000;
 
 impl Default for ReadParams {
     fn default() -> Self {

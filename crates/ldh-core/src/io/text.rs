@@ -99,7 +99,13 @@ impl<'p, R: BufRead> Lines<'p, R> {
         if self.buf.is_empty() {
             return Ok(None);
         }
-        if let Some(p) = self.buf.iter().position(|&b| b == 0) {
+        // `contains` on bytes is a memchr; the position only when there is one.
+        if let Some(p) = self
+            .buf
+            .contains(&0)
+            .then(|| self.buf.iter().position(|&b| b == 0))
+            .flatten()
+        {
             return Err(LdhError::Binary {
                 loc: Location::line(self.path, self.lineno),
                 offset: start + p as u64,

@@ -119,14 +119,14 @@ pub(super) fn check_median_rate(
 ) -> Result<()> {
     if times.len() >= 3 {
         let mut dts: Vec<f64> = times.windows(2).map(|w| w[1] - w[0]).collect();
-        dts.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
-        let rate = 1.0 / dts[dts.len() / 2];
+        let median_dt = median_of(&mut dts);
+        let rate = 1.0 / median_dt;
         if !bounds.contains(rate) {
             return Err(LdhError::SamplingRate {
                 path: path.to_path_buf(),
                 reason: format!(
                     "the median interval between timestamps is {:.6} s ({rate:.3} Hz), outside the plausible {}–{} Hz; check the time unit ({:?} declared: milliseconds written as seconds?)",
-                    dts[dts.len() / 2],
+                    median_dt,
                     bounds.min_hz,
                     bounds.max_hz,
                     unit
@@ -135,6 +135,16 @@ pub(super) fn check_median_rate(
         }
     }
     Ok(())
+}
+
+/// The element at `v.len() / 2` of `v` sorted (the upper median), in linear time; `v` is
+/// reordered. The values are finite: the same number as after a full sort.
+pub(super) fn median_of(v: &mut [f64]) -> f64 {
+    let k = v.len() / 2;
+    *v.select_nth_unstable_by(k, |a, b| {
+        a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal)
+    })
+    .1
 }
 
 /// The recording split at gaps: the kept segment (rows `start..end`) and what was not kept.
@@ -253,8 +263,7 @@ fn rate_and_index(seg_t: &[f64], spec: &FormatSpec) -> (f64, Vec<f64>) {
         }
         _ => {
             let mut dts: Vec<f64> = seg_t.windows(2).map(|w| w[1] - w[0]).collect();
-            dts.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
-            let median_dt = dts[dts.len() / 2];
+            let median_dt = median_of(&mut dts);
             let mut index = Vec::with_capacity(n_seg);
             let mut k = 0.0;
             index.push(0.0);

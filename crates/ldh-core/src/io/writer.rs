@@ -244,6 +244,39 @@ impl Default for WriteOptions {
 /// Integer-count formats (`scale` ≠ 1) are written as rounded integers.
 pub fn recording_to_csv(rec: &Recording, spec: &FormatSpec, opts: &WriteOptions) -> Result<String> {
     spec.validate()?;
+    check_counter_rate(rec, spec)?;
+    let delim = match spec.delimiter {
+        Delimiter::Auto => ',',
+        d => d.byte().expect("not auto") as char,
+    };
+    let inv = spec.axis_map()?.inverse();
+    let n = rec.len();
+    let mut out = String::with_capacity(n * 64 + 256);
+    write_head(&mut out, spec, opts, delim)?;
+    let cells = Cells::new(spec, opts);
+    let mut fields: Vec<String> = Vec::with_capacity(7);
+    for i in 0..n {
+        fields.clear();
+        let t = rec.t0_s + rec.time_s(i);
+        fields.extend(cells.time(t));
+        let a = [rec.acc_g[0][i], rec.acc_g[1][i], rec.acc_g[2][i]];
+        let g = [rec.gyro_dps[0][i], rec.gyro_dps[1][i], rec.gyro_dps[2][i]];
+        let a_in = inv.apply(a);
+        let g_in = inv.apply(g);
+        for v in a_in {
+            fields.push(cells.num(v * cells.acc_from_g, cells.acc_dec, cells.acc_int));
+        }
+        for v in g_in {
+            fields.push(cells.num(v * cells.gyro_from_dps, cells.gyro_dec, cells.gyro_int));
+        }
+        out.push_str(&fields.join(&delim.to_string()));
+        out.push('\n');
+    }
+    Ok(out)
+}
+
+/// A format that numbers samples (a counter, or no time column) must state the recording's rate.
+fn check_counter_rate(rec: &Recording, spec: &FormatSpec) -> Result<()> {
     if matches!(spec.time.unit, TimeUnit::Counter | TimeUnit::None) {
         let stated = spec.time.rate_hz.expect("validated");
         if (stated - rec.fs_hz).abs() > 1e-9 * rec.fs_hz {
@@ -256,13 +289,11 @@ pub fn recording_to_csv(rec: &Recording, spec: &FormatSpec, opts: &WriteOptions)
             });
         }
     }
-    let delim = match spec.delimiter {
-        Delimiter::Auto => ',',
-        d => d.byte().expect("not auto") as char,
-    };
-    let inv = spec.axis_map()?.inverse();
-    let n = rec.len();
-    let mut out = String::with_capacity(n * 64 + 256);
+    Ok(())
+}
+
+/// The preamble (as comments), the header row and the rows of units the format skips.
+fn write_head(out: &mut String, spec: &FormatSpec, opts: &WriteOptions, delim: char) -> Result<()> {
     if !opts.preamble.is_empty() {
         let prefix = spec
             .comment_prefixes
@@ -296,76 +327,96 @@ pub fn recording_to_csv(rec: &Recording, spec: &FormatSpec, opts: &WriteOptions)
         out.push_str(&units.join(&delim.to_string()));
         out.push('\n');
     }
-    let acc_from_g = match spec.acc.unit {
-        AccUnit::G => 1.0,
-        AccUnit::Mps2 => STANDARD_GRAVITY_MPS2,
-    } / spec.acc.scale;
-    let gyro_from_dps = match spec.gyro.unit {
-        GyroUnit::Dps => 1.0,
-        GyroUnit::Rps => std::f64::consts::PI / 180.0,
-    } / spec.gyro.scale;
-    let acc_int = spec.acc.scale != 1.0;
-    let gyro_int = spec.gyro.scale != 1.0;
-    let fmt_num = |v: f64, decimals: usize, integer: bool| -> String {
+    Ok(())
+}
+
+/// How the cells of a row are written in a format: unit conversions, digits, integer counts
+/// and the decimal separator.
+struct Cells<'a> {
+    spec: &'a FormatSpec,
+    opts: &'a WriteOptions,
+    /// Multiplier from g to the file's raw acceleration.
+    acc_from_g: f64,
+    /// Multiplier from deg/s to the file's raw angular velocity.
+    gyro_from_dps: f64,
+    /// Acceleration written as integer counts.
+    acc_int: bool,
+    /// Angular velocity written as integer counts.
+    gyro_int: bool,
+    /// Digits of the file's acceleration unit.
+    acc_dec: usize,
+    /// Digits of the file's angular-velocity unit.
+    gyro_dec: usize,
+}
+
+impl<'a> Cells<'a> {
+    fn new(spec: &'a FormatSpec, opts: &'a WriteOptions) -> Self {
+        let acc_from_g = match spec.acc.unit {
+            AccUnit::G => 1.0,
+            AccUnit::Mps2 => STANDARD_GRAVITY_MPS2,
+        } / spec.acc.scale;
+        let gyro_from_dps = match spec.gyro.unit {
+            GyroUnit::Dps => 1.0,
+            GyroUnit::Rps => std::f64::consts::PI / 180.0,
+        } / spec.gyro.scale;
+        // Digits needed for the file's native acc unit.
+        let acc_dec = if spec.acc.unit == AccUnit::Mps2 {
+            opts.acc_decimals.saturating_sub(1).max(3)
+        } else {
+            opts.acc_decimals
+        };
+        let gyro_dec = if spec.gyro.unit == GyroUnit::Rps {
+            opts.gyro_decimals + 2
+        } else {
+            opts.gyro_decimals
+        };
+        Cells {
+            spec,
+            opts,
+            acc_from_g,
+            gyro_from_dps,
+            acc_int: spec.acc.scale != 1.0,
+            gyro_int: spec.gyro.scale != 1.0,
+            acc_dec,
+            gyro_dec,
+        }
+    }
+
+    /// A number with `decimals` digits, or rounded to an integer count.
+    fn num(&self, v: f64, decimals: usize, integer: bool) -> String {
         let s = if integer {
             format!("{}", v.round() as i64)
         } else {
             format!("{v:.decimals$}")
         };
-        if spec.decimal == Decimal::Comma {
+        if self.spec.decimal == Decimal::Comma {
             s.replace('.', ",")
         } else {
             s
         }
-    };
-    // Digits needed for the file's native acc unit.
-    let acc_dec = if spec.acc.unit == AccUnit::Mps2 {
-        opts.acc_decimals.saturating_sub(1).max(3)
-    } else {
-        opts.acc_decimals
-    };
-    let gyro_dec = if spec.gyro.unit == GyroUnit::Rps {
-        opts.gyro_decimals + 2
-    } else {
-        opts.gyro_decimals
-    };
-    let mut fields: Vec<String> = Vec::with_capacity(7);
-    for i in 0..n {
-        fields.clear();
-        let t = rec.t0_s + rec.time_s(i);
-        match spec.time.unit {
-            TimeUnit::Seconds => fields.push(fmt_num(t, opts.time_decimals, false)),
-            TimeUnit::Milliseconds => fields.push(fmt_num(
-                t * 1e3,
-                opts.time_decimals.saturating_sub(3),
-                false,
-            )),
-            TimeUnit::Microseconds => fields.push(fmt_num(t * 1e6, 0, false)),
+    }
+
+    /// The time cell at `t` s in the format's time unit (none without a time column).
+    fn time(&self, t: f64) -> Option<String> {
+        let (spec, opts) = (self.spec, self.opts);
+        Some(match spec.time.unit {
+            TimeUnit::Seconds => self.num(t, opts.time_decimals, false),
+            TimeUnit::Milliseconds => {
+                self.num(t * 1e3, opts.time_decimals.saturating_sub(3), false)
+            }
+            TimeUnit::Microseconds => self.num(t * 1e6, 0, false),
             TimeUnit::Counter => {
                 let rate = spec.time.rate_hz.expect("validated");
                 let mut c = (t * rate).round() as u64;
                 if let Some(w) = spec.time.counter_wrap {
                     c %= w;
                 }
-                fields.push(c.to_string());
+                c.to_string()
             }
-            TimeUnit::Iso8601 => fields.push(format_iso8601(t)),
-            TimeUnit::None => {}
-        }
-        let a = [rec.acc_g[0][i], rec.acc_g[1][i], rec.acc_g[2][i]];
-        let g = [rec.gyro_dps[0][i], rec.gyro_dps[1][i], rec.gyro_dps[2][i]];
-        let a_in = inv.apply(a);
-        let g_in = inv.apply(g);
-        for v in a_in {
-            fields.push(fmt_num(v * acc_from_g, acc_dec, acc_int));
-        }
-        for v in g_in {
-            fields.push(fmt_num(v * gyro_from_dps, gyro_dec, gyro_int));
-        }
-        out.push_str(&fields.join(&delim.to_string()));
-        out.push('\n');
+            TimeUnit::Iso8601 => format_iso8601(t),
+            TimeUnit::None => return None,
+        })
     }
-    Ok(out)
 }
 
 /// Write `rec` to `path` in `spec`, atomically.

@@ -231,20 +231,6 @@ fn discover_inputs(inputs: &[PathBuf], opts: &InputOptions) -> Result<Vec<Subjec
             source: std::io::Error::new(std::io::ErrorKind::NotFound, "no such file or folder"),
         });
     }
-    let subject_dir = |d: &Path| -> Option<SubjectInput> {
-        let (l, r) = (d.join("left.csv"), d.join("right.csv"));
-        (l.exists() || r.exists()).then(|| SubjectInput {
-            subject_id: d
-                .file_name()
-                .map(|n| n.to_string_lossy().to_string())
-                .unwrap_or_else(|| "subject".into()),
-            group: None,
-            affected_side: None,
-            left: l.exists().then_some(Source::Path(l)),
-            right: r.exists().then_some(Source::Path(r)),
-            ..SubjectInput::default()
-        })
-    };
     let files: Vec<&PathBuf> = inputs
         .iter()
         .filter(|p| !p.is_dir() && !is_manifest(p))
@@ -258,63 +244,13 @@ fn discover_inputs(inputs: &[PathBuf], opts: &InputOptions) -> Result<Vec<Subjec
     let mut out = Vec::new();
     for p in inputs {
         if p.is_dir() {
-            if p.join("manifest.csv").is_file() {
-                out.extend(read_manifest(&p.join("manifest.csv"))?);
-            } else if let Some(s) = subject_dir(p) {
-                out.push(s);
-            } else {
-                let mut subs: Vec<PathBuf> = std::fs::read_dir(p)
-                    .map_err(|source| LdhError::Io {
-                        path: p.clone(),
-                        source,
-                    })?
-                    .filter_map(|e| e.ok().map(|e| e.path()))
-                    .filter(|e| e.is_dir())
-                    .collect();
-                subs.sort();
-                let found: Vec<SubjectInput> = subs.iter().filter_map(|d| subject_dir(d)).collect();
-                if found.is_empty() {
-                    return Err(LdhError::signal(
-                        p.display().to_string(),
-                        "no manifest.csv, no left.csv/right.csv and no subject folders with them",
-                    ));
-                }
-                out.extend(found);
-            }
+            out.extend(folder_inputs(p)?);
         } else if is_manifest(p) {
             out.extend(read_manifest(p)?);
         }
     }
     if !files.is_empty() {
-        if files.len() > 2 {
-            return Err(LdhError::signal(
-                "inputs",
-                format!("{} loose files: give one subject's left and right files, or a folder or manifest", files.len()),
-            ));
-        }
-        let name = |p: &Path| {
-            p.file_name()
-                .map(|n| n.to_string_lossy().to_ascii_lowercase())
-                .unwrap_or_default()
-        };
-        let (mut left, mut right) = (None, None);
-        for (i, f) in files.iter().enumerate() {
-            let n = name(f);
-            if n.contains("right") || (i == 1 && !n.contains("left")) {
-                right = Some(Source::Path((*f).clone()));
-            } else {
-                left = Some(Source::Path((*f).clone()));
-            }
-        }
-        out.push(SubjectInput {
-            subject_id: opts
-                .subject_id
-                .clone()
-                .unwrap_or_else(|| subject_id_from_files(&files)),
-            left,
-            right,
-            ..SubjectInput::default()
-        });
+        out.push(loose_files_input(&files, opts)?);
     }
     let mut seen = std::collections::BTreeSet::new();
     for s in &out {
@@ -326,4 +262,85 @@ fn discover_inputs(inputs: &[PathBuf], opts: &InputOptions) -> Result<Vec<Subjec
         }
     }
     Ok(out)
+}
+
+/// A subject folder: one holding `left.csv` and/or `right.csv`, named after the folder.
+fn subject_dir(d: &Path) -> Option<SubjectInput> {
+    let (l, r) = (d.join("left.csv"), d.join("right.csv"));
+    (l.exists() || r.exists()).then(|| SubjectInput {
+        subject_id: d
+            .file_name()
+            .map(|n| n.to_string_lossy().to_string())
+            .unwrap_or_else(|| "subject".into()),
+        group: None,
+        affected_side: None,
+        left: l.exists().then_some(Source::Path(l)),
+        right: r.exists().then_some(Source::Path(r)),
+        ..SubjectInput::default()
+    })
+}
+
+/// The subjects of a folder: its `manifest.csv`, else the folder as one subject, else its
+/// subject folders in name order.
+fn folder_inputs(p: &Path) -> Result<Vec<SubjectInput>> {
+    if p.join("manifest.csv").is_file() {
+        return read_manifest(&p.join("manifest.csv"));
+    }
+    if let Some(s) = subject_dir(p) {
+        return Ok(vec![s]);
+    }
+    let mut subs: Vec<PathBuf> = std::fs::read_dir(p)
+        .map_err(|source| LdhError::Io {
+            path: p.to_path_buf(),
+            source,
+        })?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|e| e.is_dir())
+        .collect();
+    subs.sort();
+    let found: Vec<SubjectInput> = subs.iter().filter_map(|d| subject_dir(d)).collect();
+    if found.is_empty() {
+        return Err(LdhError::signal(
+            p.display().to_string(),
+            "no manifest.csv, no left.csv/right.csv and no subject folders with them",
+        ));
+    }
+    Ok(found)
+}
+
+/// One subject from one or two files given directly: the file named `right` (or the second
+/// one not named `left`) is the right leg.
+fn loose_files_input(files: &[&PathBuf], opts: &InputOptions) -> Result<SubjectInput> {
+    if files.len() > 2 {
+        return Err(LdhError::signal(
+            "inputs",
+            format!(
+                "{} loose files: give one subject's left and right files, or a folder or manifest",
+                files.len()
+            ),
+        ));
+    }
+    let name = |p: &Path| {
+        p.file_name()
+            .map(|n| n.to_string_lossy().to_ascii_lowercase())
+            .unwrap_or_default()
+    };
+    let (mut left, mut right) = (None, None);
+    for (i, f) in files.iter().enumerate() {
+        let n = name(f);
+        if n.contains("right") || (i == 1 && !n.contains("left")) {
+            right = Some(Source::Path((*f).clone()));
+        } else {
+            left = Some(Source::Path((*f).clone()));
+        }
+    }
+    Ok(SubjectInput {
+        subject_id: opts
+            .subject_id
+            .clone()
+            .unwrap_or_else(|| subject_id_from_files(files)),
+        left,
+        right,
+        ..SubjectInput::default()
+    })
 }

@@ -101,7 +101,7 @@ fn rts_step(xf: &V5, pf: &M5, xs_next: &V5, wm: &Vector3<f64>, m: &Model) -> V5 
     let Some(inv) = pp.try_inverse() else {
         return *xf;
     };
-    let c = pf * fj.transpose() * inv;
+    let c = super::products::times_ft(pf, &fj) * inv;
     let mut diff = xs_next - xp;
     diff[2] = wrap(diff[2]);
     xf + c * diff

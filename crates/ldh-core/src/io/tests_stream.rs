@@ -1,0 +1,186 @@
+//! Streaming reader tests (issue 19): a stream read in tiny chunks gives what bytes in memory
+//! give; faults past the first 64 KiB are found with their line; the sample and size limits.
+
+use super::format::FormatSpec;
+use super::reader::*;
+use super::text::Lines;
+use super::writer::{recording_to_csv, WriteOptions};
+use crate::error::LdhError;
+use crate::simulate::CohortParams;
+use std::io::BufReader;
+use std::path::Path;
+
+const HEADER: &str = "time_s,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z\n";
+
+/// A simulated 12 s walk at 100 Hz as the `ldh` format's CSV (1201 rows).
+fn walking_csv() -> String {
+    let c = CohortParams {
+        healthy: 1,
+        ldh: 0,
+        duration_s: 12.0,
+        fs_hz: 100.0,
+        turn: false,
+        ..CohortParams::default()
+    };
+    let rec = c.simulate(0).unwrap().left.recording;
+    recording_to_csv(&rec, &FormatSpec::default(), &WriteOptions::default()).unwrap()
+}
+
+/// `n` rows of a constant recording at 100 Hz (the text layer's faults come first).
+fn rows(n: usize) -> String {
+    let mut t = String::from(HEADER);
+    for i in 0..n {
+        t.push_str(&format!(
+            "{}.{:02},1.000,0.010,0.020,0.5,0.6,0.7\n",
+            i / 100,
+            i % 100
+        ));
+    }
+    t
+}
+
+fn params() -> ValidReadParams {
+    ReadParams::default().check().unwrap()
+}
+
+fn hash_comments() -> FormatSpec {
+    FormatSpec {
+        comment_prefixes: vec!["#".into()],
+        ..FormatSpec::default()
+    }
+}
+
+#[test]
+fn a_stream_read_in_tiny_chunks_equals_the_bytes_in_memory() {
+    // A comment line between rows, CRLF line ends and a BOM exercise the line layer.
+    let text = walking_csv().replacen("\n1.00", "\n# a note\n1.00", 1);
+    let text = format!("\u{feff}{}", text.replace('\n', "\r\n"));
+    let f = hash_comments();
+    let path = Path::new("x.csv");
+    let (a, ra) = read_recording_bytes(text.as_bytes(), path, Some(&f), &params()).unwrap();
+    let chunks = BufReader::with_capacity(7, text.as_bytes());
+    let (b, rb) = read_recording_from(chunks, path, Some(&f), &params()).unwrap();
+    assert_eq!(a.acc_g, b.acc_g);
+    assert_eq!(a.gyro_dps, b.gyro_dps);
+    assert_eq!(ra, rb);
+    assert!(ra.bom && ra.rows == 1201 && ra.samples == 1201, "{ra:?}");
+}
+
+#[test]
+fn a_nul_byte_past_the_first_64_kib_is_refused_with_its_line() {
+    let mut text = rows(2500);
+    let line = 2001;
+    let start = text.match_indices('\n').nth(line - 2).unwrap().0 + 1;
+    text.replace_range(start + 7..start + 8, "\0");
+    assert!(start > 1 << 16);
+    let e = read_recording_bytes(text.as_bytes(), Path::new("x.csv"), None, &params())
+        .unwrap_err()
+        .to_string();
+    let want = format!(
+        "x.csv:{line}: this is not a text file (byte 0x00 at offset {})",
+        start + 7
+    );
+    assert!(e.starts_with(&want), "{e}");
+}
+
+#[test]
+fn invalid_utf8_past_the_head_is_refused_with_its_line_and_offset() {
+    let mut bytes = rows(2500).into_bytes();
+    let start = bytes
+        .iter()
+        .enumerate()
+        .filter(|(_, &b)| b == b'\n')
+        .nth(2198)
+        .unwrap()
+        .0
+        + 1;
+    bytes[start + 2] = 0xFF;
+    let e = read_recording_bytes(&bytes, Path::new("x.csv"), None, &params())
+        .unwrap_err()
+        .to_string();
+    let want = format!(
+        "x.csv:2200: the text is not valid UTF-8 (offset {})",
+        start + 2
+    );
+    assert!(e.starts_with(&want), "{e}");
+}
+
+#[test]
+fn a_character_cut_by_the_end_of_the_first_64_kib_is_read() {
+    // 'é' (2 bytes) at offsets 65535–65536: the head check ends inside it.
+    let text = format!("#{}é\n{}", "a".repeat(65534), walking_csv());
+    assert_eq!(text.find('é'), Some(65535));
+    let f = hash_comments();
+    let (_, r) =
+        read_recording_bytes(text.as_bytes(), Path::new("x.csv"), Some(&f), &params()).unwrap();
+    assert_eq!((r.header_line, r.samples), (2, 1201));
+}
+
+#[test]
+fn more_rows_than_max_samples_are_refused_with_the_row_count() {
+    let text = walking_csv() + "# the end\n\n";
+    let p = ReadParams {
+        max_samples: 500,
+        ..ReadParams::default()
+    }
+    .check()
+    .unwrap();
+    let f = hash_comments();
+    let e = read_recording_bytes(text.as_bytes(), Path::new("x.csv"), Some(&f), &p).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            LdhError::TooManySamples {
+                rows: 1201,
+                limit: 500,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert!(e
+        .to_string()
+        .starts_with("x.csv: 1201 data rows, above the limit of 500 samples per recording"));
+    let p = ReadParams {
+        max_samples: 1201,
+        ..ReadParams::default()
+    };
+    assert!(read_recording_bytes(
+        text.as_bytes(),
+        Path::new("x.csv"),
+        Some(&f),
+        &p.check().unwrap()
+    )
+    .is_ok());
+    let zero = ReadParams {
+        max_samples: 0,
+        ..ReadParams::default()
+    };
+    assert!(zero.check().is_err());
+}
+
+#[test]
+fn the_size_limit_holds_for_content_longer_than_its_stated_size() {
+    let text = rows(100);
+    let mut lines = Lines::new(text.as_bytes(), Path::new("x.csv"), Some(0.001)).unwrap();
+    let e = loop {
+        match lines.next_line() {
+            Ok(Some(_)) => {}
+            Ok(None) => panic!("read past the limit"),
+            Err(e) => break e,
+        }
+    };
+    assert!(matches!(e, LdhError::FileTooLarge { .. }), "{e}");
+}
+
+#[test]
+fn lines_after_comment_lines_keep_their_numbers_in_messages() {
+    // Rows on lines 2–4, comments on 5–6, rows from line 7: row lines are stored as runs.
+    let mut text = rows(3);
+    text.push_str("# a\n# b\n0.03,1,0,0,0,0,0\n0.02,1,0,0,0,0,0\n");
+    let f = hash_comments();
+    let e = read_recording_bytes(text.as_bytes(), Path::new("x.csv"), Some(&f), &params())
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with("x.csv:8:1:"), "{e}");
+}
