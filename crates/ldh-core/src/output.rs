@@ -41,10 +41,10 @@ fn num(x: f64, decimals: i32) -> Option<f64> {
 pub struct StrideRow {
     /// Subject.
     pub subject_id: String,
-    /// `left` or `right`.
-    pub side: String,
-    /// Attitude model.
-    pub model: String,
+    /// `left` or `right` (any other text as read).
+    pub side: Label<crate::Side>,
+    /// Attitude model (`fusion` or `acc`; any other text as read).
+    pub model: Label<crate::attitude::AttitudeModel>,
     /// Stride number within the recording.
     pub stride_index: usize,
     /// Walking bout.
@@ -194,8 +194,8 @@ pub fn stride_rows(results: &[SubjectResult]) -> Vec<StrideRow> {
             for s in &leg.strides {
                 out.push(StrideRow {
                     subject_id: r.subject_id.clone(),
-                    side: side.as_str().into(),
-                    model: r.model.as_str().into(),
+                    side: side.into(),
+                    model: r.model.into(),
                     stride_index: s.stride_index,
                     bout: s.bout,
                     hs_time_s: num(s.hs_time_s, 4),
@@ -326,8 +326,8 @@ pub struct EventRow {
     pub subject_id: String,
     /// Time, s from the recordings' first sample.
     pub time_s: f64,
-    /// `left` or `right`.
-    pub side: String,
+    /// `left` or `right` (any other text as read).
+    pub side: Label<crate::Side>,
     /// `HS` or `TO`.
     pub event: String,
     /// Where the alternation breaks, why; else empty.
@@ -360,7 +360,7 @@ pub fn event_rows(results: &[SubjectResult]) -> Vec<EventRow> {
             out.push(EventRow {
                 subject_id: r.subject_id.clone(),
                 time_s: (e.time_s * 1e4).round() / 1e4,
-                side: e.side.as_str().into(),
+                side: e.side.into(),
                 event: match e.event {
                     crate::pipeline::EventKind::HeelStrike => "HS".into(),
                     crate::pipeline::EventKind::ToeOff => "TO".into(),

@@ -99,7 +99,7 @@ impl CycleCurve {
 pub fn pitch_cycle(leg: &LegTrace, strides: &[StrideRow]) -> Option<CycleCurve> {
     let curves: Vec<Vec<f64>> = strides
         .iter()
-        .filter(|s| s.valid && s.side == leg.side)
+        .filter(|s| s.valid && s.side.as_str() == leg.side)
         .filter_map(|s| {
             time_normalise(
                 &leg.pitch_deg,

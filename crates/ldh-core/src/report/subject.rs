@@ -254,9 +254,12 @@ fn excluded_strides(strides: &[StrideRow]) -> Markup {
     let mut excl: Vec<(String, String, usize)> = Vec::new();
     for st in strides.iter().filter(|st| !st.valid) {
         let reason = reason_kind(&st.reason);
-        match excl.iter_mut().find(|e| e.0 == st.side && e.1 == reason) {
+        match excl
+            .iter_mut()
+            .find(|e| e.0 == st.side.as_str() && e.1 == reason)
+        {
             Some(e) => e.2 += 1,
-            None => excl.push((st.side.clone(), reason, 1)),
+            None => excl.push((st.side.to_string(), reason, 1)),
         }
     }
     html! {

@@ -191,7 +191,7 @@ pub(super) fn stride_by_stride(strides: &[StrideRow]) -> Result<Markup> {
                     side.to_string(),
                     strides
                         .iter()
-                        .filter(|r| r.side == *side)
+                        .filter(|r| r.side.as_str() == *side)
                         .filter_map(|r| Some((r.hs_time_s?, get(r)?, r.valid)))
                         .filter(|p| p.1.is_finite())
                         .map(|(t, v, ok)| {
