@@ -116,6 +116,21 @@ impl GaitStaParams {
         self.time_normalisation = tn;
         self
     }
+    /// Check what can be checked without a series: the Theiler window and the fit range are
+    /// finite and positive (in strides). [`gait_sta`] runs the same check, and
+    /// [`crate::pipeline::AnalysisParams::check`] runs it once per analysis, so a bad value is
+    /// refused before any leg instead of being reported as every leg's STA status.
+    pub fn check(&self) -> Result<(), NonlinearError> {
+        for (name, v) in [
+            ("theiler_strides", self.theiler_strides),
+            ("fit_strides", self.fit_strides),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(invalid(name, v, "must be finite and positive (in strides)"));
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Result of [`gait_sta`].
@@ -261,14 +276,7 @@ pub fn gait_sta(
             "must be a finite, positive stride time in seconds",
         ));
     }
-    for (name, v) in [
-        ("theiler_strides", params.theiler_strides),
-        ("fit_strides", params.fit_strides),
-    ] {
-        if !(v.is_finite() && v > 0.0) {
-            return Err(invalid(name, v, "must be finite and positive (in strides)"));
-        }
-    }
+    params.check()?;
     let (x, fs) = normalise(signal, fs_hz, mean_stride_s, &params.time_normalisation)?;
     check_series(&x)?;
     let sps = mean_stride_s * fs;

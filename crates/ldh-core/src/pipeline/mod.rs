@@ -134,6 +134,9 @@ impl AnalysisParams {
     /// [`analyze_subject_checked`] take, so no stage re-checks per leg. Preprocessing needs the
     /// recording's rate, so it is checked with it at the call ([`PreprocessParams::check`]).
     pub fn check(&self) -> Result<ValidAnalysisParams> {
+        if self.compute_sta {
+            self.sta.check()?;
+        }
         Ok(ValidAnalysisParams {
             align: self.align.check()?,
             attitude: self.attitude.check()?,
@@ -146,7 +149,8 @@ impl AnalysisParams {
 
 /// Every stage's checked parameters ([`AnalysisParams::check`]). The preprocessing parameters
 /// and the STA parameters are held as given: preprocessing is checked with the recording's rate
-/// at the call, STA with the series' rate and mean stride time inside
+/// at the call; STA's series-free bounds ([`crate::nonlinear::GaitStaParams::check`]) are
+/// checked here once, and what depends on the series' rate and mean stride time inside
 /// [`crate::nonlinear::gait_sta`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct ValidAnalysisParams {

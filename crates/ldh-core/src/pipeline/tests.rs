@@ -188,3 +188,19 @@ fn treadmill_walk_has_no_turns_against_truth() {
         assert!(sl.len() >= 4, "{sl:?}");
     }
 }
+
+/// A bad STA parameter is refused once, by `AnalysisParams::check`, naming the parameter, not
+/// reported as every leg's STA status; with STA off it is not looked at.
+#[test]
+fn bad_sta_parameters_are_refused_up_front() {
+    let mut p = AnalysisParams::default();
+    p.sta.theiler_strides = 0.0;
+    let e = p.check().unwrap_err().to_string();
+    assert!(e.contains("theiler_strides"), "{e}");
+    p.sta.theiler_strides = 1.0;
+    p.sta.fit_strides = f64::NAN;
+    let e = p.check().unwrap_err().to_string();
+    assert!(e.contains("fit_strides"), "{e}");
+    p.compute_sta = false;
+    assert!(p.check().is_ok());
+}
