@@ -6,6 +6,7 @@ mod channels;
 mod checks;
 mod columns;
 pub mod format;
+mod header;
 mod inspect;
 mod limits;
 pub mod reader;

@@ -276,7 +276,7 @@ fn read_from(
     }
 
     // The header row and the format (column resolution: `columns.rs`).
-    let mut found = super::columns::find_header(&mut lines, format, path, &mut notes)?;
+    let mut found = super::header::find_header(&mut lines, format, path, &mut notes)?;
     let delim_name = header_notes(&found, format.is_none(), &mut notes);
     let spec = &found.spec;
 
@@ -376,7 +376,7 @@ fn read_from(
 /// The notes about the header found (`detected`: the format was detected, not given): the
 /// format, a file without a header row, a detected delimiter. Returns the delimiter's name.
 fn header_notes(
-    found: &super::columns::Header,
+    found: &super::header::Header,
     detected: bool,
     notes: &mut Vec<String>,
 ) -> &'static str {

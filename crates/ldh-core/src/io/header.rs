@@ -1,0 +1,361 @@
+//! Finding the header row of a file while it streams (docs/input.md, "Column maps"): the first
+//! header-like row whose columns a given or detected format resolves ([`find_header`]), a file
+//! without a header row when a map gives every column by number, and the closest built-in's
+//! missing columns when none fits. Column resolution itself is in `columns.rs`.
+
+use std::io::BufRead;
+use std::path::Path;
+
+use super::columns::{
+    all_by_index, describe_missing, resolve, unit_suffixed, Columns, Missing, Unresolved,
+};
+use super::format::{Delimiter, FormatSpec};
+use super::text::{detect_delimiter, split_header, Lines};
+use crate::error::{LdhError, Location, Result};
+
+/// The header row found in a file and the format that reads it.
+#[derive(Debug, Clone)]
+pub(crate) struct Header {
+    /// 1-based line of the header row; of the first data row when the file has no header row
+    /// (`has_row` false).
+    pub line: u64,
+    /// The format (a detected built-in, the given one, or `ldh` adapted to unit-suffixed names).
+    pub spec: FormatSpec,
+    /// Field delimiter.
+    pub delim: u8,
+    /// Column names (`column 1`, ... for a file without a header row).
+    pub fields: Vec<String>,
+    /// Where the format's columns are.
+    pub cols: Columns,
+    /// The file has a header row (false only for maps that give every column by number).
+    pub has_row: bool,
+    /// Without a header row: the first data row (its line and text), to be read as data.
+    pub first_row: Option<(u64, String)>,
+    /// Delimiter named by a `sep=` line.
+    pub sep_line: Option<u8>,
+}
+
+fn is_number(f: &str) -> bool {
+    f.parse::<f64>().is_ok() || f.replace(',', ".").parse::<f64>().is_ok()
+}
+
+/// A row that may be a header: at least three fields, at least three of them not numbers.
+fn header_like(fields: &[String]) -> bool {
+    fields.len() >= 3 && fields.iter().filter(|f| !is_number(f)).count() >= 3
+}
+
+/// Find the header row of `lines`, reading up to it, and the format that reads it:
+/// the given format, or the first detected built-in whose columns are all in a row (the `ldh`
+/// map also in its unit-suffixed form). Refuses a row with a duplicated column; with a given
+/// format, the first header-like row missing columns; otherwise says which columns the closest
+/// built-in lacks in the first header-like row.
+pub(super) fn find_header<R: BufRead>(
+    lines: &mut Lines<R>,
+    format: Option<&FormatSpec>,
+    path: &Path,
+    notes: &mut Vec<String>,
+) -> Result<Header> {
+    let detected;
+    let candidates: Vec<&FormatSpec> = match format {
+        Some(f) => vec![f],
+        None => {
+            detected = FormatSpec::detected();
+            detected.iter().collect()
+        }
+    };
+    let mut sep_line: Option<u8> = None;
+    let mut first_row = String::new();
+    // Detection mode: the closest format for the first header-like row, for the message.
+    let mut closest: Option<Closest> = None;
+    let mut all_blank = true;
+    while let Some((lineno, line)) = lines.next_line()? {
+        let trimmed = line.trim();
+        if trimmed.is_empty() {
+            continue;
+        }
+        all_blank = false;
+        if let Some(sep) = sep_line_delimiter(trimmed) {
+            sep_line = sep;
+            notes.push(format!(
+                "'sep=' line found: delimiter {:?}",
+                sep_line.map(|b| b as char)
+            ));
+            continue;
+        }
+        if candidates.iter().any(|f| {
+            f.comment_prefixes
+                .iter()
+                .any(|p| trimmed.starts_with(p.as_str()))
+        }) {
+            continue;
+        }
+        if first_row.is_empty() {
+            first_row = trimmed.chars().take(200).collect();
+        }
+        for f in &candidates {
+            let row = (lineno, line);
+            match match_row(f, row, sep_line, format.is_some(), path, notes)? {
+                RowMatch::Found(header) => return Ok(*header),
+                RowMatch::No => {}
+                RowMatch::Missing(missing, fields) => {
+                    // Only the first header-like row is described; among the formats,
+                    // the one missing the fewest columns.
+                    let replace = match &closest {
+                        None => true,
+                        Some(c) => c.at == lineno && missing.len() < c.missing.len(),
+                    };
+                    if replace {
+                        closest = Some(Closest {
+                            format: f,
+                            missing,
+                            at: lineno,
+                            fields,
+                        });
+                    }
+                }
+            }
+        }
+    }
+    Err(no_header(
+        all_blank,
+        closest,
+        &candidates,
+        format.is_some(),
+        path,
+        first_row,
+    ))
+}
+
+/// The delimiter a `sep=` line names (`Some(None)`: a `sep=` line naming no delimiter ldh
+/// knows); `None` when `trimmed` is not a `sep=` line.
+fn sep_line_delimiter(trimmed: &str) -> Option<Option<u8>> {
+    let rest = trimmed
+        .strip_prefix("sep=")
+        .or_else(|| trimmed.strip_prefix("\"sep="))?;
+    let rest = rest.trim_end_matches('"');
+    Some(match rest {
+        "\\t" | "\t" | "" => Some(b'\t'),
+        r => r
+            .bytes()
+            .next()
+            .filter(|b| Delimiter::from_byte(*b).is_some()),
+    })
+}
+
+/// What one candidate format makes of one row.
+enum RowMatch {
+    /// The format reads this row: the header (boxed: the enum stays small).
+    Found(Box<Header>),
+    /// Not this format's header: a data row, or a row that does not look like a header.
+    No,
+    /// A header-like row lacking the format's columns (detection mode), with its fields.
+    Missing(Vec<Missing>, Vec<String>),
+}
+
+/// The format that misses the fewest columns in the first header-like row (detection mode).
+struct Closest<'a> {
+    /// The format.
+    format: &'a FormatSpec,
+    /// What it misses.
+    missing: Vec<Missing>,
+    /// Line of the row.
+    at: u64,
+    /// The row's fields.
+    fields: Vec<String>,
+}
+
+/// Try format `f` on `row` (1-based line number, text), split at the
+/// format's delimiter, else the `sep=` line's, else the detected one. A duplicated column is an
+/// error; so is a header-like row missing columns when the format was given (`format_given`).
+fn match_row(
+    f: &FormatSpec,
+    row: (u64, &str),
+    sep_line: Option<u8>,
+    format_given: bool,
+    path: &Path,
+    notes: &mut Vec<String>,
+) -> Result<RowMatch> {
+    let (lineno, line) = row;
+    let delim = f
+        .delimiter
+        .byte()
+        .or(sep_line)
+        .unwrap_or_else(|| detect_delimiter(line));
+    let fields = split_header(line, delim);
+    let by_index = all_by_index(f);
+    if !by_index && fields.iter().all(|x| x.is_empty() || is_number(x)) {
+        // A data row: names cannot match (and suggestions would cost time).
+        return Ok(RowMatch::No);
+    }
+    let attempt = match resolve(f, &fields) {
+        Ok(c) => Ok((f.clone(), c)),
+        Err(e) => match unit_suffixed(f, &fields) {
+            Some(g) => resolve(&g, &fields).map(|c| (g, c)),
+            None => Err(e),
+        },
+    };
+    match attempt {
+        Ok((spec, cols)) => {
+            let has_row = !(by_index && fields.iter().all(|x| is_number(x)));
+            let fields = if has_row {
+                fields
+            } else {
+                (1..=fields.len()).map(|i| format!("column {i}")).collect()
+            };
+            if spec.acc.columns != f.acc.columns || spec.gyro.columns != f.gyro.columns {
+                notes.push(format!(
+                    "unit-suffixed column names: acceleration in {:?}, angular velocity in {:?}, time in {:?}",
+                    spec.acc.unit, spec.gyro.unit, spec.time.unit
+                ));
+            }
+            let first_row = (!has_row).then(|| (lineno, line.to_string()));
+            Ok(RowMatch::Found(Box::new(Header {
+                line: lineno,
+                spec,
+                delim,
+                fields,
+                cols,
+                has_row,
+                sep_line,
+                first_row,
+            })))
+        }
+        Err(Unresolved::Duplicate { column, positions }) => Err(LdhError::DuplicateColumn {
+            loc: Location::line(path, lineno),
+            column,
+            positions,
+        }),
+        Err(Unresolved::Missing(m)) => {
+            if !header_like(&fields) {
+                return Ok(RowMatch::No);
+            }
+            if format_given {
+                let (missing, hint) = describe_missing(&m, &fields, f);
+                return Err(LdhError::MissingColumn {
+                    loc: Location::line(path, lineno),
+                    missing,
+                    by: format!("format '{}'{hint}", f.name),
+                });
+            }
+            Ok(RowMatch::Missing(m, fields))
+        }
+    }
+}
+
+/// The error when no row is a header: [`LdhError::EmptyFile`] for blank content (`all_blank`), otherwise
+/// [`LdhError::NoHeader`] naming the closest format's missing columns (or the only
+/// candidate's required ones) and the first row.
+fn no_header(
+    all_blank: bool,
+    closest: Option<Closest>,
+    candidates: &[&FormatSpec],
+    format_given: bool,
+    path: &Path,
+    first_row: String,
+) -> LdhError {
+    if all_blank {
+        return LdhError::EmptyFile {
+            path: path.to_path_buf(),
+        };
+    }
+    let (fmt, missing, hint) = match closest {
+        Some(c) => {
+            let (missing, hint) = describe_missing(&c.missing, &c.fields, c.format);
+            (c.format.name.clone(), missing, hint)
+        }
+        None => (
+            candidates[0].name.clone(),
+            candidates[0].required_columns(),
+            String::new(),
+        ),
+    };
+    LdhError::NoHeader {
+        path: path.to_path_buf(),
+        format: if format_given || candidates.len() == 1 {
+            fmt
+        } else {
+            format!(
+                "closest of {}: {fmt}",
+                candidates
+                    .iter()
+                    .map(|f| f.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        },
+        missing,
+        hint,
+        first_row,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::io::format::{AccUnit, ColumnRef, GyroUnit, TimeUnit};
+
+    fn h(s: &str) -> Vec<String> {
+        s.split(',').map(String::from).collect()
+    }
+
+    #[test]
+    fn names_alternatives_indices_prefix_and_blocks() {
+        let mut f = FormatSpec::default();
+        let hd = h("time_s,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z");
+        let c = resolve(&f, &hd).unwrap();
+        assert_eq!((c.time, c.acc, c.gyro), (Some(0), [1, 2, 3], [4, 5, 6]));
+        f.acc.columns[0] = ColumnRef::AnyOf(vec!["ax".into(), "ACC_X".into()]);
+        f.gyro.columns[2] = ColumnRef::Index(2);
+        let c = resolve(&f, &hd).unwrap();
+        assert_eq!((c.acc[0], c.gyro[2]), (1, 1));
+        let mut p = FormatSpec::default();
+        p.sensor.prefix = "RS_".into();
+        let hd2 = h("RF_acc_x,RS_time_s,RS_acc_x,RS_acc_y,RS_acc_z,RS_gyro_x,RS_gyro_y,RS_gyro_z");
+        assert_eq!(resolve(&p, &hd2).unwrap().acc, [2, 3, 4]);
+        let hd3 = h(
+            "time_s,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z",
+        );
+        let d = resolve(&FormatSpec::default(), &hd3).unwrap_err();
+        assert_eq!(
+            d,
+            Unresolved::Duplicate {
+                column: "acc_x".into(),
+                positions: vec![2, 8]
+            }
+        );
+        let mut b = FormatSpec::default();
+        b.sensor.block = Some(2);
+        b.time.column = Some(ColumnRef::Index(1));
+        let c = resolve(&b, &hd3).unwrap();
+        assert_eq!((c.acc, c.gyro), ([7, 8, 9], [10, 11, 12]));
+    }
+
+    #[test]
+    fn missing_columns_name_only_what_is_missing_and_the_closest_names() {
+        let hd = h("time_s,AccX,acc_y,acc_z,gyro_x,gyro_y,Gyr_Z,Status");
+        let Unresolved::Missing(m) = resolve(&FormatSpec::default(), &hd).unwrap_err() else {
+            panic!("missing expected")
+        };
+        let (names, hint) = describe_missing(&m, &hd, &FormatSpec::default());
+        assert_eq!(names, vec!["acc_x", "gyro_z"]);
+        assert!(hint.contains("acc_x → AccX;"), "{hint}");
+        assert!(hint.ends_with("gyro_z → Gyr_Z"), "{hint}");
+        assert!(!hint.contains("Status"), "{hint}");
+    }
+
+    #[test]
+    fn unit_suffixed_names_give_the_units() {
+        let hd =
+            h("time_ms,acc_x_mps2,acc_y_mps2,acc_z_mps2,gyro_x_rad_s,gyro_y_rad_s,gyro_z_rad_s");
+        let f = unit_suffixed(&FormatSpec::default(), &hd).unwrap();
+        assert_eq!(f.time.unit, TimeUnit::Milliseconds);
+        assert_eq!((f.acc.unit, f.gyro.unit), (AccUnit::Mps2, GyroUnit::Rps));
+        assert!(resolve(&f, &hd).is_ok());
+        let plain = h("time_s,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z");
+        assert!(unit_suffixed(&FormatSpec::default(), &plain).is_none());
+        let half = h("time_s,acc_x_g,acc_y_g,gyro_x_dps,gyro_y_dps,gyro_z_dps");
+        assert!(unit_suffixed(&FormatSpec::default(), &half).is_none());
+        let xs = FormatSpec::builtin("xsens-mtmanager").unwrap();
+        assert!(unit_suffixed(&xs, &hd).is_none());
+    }
+}
