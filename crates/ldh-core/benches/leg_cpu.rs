@@ -98,6 +98,10 @@ fn main() {
     measure("attitude_fusion_rts", &only, rounds, calls, || {
         black_box(estimate(black_box(&al), &fusion).unwrap());
     });
+    let forward = AttitudeParams::default().smoother(false).check().unwrap();
+    measure("attitude_forward_only", &only, rounds, calls, || {
+        black_box(estimate(black_box(&al), &forward).unwrap());
+    });
     measure("sta", &only, rounds, calls, || {
         black_box(
             gait_sta(

@@ -107,13 +107,54 @@ fn rts_step(xf: &V5, pf: &M5, xs_next: &V5, wm: &Vector3<f64>, m: &Model) -> V5 
     let (xp, pp, fj) = predict(xf, pf, wm, m.dt, &m.q);
     let mut diff = xs_next - xp;
     diff[2] = wrap(diff[2]);
-    match pp.cholesky() {
-        Some(ch) => {
-            let y = ch.solve(&diff);
-            xf + pf * fj.tr_mul(&y)
-        }
+    match spd_solve(&pp, &diff) {
+        Some(y) => xf + pf * fj.tr_mul(&y),
         None => rts_step_inverse(xf, pf, &pp, &fj, &diff),
     }
+}
+
+/// x with A x = b for a symmetric positive definite A (its lower triangle is read), by
+/// Cholesky A = L Lᵀ and two triangular solves; `None` when A is not numerically positive
+/// definite. Written out for the fixed 5 × 5 size: nalgebra's generic `cholesky().solve()`
+/// took three times as long here.
+fn spd_solve(a: &M5, b: &V5) -> Option<V5> {
+    let mut l = [[0.0f64; 5]; 5];
+    let mut inv_d = [0.0f64; 5];
+    for j in 0..5 {
+        let mut d = a[(j, j)];
+        for k in 0..j {
+            d -= l[j][k] * l[j][k];
+        }
+        if !(d > 0.0) {
+            return None;
+        }
+        let ljj = d.sqrt();
+        inv_d[j] = 1.0 / ljj;
+        for i in j + 1..5 {
+            let mut s = a[(i, j)];
+            for k in 0..j {
+                s -= l[i][k] * l[j][k];
+            }
+            l[i][j] = s * inv_d[j];
+        }
+    }
+    let mut z = [0.0f64; 5];
+    for i in 0..5 {
+        let mut s = b[i];
+        for k in 0..i {
+            s -= l[i][k] * z[k];
+        }
+        z[i] = s * inv_d[i];
+    }
+    let mut y = V5::zeros();
+    for i in (0..5).rev() {
+        let mut s = z[i];
+        for k in i + 1..5 {
+            s -= l[k][i] * y[k];
+        }
+        y[i] = s * inv_d[i];
+    }
+    Some(y)
 }
 
 /// The RTS correction with the explicit gain C = P Fᵀ P_pred⁻¹ (the filtered state when P_pred
@@ -130,7 +171,7 @@ fn rts_step_inverse(xf: &V5, pf: &M5, pp: &M5, fj: &M5, diff: &V5) -> V5 {
 mod tests {
     use super::super::tests::walk;
     use super::super::{Bank, Model};
-    use super::{predict, rts_step, rts_step_inverse, wrap, V5};
+    use super::{predict, rts_step, rts_step_inverse, spd_solve, wrap, M5, V5};
     use crate::attitude::AttitudeParams;
 
     /// The Cholesky solve gives the explicit gain's smoothed state to rounding: every step of
@@ -167,5 +208,25 @@ mod tests {
             }
         }
         assert!(worst < 1e-9, "largest relative difference {worst:e}");
+    }
+
+    #[test]
+    fn spd_solve_solves_and_refuses_what_is_not_positive_definite() {
+        let mut g = M5::zeros();
+        for i in 0..5 {
+            for j in 0..5 {
+                g[(i, j)] = ((i * 7 + j * 3) % 11) as f64 - 5.0;
+            }
+        }
+        let a = g * g.transpose() + M5::identity() * 1e-3;
+        let b = V5::from_column_slice(&[1.0, -2.0, 0.5, 3.0, -1.0]);
+        let x = spd_solve(&a, &b).unwrap();
+        let want = a.cholesky().unwrap().solve(&b);
+        assert!((x - want).norm() <= 1e-9 * want.norm(), "{x} vs {want}");
+        assert!((a * x - b).norm() <= 1e-9 * b.norm());
+        let mut indefinite = M5::identity();
+        indefinite[(3, 3)] = -1.0;
+        assert!(spd_solve(&indefinite, &b).is_none());
+        assert!(spd_solve(&M5::zeros(), &b).is_none());
     }
 }
