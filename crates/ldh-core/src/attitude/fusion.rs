@@ -40,6 +40,7 @@ pub(super) fn euler_rates(x: &Vector3<f64>, w: &Vector3<f64>) -> (Vector3<f64>, 
 }
 
 /// sin φ, cos φ, sin θ and cos θ (kept away from 0) of the tilt angles.
+#[derive(Clone, Copy)]
 struct SinCos {
     sp: f64,
     cp: f64,
@@ -81,10 +82,12 @@ fn euler_rates_of(sc: &SinCos, w: &Vector3<f64>) -> (Vector3<f64>, Matrix3<f64>)
     (rates, j)
 }
 
-/// One prediction step: the state, its covariance and the transition Jacobian.
-fn predict(x: &V5, p: &M5, w_mid: &Vector3<f64>, dt: f64, q: &M5) -> (V5, M5, M5) {
+/// One prediction step: the state, its covariance and the transition Jacobian. `sc` is
+/// [`SinCos::of`] the tilt of `x` (each filter keeps its own: the smoother's prediction from a
+/// stored state then needs no trigonometry).
+fn predict(x: &V5, sc: &SinCos, p: &M5, w_mid: &Vector3<f64>, dt: f64, q: &M5) -> (V5, M5, M5) {
     let wc = w_mid - Vector3::new(x[3], x[4], 0.0);
-    let sc = SinCos::of(x[0], x[1]);
+    let sc = *sc;
     let (rates, j) = euler_rates_of(&sc, &wc);
     let mut f = M5::identity();
     let mut fa = f.fixed_view_mut::<3, 3>(0, 0);
@@ -203,6 +206,8 @@ impl<'a> Model<'a> {
 #[derive(Clone)]
 struct Filter {
     x: V5,
+    /// [`SinCos::of`] the tilt of `x`.
+    sc: SinCos,
     p: M5,
     r: Matrix2<f64>,
     gate2: f64,
@@ -218,7 +223,7 @@ impl Filter {
         let (xp, pp) = if k == 0 {
             (self.x, self.p)
         } else {
-            let (xp, pp, _) = predict(&self.x, &self.p, &s.wm, m.dt, &m.q);
+            let (xp, pp, _) = predict(&self.x, &self.sc, &self.p, &s.wm, m.dt, &m.q);
             (xp, pp)
         };
         // H selects (φ, θ): H x, H P Hᵀ and P Hᵀ are sub-blocks (bit for bit, see products)
@@ -261,6 +266,7 @@ impl Filter {
         };
         self.x = xu;
         self.x[2] = wrap(self.x[2]);
+        self.sc = SinCos::of(self.x[0], self.x[1]);
         self.p = pu;
     }
 }
@@ -288,6 +294,7 @@ impl Bank {
             .iter()
             .map(|g| Filter {
                 x: x0,
+                sc: SinCos::of(x0[0], x0[1]),
                 p: p0,
                 r: Matrix2::from_diagonal_element(r0),
                 gate2: g * g,

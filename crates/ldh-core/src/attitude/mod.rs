@@ -278,9 +278,50 @@ pub struct Attitude {
     pub gravity_windows: usize,
 }
 
+/// The angle `a` (rad) wrapped into [−π, π): a − 2π ⌊(a + π) / 2π⌋.
 fn wrap(a: f64) -> f64 {
+    // |a| < 3 puts (a + π) / 2π in (0.02, 0.98), where the floor is 0 and a − 2π·0 is a bit
+    // for bit: the common case, without the call to floor (no SSE4.1 in baseline x86-64)
+    if a.abs() < 3.0 {
+        return a;
+    }
     let t = std::f64::consts::TAU;
     a - t * ((a + std::f64::consts::PI) / t).floor()
+}
+
+#[cfg(test)]
+#[test]
+fn wraps_fast_path_is_the_formula_bit_for_bit() {
+    let t = std::f64::consts::TAU;
+    let formula = |a: f64| a - t * ((a + std::f64::consts::PI) / t).floor();
+    let mut a = -3.0f64;
+    while a < 3.0 {
+        assert_eq!(wrap(a).to_bits(), formula(a).to_bits(), "{a}");
+        assert_eq!(wrap(-a).to_bits(), formula(-a).to_bits(), "{a}");
+        a = a.next_up() + 1e-4;
+    }
+    for a in [
+        0.0,
+        -0.0,
+        1e-300,
+        -1e-300,
+        2.999_999_999_999_999_6,
+        -2.999_999_999_999_999_6,
+    ] {
+        assert_eq!(wrap(a).to_bits(), formula(a).to_bits(), "{a}");
+    }
+    for a in [
+        3.0,
+        -3.0,
+        3.5,
+        -4.0,
+        10.0,
+        std::f64::consts::PI,
+        -std::f64::consts::PI,
+    ] {
+        assert_eq!(wrap(a).to_bits(), formula(a).to_bits(), "{a}");
+    }
+    assert!(wrap(f64::NAN).is_nan());
 }
 
 fn acc_tilt(f: [f64; 3]) -> (f64, f64) {

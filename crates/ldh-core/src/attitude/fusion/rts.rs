@@ -2,7 +2,7 @@
 //! 1965;3:1445), run per filter and fused with the forward weights, in bounded memory: the
 //! forward pass keeps checkpoints and the current segment only ([`SEGMENT`]).
 
-use super::{predict, weighted, wrap, Angles, Bank, Model, Vector3, M5, V5};
+use super::{predict, weighted, wrap, Angles, Bank, Model, SinCos, Vector3, M5, V5};
 
 /// Samples per segment of the smoother's storage. The forward pass keeps a checkpoint of the
 /// bank (a few hundred bytes per filter) at the start of every segment and the filtered states
@@ -14,11 +14,13 @@ use super::{predict, weighted, wrap, Angles, Bank, Model, Vector3, M5, V5};
 /// ~0.9 GB here).
 pub(super) const SEGMENT: usize = 1 << 13;
 
-/// Filtered states and covariances of one segment, filter-major within a sample, and the
-/// bank's weights; preallocated once and reused for every segment.
+/// Filtered states (with the sines and cosines of their tilt) and covariances of one segment,
+/// filter-major within a sample, and the bank's weights; preallocated once and reused for
+/// every segment.
 pub(super) struct SegmentStore {
     nf: usize,
     xs: Vec<V5>,
+    scs: Vec<SinCos>,
     ps: Vec<M5>,
     ws: Vec<f64>,
 }
@@ -28,6 +30,7 @@ impl SegmentStore {
         SegmentStore {
             nf,
             xs: Vec::with_capacity(nf * len),
+            scs: Vec::with_capacity(nf * len),
             ps: Vec::with_capacity(nf * len),
             ws: Vec::with_capacity(nf * len),
         }
@@ -35,6 +38,7 @@ impl SegmentStore {
 
     pub(super) fn clear(&mut self) {
         self.xs.clear();
+        self.scs.clear();
         self.ps.clear();
         self.ws.clear();
     }
@@ -42,6 +46,7 @@ impl SegmentStore {
     pub(super) fn push(&mut self, bank: &Bank) {
         for f in &bank.filters {
             self.xs.push(f.x);
+            self.scs.push(f.sc);
             self.ps.push(f.p);
         }
         self.ws.extend_from_slice(&bank.weights);
@@ -86,7 +91,8 @@ pub(super) fn smooth(
             } else {
                 let wm = m.w_mid(k + 1);
                 for (i, xs) in next.iter_mut().enumerate() {
-                    *xs = rts_step(&store.xs[j + i], &store.ps[j + i], xs, &wm, m);
+                    let (xf, sc, pf) = (&store.xs[j + i], &store.scs[j + i], &store.ps[j + i]);
+                    *xs = rts_step(xf, sc, pf, xs, &wm, m);
                 }
             }
             out.set(k, &weighted(&next, &store.ws[j..j + nf]));
@@ -103,8 +109,8 @@ pub(super) fn smooth(
 /// third of the attitude's time). The result equals the explicit gain's to rounding (tested
 /// below to 1e-9 relative on a walk). When P_pred is not numerically positive definite, the
 /// explicit inverse is used as before, and the filtered state when that too is singular.
-fn rts_step(xf: &V5, pf: &M5, xs_next: &V5, wm: &Vector3<f64>, m: &Model) -> V5 {
-    let (xp, pp, fj) = predict(xf, pf, wm, m.dt, &m.q);
+fn rts_step(xf: &V5, sc: &SinCos, pf: &M5, xs_next: &V5, wm: &Vector3<f64>, m: &Model) -> V5 {
+    let (xp, pp, fj) = predict(xf, sc, pf, wm, m.dt, &m.q);
     let mut diff = xs_next - xp;
     diff[2] = wrap(diff[2]);
     match spd_solve(&pp, &diff) {
@@ -189,7 +195,7 @@ mod tests {
             bank.step(&m, k);
             let wm = m.w_mid(k + 1);
             for (i, f) in bank.filters.iter().enumerate() {
-                let (xp, pp, fj) = predict(&f.x, &f.p, &wm, m.dt, &m.q);
+                let (xp, pp, fj) = predict(&f.x, &f.sc, &f.p, &wm, m.dt, &m.q);
                 // a smoothed state a few σ of the prediction away
                 let mut xs_next = xp;
                 for (j, v) in xs_next.iter_mut().enumerate() {
@@ -198,7 +204,7 @@ mod tests {
                 }
                 let mut diff = xs_next - xp;
                 diff[2] = wrap(diff[2]);
-                let a = rts_step(&f.x, &f.p, &xs_next, &wm, &m);
+                let a = rts_step(&f.x, &f.sc, &f.p, &xs_next, &wm, &m);
                 let b = rts_step_inverse(&f.x, &f.p, &pp, &fj, &diff);
                 let d: V5 = a - b;
                 for j in 0..5 {
