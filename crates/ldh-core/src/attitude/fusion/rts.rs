@@ -19,35 +19,39 @@ pub(super) const SEGMENT: usize = 1 << 13;
 /// every segment.
 pub(super) struct SegmentStore {
     nf: usize,
-    xs: Vec<V5>,
-    scs: Vec<SinCos>,
-    ps: Vec<M5>,
+    steps: Vec<Filtered>,
     ws: Vec<f64>,
+}
+
+/// One filter's filtered state at one sample, kept together: the backward pass reads them in
+/// one descending stream (separate arrays of states and covariances stalled it on memory).
+struct Filtered {
+    x: V5,
+    sc: SinCos,
+    p: M5,
 }
 
 impl SegmentStore {
     pub(super) fn new(nf: usize, len: usize) -> SegmentStore {
         SegmentStore {
             nf,
-            xs: Vec::with_capacity(nf * len),
-            scs: Vec::with_capacity(nf * len),
-            ps: Vec::with_capacity(nf * len),
+            steps: Vec::with_capacity(nf * len),
             ws: Vec::with_capacity(nf * len),
         }
     }
 
     pub(super) fn clear(&mut self) {
-        self.xs.clear();
-        self.scs.clear();
-        self.ps.clear();
+        self.steps.clear();
         self.ws.clear();
     }
 
     pub(super) fn push(&mut self, bank: &Bank) {
         for f in &bank.filters {
-            self.xs.push(f.x);
-            self.scs.push(f.sc);
-            self.ps.push(f.p);
+            self.steps.push(Filtered {
+                x: f.x,
+                sc: f.sc,
+                p: f.p,
+            });
         }
         self.ws.extend_from_slice(&bank.weights);
     }
@@ -87,12 +91,11 @@ pub(super) fn smooth(
         for k in (k0..k1).rev() {
             let j = (k - k0) * nf;
             if k == n - 1 {
-                next.extend_from_slice(&store.xs[j..j + nf]);
+                next.extend(store.steps[j..j + nf].iter().map(|s| s.x));
             } else {
                 let wm = m.w_mid(k + 1);
-                for (i, xs) in next.iter_mut().enumerate() {
-                    let (xf, sc, pf) = (&store.xs[j + i], &store.scs[j + i], &store.ps[j + i]);
-                    *xs = rts_step(xf, sc, pf, xs, &wm, m);
+                for (xs, f) in next.iter_mut().zip(&store.steps[j..j + nf]) {
+                    *xs = rts_step(&f.x, &f.sc, &f.p, xs, &wm, m);
                 }
             }
             out.set(k, &weighted(&next, &store.ws[j..j + nf]));
