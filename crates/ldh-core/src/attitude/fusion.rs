@@ -441,7 +441,7 @@ fn weighted(xs: &[V5], w: &[f64]) -> V5 {
 }
 
 #[cfg(test)]
-pub(super) mod tests {
+mod tests {
     use super::super::{estimate, Attitude, AttitudeParams};
     use super::{fusion_segmented, SEGMENT};
     use crate::align::{align, AlignParams, Aligned};
@@ -450,7 +450,7 @@ pub(super) mod tests {
 
     /// A simulated 70 s walk (family A) and its true pitch, the signals aligned as the pipeline
     /// aligns them.
-    pub(super) fn walk() -> (Aligned, Vec<f64>) {
+    fn walk() -> (Aligned, Vec<f64>) {
         let c = CohortParams {
             healthy: 1,
             ldh: 0,
