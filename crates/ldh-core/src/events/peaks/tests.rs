@@ -90,11 +90,13 @@ fn all_channels(rec: &Recording, what: &str) -> usize {
     found
 }
 
+/// Family A (healthy, LDH and the slow LDH walkers) and family B.
 #[test]
 fn simulated_legs_of_both_families() {
     let a = crate::simulate::CohortParams {
         healthy: 2,
         ldh: 2,
+        slow_ldh: 2,
         duration_s: 40.0,
         seed: 7,
         ..Default::default()
@@ -112,7 +114,7 @@ fn simulated_legs_of_both_families() {
             found += all_channels(&leg.recording, &s.params.subject_id);
         }
     }
-    assert!(found > 8 * 6 * 10, "{found} peaks");
+    assert!(found > 10 * 6 * 10, "{found} peaks");
 }
 
 #[test]
