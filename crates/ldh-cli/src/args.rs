@@ -294,6 +294,10 @@ pub struct SimulateArgs {
     /// Number of LDH subjects.
     #[arg(long, default_value_t = 2)]
     pub ldh: usize,
+    /// Family a: number of slow, severely affected LDH subjects (0.28–0.75 m/s, strides of
+    /// 1.35–2.0 s), written after the others as S01…; they count in the `ldh` group.
+    #[arg(long, default_value_t = 0)]
+    pub slow_ldh: usize,
     /// Recording length per subject, seconds.
     #[arg(long, default_value_t = 25.0)]
     pub seconds: f64,

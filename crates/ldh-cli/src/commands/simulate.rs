@@ -23,6 +23,7 @@ pub fn run(a: SimulateArgs) -> Result<ExitCode> {
             let params = CohortParams {
                 healthy: a.healthy,
                 ldh: a.ldh,
+                slow_ldh: a.slow_ldh,
                 duration_s: a.seconds,
                 fs_hz: a.rate_hz,
                 seed: a.seed,
@@ -34,12 +35,17 @@ pub fn run(a: SimulateArgs) -> Result<ExitCode> {
                     SensorModel::default()
                 },
             };
-            write(&params, &a, &format, "healthy", "LDH")
+            let ldh = if a.slow_ldh > 0 {
+                format!("LDH, of them {} slow", a.slow_ldh)
+            } else {
+                "LDH".to_string()
+            };
+            write(&params, &a, &format, "healthy", &ldh)
         }
         Family::B => {
             anyhow::ensure!(
-                !a.no_turn && a.ldh_severity_min == 1.0,
-                "--no-turn and --ldh-severity-min apply to --family a (family b: --setting treadmill walks without turns)"
+                !a.no_turn && a.ldh_severity_min == 1.0 && a.slow_ldh == 0,
+                "--no-turn, --ldh-severity-min and --slow-ldh apply to --family a (family b: --setting treadmill walks without turns)"
             );
             let params = CohortParamsB {
                 healthy: a.healthy,
@@ -83,7 +89,7 @@ fn write<C: Cohort>(
         "wrote {} subjects ({} {healthy}, {} {ldh}) to {}",
         rows.len(),
         a.healthy,
-        a.ldh,
+        a.ldh + a.slow_ldh,
         a.out.display()
     );
     Ok(ExitCode::SUCCESS)

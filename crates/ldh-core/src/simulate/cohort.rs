@@ -16,6 +16,11 @@ pub struct CohortParams {
     pub healthy: usize,
     /// Number of LDH subjects. Default 2.
     pub ldh: usize,
+    /// Number of slow, severely affected LDH subjects ([`SubjectParams::draw_slow`]: 0.28–0.75
+    /// m/s, strides of 1.35–2.0 s), after the others (ids S01…). Default 0 (then not written
+    /// to cohort.json, so earlier cohorts keep their bytes).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub slow_ldh: usize,
     /// Recording length per subject, s. Default 25.
     pub duration_s: f64,
     /// Sampling rate, Hz. Default 100.
@@ -32,11 +37,16 @@ pub struct CohortParams {
     pub sensor: SensorModel,
 }
 
+fn is_zero(n: &usize) -> bool {
+    *n == 0
+}
+
 impl Default for CohortParams {
     fn default() -> Self {
         CohortParams {
             healthy: 2,
             ldh: 2,
+            slow_ldh: 0,
             duration_s: 25.0,
             fs_hz: 100.0,
             seed: 1,
@@ -51,20 +61,24 @@ impl CohortParams {
     /// Total number of subjects (saturating: [`CohortParams::validate`] refuses a sum that
     /// overflows).
     pub fn len(&self) -> usize {
-        self.healthy.saturating_add(self.ldh)
+        self.healthy
+            .saturating_add(self.ldh)
+            .saturating_add(self.slow_ldh)
     }
     /// No subjects.
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }
-    /// Identifier of subject `i` (healthy first: H01…, then L01…).
+    /// Identifier of subject `i` (healthy first: H01…, then L01…, then the slow LDH S01…).
     pub fn subject_id(&self, i: usize) -> String {
         let width = (self.len().max(1) as f64).log10().floor() as usize + 1;
         let width = width.max(2);
         if i < self.healthy {
             format!("H{:0width$}", i + 1)
-        } else {
+        } else if i < self.healthy + self.ldh {
             format!("L{:0width$}", i - self.healthy + 1)
+        } else {
+            format!("S{:0width$}", i - self.healthy - self.ldh + 1)
         }
     }
     /// Check the cohort parameters.
@@ -76,7 +90,12 @@ impl CohortParams {
                 "at least one subject is needed",
             ));
         }
-        check_size(self.healthy, self.ldh, self.duration_s, self.fs_hz)?;
+        check_size(
+            self.healthy,
+            self.ldh.saturating_add(self.slow_ldh),
+            self.duration_s,
+            self.fs_hz,
+        )?;
         if !(0.0..=1.0).contains(&self.ldh_severity_min) {
             return Err(LdhError::param(
                 "ldh_severity_min",
@@ -94,6 +113,14 @@ impl CohortParams {
                 "a simulated cohort needs at least 14 s per subject (3 s standing at each end and four strides of slow gait)",
             ));
         }
+        // Slow subjects: four strides of up to 2.0 s.
+        if self.slow_ldh > 0 && !(self.duration_s >= 20.0) {
+            return Err(LdhError::param(
+                "duration_s",
+                self.duration_s,
+                "a cohort with slow LDH subjects needs at least 20 s per subject (3 s standing at each end and four strides of up to 2 s)",
+            ));
+        }
         SubjectParams {
             fs_hz: self.fs_hz,
             duration_s: self.duration_s,
@@ -109,6 +136,17 @@ impl CohortParams {
     }
     /// Draw and simulate subject `i`.
     pub fn simulate(&self, i: usize) -> Result<SimSubject> {
+        let others = self.healthy.saturating_add(self.ldh);
+        if i >= others {
+            // Slow subject j draws from its own stream family, so S01… are the same subjects
+            // whatever the number of healthy and LDH subjects beside them.
+            let mut rng = ChaCha8Rng::seed_from_u64(self.seed);
+            rng.set_stream((1u64 << 32) + (i - others) as u64 + 1);
+            let mut p =
+                SubjectParams::draw_slow(self.subject_id(i), self.fs_hz, self.duration_s, &mut rng);
+            p.turn = self.turn;
+            return simulate_subject(&p, &self.sensor, &mut rng);
+        }
         let mut rng = self.rng(i);
         let group = if i < self.healthy {
             Group::Healthy

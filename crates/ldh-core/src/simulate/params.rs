@@ -214,6 +214,66 @@ impl SubjectParams {
         p
     }
 
+    /// Draw a slow, severely affected LDH subject (`ldh simulate --slow-ldh`): 0.28–0.75 m/s
+    /// (0.50 ± 0.12), stride time 1.35–2.0 s (1.65 ± 0.18), CV 5 %, stance 0.65 on the affected
+    /// side and 0.67 on the other (stance lengthens as gait slows), swing knee flexion −28 %
+    /// (affected) and −10 %, hip excursion scaled to the short strides. Slow gait in LDH
+    /// (and in the elderly) is reported at 0.4–0.8 m/s with stance ratios of 0.63–0.70; these
+    /// subjects widen family A's stride times beyond the 0.9–1.35 s of [`SubjectParams::draw`].
+    pub fn draw_slow(
+        subject_id: impl Into<String>,
+        fs_hz: f64,
+        duration_s: f64,
+        rng: &mut ChaCha8Rng,
+    ) -> Self {
+        use rand::Rng;
+        let mut p = SubjectParams::healthy(subject_id);
+        p.group = Group::Ldh;
+        p.fs_hz = fs_hz;
+        p.duration_s = duration_s;
+        let h = normal_clamped(rng, 0.10, 0.015, 0.06, 0.16);
+        for side in [Side::Left, Side::Right] {
+            let l = p.leg_mut(side);
+            l.sensor_height_m =
+                (h + normal_clamped(rng, 0.0, 0.005, -0.015, 0.015)).clamp(0.06, 0.16);
+            l.roll_stance_deg = normal_clamped(rng, 2.0, 1.0, -1.0, 5.0);
+        }
+        let affected = if rng.gen_bool(0.5) {
+            Side::Left
+        } else {
+            Side::Right
+        };
+        p.affected_side = Some(affected);
+        p.stride_time_s = normal_clamped(rng, 1.65, 0.18, 1.35, 2.0);
+        let speed = normal_clamped(rng, 0.50, 0.12, 0.28, 0.75);
+        p.stride_length_m = speed * p.stride_time_s;
+        p.stride_time_cv = normal_clamped(rng, 0.05, 0.01, 0.03, 0.08);
+        p.stride_length_cv = normal_clamped(rng, 0.05, 0.01, 0.03, 0.08);
+        p.stance_ratio_sd = 0.015;
+        let sign = if affected == Side::Right { 1.0 } else { -1.0 };
+        p.step_timing_asymmetry = sign * normal_clamped(rng, 0.03, 0.01, 0.0, 0.045);
+        p.step_length_asymmetry = -sign * normal_clamped(rng, 0.06, 0.02, 0.0, 0.12);
+        for side in [Side::Left, Side::Right] {
+            let aff = side == affected;
+            let l = p.leg_mut(side);
+            if aff {
+                l.stance_ratio = normal_clamped(rng, 0.65, 0.015, 0.62, 0.69);
+                l.knee_reduction = normal_clamped(rng, 0.28, 0.08, 0.10, 0.45);
+                l.circumduction_m = normal_clamped(rng, 0.04, 0.01, 0.02, 0.07);
+                l.roll_swing_deg = normal_clamped(rng, -5.0, 1.0, -8.0, -3.0);
+            } else {
+                l.stance_ratio = normal_clamped(rng, 0.67, 0.015, 0.63, 0.70);
+                l.knee_reduction = normal_clamped(rng, 0.10, 0.04, 0.0, 0.20);
+                l.circumduction_m = normal_clamped(rng, 0.015, 0.005, 0.0, 0.03);
+                l.roll_swing_deg = normal_clamped(rng, -2.0, 0.6, -3.5, -0.5);
+            }
+        }
+        let hip_scale = (p.stride_length_m / 1.36).clamp(0.55, 1.15);
+        p.left.hip_scale = hip_scale;
+        p.right.hip_scale = hip_scale;
+        p
+    }
+
     /// This (LDH) subject's gait moved towards `healthy`: every gait parameter becomes
     /// healthy + severity · (self − healthy). Group, affected side and sensor placement stay.
     pub fn blend_towards(&self, healthy: &SubjectParams, severity: f64) -> SubjectParams {

@@ -243,6 +243,69 @@ fn ldh_affected_side_differs_as_specified() {
 }
 
 #[test]
+fn slow_ldh_subjects_are_slow_come_last_and_leave_the_others_unchanged() {
+    let c = CohortParams {
+        healthy: 1,
+        ldh: 1,
+        slow_ldh: 2,
+        turn: false,
+        duration_s: 30.0,
+        ..CohortParams::default()
+    };
+    c.validate().unwrap();
+    assert_eq!(c.len(), 4);
+    let ids: Vec<String> = (0..4).map(|i| c.subject_id(i)).collect();
+    assert_eq!(ids, ["H01", "L01", "S01", "S02"]);
+    for i in 2..4 {
+        let s = c.simulate(i).unwrap();
+        assert_eq!(s.params.group, Group::Ldh);
+        assert!((1.35..=2.0).contains(&s.params.stride_time_s));
+        let speed = s.params.stride_length_m / s.params.stride_time_s;
+        assert!((0.28..=0.75).contains(&speed), "{speed}");
+        let steady: Vec<&StrideTruth> = s
+            .left
+            .truth
+            .strides
+            .iter()
+            .filter(|s| !s.bout_edge)
+            .collect();
+        assert!(steady.len() >= 4, "{}", steady.len());
+        assert!(steady.iter().all(|s| s.stance_ratio > 0.6));
+    }
+    // Adding slow subjects draws nothing from the others' random streams.
+    let plain = CohortParams {
+        slow_ldh: 0,
+        ..c.clone()
+    };
+    let fmt = FormatSpec::default();
+    let csv = |c: &CohortParams, i| {
+        crate::io::recording_to_csv(
+            &c.simulate(i).unwrap().left.recording,
+            &fmt,
+            &WriteOptions::default(),
+        )
+        .unwrap()
+    };
+    assert_eq!(csv(&c, 1), csv(&plain, 1));
+    // … and the slow subjects do not depend on how many others there are.
+    let only_slow = CohortParams {
+        healthy: 0,
+        ldh: 0,
+        ..c.clone()
+    };
+    assert_eq!(only_slow.subject_id(1), "S02");
+    assert_eq!(csv(&c, 3), csv(&only_slow, 1));
+    // A cohort without slow subjects writes the same parameters as before the option existed.
+    let json = serde_json::to_string(&plain).unwrap();
+    assert!(!json.contains("slow_ldh"), "{json}");
+    let short = CohortParams {
+        duration_s: 16.0,
+        ..c
+    };
+    assert!(short.validate().unwrap_err().to_string().contains("20 s"));
+}
+
+#[test]
 fn the_right_sensor_is_mirrored_and_the_sagittal_gyro_flips_sign() {
     let c = CohortParams {
         healthy: 1,
