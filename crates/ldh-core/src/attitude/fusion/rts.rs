@@ -106,13 +106,14 @@ pub(super) fn smooth(
 /// One RTS step: the smoothed state at k from the filtered state and covariance at k and the
 /// smoothed state at k + 1 (the filtered state when the predicted covariance is singular).
 ///
-/// The gain C = P Fᵀ P_pred⁻¹ is formed with nalgebra's LU inverse on purpose: a Cholesky solve
-/// of P_pred for the one vector C needs is 25 % faster, but on real recordings (HuGaDB) P_pred
-/// is ill-conditioned enough that the smoothed roll and yaw then move by up to 0.1° (issue 17,
-/// session of 2026-11-25 03:50), which is not a change of the last bits.
+/// The gain C = P Fᵀ P_pred⁻¹ is formed with nalgebra's LU inverse (written out for 5 × 5,
+/// bit for bit: [`super::products::lu_inverse`]) on purpose: a Cholesky solve of P_pred for the
+/// one vector C needs is 25 % faster, but on real recordings (HuGaDB) P_pred is ill-conditioned
+/// enough that the smoothed roll and yaw then move by up to 0.1° (issue 17, session of
+/// 2026-11-25 03:50), which is not a change of the last bits.
 fn rts_step(xf: &V5, sc: &SinCos, pf: &M5, xs_next: &V5, wm: &Vector3<f64>, m: &Model) -> V5 {
     let (xp, pp, fj) = predict(xf, sc, pf, wm, m.dt, &m.q);
-    let Some(inv) = pp.try_inverse() else {
+    let Some(inv) = super::products::lu_inverse(&pp) else {
         return *xf;
     };
     let c = super::products::times_ft(pf, &fj) * inv;
