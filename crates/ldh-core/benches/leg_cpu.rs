@@ -4,7 +4,9 @@
 //! `/proc/self/task/*/schedstat`; wall time elsewhere), median over rounds of a fixed number of
 //! calls. Same leg and functions as the `leg_30s` group of `benches/pipeline.rs`.
 //!
-//! Run: `RAYON_NUM_THREADS=1 cargo bench -p ldh-core --bench leg_cpu [-- ROUNDS CALLS]`
+//! Run: `RAYON_NUM_THREADS=1 cargo bench -p ldh-core --bench leg_cpu [-- ROUNDS CALLS [NAME]]`
+//! (NAME: only the cases whose name starts with it, e.g. `attitude` or `sta`, to profile one
+//! stage).
 
 use ldh_core::align::{align, AlignParams};
 use ldh_core::attitude::{estimate, AttitudeParams};
@@ -30,7 +32,10 @@ fn cpu_ns() -> Option<u64> {
 }
 
 /// Median CPU (or wall) time per call, ms, over `rounds` rounds of `calls` calls.
-fn measure(name: &str, rounds: usize, calls: usize, mut f: impl FnMut()) {
+fn measure(name: &str, only: &str, rounds: usize, calls: usize, mut f: impl FnMut()) {
+    if !name.starts_with(only) {
+        return;
+    }
     for _ in 0..calls.min(3) {
         f();
     }
@@ -57,10 +62,14 @@ fn measure(name: &str, rounds: usize, calls: usize, mut f: impl FnMut()) {
 }
 
 fn main() {
-    let args: Vec<usize> = std::env::args()
-        .skip(1)
-        .filter_map(|a| a.parse().ok())
-        .collect();
+    let raw: Vec<String> = std::env::args().skip(1).collect();
+    let args: Vec<usize> = raw.iter().filter_map(|a| a.parse().ok()).collect();
+    // the first argument that is not a number (cargo bench passes `--bench`) selects cases
+    let only = raw
+        .iter()
+        .find(|a| a.parse::<usize>().is_err() && !a.starts_with('-'))
+        .cloned()
+        .unwrap_or_default();
     let rounds = args.first().copied().unwrap_or(9);
     let calls = args.get(1).copied().unwrap_or(20);
     let c = CohortParams {
@@ -86,10 +95,14 @@ fn main() {
         ..AnalysisParams::default()
     };
     let with_sta = AnalysisParams::default();
-    measure("attitude_fusion_rts", rounds, calls, || {
+    measure("attitude_fusion_rts", &only, rounds, calls, || {
         black_box(estimate(black_box(&al), &fusion).unwrap());
     });
-    measure("sta", rounds, calls, || {
+    let forward = AttitudeParams::default().smoother(false).check().unwrap();
+    measure("attitude_forward_only", &only, rounds, calls, || {
+        black_box(estimate(black_box(&al), &forward).unwrap());
+    });
+    measure("sta", &only, rounds, calls, || {
         black_box(
             gait_sta(
                 black_box(&al.gyro_dps[1]),
@@ -101,7 +114,7 @@ fn main() {
         );
     });
     for (name, params) in [("leg_without_sta", &no_sta), ("leg_with_sta", &with_sta)] {
-        measure(name, rounds, calls, || {
+        measure(name, &only, rounds, calls, || {
             let (r, _) =
                 read_recording_bytes(black_box(&bytes), Path::new("left.csv"), None, &rp).unwrap();
             black_box(analyze_leg(&r, Side::Left, params, None).unwrap());

@@ -22,7 +22,8 @@
 //! against its ground truth; the default detector was chosen by its error on an independent
 //! cohort (seed 200; docs/accuracy.md).
 
-use find_peaks::PeakFinder;
+mod peaks;
+
 use serde::{Deserialize, Serialize};
 
 use crate::error::{LdhError, Result};
@@ -339,22 +340,12 @@ struct Signals<'a> {
     fs_hz: f64,
 }
 
-/// Mid-swing samples: peaks of −ω_s above the threshold, at least 0.8 × the shortest stride
-/// apart, in order.
+/// Mid-swing samples: peaks of −ω_s above the threshold (height and prominence), at least 0.8 ×
+/// the shortest stride apart, in order (`find_peaks`' peaks, found in linear time: [`peaks`]).
 fn midswings(neg: &[f64], p: &EventParams, fs_hz: f64) -> Vec<usize> {
     let min_dist = ((p.min_stride_s * 0.8) * fs_hz).max(1.0) as usize;
     let threshold = midswing_threshold_dps(neg, p);
-    let mut pf = PeakFinder::new(neg);
-    pf.with_min_height(threshold)
-        .with_min_prominence(threshold)
-        .with_min_distance(min_dist);
-    let mut mid: Vec<usize> = pf
-        .find_peaks()
-        .iter()
-        .map(|pk| pk.middle_position())
-        .collect();
-    mid.sort_unstable();
-    mid
+    peaks::peaks(neg, threshold, threshold, min_dist)
 }
 
 /// The median interval between mid-swings no longer than `max_stride_s`, s (1.1 s when none).

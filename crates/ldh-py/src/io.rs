@@ -46,6 +46,16 @@ fn recording_dict(py: Python<'_>, rec: Recording) -> PyResult<Bound<'_, PyDict>>
     Ok(d)
 }
 
+/// The reader's defaults with the size limits given (`None`: the core's default).
+pub(crate) fn read_limits(max_file_size_mb: Option<f64>, max_samples: Option<usize>) -> ReadParams {
+    let d = ReadParams::default();
+    ReadParams {
+        max_file_size_mb: max_file_size_mb.unwrap_or(d.max_file_size_mb),
+        max_samples: max_samples.unwrap_or(d.max_samples),
+        ..d
+    }
+}
+
 /// A format name or TOML column map, or detection when `None`.
 pub(crate) fn format_of(format: Option<&str>) -> Result<Option<FormatSpec>, LdhError> {
     format.map(FormatSpec::resolve).transpose()
@@ -53,7 +63,8 @@ pub(crate) fn format_of(format: Option<&str>) -> Result<Option<FormatSpec>, LdhE
 
 /// Read one sensor CSV: (recording dict of numpy channels, read report dict).
 #[pyfunction]
-#[pyo3(signature = (path, format=None, max_gap_s=None, gap_policy=None, min_duration_s=None, check_units=None))]
+#[pyo3(signature = (path, format=None, max_gap_s=None, gap_policy=None, min_duration_s=None, check_units=None, max_file_size_mb=None, max_samples=None))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn read_recording<'py>(
     py: Python<'py>,
     path: PathBuf,
@@ -62,6 +73,8 @@ pub(crate) fn read_recording<'py>(
     gap_policy: Option<String>,
     min_duration_s: Option<f64>,
     check_units: Option<bool>,
+    max_file_size_mb: Option<f64>,
+    max_samples: Option<usize>,
 ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
     let (rec, report) = py
         .detach(move || -> Result<_, LdhError> {
@@ -74,7 +87,7 @@ pub(crate) fn read_recording<'py>(
                 },
                 min_duration_s: min_duration_s.unwrap_or(d.min_duration_s),
                 check_units: check_units.unwrap_or(d.check_units),
-                ..d
+                ..read_limits(max_file_size_mb, max_samples)
             };
             let p = params.check()?;
             let f = format_of(format.as_deref())?;
@@ -195,7 +208,14 @@ pub(crate) fn defaults(py: Python<'_>, d: &Bound<'_, PyDict>) -> PyResult<()> {
     read.set_item("gap_policy", value_of(&r.gap_policy).or_raise(py)?.as_str())?;
     read.set_item("min_duration_s", r.min_duration_s)?;
     read.set_item("check_units", r.check_units)?;
+    read.set_item("max_file_size_mb", r.max_file_size_mb)?;
+    read.set_item("max_samples", r.max_samples)?;
     d.set_item("read_recording", read)?;
+    // The size limits of the functions that read recordings from paths (`analyze`).
+    let limits = PyDict::new(py);
+    limits.set_item("max_file_size_mb", r.max_file_size_mb)?;
+    limits.set_item("max_samples", r.max_samples)?;
+    d.set_item("read_limits", limits)?;
     let p = PreprocessParams::default();
     let pre = PyDict::new(py);
     pre.set_item("cutoff_hz", p.cutoff_hz)?;

@@ -8,7 +8,6 @@ use numpy::PyReadonlyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use ldh_core::io::ReadParams;
 use ldh_core::output::{self, Tables};
 use ldh_core::pipeline::{self as core, AnalysisParams, SubjectResult};
 use ldh_core::timings::{Stage, StageTimings};
@@ -16,7 +15,7 @@ use ldh_core::{LdhError, Recording, Setting, Side};
 
 use crate::convert::{columns, from_py, to_py, value_of, vec1, vecs, Opts};
 use crate::errors::OrRaise;
-use crate::io::format_of;
+use crate::io::{format_of, read_limits};
 
 const EVENT_COLUMNS: [&str; 5] = ["subject_id", "time_s", "side", "event", "order"];
 
@@ -97,9 +96,10 @@ fn tables<'py>(
 /// Analyse subjects as `ldh analyze` does on `n_jobs` threads (0: one per core; more than the
 /// cores are lowered to the cores, and `jobs_warning` in the result says so). A missing input
 /// path raises before any work; a bad recording is an error row. `subject_id` and `setting`
-/// are `ldh analyze --subject` and `--setting`.
+/// are `ldh analyze --subject` and `--setting`; `max_file_size_mb` and `max_samples` are
+/// `--max-file-size-mb` and `--max-samples` (a recording over a limit is an error row naming it).
 #[pyfunction]
-#[pyo3(signature = (inputs, model=None, detector=None, format=None, compute_sta=None, sensor_height_m=None, n_jobs=1, params=None, subject_id=None, setting=None))]
+#[pyo3(signature = (inputs, model=None, detector=None, format=None, compute_sta=None, sensor_height_m=None, n_jobs=1, params=None, subject_id=None, setting=None, max_file_size_mb=None, max_samples=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn analyze<'py>(
     py: Python<'py>,
@@ -113,6 +113,8 @@ pub(crate) fn analyze<'py>(
     params: Option<&Bound<'py, PyAny>>,
     subject_id: Option<String>,
     setting: Option<String>,
+    max_file_size_mb: Option<f64>,
+    max_samples: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let o = options(model, detector, sensor_height_m, compute_sta, params)?;
     // `n_jobs=10**6` must not spawn a million threads: bounded by the cores, as `-j` is.
@@ -125,7 +127,7 @@ pub(crate) fn analyze<'py>(
         .detach(move || -> Result<Vec<SubjectResult>, LdhError> {
             let p = o.params()?;
             let f = format_of(format.as_deref())?;
-            let read = ReadParams::default().check()?;
+            let read = read_limits(max_file_size_mb, max_samples).check()?;
             let opts = core::InputOptions {
                 subject_id,
                 setting: setting_of(setting.as_deref())?,

@@ -39,6 +39,7 @@ def test_stub_signature_equals_the_binding(name):
 # Python-level functions whose keyword defaults restate the core's (function -> core key).
 WRAPPED = {
     ldh.read_recording: "read_recording",
+    ldh.analyze: "read_limits",
     ldh.butter_filtfilt: "butter_filtfilt",
     ldh.preprocess: "preprocess",
     ldh.simulate_cohort: "simulate_cohort",

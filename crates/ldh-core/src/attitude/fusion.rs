@@ -434,7 +434,7 @@ fn weighted(xs: &[V5], w: &[f64]) -> V5 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::super::{estimate, Attitude, AttitudeParams};
     use super::{fusion_segmented, SEGMENT};
     use crate::align::{align, AlignParams, Aligned};
@@ -443,7 +443,7 @@ mod tests {
 
     /// A simulated 70 s walk (family A) and its true pitch, the signals aligned as the pipeline
     /// aligns them.
-    fn walk() -> (Aligned, Vec<f64>) {
+    pub(super) fn walk() -> (Aligned, Vec<f64>) {
         let c = CohortParams {
             healthy: 1,
             ldh: 0,

@@ -26,6 +26,7 @@ mod length;
 mod params;
 mod segment;
 mod side;
+mod times;
 
 use serde::{Deserialize, Serialize};
 

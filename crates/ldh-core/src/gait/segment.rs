@@ -3,6 +3,7 @@
 //! walking bouts split at pauses and turns, and the per-stride reasons a stride or its length
 //! is not used.
 
+use super::times::SortedTimes;
 use super::{
     anatomical_roll_deg, append_reason, pendulum_length_m, stride_length, zero_velocity_sample,
     LengthEstimate, Stride, StrideParams, ValidStrideParams,
@@ -98,6 +99,8 @@ struct Leg<'a> {
     n: usize,
     /// |ω|, deg/s, per sample (for the zero-velocity instant).
     w_norm: Vec<f64>,
+    /// The toe offs by time (the toe offs in a stride without a scan of all: issue 19).
+    tos: SortedTimes,
 }
 
 impl<'a> Leg<'a> {
@@ -123,6 +126,7 @@ impl<'a> Leg<'a> {
             p,
             n,
             w_norm,
+            tos: SortedTimes::new(&ev.to_s),
         }
     }
 
@@ -133,12 +137,7 @@ impl<'a> Leg<'a> {
 
     /// Mid-stance (zero-velocity) sample after the heel strike at `h` s.
     fn zero_velocity_after(&self, h: f64) -> Option<usize> {
-        let to = self
-            .ev
-            .to_s
-            .iter()
-            .copied()
-            .find(|&t| t > h && t - h < 0.75 * self.p.max_stride_s);
+        let (to, _) = self.tos.after(h, |t| t - h < 0.75 * self.p.max_stride_s);
         let end = to.unwrap_or(h + 0.6 * self.ev.median_stride_s.max(0.5));
         zero_velocity_sample(
             self.p.zero_velocity,
@@ -201,22 +200,15 @@ impl<'a> Leg<'a> {
     /// The toe off between the heel strikes at `h0` and `h1` s (the first when several, NaN
     /// when none), adding the reason to `reasons` unless there is exactly one.
     fn toe_off(&self, h0: f64, h1: f64, reasons: &mut Vec<String>) -> f64 {
-        let tos: Vec<f64> = self
-            .ev
-            .to_s
-            .iter()
-            .copied()
-            .filter(|&t| t > h0 && t < h1)
-            .collect();
-        match tos.as_slice() {
-            [] => {
+        match self.tos.after(h0, |t| t < h1) {
+            (None, _) => {
                 reasons.push("no toe off".into());
                 f64::NAN
             }
-            [t] => *t,
-            [t, ..] => {
-                reasons.push(format!("{} toe offs", tos.len()));
-                *t
+            (Some(t), 1) => t,
+            (Some(t), n) => {
+                reasons.push(format!("{n} toe offs"));
+                t
             }
         }
     }
@@ -321,19 +313,24 @@ fn flag_bout_edges(out: &mut [Stride], bouts: &[Option<usize>]) {
 /// stride stays valid for its timing and angles. Bouts with fewer than 3 lengths are left alone
 /// (no median to trust).
 fn withhold_length_outliers(out: &mut [Stride], max_dev: f64) {
-    let bouts: std::collections::BTreeSet<usize> = out.iter().map(|s| s.bout).collect();
-    for b in bouts {
-        let mut l: Vec<f64> = out
+    // The valid strides of each bout, in order (one pass: linear in the strides).
+    let mut bouts: std::collections::BTreeMap<usize, Vec<usize>> = Default::default();
+    for (k, s) in out.iter().enumerate().filter(|(_, s)| s.valid) {
+        bouts.entry(s.bout).or_default().push(k);
+    }
+    for members in bouts.values() {
+        let mut l: Vec<f64> = members
             .iter()
-            .filter(|s| s.bout == b && s.valid && s.stride_length_m.is_finite())
-            .map(|s| s.stride_length_m)
+            .map(|&k| out[k].stride_length_m)
+            .filter(|l| l.is_finite())
             .collect();
         if l.len() < 3 {
             continue;
         }
         l.sort_by(f64::total_cmp);
         let med = l[l.len() / 2];
-        for s in out.iter_mut().filter(|s| s.bout == b && s.valid) {
+        for &k in members {
+            let s = &mut out[k];
             let dev = (s.stride_length_m - med) / med;
             if s.stride_length_m.is_finite() && dev.abs() > max_dev {
                 let r = format!(

@@ -2,6 +2,7 @@
 //! SV and STV, step time and frequency from the other leg's heel strikes, and the rules of
 //! evidence that withhold a leg's stride length when too few of its strides vouch for it.
 
+use super::times::SortedTimes;
 use super::{append_reason, SideParameters, Stride};
 
 fn mean(v: &[f64]) -> f64 {
@@ -35,16 +36,18 @@ pub fn side_parameters(strides: &[Stride], other_hs_s: Option<&[f64]>) -> SidePa
     let sl = col(|s| s.stride_length_m);
     let mean_st = mean(&st);
     let stt: Vec<f64> = match other_hs_s {
-        Some(other) => valid
-            .iter()
-            .filter_map(|s| {
-                other
-                    .iter()
-                    .copied()
-                    .rfind(|&c| c < s.hs_time_s && s.hs_time_s - c < 0.75 * mean_st)
-                    .map(|c| s.hs_time_s - c)
-            })
-            .collect(),
+        Some(other) => {
+            // The other leg's last heel strike before each one (sorted: linear, issue 19).
+            let other = SortedTimes::new(other);
+            valid
+                .iter()
+                .filter_map(|s| {
+                    other
+                        .last_before(s.hs_time_s, |c| s.hs_time_s - c < 0.75 * mean_st)
+                        .map(|c| s.hs_time_s - c)
+                })
+                .collect()
+        }
         None => vec![],
     };
     let mean_stt = mean(&stt);

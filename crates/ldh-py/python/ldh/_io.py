@@ -9,7 +9,7 @@ import numpy as np
 
 from . import _ldh
 from ._errors import LdhParamError, LdhWarning
-from ._util import PathLike, vec as _vec
+from ._util import PathLike, sample_limit, vec as _vec
 
 
 def read_recording(
@@ -20,6 +20,8 @@ def read_recording(
     gap_policy: str = "split",
     min_duration_s: float = 4.0,
     check_units: bool = True,
+    max_file_size_mb: float = 256.0,
+    max_samples: int = 2_500_000,
 ) -> Tuple[Dict[str, Any], Dict[str, Any]]:
     """Read one sensor CSV export.
 
@@ -38,6 +40,14 @@ def read_recording(
         Shortest usable recording, in seconds.
     check_units : bool, default True
         Refuse data whose magnitudes contradict the declared units.
+    max_file_size_mb : float, default 256.0
+        Largest file read, in MB (10^6 bytes), checked before reading (``ldh inspect
+        --max-file-size-mb``): a mistaken multi-gigabyte export or ``/dev/zero`` cannot fill
+        the memory.
+    max_samples : int, default 2500000
+        Most data rows in the recording (6.9 h at 100 Hz; ``--max-samples``), checked while
+        it is streamed, before the rows past the limit are stored; the analysis keeps about
+        150 bytes per sample.
 
     Returns
     -------
@@ -56,10 +66,15 @@ def read_recording(
         The file does not exist (also a ``FileNotFoundError``).
     LdhDataError
         The file is not a usable recording (also a ``ValueError``); the message names the
-        file, line and column.
+        file, line and column. Also a file above ``max_file_size_mb`` or a recording with
+        more rows than ``max_samples`` (the message names the file, its size or row count,
+        and the limit).
+    LdhParamError
+        An invalid option (also a ``ValueError``), e.g. ``max_samples=0``.
     """
     rec, report = _ldh.read_recording(
-        os.fspath(path), format, max_gap_s, gap_policy, min_duration_s, check_units
+        os.fspath(path), format, max_gap_s, gap_policy, min_duration_s, check_units,
+        float(max_file_size_mb), sample_limit(max_samples),
     )
     for w in report.get("warnings", []):
         warnings.warn(f"{report['file']}: {w}", LdhWarning, stacklevel=2)

@@ -11,7 +11,7 @@ import numpy as np
 from . import _ldh
 from ._errors import LdhParamError, LdhWarning
 from ._result import Result
-from ._util import PathLike, opt_float, params_dict, vec
+from ._util import PathLike, opt_float, params_dict, sample_limit, vec
 
 _CHANNELS = ["acc_x_g", "acc_y_g", "acc_z_g", "gyro_x_dps", "gyro_y_dps", "gyro_z_dps"]
 
@@ -62,6 +62,8 @@ def analyze(
     subject_id: Optional[str] = None,
     setting: Optional[str] = None,
     as_frame: Optional[bool] = None,
+    max_file_size_mb: float = 256.0,
+    max_samples: int = 2_500_000,
 ) -> Result:
     """Analyse recordings exactly as ``ldh analyze`` does.
 
@@ -100,6 +102,13 @@ def analyze(
     as_frame : bool, optional
         Tables as pandas DataFrames (default when pandas is importable) or, with ``False``, as
         dicts of numpy arrays.
+    max_file_size_mb : float, default 256.0
+        Largest recording file read, in MB (``--max-file-size-mb``); see
+        :func:`read_recording`.
+    max_samples : int, default 2500000
+        Most data rows per recording (``--max-samples``); see :func:`read_recording`. A
+        recording over either limit is that leg's error row naming the file and the limit
+        (``.errors``), as every recording that cannot be read; the others are analysed.
 
     Returns
     -------
@@ -119,6 +128,7 @@ def analyze(
     raw = _ldh.analyze(
         _paths(inputs), model, detector, format, compute_sta, opt_float(sensor_height_m),
         _jobs(n_jobs), params_dict(params), _subject_id(subject_id), _setting(setting),
+        float(max_file_size_mb), sample_limit(max_samples),
     )
     if raw.get("jobs_warning"):
         warnings.warn(raw["jobs_warning"], LdhWarning, stacklevel=_caller_level())
@@ -138,7 +148,9 @@ def _caller_level() -> int:
 
 def analyze_many(paths: Sequence[PathLike], n_jobs: Optional[int] = None, **kwargs: Any) -> Result:
     """Analyse many inputs (manifests, cohort or subject folders, pairs of files) in parallel
-    on Rust threads; the same as :func:`analyze` with ``n_jobs`` defaulting to all cores.
+    on Rust threads; the same as :func:`analyze` with ``n_jobs`` defaulting to all cores
+    (every keyword of :func:`analyze` is accepted, ``max_file_size_mb`` and ``max_samples``
+    included).
 
     ``paths`` must name at least one input (``analyze()`` without inputs is the demo); an
     empty list raises :class:`LdhParamError` (a ``ValueError``). The

@@ -37,3 +37,10 @@ def params_dict(params: Any) -> Optional[dict]:
     if not isinstance(params, dict):
         raise LdhParamError(f"params must be a dict like docs/parameters.md, got {type(params).__name__}")
     return params
+
+
+def sample_limit(v: Any) -> int:
+    """``max_samples``: an int the core can hold (the core refuses 0 with its own message)."""
+    if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or not 0 <= v < 2**64:
+        raise LdhParamError(f"max_samples must be a positive int, got {v!r}")
+    return int(v)

@@ -18,7 +18,7 @@ mod attitude;
 mod pair;
 mod sensor;
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
 mod warning;
 
 pub use attitude::{
