@@ -175,6 +175,9 @@ def main():
     # baseline_ok's legs swapped, through a manifest (which states the sides; no copies).
     case("left_right_swapped", manifest_csv="subject_id,group,affected_side,left,right\n"
          "S1,healthy,none,../baseline_ok/right.csv,../baseline_ok/left.csv\n")
+    # A leg from another subject: the demo cohort's H01 left and L01 right (no copies).
+    case("leg_from_another_subject", manifest_csv="subject_id,group,affected_side,left,right\n"
+         "S1,healthy,none,../../cohort/H01/left.csv,../../cohort/L01/right.csv\n")
     case("different_lengths", right_csv=text(cut(rp, 7.0)))
     case("different_clocks", right_csv=text([(r[0] + 3600.0,) + r[1:] for r in rp]))
     case("clock_drift", right_csv=text([(r[0] * 1.02,) + r[1:] for r in rp], tdec=4))

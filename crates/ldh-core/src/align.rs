@@ -113,8 +113,19 @@ pub struct Aligned {
     /// Samples where the accelerometer clipped (sorted indices, from
     /// [`Preprocessed::acc_clipped`]).
     pub acc_clipped: Vec<usize>,
+    /// Specific force in F with the magnitude outliers kept, g, when it differs from `acc_g`
+    /// ([`Preprocessed::acc_motion_g`]); read through [`Aligned::acc_motion_g`].
+    pub acc_motion_g: Option<[Vec<f64>; 3]>,
     /// The alignment.
     pub alignment: Alignment,
+}
+
+impl Aligned {
+    /// The specific force a strapdown integration reads, g: the magnitude outliers kept (only
+    /// clipped samples replaced), see [`Preprocessed::acc_motion_g`].
+    pub fn acc_motion_g(&self) -> &[Vec<f64>; 3] {
+        self.acc_motion_g.as_ref().unwrap_or(&self.acc_g)
+    }
 }
 
 fn still_mask(pre: &Preprocessed, p: &AlignParams) -> Vec<bool> {
@@ -193,6 +204,7 @@ pub fn align(pre: &Preprocessed, params: &ValidAlignParams) -> Result<Aligned> {
         acc_g: acc_f,
         gyro_dps: gyro_f,
         acc_clipped: pre.acc_clipped.clone(),
+        acc_motion_g: pre.acc_motion_g.as_ref().map(|a| rotate_acc(a, &r)),
         alignment: Alignment {
             r_f_from_device: r,
             gyro_bias_dps: quiet.bias,
@@ -363,17 +375,18 @@ fn sagittal_axis(
 
 /// The acceleration (g) and bias-corrected angular velocity (deg/s) rotated into frame F by
 /// `r` (rows e1, e2, e3 in device axes).
+/// Device-frame acceleration `a` rotated into F by `r`.
+fn rotate_acc(a: &[Vec<f64>; 3], r: &[[f64; 3]; 3]) -> [Vec<f64>; 3] {
+    std::array::from_fn(|row| {
+        (0..a[0].len())
+            .map(|i| r[row][0] * a[0][i] + r[row][1] * a[1][i] + r[row][2] * a[2][i])
+            .collect()
+    })
+}
+
 fn rotate(pre: &Preprocessed, r: &[[f64; 3]; 3], bias: [f64; 3]) -> ([Vec<f64>; 3], [Vec<f64>; 3]) {
     let n = pre.acc_norm_g.len();
-    let acc_f: [Vec<f64>; 3] = std::array::from_fn(|row| {
-        (0..n)
-            .map(|i| {
-                r[row][0] * pre.acc_g[0][i]
-                    + r[row][1] * pre.acc_g[1][i]
-                    + r[row][2] * pre.acc_g[2][i]
-            })
-            .collect()
-    });
+    let acc_f = rotate_acc(&pre.acc_g, r);
     let gyro_f: [Vec<f64>; 3] = std::array::from_fn(|row| {
         (0..n)
             .map(|i| {

@@ -11,6 +11,13 @@
 //! Sci Rep 2021, doi 10.1038/s41598-021-81009-w; r = `sensor_height_m` along the shank).
 //! [`ZeroVelocity::MinGyro`] keeps the former rule (minimum |ω| anywhere between HS and TO).
 //!
+//! **Acceleration integrated.** [`crate::align::Aligned::acc_motion_g`]: the paper's
+//! preprocessing interpolates every sample whose |a| lies beyond 3 SDs of its mean, which in
+//! slow gait (|a| varying little) is 70-110 ms of every heel strike's real deceleration; cut
+//! from the integral it made family A's slow walkers' strides up to 29 % short, so the
+//! integration reads the acceleration with those samples kept (only clipped ones replaced,
+//! and a clipped stride is withheld anyway).
+//!
 //! **Plausibility** ([`LengthEstimate::implausible`]): a stride length is withheld (the stride is
 //! marked invalid with the reason) when the accelerometer clipped anywhere between the two
 //! mid-stances (the acceleration integrated there is unknown, whatever replaced it), when the
@@ -198,8 +205,9 @@ pub fn stride_length(al: &Aligned, att: &Attitude, z0: usize, z1: usize, h: f64)
     let mv = |r: &[[f64; 3]; 3], v: [f64; 3]| -> [f64; 3] {
         std::array::from_fn(|k| r[k][0] * v[0] + r[k][1] * v[1] + r[k][2] * v[2])
     };
+    let acc = al.acc_motion_g();
     let acc_w = |i: usize| -> [f64; 3] {
-        let f = [al.acc_g[0][i], al.acc_g[1][i], al.acc_g[2][i]];
+        let f = [acc[0][i], acc[1][i], acc[2][i]];
         let mut a = mv(&rot(i), f);
         for x in a.iter_mut() {
             *x *= STANDARD_GRAVITY_MPS2;

@@ -127,6 +127,18 @@ pub fn withhold_unvouched_lengths(strides: &mut [Stride]) {
     }
 }
 
+/// The finding a stride's reason names for its blanked length ("stride length withheld: lr
+/// disagreement" → "lr disagreement", as [`crate::pipeline::quality::apply_to_strides`] writes
+/// it), else "not integrable" (the length itself was not finite).
+fn finding_named_in(reason: &str) -> String {
+    reason
+        .split("; ")
+        .find_map(|part| part.split_once("stride length withheld: ").map(|(_, f)| f))
+        .filter(|f| !f.is_empty())
+        .unwrap_or("not integrable")
+        .to_string()
+}
+
 /// Withhold the side's stride length, speed and SV unless at least [`MIN_LENGTH_STRIDES`] (or
 /// half, when fewer) and at least [`MIN_LENGTH_SHARE`] of the valid strides have a length: say
 /// why (the most common per-stride reason).
@@ -156,8 +168,7 @@ fn withhold_side_length(out: &mut SideParameters, valid: &[&Stride], with_length
         ]
         .iter()
         .find(|(k, _)| r.contains(k))
-        .map_or("not integrable", |(_, v)| v)
-        .to_string();
+        .map_or_else(|| finding_named_in(r), |(_, v)| v.to_string());
         *why.entry(key).or_default() += 1;
     }
     let top = why

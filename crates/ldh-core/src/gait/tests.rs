@@ -79,3 +79,23 @@ fn a_side_length_needs_most_strides_vouched_for() {
     assert!(side(4, 1).stride_length_m.is_nan());
     assert!(side(10, 3).stride_length_m.is_nan());
 }
+
+#[test]
+fn a_side_length_blanked_by_a_finding_names_the_finding() {
+    // The pair's left/right check blanked every stride's length (quality::apply_to_strides).
+    let mut st = leg(10, 0);
+    for s in st.iter_mut() {
+        s.reason = "stride length withheld: lr disagreement".into();
+    }
+    let p = side_parameters(&st, None);
+    assert_eq!(
+        p.withheld["stride_length_m"],
+        "stride length vouched for on 0 of 10 valid strides (lr disagreement)"
+    );
+    // A length that was simply not finite, with no reason, is "not integrable".
+    for s in st.iter_mut() {
+        s.reason.clear();
+    }
+    let p = side_parameters(&st, None);
+    assert!(p.withheld["stride_length_m"].ends_with("(not integrable)"));
+}

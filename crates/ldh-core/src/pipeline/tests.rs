@@ -177,15 +177,85 @@ fn slow_gait_at_0_3_mps_against_truth() {
     );
 }
 
-/// Treadmill walking: no stride is a turn, lengths on the belt within 15 % when reported.
+/// Treadmill walking: no stride is a turn, lengths on the belt within 15 % when reported, and
+/// reported on at least one leg. On this seed the right leg's velocity drift (family B's gyro
+/// bias and scale faults) grows to 0.56-0.72 m/s mid-walk: 14 of its 25 valid strides fail the
+/// 0.6 m/s check, so its 11 survivors are withheld too (`gait::MIN_LENGTH_SHARE`). Before the
+/// stride length integrated the heel-strike decelerations the outlier rule used to interpolate
+/// (docs/accuracy.md "Stride length of slow walkers on family A"), 13 of 25 passed, their
+/// lengths 1-5 % short where the impact had been cut.
 #[test]
 fn treadmill_walk_has_no_turns_against_truth() {
-    for (hs, sl, turning, valid) in family_b_case(0.9, crate::Setting::Treadmill, 32) {
-        assert_eq!(turning, 0);
-        assert!(valid >= 8, "valid strides {valid}");
+    let legs = family_b_case(0.9, crate::Setting::Treadmill, 32);
+    for (hs, sl, turning, valid) in &legs {
+        assert_eq!(*turning, 0);
+        assert!(*valid >= 8, "valid strides {valid}");
         assert!(hs.iter().all(|e| e.abs() < 0.04), "{hs:?}");
         assert!(sl.iter().all(|e| e.abs() < 0.15), "{sl:?}");
-        assert!(sl.len() >= 4, "{sl:?}");
+    }
+    assert!(
+        legs.iter().any(|(_, sl, _, _)| sl.len() >= 4),
+        "no leg reports its stride length"
+    );
+}
+
+/// Family A's slow walkers (issue 20): long stances (0.67-0.72) and a small spread of |a|, so
+/// the paper's 3-SD outlier rule flags 7-11 samples of every heel strike's deceleration. When
+/// the stride length integrated the interpolated acceleration, S06 of seed 200 (right leg,
+/// stance ≈ 0.70, strides of 0.6 m) reported strides 16-25 % short as valid, S03 18 %
+/// (docs/accuracy.md "Stride length of slow walkers on family A"). Every reported steady
+/// stride must be within 15 % of the truth, and most must be reported.
+#[test]
+fn slow_long_stance_walkers_report_no_stride_length_more_than_15_percent_off() {
+    for j in [2usize, 5] {
+        let c = CohortParams {
+            healthy: 0,
+            ldh: 0,
+            slow_ldh: j + 1,
+            duration_s: 30.0,
+            seed: 200,
+            ..CohortParams::default()
+        };
+        let s = c.simulate(j).unwrap();
+        let r = analyze_simulated(
+            &s,
+            &AnalysisParams {
+                compute_sta: false,
+                ..AnalysisParams::default()
+            },
+        );
+        let t = s.truth();
+        for (leg, tr) in [(&r.left, &t.left), (&r.right, &t.right)] {
+            let leg = leg.as_ref().unwrap();
+            let steady: Vec<_> = tr
+                .strides
+                .iter()
+                .filter(|s| !s.turning && !s.bout_edge)
+                .collect();
+            let errs: Vec<f64> = steady
+                .iter()
+                .filter_map(|ts| {
+                    leg.strides
+                        .iter()
+                        .find(|x| x.valid && (x.hs_time_s - ts.hs_time_s).abs() < 0.25)
+                        .filter(|x| x.stride_length_m.is_finite())
+                        .map(|x| x.stride_length_m / ts.stride_length_m - 1.0)
+                })
+                .collect();
+            let id = &s.params.subject_id;
+            assert!(
+                errs.iter().all(|e| e.abs() < 0.15),
+                "{id} {:?}: {errs:?}",
+                tr.side
+            );
+            assert!(
+                2 * errs.len() >= steady.len(),
+                "{id} {:?}: {} of {} steady strides reported",
+                tr.side,
+                errs.len(),
+                steady.len()
+            );
+        }
     }
 }
 

@@ -60,6 +60,16 @@ pub struct Preprocessed {
     /// integrated over them is reported ([`crate::gait::stride_length`]).
     #[serde(default)]
     pub acc_clipped: Vec<usize>,
+    /// Filtered acceleration with the magnitude outliers **kept** (only the samples where the
+    /// accelerometer clipped replaced), g; `None` when it equals `acc_g` (no outlier replaced,
+    /// or `replace_outliers` off). The outlier rule of step 2 (|a| beyond `outlier_sd` SDs of
+    /// its mean) flags the shank's genuine heel-strike decelerations wherever the magnitude
+    /// varies little, as in slow gait (SD 0.12-0.2 g: 7-11 samples around every heel strike);
+    /// interpolating them removes their area from a strapdown integral, which made slow
+    /// walkers' stride lengths 10-29 % short (docs/accuracy.md). The stride length integrates
+    /// this one ([`crate::gait::stride_length`]); everything else keeps the paper's signals.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub acc_motion_g: Option<[Vec<f64>; 3]>,
     /// Mean of the raw magnitude, g.
     pub raw_norm_mean_g: f64,
     /// SD (ddof = 0) of the raw magnitude, g.
@@ -96,15 +106,29 @@ pub fn preprocess(rec: &Recording, params: &ValidPreprocessParams) -> Result<Pre
     let acc_f = [filt(&acc[0])?, filt(&acc[1])?, filt(&acc[2])?];
     let gyro_f = [filt(&gyro[0])?, filt(&gyro[1])?, filt(&gyro[2])?];
     let acc_norm_g = magnitude(&acc_f[0], &acc_f[1], &acc_f[2]);
+    let acc_clipped: Vec<usize> = (0..rec.len())
+        .filter(|&i| rec.acc_saturated_at(i))
+        .collect();
+    // The acceleration the stride length integrates: magnitude outliers kept (they are the
+    // shank's real heel-strike decelerations), only clipped samples replaced. Stored only when
+    // it differs from `acc_f`.
+    let acc_motion_g = if params.params.replace_outliers && replaced != acc_clipped {
+        let mut acc = rec.acc_g.clone();
+        for ch in acc.iter_mut() {
+            interpolate_over(ch, &acc_clipped);
+        }
+        Some([filt(&acc[0])?, filt(&acc[1])?, filt(&acc[2])?])
+    } else {
+        None
+    };
     Ok(Preprocessed {
         fs_hz: rec.fs_hz,
         acc_g: acc_f,
         gyro_dps: gyro_f,
         acc_norm_g,
         replaced,
-        acc_clipped: (0..rec.len())
-            .filter(|&i| rec.acc_saturated_at(i))
-            .collect(),
+        acc_clipped,
+        acc_motion_g,
         raw_norm_mean_g: m,
         raw_norm_sd_g: sd,
     })

@@ -191,3 +191,50 @@ proptest! {
         }
     }
 }
+
+/// A heel-strike-like deceleration that the |a| outlier rule flags is interpolated in `acc_g`
+/// (the paper's preprocessing) but kept in `acc_motion_g` (what the stride length integrates);
+/// a clipped sample is replaced in both, and without outliers nothing extra is stored.
+#[test]
+fn motion_acceleration_keeps_magnitude_outliers_and_replaces_clipped_samples() {
+    let n = 200;
+    let quiet = |i: usize| 1.0 + 0.05 * (i as f64 * 0.3).sin();
+    let mut ax: Vec<f64> = (0..n).map(quiet).collect();
+    // A 60 ms, 1.5 g impact: beyond 3 SD of the magnitude.
+    for x in ax.iter_mut().skip(100).take(6) {
+        *x += 1.5;
+    }
+    let zeros = || vec![0.0; n];
+    let rec = Recording::new(
+        100.0,
+        [ax.clone(), zeros(), zeros()],
+        [zeros(), zeros(), zeros()],
+        vec![],
+    )
+    .unwrap();
+    let p = PreprocessParams::default().check(100.0).unwrap();
+    let pre = preprocess(&rec, &p).unwrap();
+    assert!(pre.replaced.contains(&102), "{:?}", pre.replaced);
+    let motion = pre.acc_motion_g.as_ref().expect("outliers were replaced");
+    // The impact's area survives in the motion acceleration, not in acc_g.
+    let area = |v: &[f64]| v[95..112].iter().sum::<f64>() - (95..112).map(quiet).sum::<f64>();
+    assert!(area(&pre.acc_g[0]).abs() < 1.0, "{}", area(&pre.acc_g[0]));
+    assert!((area(&motion[0]) - 9.0).abs() < 0.3, "{}", area(&motion[0]));
+    // Only clipped samples replaced: the motion acceleration is acc_g itself.
+    let mut clipped = vec![false; n];
+    for c in clipped.iter_mut().skip(100).take(6) {
+        *c = true;
+    }
+    let rec = rec.with_sensor_saturation(clipped, vec![false; n]).unwrap();
+    let pre = preprocess(&rec, &p).unwrap();
+    assert_eq!(pre.acc_clipped, (100..106).collect::<Vec<_>>());
+    assert_eq!(pre.acc_motion_g, None);
+    // Replacement off: nothing is replaced anywhere, nothing extra stored.
+    let off = PreprocessParams {
+        replace_outliers: false,
+        ..PreprocessParams::default()
+    }
+    .check(100.0)
+    .unwrap();
+    assert_eq!(preprocess(&rec, &off).unwrap().acc_motion_g, None);
+}

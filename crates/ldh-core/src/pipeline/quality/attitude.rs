@@ -156,6 +156,7 @@ mod tests {
             acc_g: Default::default(),
             gyro_dps: Default::default(),
             acc_clipped: vec![],
+            acc_motion_g: None,
             alignment: Alignment {
                 r_f_from_device: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
                 gyro_bias_dps: [0.0; 3],
