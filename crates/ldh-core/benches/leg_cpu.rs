@@ -8,13 +8,14 @@
 //! (NAME: only the cases whose name starts with it, e.g. `attitude` or `sta`, to profile one
 //! stage).
 
+mod common;
+
 use ldh_core::align::{align, AlignParams};
 use ldh_core::attitude::{estimate, AttitudeParams};
-use ldh_core::io::{read_recording_bytes, FormatSpec, ReadParams};
+use ldh_core::io::{read_recording_bytes, ReadParams};
 use ldh_core::nonlinear::{gait_sta, GaitStaParams};
 use ldh_core::pipeline::{analyze_leg, AnalysisParams};
 use ldh_core::preprocess::{preprocess, PreprocessParams};
-use ldh_core::simulate::CohortParams;
 use ldh_core::Side;
 use std::hint::black_box;
 use std::path::Path;
@@ -72,19 +73,7 @@ fn main() {
         .unwrap_or_default();
     let rounds = args.first().copied().unwrap_or(9);
     let calls = args.get(1).copied().unwrap_or(20);
-    let c = CohortParams {
-        healthy: 1,
-        ldh: 0,
-        seed: 17,
-        duration_s: 30.0,
-        ..CohortParams::default()
-    };
-    let s = c.simulate(0).expect("simulate");
-    let dir = std::env::temp_dir().join(format!("ldh-legcpu-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    s.write(&dir, &FormatSpec::default()).expect("write");
-    let bytes = std::fs::read(dir.join("left.csv")).unwrap();
-    let _ = std::fs::remove_dir_all(&dir);
+    let bytes = common::leg_30s_csv();
     let rp = ReadParams::default().check().unwrap();
     let (rec, _) = read_recording_bytes(&bytes, Path::new("left.csv"), None, &rp).unwrap();
     let pre = preprocess(&rec, &PreprocessParams::default().check(rec.fs_hz).unwrap()).unwrap();

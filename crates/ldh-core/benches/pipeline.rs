@@ -5,16 +5,18 @@
 //!
 //! Run: `cargo bench -p ldh-core --bench pipeline`
 
+mod common;
+
+use common::leg_30s_csv;
 use criterion::{criterion_group, criterion_main, Criterion};
 use ldh_core::align::{align, AlignParams};
 use ldh_core::attitude::{estimate, AttitudeModel, AttitudeParams};
 use ldh_core::events::{detect, EventParams};
 use ldh_core::gait::{side_parameters, strides, StrideParams};
-use ldh_core::io::{read_recording_bytes, FormatSpec, ReadParams};
+use ldh_core::io::{read_recording_bytes, ReadParams};
 use ldh_core::nonlinear::{gait_sta, GaitStaParams};
 use ldh_core::pipeline::{analyze_leg, AnalysisParams};
 use ldh_core::preprocess::{preprocess, PreprocessParams};
-use ldh_core::simulate::CohortParams;
 use ldh_core::Side;
 use std::hint::black_box;
 use std::path::Path;
@@ -117,23 +119,6 @@ fn bench(c: &mut Criterion) {
 }
 
 /// One simulated healthy subject's left leg, 30 s at 100 Hz, as CSV bytes in the default format.
-fn leg_30s_csv() -> Vec<u8> {
-    let c = CohortParams {
-        healthy: 1,
-        ldh: 0,
-        seed: 17,
-        duration_s: 30.0,
-        ..CohortParams::default()
-    };
-    let s = c.simulate(0).expect("simulate");
-    let dir = std::env::temp_dir().join(format!("ldh-bench-leg30-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    s.write(&dir, &FormatSpec::default()).expect("write");
-    let bytes = std::fs::read(dir.join("left.csv")).unwrap();
-    let _ = std::fs::remove_dir_all(&dir);
-    bytes
-}
-
 /// Issue 17's targets: STA ≤ 2 ms per 30 s leg at 100 Hz, the whole per-leg pipeline ≤ 3 ms.
 fn bench_leg_30s(c: &mut Criterion) {
     let bytes = leg_30s_csv();
