@@ -171,7 +171,7 @@ pub(crate) fn write_demo(py: Python<'_>, out: PathBuf) -> PyResult<usize> {
 
 /// Simulate a cohort into a folder as `ldh simulate` does; returns the manifest CSV text.
 #[pyfunction]
-#[pyo3(signature = (out, healthy=None, ldh=None, seconds=None, seed=None, rate_hz=None, turn=None))]
+#[pyo3(signature = (out, healthy=None, ldh=None, seconds=None, seed=None, rate_hz=None, turn=None, slow_ldh=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn simulate_cohort(
     py: Python<'_>,
@@ -182,6 +182,7 @@ pub(crate) fn simulate_cohort(
     seed: Option<u64>,
     rate_hz: Option<f64>,
     turn: Option<bool>,
+    slow_ldh: Option<usize>,
 ) -> PyResult<String> {
     let d = ldh_core::simulate::CohortParams::default();
     let params = ldh_core::simulate::CohortParams {
@@ -191,6 +192,7 @@ pub(crate) fn simulate_cohort(
         fs_hz: rate_hz.unwrap_or(d.fs_hz),
         seed: seed.unwrap_or(d.seed),
         turn: turn.unwrap_or(d.turn),
+        slow_ldh: slow_ldh.unwrap_or(d.slow_ldh),
         ..d
     };
     py.detach(move || -> Result<String, LdhError> {
@@ -236,6 +238,7 @@ pub(crate) fn defaults(py: Python<'_>, d: &Bound<'_, PyDict>) -> PyResult<()> {
     sim.set_item("seed", c.seed)?;
     sim.set_item("rate_hz", c.fs_hz)?;
     sim.set_item("turn", c.turn)?;
+    sim.set_item("slow_ldh", c.slow_ldh)?;
     d.set_item("simulate_cohort", sim)?;
     Ok(())
 }

@@ -82,3 +82,20 @@ def test_demo_and_simulation_are_deterministic(tmp_path):
         ldh.simulate_cohort(tmp_path / "c", seconds=12)
     rec, report = ldh.read_recording(tmp_path / "demo" / "H01" / "left.csv")
     assert abs(rec["fs_hz"] - 100.0) < 1e-9 and len(rec["time_s"]) == 2501
+
+
+def test_slow_ldh_subjects_come_last_and_leave_the_others_unchanged(tmp_path):
+    # as `ldh simulate --slow-ldh`: ids S01…, own random streams, slower strides
+    m0 = ldh.simulate_cohort(tmp_path / "a", healthy=1, ldh=1, seconds=30, seed=7, turn=False)
+    m1 = ldh.simulate_cohort(tmp_path / "b", healthy=1, ldh=1, seconds=30, seed=7, turn=False, slow_ldh=2)
+    assert m0.splitlines() == m1.splitlines()[: len(m0.splitlines())]
+    assert [line.split(",")[0] for line in m1.splitlines()[-2:]] == ["S01", "S02"]
+    for sid in ("H01", "L01"):
+        assert (tmp_path / "a" / sid / "left.csv").read_bytes() == (tmp_path / "b" / sid / "left.csv").read_bytes()
+    slow = ldh.analyze(tmp_path / "b" / "S01", as_frame=False).recordings["stride_time_s"]
+    normal = ldh.analyze(tmp_path / "b" / "L01", as_frame=False).recordings["stride_time_s"]
+    # the CLI gives 1.576 / 1.574 s (S01) and 1.106 / 1.104 s (L01) for this cohort
+    assert len(slow) == 2 and np.all((slow >= 1.3) & (slow <= 2.1)), slow
+    assert np.all(slow > normal), (slow, normal)
+    with pytest.raises(ldh.LdhParamError, match="slow_ldh"):
+        ldh.simulate_cohort(tmp_path / "c", slow_ldh=-1)

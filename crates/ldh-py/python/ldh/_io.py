@@ -168,24 +168,33 @@ def simulate_cohort(
     seed: int = 1,
     rate_hz: float = 100.0,
     turn: bool = True,
+    slow_ldh: int = 0,
 ) -> str:
     """Simulate a cohort into ``out`` exactly as ``ldh simulate`` does (subject folders,
     ``manifest.csv`` and ``cohort.json``); returns the manifest CSV text. The same seed gives
     byte-identical files.
 
+    ``slow_ldh`` adds that many slow, severely affected LDH subjects (0.28–0.75 m/s, strides
+    of 1.35–2.0 s; ids ``S01``…, after the others), as ``ldh simulate --slow-ldh``; they need
+    ``seconds >= 20``. Each has its own random stream, so adding them leaves the other
+    subjects' files unchanged.
+
     Sizes beyond the core's declared limits (100 000 subjects; 1 000 000 samples per leg,
     i.e. ``seconds * rate_hz``) raise :class:`LdhParamError` (a ``ValueError``) before any
     work, as do negative or non-integer counts."""
-    for name, v in (("healthy", healthy), ("ldh", ldh), ("seed", seed)):
+    for name, v in (("healthy", healthy), ("ldh", ldh), ("slow_ldh", slow_ldh), ("seed", seed)):
         if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 0:
             raise LdhParamError(f"{name} must be a non-negative int, got {v!r}")
-    if healthy >= 2**64 or ldh >= 2**64:
+    if healthy >= 2**64 or ldh >= 2**64 or slow_ldh >= 2**64:
         # Beyond what the core can represent (its own limit, checked there, is far lower).
-        raise LdhParamError(f"healthy + ldh = {healthy} + {ldh}: far more subjects than a simulated cohort can hold")
+        raise LdhParamError(
+            f"healthy + ldh + slow_ldh = {healthy} + {ldh} + {slow_ldh}: far more subjects than a simulated cohort can hold"
+        )
     if seed >= 2**64:
         raise LdhParamError(f"seed must be below 2**64, got {seed!r}")
     return _ldh.simulate_cohort(
         os.fspath(out), int(healthy), int(ldh), float(seconds), int(seed), float(rate_hz), bool(turn),
+        int(slow_ldh),
     )
 
 
