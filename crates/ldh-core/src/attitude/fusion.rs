@@ -23,6 +23,8 @@ use nalgebra::{Matrix2, Matrix3, SMatrix, SVector, Vector2, Vector3};
 
 mod products;
 mod rts;
+#[cfg(test)]
+mod rts_accuracy;
 
 use super::anchor::quasi_static_windows;
 use super::{acc_tilt, wrap, Attitude, AttitudeModel, AttitudeParams};

@@ -106,18 +106,101 @@ pub(super) fn smooth(
 /// One RTS step: the smoothed state at k from the filtered state and covariance at k and the
 /// smoothed state at k + 1 (the filtered state when the predicted covariance is singular).
 ///
-/// The gain C = P Fᵀ P_pred⁻¹ is formed with nalgebra's LU inverse (written out for 5 × 5,
-/// bit for bit: [`super::products::lu_inverse`]) on purpose: a Cholesky solve of P_pred for the
-/// one vector C needs is 25 % faster, but on real recordings (HuGaDB) P_pred is ill-conditioned
-/// enough that the smoothed roll and yaw then move by up to 0.1° (issue 17, session of
-/// 2026-11-25 03:50), which is not a change of the last bits.
-fn rts_step(xf: &V5, sc: &SinCos, pf: &M5, xs_next: &V5, wm: &Vector3<f64>, m: &Model) -> V5 {
+/// Only C (x̂ₛ − x̂ₚ) is needed, C = P Fᵀ P_pred⁻¹, so P_pred y = x̂ₛ − x̂ₚ is solved by
+/// Cholesky ([`spd_solve`]) and the correction is P Fᵀ y, instead of forming P_pred⁻¹ and the
+/// 5 × 5 gain (a quarter of the attitude's time, issue 17). Accuracy, against a solve refined in
+/// double-double (`rts_accuracy.rs`, all 36 HuGaDB shank legs): on every leg whose angles the
+/// pipeline reports (condition number of P_pred ≤ 5e5) both this solve and the explicit
+/// inverse give the smoothed angles to ≤ 1e-9°; on the legs with a faulty gyroscope, whose
+/// angles are withheld (`gyro_scale_fault`), P_pred reaches condition numbers of 1e15-1e24
+/// and neither way is determined beyond rounding (they differ from the refined solve and from
+/// each other by 0.01-300°). The explicit inverse remains the fallback when P_pred is not
+/// numerically positive definite.
+pub(super) fn rts_step(
+    xf: &V5,
+    sc: &SinCos,
+    pf: &M5,
+    xs_next: &V5,
+    wm: &Vector3<f64>,
+    m: &Model,
+) -> V5 {
     let (xp, pp, fj) = predict(xf, sc, pf, wm, m.dt, &m.q);
-    let Some(inv) = super::products::lu_inverse(&pp) else {
-        return *xf;
-    };
-    let c = super::products::times_ft(pf, &fj) * inv;
     let mut diff = xs_next - xp;
     diff[2] = wrap(diff[2]);
-    xf + c * diff
+    match spd_solve(&pp, &diff) {
+        Some(y) => xf + pf * fj.tr_mul(&y),
+        None => match super::products::lu_inverse(&pp) {
+            Some(inv) => xf + (super::products::times_ft(pf, &fj) * inv) * diff,
+            None => *xf,
+        },
+    }
+}
+
+/// x with A x = b for a symmetric positive definite A (its lower triangle is read), by
+/// Cholesky A = L Lᵀ and two triangular solves; `None` when A is not numerically positive
+/// definite. Written out for the fixed 5 × 5 size: nalgebra's generic `cholesky().solve()`
+/// took three times as long here.
+pub(super) fn spd_solve(a: &M5, b: &V5) -> Option<V5> {
+    let mut l = [[0.0f64; 5]; 5];
+    let mut inv_d = [0.0f64; 5];
+    for j in 0..5 {
+        let mut d = a[(j, j)];
+        for k in 0..j {
+            d -= l[j][k] * l[j][k];
+        }
+        if !(d > 0.0) {
+            return None;
+        }
+        let ljj = d.sqrt();
+        inv_d[j] = 1.0 / ljj;
+        for i in j + 1..5 {
+            let mut s = a[(i, j)];
+            for k in 0..j {
+                s -= l[i][k] * l[j][k];
+            }
+            l[i][j] = s * inv_d[j];
+        }
+    }
+    let mut z = [0.0f64; 5];
+    for i in 0..5 {
+        let mut s = b[i];
+        for k in 0..i {
+            s -= l[i][k] * z[k];
+        }
+        z[i] = s * inv_d[i];
+    }
+    let mut y = V5::zeros();
+    for i in (0..5).rev() {
+        let mut s = z[i];
+        for k in i + 1..5 {
+            s -= l[k][i] * y[k];
+        }
+        y[i] = s * inv_d[i];
+    }
+    Some(y)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{spd_solve, M5, V5};
+
+    #[test]
+    fn spd_solve_solves_and_refuses_what_is_not_positive_definite() {
+        let mut g = M5::zeros();
+        for i in 0..5 {
+            for j in 0..5 {
+                g[(i, j)] = ((i * 7 + j * 3) % 11) as f64 - 5.0;
+            }
+        }
+        let a = g * g.transpose() + M5::identity() * 1e-3;
+        let b = V5::from_column_slice(&[1.0, -2.0, 0.5, 3.0, -1.0]);
+        let x = spd_solve(&a, &b).unwrap();
+        let want = a.cholesky().unwrap().solve(&b);
+        assert!((x - want).norm() <= 1e-9 * want.norm(), "{x} vs {want}");
+        assert!((a * x - b).norm() <= 1e-9 * b.norm());
+        let mut indefinite = M5::identity();
+        indefinite[(3, 3)] = -1.0;
+        assert!(spd_solve(&indefinite, &b).is_none());
+        assert!(spd_solve(&M5::zeros(), &b).is_none());
+    }
 }
