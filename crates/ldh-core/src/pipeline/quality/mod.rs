@@ -148,6 +148,20 @@ pub fn leg_checks(
     }
 }
 
+/// Whether a finding says the leg's attitude cannot be vouched for (a faulty or clipped
+/// gyroscope, a drifting attitude, angles outside anatomical bounds): its yaw, and so every
+/// heading change computed from it, is then not a measurement either, so it neither decides
+/// turns nor is reported per stride.
+pub fn discredits_attitude(w: &Warning) -> bool {
+    [
+        codes::GYRO_SCALE_FAULT,
+        codes::GYRO_CLIPPING,
+        codes::ATTITUDE_DIVERGENCE,
+        codes::IMPLAUSIBLE_ANGLE,
+    ]
+    .contains(&w.code.as_str())
+}
+
 /// Per-stride consequences of leg-level findings: a finding that withholds every parameter
 /// invalidates every stride; one that withholds angles or stride length blanks them per stride
 /// (the strides table must not show what the recordings table withholds).
@@ -183,6 +197,9 @@ pub fn apply_to_strides(st: &mut [Stride], warnings: &[Warning]) {
             }
             if has("speed_mps") {
                 s.speed_mps = f64::NAN;
+            }
+            if discredits_attitude(w) {
+                s.heading_change_deg = f64::NAN;
             }
             let what = match (angles && has("wqk_deg"), length && has("stride_length_m")) {
                 _ if all => None,

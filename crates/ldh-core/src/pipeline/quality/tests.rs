@@ -21,6 +21,29 @@ pub(crate) fn hugadb_dir() -> Option<PathBuf> {
     })
 }
 
+/// [`hugadb_dir`], printing the one "skipped" line when the recordings are absent.
+fn hugadb_or_skip() -> Option<PathBuf> {
+    let dir = hugadb_dir();
+    if dir.is_none() {
+        println!("skipped: ../shared/realdata/hugadb not found (set LDH_REALDATA)");
+    }
+    dir
+}
+
+/// The default analysis without STA (the HuGaDB checks do not need it).
+fn without_sta() -> AnalysisParams {
+    AnalysisParams {
+        compute_sta: false,
+        ..AnalysisParams::default()
+    }
+}
+
+/// A recording as the pipeline receives a leg read from `name`.
+fn loaded(rec: crate::recording::Recording, name: String) -> LoadedLeg {
+    let rep = memory_report(&rec);
+    Ok((rec, rep, name))
+}
+
 /// HuGaDB's shank columns (0-based): right shin 6-11, left shin 24-29 (acc x,y,z, gyro x,y,z).
 const FS_HUGADB: f64 = 58.8;
 
@@ -94,14 +117,10 @@ fn no_false_alarm(w: &[Warning]) -> Result<(), String> {
 
 #[test]
 fn hugadb_faulty_gyroscopes_are_flagged_and_clean_legs_analysed() {
-    let Some(dir) = hugadb_dir() else {
-        println!("skipped: ../shared/realdata/hugadb not found (set LDH_REALDATA)");
+    let Some(dir) = hugadb_or_skip() else {
         return;
     };
-    let params = AnalysisParams {
-        compute_sta: false,
-        ..AnalysisParams::default()
-    };
+    let params = without_sta();
     let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
         .unwrap()
         .filter_map(|e| e.ok().map(|e| e.path()))
@@ -114,10 +133,7 @@ fn hugadb_faulty_gyroscopes_are_flagged_and_clean_legs_analysed() {
         let name = f.file_name().unwrap().to_string_lossy().to_string();
         let &(_, r_bad, l_bad) = HUGADB.iter().find(|(k, _, _)| name.contains(k)).unwrap();
         let (right, left) = read_hugadb(f);
-        let leg = |rec: crate::recording::Recording, s: &str| -> LoadedLeg {
-            let rep = memory_report(&rec);
-            Ok((rec, rep, format!("{name}/{s}")))
-        };
+        let leg = |rec: crate::recording::Recording, s: &str| loaded(rec, format!("{name}/{s}"));
         let input = SubjectInput {
             subject_id: name.clone(),
             ..SubjectInput::default()
@@ -228,10 +244,7 @@ fn sensors_rotated_about_the_shank_never_look_swapped() {
     };
     let mut sub = c.simulate(0).unwrap();
     let (l0, r0) = (sub.left.recording.clone(), sub.right.recording.clone());
-    let params = AnalysisParams {
-        compute_sta: false,
-        ..AnalysisParams::default()
-    };
+    let params = without_sta();
     let mut failures = Vec::new();
     for k in 0..12 {
         let deg = 30.0 * k as f64;
@@ -413,14 +426,10 @@ fn spread(v: &[f64]) -> f64 {
 fn hugadb_format_maps_and_raw_reading_agree_on_the_attitude() {
     use crate::attitude::AttitudeModel;
     use crate::io::{read_recording, FormatSpec, ReadParams};
-    let Some(dir) = hugadb_dir() else {
-        println!("skipped: ../shared/realdata/hugadb not found (set LDH_REALDATA)");
+    let Some(dir) = hugadb_or_skip() else {
         return;
     };
-    let params = AnalysisParams {
-        compute_sta: false,
-        ..AnalysisParams::default()
-    };
+    let params = without_sta();
     let rp = ReadParams::default().check().unwrap();
     let mut failures = Vec::new();
     for f in ["01_00", "06_00", "08_02-Test", "10_00-Test", "11_03-Test"] {
@@ -433,19 +442,17 @@ fn hugadb_format_maps_and_raw_reading_agree_on_the_attitude() {
         let (raw_r, raw_l) = read_hugadb(&path);
         let (map_l, map_r) = (read("hugadb-left-shank"), read("hugadb-right-shank"));
         assert!(map_l.saturated_count() > 0 && map_l.gyro_saturated.iter().all(|g| !g));
-        let run =
-            |l: &crate::recording::Recording, r: &crate::recording::Recording, m: AttitudeModel| {
-                let leg = |rec: crate::recording::Recording, s: &str| -> LoadedLeg {
-                    let rep = memory_report(&rec);
-                    Ok((rec, rep, format!("{f}/{s}")))
-                };
-                let input = SubjectInput {
-                    subject_id: f.into(),
-                    ..SubjectInput::default()
-                };
-                let p = params.clone().model(m);
-                analyze_pair(&input, leg(l.clone(), "left"), leg(r.clone(), "right"), &p)
+        let run = |l: &crate::recording::Recording,
+                   r: &crate::recording::Recording,
+                   m: AttitudeModel| {
+            let leg = |rec: crate::recording::Recording, s: &str| loaded(rec, format!("{f}/{s}"));
+            let input = SubjectInput {
+                subject_id: f.into(),
+                ..SubjectInput::default()
             };
+            let p = params.clone().model(m);
+            analyze_pair(&input, leg(l.clone(), "left"), leg(r.clone(), "right"), &p)
+        };
         let raw = run(&raw_l, &raw_r, AttitudeModel::Fusion);
         let map = run(&map_l, &map_r, AttitudeModel::Fusion);
         let acc = run(&map_l, &map_r, AttitudeModel::Acc);
@@ -501,4 +508,93 @@ fn hugadb_format_maps_and_raw_reading_agree_on_the_attitude() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// A heading from an attitude the checks do not vouch for decides nothing (issue 20): on the
+/// HuGaDB walks whose right shank gyroscope is faulty (its smoother is numerically singular,
+/// so its yaw is rounding noise: the gyroscope scaled by 0.999 moves it by up to 180°), the
+/// left leg's turns and bouts are those it has when analysed without the right leg, and no
+/// stride of the faulty leg reports a heading change. Before, the right leg's meaningless
+/// heading had to confirm each of the left leg's turns (05_00: a 69° turn of the left leg was
+/// not taken for one).
+#[test]
+fn a_faulty_legs_heading_neither_decides_the_other_legs_turns_nor_is_reported() {
+    let Some(dir) = hugadb_or_skip() else {
+        return;
+    };
+    let params = without_sta();
+    let mut moved = 0;
+    for f in ["03_00", "03_01", "05_00", "07_03-Test"] {
+        let path = dir.join(format!("HuGaDB_v1_walking_{f}.txt"));
+        // read as `ldh analyze` reads it (the built-in format maps)
+        let read = |name: &str| {
+            let spec = crate::io::FormatSpec::builtin(name).unwrap();
+            let rp = crate::io::ReadParams::default().check().unwrap();
+            crate::io::read_recording(&path, Some(&spec), &rp)
+                .unwrap()
+                .0
+        };
+        let (right, left) = (read("hugadb-right-shank"), read("hugadb-left-shank"));
+        let leg = |rec: crate::recording::Recording, s: &str| loaded(rec, format!("{f}/{s}"));
+        let input = SubjectInput {
+            subject_id: f.into(),
+            ..SubjectInput::default()
+        };
+        let run = |scale: f64| {
+            let mut r = right.clone();
+            for g in r.gyro_dps.iter_mut() {
+                g.iter_mut().for_each(|v| *v *= scale);
+            }
+            analyze_pair(&input, leg(left.clone(), "left"), leg(r, "right"), &params)
+        };
+        let (a, b) = (run(1.0), run(0.999));
+        let alone = analyze_pair(
+            &input,
+            leg(left.clone(), "left"),
+            Err("absent".into()),
+            &params,
+        );
+        let (ra, rb) = (a.right.as_ref().unwrap(), b.right.as_ref().unwrap());
+        assert!(ra.warnings.iter().any(discredits_attitude), "{f}");
+        let turns = |l: &crate::pipeline::LegResult| -> Vec<String> {
+            assert!(!l.warnings.iter().any(discredits_attitude), "{f}");
+            l.strides
+                .iter()
+                .map(|s| {
+                    format!(
+                        "{} {:?} {:.2} {}",
+                        s.hs_time_s,
+                        s.bout,
+                        s.heading_change_deg,
+                        s.reason.contains("turning")
+                    )
+                })
+                .collect()
+        };
+        let want = turns(alone.left.as_ref().unwrap());
+        assert_eq!(turns(a.left.as_ref().unwrap()), want, "{f}");
+        assert_eq!(turns(b.left.as_ref().unwrap()), want, "{f}");
+        for s in ra.strides.iter().chain(&rb.strides) {
+            assert!(!s.valid && s.heading_change_deg.is_nan(), "{f}: {s:?}");
+        }
+        let (ya, yb) = (
+            &ra.attitude.as_ref().unwrap().yaw_deg,
+            &rb.attitude.as_ref().unwrap().yaw_deg,
+        );
+        let dyaw = ya
+            .iter()
+            .zip(yb)
+            .map(|(x, y)| ((x - y + 180.0).rem_euclid(360.0) - 180.0).abs())
+            .fold(0.0, f64::max);
+        println!(
+            "{f}: right yaw moves by up to {dyaw:.1} deg; left turns as without the right leg"
+        );
+        if dyaw > 1.0 {
+            moved += 1;
+        }
+    }
+    assert!(
+        moved >= 2,
+        "the faulty legs' yaw barely moved: the test shows nothing"
+    );
 }
