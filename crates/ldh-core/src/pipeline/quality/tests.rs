@@ -214,6 +214,25 @@ fn hugadb_faulty_gyroscopes_are_flagged_and_clean_legs_analysed() {
         }
         let pc: Vec<&str> = res.warnings.iter().map(|w| w.code.as_str()).collect();
         println!("{line} pair {pc:?}");
+        if !(l_bad || r_bad) {
+            // Issue 20: on the walks with two clean shanks, left and right events alternate
+            // (HS and TO of one leg between two of the other's) in at least 99 % of the events.
+            let seq = res.bilateral_events();
+            let broken = seq.iter().filter(|e| !e.order.is_empty()).count();
+            let share = 1.0 - broken as f64 / seq.len().max(1) as f64;
+            println!(
+                "{name}: alternation {:.1} % of {} events",
+                100.0 * share,
+                seq.len()
+            );
+            if seq.len() < 100 || share < 0.99 {
+                failures.push(format!(
+                    "{name}: events alternate in {:.1} % of {} (want >= 99 %)",
+                    100.0 * share,
+                    seq.len()
+                ));
+            }
+        }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
