@@ -18,7 +18,9 @@ mod attitude;
 mod pair;
 mod sensor;
 #[cfg(test)]
-pub(crate) mod tests;
+mod tests;
+#[cfg(test)]
+pub(crate) mod tests_hugadb;
 mod warning;
 
 pub use attitude::{
