@@ -218,7 +218,8 @@ fn demo_writes_the_embedded_cohort() {
 }
 
 /// `--acc-range-g 2` gives family a the ±2 g accelerometer of HuGaDB: the same walk (every
-/// draw unchanged), clipped in swing. Family b draws its ranges itself and refuses the flag.
+/// draw unchanged), clipped in swing; the stride length reconstructs the clipped samples and is
+/// reported (issue 20). Family b draws its ranges itself and refuses the flag.
 #[test]
 fn simulate_with_a_two_g_accelerometer() {
     let d = tempfile::tempdir().unwrap();
@@ -251,6 +252,19 @@ fn simulate_with_a_two_g_accelerometer() {
     };
     assert!(clipped(&g2) > 50, "{}", clipped(&g2));
     assert_eq!(clipped(&g8), 0);
+    let out = d.path().join("a2");
+    ldh_ok(&[
+        "analyze",
+        g2.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--no-sta",
+    ]);
+    let rows = json(&out.join("recordings.json"));
+    for r in rows.as_array().unwrap() {
+        let sl = r["stride_length_m"].as_f64().unwrap_or(f64::NAN);
+        assert!((1.0..1.8).contains(&sl), "{r}");
+    }
     let o = ldh(&[
         "simulate",
         "--family",

@@ -19,6 +19,8 @@ mod pair;
 mod sensor;
 #[cfg(test)]
 pub(crate) mod tests;
+#[cfg(test)]
+mod tests_stride_length;
 mod warning;
 
 pub use attitude::{

@@ -21,6 +21,20 @@ pub(crate) fn hugadb_dir() -> Option<PathBuf> {
     })
 }
 
+/// The HuGaDB files whose two shank gyroscopes are clean (PROVENANCE.md).
+pub(crate) const HUGADB_CLEAN: [&str; 5] =
+    ["01_00", "06_00", "08_02-Test", "10_00-Test", "11_03-Test"];
+
+/// One clean HuGaDB file's shank (`side`: "left" or "right") through the built-in format map
+/// (the CLI's path: axis map, declared ranges, clipped samples flagged per sensor).
+pub(crate) fn read_hugadb_map(dir: &Path, file: &str, side: &str) -> crate::recording::Recording {
+    use crate::io::{read_recording, FormatSpec, ReadParams};
+    let path = dir.join(format!("HuGaDB_v1_walking_{file}.txt"));
+    let spec = FormatSpec::builtin(&format!("hugadb-{side}-shank")).unwrap();
+    let rp = ReadParams::default().check().unwrap();
+    read_recording(&path, Some(&spec), &rp).unwrap().0
+}
+
 /// HuGaDB's shank columns (0-based): right shin 6-11, left shin 24-29 (acc x,y,z, gyro x,y,z).
 const FS_HUGADB: f64 = 58.8;
 
@@ -292,15 +306,9 @@ fn codes_of(t: f64, stance: f64) -> Vec<String> {
     let st: Vec<crate::gait::Stride> = (0..20).map(|i| stride(i, t, stance)).collect();
     let p = crate::gait::side_parameters(&st, None);
     let al = crate::align::Alignment {
-        r_f_from_device: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-        gyro_bias_dps: [0.0; 3],
-        quiet_standing_s: None,
-        still_periods_s: vec![],
-        mirrored: false,
-        axial_rotation_deg: 0.0,
         shank_axis_tilt_deg: 3.0,
         sagittal_variance_share: 0.9,
-        notes: vec![],
+        ..crate::align::Alignment::identity()
     };
     leg_warnings(&al, &st, &p, 100.0)
         .into_iter()
@@ -412,7 +420,6 @@ fn spread(v: &[f64]) -> f64 {
 #[test]
 fn hugadb_format_maps_and_raw_reading_agree_on_the_attitude() {
     use crate::attitude::AttitudeModel;
-    use crate::io::{read_recording, FormatSpec, ReadParams};
     let Some(dir) = hugadb_dir() else {
         println!("skipped: ../shared/realdata/hugadb not found (set LDH_REALDATA)");
         return;
@@ -421,17 +428,14 @@ fn hugadb_format_maps_and_raw_reading_agree_on_the_attitude() {
         compute_sta: false,
         ..AnalysisParams::default()
     };
-    let rp = ReadParams::default().check().unwrap();
     let mut failures = Vec::new();
-    for f in ["01_00", "06_00", "08_02-Test", "10_00-Test", "11_03-Test"] {
+    for f in HUGADB_CLEAN {
         let path = dir.join(format!("HuGaDB_v1_walking_{f}.txt"));
-        let read = |name: &str| {
-            read_recording(&path, Some(&FormatSpec::builtin(name).unwrap()), &rp)
-                .unwrap()
-                .0
-        };
         let (raw_r, raw_l) = read_hugadb(&path);
-        let (map_l, map_r) = (read("hugadb-left-shank"), read("hugadb-right-shank"));
+        let (map_l, map_r) = (
+            read_hugadb_map(&dir, f, "left"),
+            read_hugadb_map(&dir, f, "right"),
+        );
         assert!(map_l.saturated_count() > 0 && map_l.gyro_saturated.iter().all(|g| !g));
         let run =
             |l: &crate::recording::Recording, r: &crate::recording::Recording, m: AttitudeModel| {
