@@ -313,6 +313,10 @@ pub struct SimulateArgs {
     /// Noise-free sensors without bias, quantisation or misalignment.
     #[arg(long)]
     pub ideal: bool,
+    /// Family a: the accelerometer's range (±), g (default 8, the paper's; 2 clips the shank's
+    /// heel-strike decelerations as HuGaDB's and family b's ±2 g devices do).
+    #[arg(long)]
+    pub acc_range_g: Option<f64>,
     /// Lowest LDH severity (0–1): each LDH subject's effects are scaled by a severity drawn in
     /// [this, 1]; 1 (default) makes every LDH subject fully affected.
     #[arg(long, default_value_t = 1.0)]

@@ -101,6 +101,24 @@ pub struct Alignment {
     pub notes: Vec<String>,
 }
 
+#[cfg(test)]
+impl Alignment {
+    /// The device frame is F: no rotation, no bias, nothing found (for tests).
+    pub(crate) fn identity() -> Self {
+        Alignment {
+            r_f_from_device: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            gyro_bias_dps: [0.0; 3],
+            quiet_standing_s: None,
+            still_periods_s: vec![],
+            mirrored: false,
+            axial_rotation_deg: 0.0,
+            shank_axis_tilt_deg: 0.0,
+            sagittal_variance_share: 1.0,
+            notes: vec![],
+        }
+    }
+}
+
 /// Signals in the anatomical frame F, gyroscope bias-corrected.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Aligned {
@@ -155,29 +173,12 @@ fn still_mask(pre: &Preprocessed, p: &AlignParams) -> Vec<bool> {
     mask
 }
 
-fn runs(mask: &[bool]) -> Vec<(usize, usize)> {
-    let mut out = Vec::new();
-    let mut i = 0;
-    while i < mask.len() {
-        if mask[i] {
-            let s = i;
-            while i < mask.len() && mask[i] {
-                i += 1;
-            }
-            out.push((s, i));
-        } else {
-            i += 1;
-        }
-    }
-    out
-}
-
 /// Find the alignment of one sensor from its preprocessed signals.
 pub fn align(pre: &Preprocessed, params: &ValidAlignParams) -> Result<Aligned> {
     let p = &params.0;
     let fs = pre.fs_hz;
     let mut notes = Vec::new();
-    let still = runs(&still_mask(pre, p));
+    let still = crate::preprocess::runs(&still_mask(pre, p));
     let quiet = quiet_standing(pre, p, &still, &mut notes);
     let e3 = shank_axis(quiet.gravity)?;
     let (e2, share) = sagittal_axis(pre, p, quiet.bias, e3)?;

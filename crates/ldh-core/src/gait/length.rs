@@ -15,18 +15,20 @@
 //! preprocessing interpolates every sample whose |a| lies beyond 3 SDs of its mean, which in
 //! slow gait (|a| varying little) is 70-110 ms of every heel strike's real deceleration; cut
 //! from the integral it made family A's slow walkers' strides up to 29 % short, so the
-//! integration reads the acceleration with those samples kept (only clipped ones replaced,
-//! and a clipped stride is withheld anyway).
+//! integration reads the acceleration with those samples kept. Samples where the
+//! accelerometer clipped are reconstructed on the axis that clipped by a local quadratic
+//! ([`crate::preprocess::declip`]; issue 20: a ±2 g shank sensor clips in 2-3 runs per stride,
+//! in push-off and swing, and interpolating them left lengths up to 40 % short).
 //!
 //! **Plausibility** ([`LengthEstimate::implausible`]): a stride length is withheld (the stride is
-//! marked invalid with the reason) when the accelerometer clipped anywhere between the two
-//! mid-stances (the acceleration integrated there is unknown, whatever replaced it), when the
-//! integration is inconsistent — the velocity drift removed by de-drifting is large
-//! ([`MAX_DRIFT_MPS`]), or the ankle does not come back to the floor level (within
-//! [`MAX_VERTICAL_M`] and [`MAX_VERTICAL_SHARE`] of the length) — or
-//! when the length disagrees with a shank-pendulum estimate from the pitch excursion in stance
-//! by more than a factor 2 (0.45–2.2). The bout-level checks (a stride far from its bout's median, left
-//! and right disagreeing over the walk) are in [`super::mod`] and [`crate::pipeline`].
+//! marked invalid with the reason) when the integration is inconsistent — the velocity drift
+//! removed by de-drifting is large ([`MAX_DRIFT_MPS`]), the drift left over a stride whose
+//! accelerometer clipped could, as a step at a clipped run, move the ankle by more than
+//! [`MAX_CLIP_STEP_SHARE`] of the length, or the ankle does not come back to the floor level
+//! (within [`MAX_VERTICAL_M`] and [`MAX_VERTICAL_SHARE`] of the length) — or when the length
+//! disagrees with a shank-pendulum estimate from the pitch excursion in stance by more than a
+//! factor 2 (0.45–2.2). The bout-level checks (a stride far from its bout's median, left and
+//! right disagreeing over the walk) are in [`super::mod`] and [`crate::pipeline`].
 
 use serde::{Deserialize, Serialize};
 
@@ -107,8 +109,13 @@ pub struct LengthEstimate {
     pub drift_mps: f64,
     /// Vertical displacement of the ankle between the two mid-stances, m (0 on level ground).
     pub vertical_m: f64,
-    /// Samples between the two mid-stances where the accelerometer clipped.
+    /// Samples between the two mid-stances where the accelerometer clipped (reconstructed,
+    /// [`crate::preprocess::declip`]).
     pub clipped_samples: usize,
+    /// Horizontal ankle displacement the horizontal drift could leave after linear de-drifting
+    /// if it were a step at one of the clipped runs, m: |drift| × duration × max |½ − φ| over
+    /// the runs (φ: the run's centre as a share of the integration); 0 without clipping.
+    pub clip_step_m: f64,
 }
 
 /// Largest velocity drift over one stride accepted, m/s.
@@ -128,6 +135,17 @@ pub const MAX_VERTICAL_M: f64 = 0.15;
 /// allowed 15 cm.
 pub const MAX_VERTICAL_SHARE: f64 = 0.15;
 
+/// Largest horizontal error a step at the clipped samples could leave, as a share of the
+/// stride length.
+///
+/// What a reconstruction of clipped samples misses is a step in velocity at the clipped run
+/// (its time known), which linear de-drifting turns into a position error of drift × duration
+/// × (½ − φ) for a run at the share φ of the integration; the drift left over the stride is
+/// observed, so is that error's worst case. Held to the same 15 % as the floor-level miss
+/// ([`MAX_VERTICAL_SHARE`]): the largest per-stride error the team accepts (issue 20); not
+/// fitted.
+pub const MAX_CLIP_STEP_SHARE: f64 = MAX_VERTICAL_SHARE;
+
 impl LengthEstimate {
     /// Why this length cannot be vouched for, if so. `pendulum_m`: the shank-pendulum estimate
     /// ([`pendulum_length_m`]), NaN when unknown.
@@ -135,17 +153,20 @@ impl LengthEstimate {
         if !self.length_m.is_finite() {
             return Some("stride length not integrable".into());
         }
-        if self.clipped_samples > 0 {
-            return Some(format!(
-                "stride length withheld: the accelerometer clipped on {} sample{} of the stride, so the acceleration integrated there is unknown",
-                self.clipped_samples,
-                if self.clipped_samples == 1 { "" } else { "s" }
-            ));
-        }
         if self.drift_mps > MAX_DRIFT_MPS {
             return Some(format!(
                 "stride length withheld: velocity drift {:.2} m/s over the stride",
                 self.drift_mps
+            ));
+        }
+        if self.clipped_samples > 0 && self.clip_step_m > MAX_CLIP_STEP_SHARE * self.length_m {
+            return Some(format!(
+                "stride length withheld: the accelerometer clipped on {} sample{} of the stride, and the drift left after reconstructing them could move the ankle by {:.0} cm ({:.0} % of the {:.2} m stride)",
+                self.clipped_samples,
+                if self.clipped_samples == 1 { "" } else { "s" },
+                self.clip_step_m * 100.0,
+                100.0 * self.clip_step_m / self.length_m,
+                self.length_m
             ));
         }
         if self.vertical_m.abs() > MAX_VERTICAL_M.min(MAX_VERTICAL_SHARE * self.length_m) {
@@ -262,22 +283,120 @@ pub fn stride_length(al: &Aligned, att: &Attitude, z0: usize, z1: usize, h: f64)
         }
     }
     let ankle = [d[0] - (r1[0] - r0[0]), d[1] - (r1[1] - r0[1])];
+    let clipped = clipped_between(&al.acc_clipped, z0, z1);
     LengthEstimate {
         length_m: (ankle[0] * ankle[0] + ankle[1] * ankle[1]).sqrt(),
         drift_mps: (drift[0].powi(2) + drift[1].powi(2) + drift[2].powi(2)).sqrt(),
         vertical_m: d[2] - (r1[2] - r0[2]),
-        clipped_samples: clipped_between(&al.acc_clipped, z0, z1),
+        clipped_samples: clipped.len(),
+        clip_step_m: drift[0].hypot(drift[1]) * m as f64 * dt * worst_step_share(clipped, z0, z1),
     }
 }
 
-/// How many of the sorted sample indices `clipped` lie in `[a, b]`.
-fn clipped_between(clipped: &[usize], a: usize, b: usize) -> usize {
-    clipped.partition_point(|&i| i <= b) - clipped.partition_point(|&i| i < a)
+/// The sorted sample indices of `clipped` that lie in `[a, b]`.
+fn clipped_between(clipped: &[usize], a: usize, b: usize) -> &[usize] {
+    &clipped[clipped.partition_point(|&i| i < a)..clipped.partition_point(|&i| i <= b)]
+}
+
+/// max |½ − φ| over the runs of consecutive samples in `clipped` (sorted, within `[z0, z1]`),
+/// φ = (run centre − z0) / (z1 − z0): the share of a step's size that linear de-drifting over
+/// the duration leaves as position error (0 without clipping).
+fn worst_step_share(clipped: &[usize], z0: usize, z1: usize) -> f64 {
+    let m = (z1 - z0) as f64;
+    let mut worst = 0.0f64;
+    let mut k = 0;
+    while k < clipped.len() {
+        let start = clipped[k];
+        while k + 1 < clipped.len() && clipped[k + 1] == clipped[k] + 1 {
+            k += 1;
+        }
+        let centre = 0.5 * (start + clipped[k]) as f64;
+        worst = worst.max((0.5 - (centre - z0 as f64) / m).abs());
+        k += 1;
+    }
+    worst
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::align::Alignment;
+    use crate::attitude::AttitudeModel;
+
+    /// A level 1 s stride at 100 Hz, shank upright and not rotating (the sensor moves with the
+    /// ankle): forward velocity 2 sin²(π t) m/s (1.00 m), with `lost` m/s of forward
+    /// acceleration missing, evenly over the samples `run`, which are marked clipped.
+    fn stride(run: std::ops::Range<usize>, lost: f64) -> (Aligned, Attitude) {
+        let (fs, n) = (100.0, 101);
+        let ax: Vec<f64> = (0..n)
+            .map(|i| {
+                let t = i as f64 / fs;
+                let a = 2.0 * std::f64::consts::PI * (2.0 * std::f64::consts::PI * t).sin();
+                let cut = if run.contains(&i) {
+                    lost * fs / run.len() as f64
+                } else {
+                    0.0
+                };
+                (a - cut) / STANDARD_GRAVITY_MPS2
+            })
+            .collect();
+        let al = Aligned {
+            fs_hz: fs,
+            acc_g: [ax, vec![0.0; n], vec![1.0; n]],
+            gyro_dps: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
+            acc_clipped: run.collect(),
+            acc_motion_g: None,
+            alignment: Alignment::identity(),
+        };
+        let att = Attitude {
+            model: AttitudeModel::Fusion,
+            fs_hz: fs,
+            roll_deg: vec![0.0; n],
+            pitch_deg: vec![0.0; n],
+            yaw_deg: vec![0.0; n],
+            final_weights: vec![],
+            final_tilt_noise_deg: vec![],
+            gyro_bias_dps: [0.0; 2],
+            gravity_windows: 0,
+        };
+        (al, att)
+    }
+
+    /// What a reconstruction of clipped samples misses is a step in velocity at a known time:
+    /// linear de-drifting leaves drift × duration × (φ − ½) of it in the length, which is
+    /// exactly what `clip_step_m` bounds, and the stride is withheld when that exceeds 15 %.
+    #[test]
+    fn a_step_left_at_the_clipped_samples_is_bounded_and_withheld_when_large() {
+        let est = |run, lost| {
+            let (al, att) = stride(run, lost);
+            stride_length(&al, &att, 0, 100, 0.1)
+        };
+        // Fully reconstructed (nothing lost): the length, no drift, no bound.
+        let e = est(88..97, 0.0);
+        assert!((e.length_m - 1.0).abs() < 2e-3, "{}", e.length_m);
+        assert!(e.clip_step_m < 1e-3 && e.clipped_samples == 9);
+        assert_eq!(e.implausible(f64::NAN), None);
+        // 0.5 m/s lost in terminal swing (φ = 0.92): 0.21 m too long, the drift (0.5 m/s)
+        // passes its own check, the step bound says 0.21 m = 17 %: withheld.
+        let e = est(88..97, 0.5);
+        let expected = 0.5 * 1.0 * (0.92 - 0.5);
+        assert!((e.length_m - 1.0 - expected).abs() < 3e-3, "{}", e.length_m);
+        assert!((e.clip_step_m - expected).abs() < 3e-3, "{}", e.clip_step_m);
+        assert!((e.drift_mps - 0.5).abs() < 1e-9);
+        let r = e.implausible(f64::NAN).unwrap();
+        assert!(
+            r.contains("clipped on 9 samples") && r.contains("21 cm (17 % of the 1.21 m stride)"),
+            "{r}"
+        );
+        // The same loss in early swing (φ = 0.66): 0.08 m (7 %), reported.
+        let e = est(62..71, 0.5);
+        assert!(
+            (e.length_m - 1.0 - 0.5 * 0.16).abs() < 3e-3,
+            "{}",
+            e.length_m
+        );
+        assert_eq!(e.implausible(f64::NAN), None);
+    }
 
     #[test]
     fn pendulum_estimate_of_a_normal_stride() {
@@ -297,6 +416,7 @@ mod tests {
             drift_mps: 0.1,
             vertical_m: 0.01,
             clipped_samples: 0,
+            clip_step_m: 0.0,
         };
         assert_eq!(ok.implausible(1.1), None);
         assert_eq!(ok.implausible(f64::NAN), None);
@@ -328,15 +448,29 @@ mod tests {
             ..ok
         };
         assert!(up.implausible(1.1).unwrap().contains("floor"));
+        // Clipped and reconstructed: reported unless the drift left, as a step at a clipped
+        // run, could move the ankle by more than 15 % of the length.
         let clipped = LengthEstimate {
             clipped_samples: 3,
+            clip_step_m: 0.15,
             ..ok
         };
-        let r = clipped.implausible(1.1).unwrap();
-        assert!(r.contains("clipped on 3 samples"), "{r}");
-        assert_eq!(clipped_between(&[2, 5, 9, 12], 5, 9), 2);
-        assert_eq!(clipped_between(&[2, 5, 9, 12], 6, 8), 0);
-        assert_eq!(clipped_between(&[], 0, 100), 0);
+        assert_eq!(clipped.implausible(1.1), None);
+        let step = LengthEstimate {
+            clip_step_m: 0.21,
+            ..clipped
+        };
+        let r = step.implausible(1.1).unwrap();
+        assert!(
+            r.contains("clipped on 3 samples") && r.contains("21 cm (16 % of the 1.30 m stride)"),
+            "{r}"
+        );
+        assert_eq!(clipped_between(&[2, 5, 9, 12], 5, 9), &[5, 9]);
+        assert!(clipped_between(&[2, 5, 9, 12], 6, 8).is_empty());
+        assert!(clipped_between(&[], 0, 100).is_empty());
+        // runs centred at 20 % and 85 % of a 100-sample integration: the later one is worse
+        assert!((worst_step_share(&[29, 30, 31, 94, 95, 96], 10, 110) - 0.35).abs() < 1e-12);
+        assert_eq!(worst_step_share(&[], 10, 110), 0.0);
         assert_eq!(
             "min-gyro".parse::<ZeroVelocity>().unwrap(),
             ZeroVelocity::MinGyro

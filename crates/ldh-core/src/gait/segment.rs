@@ -241,6 +241,7 @@ impl<'a> Leg<'a> {
                 drift_mps: f64::NAN,
                 vertical_m: f64::NAN,
                 clipped_samples: 0,
+                clip_step_m: 0.0,
             },
         };
         let pendulum = if to.is_finite() {

@@ -21,6 +21,8 @@ mod sensor;
 mod tests;
 #[cfg(test)]
 pub(crate) mod tests_hugadb;
+#[cfg(test)]
+mod tests_stride_length;
 mod warning;
 
 pub use attitude::{

@@ -91,15 +91,9 @@ fn codes_of(t: f64, stance: f64) -> Vec<String> {
     let st: Vec<crate::gait::Stride> = (0..20).map(|i| stride(i, t, stance)).collect();
     let p = crate::gait::side_parameters(&st, None);
     let al = crate::align::Alignment {
-        r_f_from_device: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-        gyro_bias_dps: [0.0; 3],
-        quiet_standing_s: None,
-        still_periods_s: vec![],
-        mirrored: false,
-        axial_rotation_deg: 0.0,
         shank_axis_tilt_deg: 3.0,
         sagittal_variance_share: 0.9,
-        notes: vec![],
+        ..crate::align::Alignment::identity()
     };
     leg_warnings(&al, &st, &p, 100.0)
         .into_iter()

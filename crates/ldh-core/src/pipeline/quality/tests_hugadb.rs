@@ -45,6 +45,20 @@ fn loaded(rec: crate::recording::Recording, name: String) -> LoadedLeg {
     Ok((rec, rep, name))
 }
 
+/// The HuGaDB files whose two shank gyroscopes are clean (PROVENANCE.md).
+pub(crate) const HUGADB_CLEAN: [&str; 5] =
+    ["01_00", "06_00", "08_02-Test", "10_00-Test", "11_03-Test"];
+
+/// One HuGaDB file's shank (`side`: "left" or "right") through the built-in format map (the
+/// CLI's path: axis map, declared ranges, clipped samples flagged per sensor).
+pub(crate) fn read_hugadb_map(dir: &Path, file: &str, side: &str) -> crate::recording::Recording {
+    use crate::io::{read_recording, FormatSpec, ReadParams};
+    let path = dir.join(format!("HuGaDB_v1_walking_{file}.txt"));
+    let spec = FormatSpec::builtin(&format!("hugadb-{side}-shank")).unwrap();
+    let rp = ReadParams::default().check().unwrap();
+    read_recording(&path, Some(&spec), &rp).unwrap().0
+}
+
 /// HuGaDB's shank columns (0-based): right shin 6-11, left shin 24-29 (acc x,y,z, gyro x,y,z).
 const FS_HUGADB: f64 = 58.8;
 
@@ -278,22 +292,18 @@ fn spread(v: &[f64]) -> f64 {
 #[test]
 fn hugadb_format_maps_and_raw_reading_agree_on_the_attitude() {
     use crate::attitude::AttitudeModel;
-    use crate::io::{read_recording, FormatSpec, ReadParams};
     let Some(dir) = hugadb_or_skip() else {
         return;
     };
     let params = without_sta();
-    let rp = ReadParams::default().check().unwrap();
     let mut failures = Vec::new();
-    for f in ["01_00", "06_00", "08_02-Test", "10_00-Test", "11_03-Test"] {
+    for f in HUGADB_CLEAN {
         let path = dir.join(format!("HuGaDB_v1_walking_{f}.txt"));
-        let read = |name: &str| {
-            read_recording(&path, Some(&FormatSpec::builtin(name).unwrap()), &rp)
-                .unwrap()
-                .0
-        };
         let (raw_r, raw_l) = read_hugadb(&path);
-        let (map_l, map_r) = (read("hugadb-left-shank"), read("hugadb-right-shank"));
+        let (map_l, map_r) = (
+            read_hugadb_map(&dir, f, "left"),
+            read_hugadb_map(&dir, f, "right"),
+        );
         assert!(map_l.saturated_count() > 0 && map_l.gyro_saturated.iter().all(|g| !g));
         let run = |l: &crate::recording::Recording,
                    r: &crate::recording::Recording,
@@ -378,16 +388,11 @@ fn a_faulty_legs_heading_neither_decides_the_other_legs_turns_nor_is_reported() 
     let params = without_sta();
     let mut moved = 0;
     for f in ["03_00", "03_01", "05_00", "07_03-Test"] {
-        let path = dir.join(format!("HuGaDB_v1_walking_{f}.txt"));
         // read as `ldh analyze` reads it (the built-in format maps)
-        let read = |name: &str| {
-            let spec = crate::io::FormatSpec::builtin(name).unwrap();
-            let rp = crate::io::ReadParams::default().check().unwrap();
-            crate::io::read_recording(&path, Some(&spec), &rp)
-                .unwrap()
-                .0
-        };
-        let (right, left) = (read("hugadb-right-shank"), read("hugadb-left-shank"));
+        let (right, left) = (
+            read_hugadb_map(&dir, f, "right"),
+            read_hugadb_map(&dir, f, "left"),
+        );
         let leg = |rec: crate::recording::Recording, s: &str| loaded(rec, format!("{f}/{s}"));
         let input = SubjectInput {
             subject_id: f.into(),
