@@ -104,6 +104,15 @@ impl Group {
     }
 }
 
+/// [`Group::step`] of every group, in an AVX2 clone (4 lanes per instruction instead of SSE2's
+/// 2; the same IEEE operations, so the same numbers) where the CPU has it.
+#[multiversion::multiversion(targets("x86_64+avx2"))]
+fn step_groups(groups: &mut [Group], m: &Model, s: &Sample, k: usize, d_k: f64) {
+    for g in groups.iter_mut() {
+        g.step(m, s, k, d_k);
+    }
+}
+
 /// The bank of filters and its weights after the last step: everything the forward pass
 /// carries from one sample to the next (a smoother checkpoint is a copy of it).
 #[derive(Clone)]
@@ -181,9 +190,7 @@ impl Bank {
         let b = m.p.forgetting;
         self.bpow *= b;
         let d_k = (1.0 - b) / (1.0 - self.bpow);
-        for g in self.groups.iter_mut() {
-            g.step(m, &s, k, d_k);
-        }
+        step_groups(&mut self.groups, m, &s, k, d_k);
         self.reweight(m.p.min_weight);
     }
 

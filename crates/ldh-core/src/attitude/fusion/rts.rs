@@ -100,14 +100,20 @@ pub(super) fn smooth(
             if k == n - 1 {
                 next.extend(steps.iter().map(|s| s.x));
             } else {
-                let wm = m.w_mid(k + 1);
-                for (xs, f) in next.iter_mut().zip(steps) {
-                    *xs = rts_step_lanes(f, xs, &wm, m);
-                }
+                rts_groups(&mut next, steps, &m.w_mid(k + 1), m);
             }
             let state = |i: usize| V5::from_fn(|r, _| next[i / LANES][r].0[i % LANES]);
             out.set(k, &weighted(nf, state, &store.ws[(k - k0) * nf..][..nf]));
         }
+    }
+}
+
+/// [`rts_step_lanes`] of every group, in an AVX2 clone where the CPU has it (as the forward
+/// step, `bank::step_groups`).
+#[multiversion::multiversion(targets("x86_64+avx2"))]
+fn rts_groups(next: &mut [[L4; 5]], steps: &[Filtered], wm: &[f64; 3], m: &Model) {
+    for (xs, f) in next.iter_mut().zip(steps) {
+        *xs = rts_step_lanes(f, xs, wm, m);
     }
 }
 
