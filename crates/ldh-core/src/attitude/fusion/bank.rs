@@ -3,7 +3,7 @@
 //! are those of four separate filters bit for bit; a gated-out measurement keeps the lane's
 //! prediction by a per-lane selection instead of a branch.
 
-use super::lanes::{Num, L4, LANES};
+use super::lanes::{array, Num, L4, LANES};
 use super::products::{self, Mat};
 use super::{acc_tilt, predict_n, Model, Sample, SinCos, M5, V5};
 
@@ -60,9 +60,8 @@ impl Group {
             ],
             [[sp(1.0 / m.r0), sp(0.0)], [sp(0.0), sp(1.0 / m.r0)]],
         );
-        let s_inv: [[L4; 2]; 2] = std::array::from_fn(|i| {
-            std::array::from_fn(|j| L4::select(invertible, s_inv[i][j], fallback[i][j]))
-        });
+        let s_inv: [[L4; 2]; 2] =
+            array(|i| array(|j| L4::select(invertible, s_inv[i][j], fallback[i][j])));
         let row = [
             nu[0] * s_inv[0][0] + nu[1] * s_inv[1][0],
             nu[0] * s_inv[0][1] + nu[1] * s_inv[1][1],
@@ -73,12 +72,12 @@ impl Group {
             -0.5 * d2 - 0.5 * (det * (std::f64::consts::TAU).powi(2)).ln()
         });
         self.logw = self.logw + ll;
-        let accept: [bool; LANES] = std::array::from_fn(|l| {
+        let accept: [bool; LANES] = array(|l| {
             let reacquire = self.rejected[l] as f64 * m.dt >= p.reacquire_s;
             d2.0[l] <= self.gate2.0[l] || reacquire || s.anchor
         });
         let kg = products::gain(&pp, &s_inv);
-        let xu: [L4; 5] = std::array::from_fn(|i| xp[i] + (kg[i][0] * nu[0] + kg[i][1] * nu[1]));
+        let xu: [L4; 5] = array(|i| xp[i] + (kg[i][0] * nu[0] + kg[i][1] * nu[1]));
         let pu = products::joseph(&pp, &kg, rk);
         // Sage–Husa adaptation of R from quasi-static innovations.
         if s.dyn_dev < 2.0 * p.dynamic_scale_g {
@@ -94,10 +93,8 @@ impl Group {
         if accept.iter().all(|a| *a) {
             (self.x, self.p) = (xu, pu);
         } else {
-            self.x = std::array::from_fn(|i| L4::select(accept, xu[i], xp[i]));
-            self.p = std::array::from_fn(|i| {
-                std::array::from_fn(|j| L4::select(accept, pu[i][j], pp[i][j]))
-            });
+            self.x = array(|i| L4::select(accept, xu[i], xp[i]));
+            self.p = array(|i| array(|j| L4::select(accept, pu[i][j], pp[i][j])));
         }
         self.x[2] = self.x[2].wrap();
         self.sc = SinCos::of_lanes(self.x[0], self.x[1]);

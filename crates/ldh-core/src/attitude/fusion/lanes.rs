@@ -14,9 +14,21 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 /// Number of filters per [`L4`].
 pub(super) const LANES: usize = 4;
 
+/// `[f(0), …, f(N − 1)]`: `std::array::from_fn` by an index loop, which is inlined into the
+/// AVX2 clones of the bank's steps (`from_fn` was left as a call, compiled for SSE2).
+#[inline(always)]
+pub(super) fn array<T: Copy + Default, const N: usize>(mut f: impl FnMut(usize) -> T) -> [T; N] {
+    let mut out = [T::default(); N];
+    for (i, o) in out.iter_mut().enumerate() {
+        *o = f(i);
+    }
+    out
+}
+
 /// A number type the bank's arithmetic is generic over: `f64` (one filter) or [`L4`].
 pub(super) trait Num:
     Copy
+    + Default
     + Add<Output = Self>
     + Sub<Output = Self>
     + Mul<Output = Self>
@@ -72,9 +84,8 @@ impl L4 {
     /// Lane by lane: `a` where `mask`, else `b`.
     #[inline(always)]
     pub(super) fn select(mask: [bool; LANES], a: L4, b: L4) -> L4 {
-        L4(std::array::from_fn(
-            |i| if mask[i] { a.0[i] } else { b.0[i] },
-        ))
+        let pick = |i: usize| if mask[i] { a.0[i] } else { b.0[i] };
+        L4([pick(0), pick(1), pick(2), pick(3)])
     }
 }
 
@@ -115,7 +126,8 @@ impl Num for L4 {
     #[inline(always)]
     fn wrap(self) -> L4 {
         // the common case (every |a| < 3, returned unchanged) without a branch per lane
-        if self.0.iter().all(|a| a.abs() < 3.0) {
+        let a = self.0;
+        if a[0].abs() < 3.0 && a[1].abs() < 3.0 && a[2].abs() < 3.0 && a[3].abs() < 3.0 {
             self
         } else {
             self.map(super::wrap)

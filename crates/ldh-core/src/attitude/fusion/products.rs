@@ -7,7 +7,7 @@
 //! (adding ±0 changes at most the sign of a zero) and writing `1·x` as `x`, so the results are
 //! those of the dense products bit for bit (tested below against nalgebra).
 
-use super::lanes::Num;
+use super::lanes::{array, Num};
 use super::M5;
 
 /// A 5 × 5 matrix as rows, `m[i][j]`, of any [`Num`] (one filter or four).
@@ -82,9 +82,7 @@ pub(super) fn times_ft<T: Num>(m: &Mat<T>, f: &Jacobian<T>) -> Mat<T> {
 /// The Kalman gain K = P Hᵀ S⁻¹ for H selecting the first two states.
 #[inline(always)]
 pub(super) fn gain<T: Num>(pp: &Mat<T>, s_inv: &[[T; 2]; 2]) -> [[T; 2]; 5] {
-    std::array::from_fn(|i| {
-        std::array::from_fn(|j| pp[i][0] * s_inv[0][j] + pp[i][1] * s_inv[1][j])
-    })
+    array(|i| array(|j| pp[i][0] * s_inv[0][j] + pp[i][1] * s_inv[1][j]))
 }
 
 /// The Joseph-form update (I − KH) P (I − KH)ᵀ + K R Kᵀ for H selecting the first two states
@@ -92,9 +90,7 @@ pub(super) fn gain<T: Num>(pp: &Mat<T>, s_inv: &[[T; 2]; 2]) -> [[T; 2]; 5] {
 #[inline(always)]
 pub(super) fn joseph<T: Num>(pp: &Mat<T>, kg: &[[T; 2]; 5], rk: [T; 2]) -> Mat<T> {
     // I − KH: columns 0 and 1 are e_j − K_j, the others those of I
-    let ikh: [[T; 2]; 5] = std::array::from_fn(|i| {
-        std::array::from_fn(|j| T::splat(f64::from(u8::from(i == j))) - kg[i][j])
-    });
+    let ikh: [[T; 2]; 5] = array(|i| array(|j| T::splat(f64::from(u8::from(i == j))) - kg[i][j]));
     let mut a = *pp;
     for i in 0..5 {
         for j in 0..5 {

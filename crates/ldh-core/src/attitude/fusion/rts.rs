@@ -3,7 +3,7 @@
 //! forward pass keeps checkpoints and the current segment only ([`SEGMENT`]).
 
 use super::bank::Bank;
-use super::lanes::{Num, L4, LANES};
+use super::lanes::{array, Num, L4, LANES};
 use super::products::{lu_inverse, matrix, rows, times_ft, Jacobian, Mat};
 use super::{predict, predict_n, weighted, wrap, Angles, Model, SinCos, M5, V5};
 
@@ -122,12 +122,12 @@ fn rts_groups(next: &mut [[L4; 5]], steps: &[Filtered], wm: &[f64; 3], m: &Model
 #[inline(always)]
 fn rts_step_lanes(f: &Filtered, xs_next: &[L4; 5], wm: &[f64; 3], m: &Model) -> [L4; 5] {
     let (xp, pp, fj) = predict_n(&f.x, &f.sc, &f.p, wm, m.dt, &m.q);
-    let mut diff: [L4; 5] = std::array::from_fn(|i| xs_next[i] - xp[i]);
+    let mut diff: [L4; 5] = array(|i| xs_next[i] - xp[i]);
     diff[2] = diff[2].wrap();
     let mut ok = [true; LANES];
     let y = spd_solve_n(&pp, &diff, |d: L4| {
-        for (o, d) in ok.iter_mut().zip(d.0) {
-            *o &= d > 0.0;
+        for l in 0..LANES {
+            ok[l] &= d.0[l] > 0.0;
         }
     });
     let mut xs = correct(&f.x, &f.p, &fj, &y);
@@ -147,14 +147,14 @@ fn rts_step_lanes(f: &Filtered, xs_next: &[L4; 5], wm: &[f64; 3], m: &Model) -> 
 #[inline(always)]
 fn correct<T: Num>(xf: &[T; 5], pf: &Mat<T>, fj: &Jacobian<T>, y: &[T; 5]) -> [T; 5] {
     let f = dense(fj);
-    let v: [T; 5] = std::array::from_fn(|i| {
+    let v: [T; 5] = array(|i| {
         let mut s = T::splat(0.0);
         for (row, yk) in f.iter().zip(y) {
             s = s + row[i] * *yk;
         }
         s
     });
-    std::array::from_fn(|i| {
+    array(|i| {
         let mut s = pf[i][0] * v[0];
         for k in 1..5 {
             s = s + pf[i][k] * v[k];
