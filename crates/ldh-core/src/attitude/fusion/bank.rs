@@ -78,7 +78,8 @@ impl Group {
         });
         let kg = products::gain(&pp, &s_inv);
         let xu: [L4; 5] = array(|i| xp[i] + (kg[i][0] * nu[0] + kg[i][1] * nu[1]));
-        let pu = products::joseph(&pp, &kg, rk);
+        // the updated covariance straight into the filter's (the gated lanes get P_pred back)
+        products::joseph_into(&pp, &kg, rk, &mut self.p);
         // Sage–Husa adaptation of R from quasi-static innovations.
         if s.dyn_dev < 2.0 * p.dynamic_scale_g {
             for i in 0..2 {
@@ -91,10 +92,14 @@ impl Group {
             self.rejected[l] = if *a { 0 } else { self.rejected[l] + 1 };
         }
         if accept.iter().all(|a| *a) {
-            (self.x, self.p) = (xu, pu);
+            self.x = xu;
         } else {
             self.x = array(|i| L4::select(accept, xu[i], xp[i]));
-            self.p = array(|i| array(|j| L4::select(accept, pu[i][j], pp[i][j])));
+            for (row, pp_row) in self.p.iter_mut().zip(&pp) {
+                for (v, pv) in row.iter_mut().zip(pp_row) {
+                    *v = L4::select(accept, *v, *pv);
+                }
+            }
         }
         self.x[2] = self.x[2].wrap();
         self.sc = SinCos::of_lanes(self.x[0], self.x[1]);

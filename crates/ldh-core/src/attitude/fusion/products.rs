@@ -88,7 +88,16 @@ pub(super) fn gain<T: Num>(pp: &Mat<T>, s_inv: &[[T; 2]; 2]) -> [[T; 2]; 5] {
 /// The Joseph-form update (I − KH) P (I − KH)ᵀ + K R Kᵀ for H selecting the first two states
 /// and R = diag(`rk`).
 #[inline(always)]
+#[cfg(test)]
 pub(super) fn joseph<T: Num>(pp: &Mat<T>, kg: &[[T; 2]; 5], rk: [T; 2]) -> Mat<T> {
+    let mut out = *pp;
+    joseph_into(pp, kg, rk, &mut out);
+    out
+}
+
+/// [`joseph`] written into `out` (the filter's covariance itself: no copy of the result).
+#[inline(always)]
+pub(super) fn joseph_into<T: Num>(pp: &Mat<T>, kg: &[[T; 2]; 5], rk: [T; 2], out: &mut Mat<T>) {
     // I − KH: columns 0 and 1 are e_j − K_j, the others those of I
     let ikh: [[T; 2]; 5] = array(|i| array(|j| T::splat(f64::from(u8::from(i == j))) - kg[i][j]));
     let mut a = *pp;
@@ -98,7 +107,6 @@ pub(super) fn joseph<T: Num>(pp: &Mat<T>, kg: &[[T; 2]; 5], rk: [T; 2]) -> Mat<T
             a[i][j] = if i >= 2 { t + pp[i][j] } else { t };
         }
     }
-    let mut out = a;
     for i in 0..5 {
         // K R Kᵀ with R diagonal
         let c0 = kg[i][0] * rk[0];
@@ -109,7 +117,6 @@ pub(super) fn joseph<T: Num>(pp: &Mat<T>, kg: &[[T; 2]; 5], rk: [T; 2]) -> Mat<T
             out[i][j] = b + (c0 * kg[j][0] + c1 * kg[j][1]);
         }
     }
-    out
 }
 
 /// `m.try_inverse()` bit for bit, for a 5 × 5 matrix: nalgebra's LU with partial pivoting

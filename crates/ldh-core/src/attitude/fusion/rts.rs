@@ -52,13 +52,11 @@ impl SegmentStore {
     }
 
     pub(super) fn push(&mut self, bank: &Bank) {
-        for g in &bank.groups {
-            self.steps.push(Filtered {
-                x: g.x,
-                sc: g.sc,
-                p: g.p,
-            });
-        }
+        self.steps.extend(bank.groups.iter().map(|g| Filtered {
+            x: g.x,
+            sc: g.sc,
+            p: g.p,
+        }));
         self.ws.extend_from_slice(&bank.weights);
     }
 
