@@ -5,7 +5,9 @@
 //! Every entry is summed over the same terms in the same order as nalgebra's dense product
 //! (k ascending, `c = a₀b₀ + a₁b₁ + …`), leaving out only terms whose factor is an exact 0
 //! (adding ±0 changes at most the sign of a zero) and writing `1·x` as `x`, so the results are
-//! those of the dense products bit for bit (tested below against nalgebra).
+//! those of the dense products bit for bit (tested below against nalgebra). They are generic
+//! over [`Num`]: on `f64` one filter, on [`super::lanes::L4`] four filters lane by lane with
+//! the same operations.
 
 use super::lanes::{array, Num};
 use super::M5;
