@@ -364,9 +364,17 @@ fn sagittal_axis(
     e2 = e2.normalize();
     // Sign: the mid-swing excursions about +e2 are negative.
     let mut proj: Vec<f64> = (0..n).map(|i| gyro_at(pre, bias, i).dot(&e2)).collect();
-    proj.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
     let k = (n / 100).max(1);
+    // The k lowest and the k highest, summed in ascending order as after a full sort (only
+    // they are sorted: a select instead of sorting all n, issue 17).
+    let cmp = |a: &f64, b: &f64| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal);
+    proj.select_nth_unstable_by(k - 1, cmp);
+    proj[..k].sort_by(cmp);
     let low = -proj[..k].iter().sum::<f64>() / k as f64;
+    if n - k >= k {
+        proj[k..].select_nth_unstable_by(n - 2 * k, cmp);
+    }
+    proj[n - k..].sort_by(cmp);
     let high = proj[n - k..].iter().sum::<f64>() / k as f64;
     if high > low {
         e2 = -e2;

@@ -82,20 +82,26 @@ pub fn zero_velocity_sample(
             let b = (hs + (0.65 * len).round() as usize).max(a + 1);
             let half = ((0.05 * al.fs_hz).round() as usize).max(1);
             // SHOE: ‖ω‖²/σω² + (|a| − 1 g)²/σa², σω = 20 deg/s, σa = 0.05 g, mean over the window.
-            let stat = |i: usize| -> f64 {
-                let (lo, hi) = (i.saturating_sub(half), (i + half + 1).min(w_norm.len()));
-                let s: f64 = (lo..hi)
-                    .map(|j| {
-                        let an = (al.acc_g[0][j].powi(2)
-                            + al.acc_g[1][j].powi(2)
-                            + al.acc_g[2][j].powi(2))
-                        .sqrt();
-                        (w_norm[j] / 20.0).powi(2) + ((an - 1.0) / 0.05).powi(2)
-                    })
-                    .sum();
-                s / (hi - lo) as f64
-            };
-            (a..b).min_by(|&x, &y| stat(x).total_cmp(&stat(y)))
+            // Each sample's term once, each window's mean once (summed in the same order as
+            // term by term: the same numbers; `min_by` had computed both sides of every
+            // comparison, and every term once per window holding it).
+            let (lo0, hi0) = (a.saturating_sub(half), (b + half).min(w_norm.len()));
+            let term: Vec<f64> = (lo0..hi0)
+                .map(|j| {
+                    let an =
+                        (al.acc_g[0][j].powi(2) + al.acc_g[1][j].powi(2) + al.acc_g[2][j].powi(2))
+                            .sqrt();
+                    (w_norm[j] / 20.0).powi(2) + ((an - 1.0) / 0.05).powi(2)
+                })
+                .collect();
+            let stat: Vec<f64> = (a..b)
+                .map(|i| {
+                    let (lo, hi) = (i.saturating_sub(half), (i + half + 1).min(w_norm.len()));
+                    let s: f64 = term[lo - lo0..hi - lo0].iter().sum();
+                    s / (hi - lo) as f64
+                })
+                .collect();
+            (a..b).min_by(|&x, &y| stat[x - a].total_cmp(&stat[y - a]))
         }
     }
 }
