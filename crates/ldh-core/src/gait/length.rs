@@ -24,7 +24,7 @@
 //! anchored to the accelerometer's tilt at foot flat, where the sensor is not at rest: it
 //! rotates over the ankle, faster and faster through mid-stance, so a sensor h above the ankle
 //! feels α h across the shank and the anchor is off by α h / g (HuGaDB's mid-shin sensors:
-//! 3–15°; docs/accuracy.md "Why HuGaDB strides drift"). The gyroscope carries that error
+//! 2.5–15°; docs/accuracy.md "Why HuGaDB strides drift"). The gyroscope carries that error
 //! through the stride, where it leaks g sin δ along the walk: a velocity drift of g δ T
 //! against the walking direction at the next mid-stance, and an ankle that ends δ × L off
 //! the floor. Over one stride the specific force must integrate to the velocity change plus
@@ -32,8 +32,8 @@
 //! vector is the stride's tilt error (a zero-velocity update observes roll and pitch: Foxlin
 //! 2005, IEEE CG&A 25(6):38; Skog et al. 2010), and it is removed before integrating. Linear
 //! de-drifting already took the constant g δ of such an error out of the horizontal length, so
-//! the lengths hardly move (HuGaDB ≤ 4.4 cm, the simulators < 1 mm); what changes is what the
-//! checks see. The floor-level closure is not used to estimate the tilt, and checks it: a
+//! the lengths hardly move (HuGaDB ≤ 4.4 cm, family A ≤ 0.7 mm, family B ≤ 4.4 mm); what
+//! changes is what the checks see. The floor-level closure is not used to estimate the tilt, and checks it: a
 //! horizontal drift that was not a tilt (a step lost at a clipped run) leaves the ankle |z| =
 //! δ × L off the floor after the correction, so the drift such a closure could hide, |z| g T /
 //! L, counts as unexplained ([`LengthEstimate::unexplained_mps`], never more than the
