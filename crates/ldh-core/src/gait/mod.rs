@@ -10,7 +10,8 @@
 //!
 //! **Stride length** (the paper: "estimated by fusing three-axis acceleration"): the
 //! acceleration is rotated to the world with the fused attitude, gravity removed, and integrated
-//! twice between consecutive mid-stances (the foot-flat instant, [`ZeroVelocity`]), with linear
+//! twice between consecutive mid-stances (the foot-flat instant, [`ZeroVelocity`]), with the
+//! stride's tilt error removed (the velocity at the next mid-stance observes it) and linear
 //! de-drifting of the velocity; samples where the accelerometer clipped are reconstructed
 //! first ([`crate::preprocess::declip`]). The sensor is not at rest at mid-stance: the shank pivots about
 //! the ankle, which is at rest. The sensor's velocity there is ω × r (r the sensor's position from
@@ -34,8 +35,8 @@ use serde::{Deserialize, Serialize};
 use crate::recording::Side;
 pub use length::{
     pendulum_length_m, stride_length, zero_velocity_sample, LengthEstimate, ZeroVelocity,
-    MAX_CLIP_STEP_SHARE, MAX_DRIFT_MPS, MAX_VERTICAL_M, MAX_VERTICAL_SHARE, PENDULUM_GAIN,
-    SHANK_LENGTH_M,
+    MAX_CLIP_STEP_SHARE, MAX_DRIFT_MPS, MAX_TILT_DEG, MAX_VERTICAL_M, MAX_VERTICAL_SHARE,
+    PENDULUM_GAIN, SHANK_LENGTH_M,
 };
 pub use params::{check_stride_range, StrideParams, ValidStrideParams, DEFAULT_SENSOR_HEIGHT_M};
 pub use segment::{strides, strides_with_turns, TurnTest, ACC_ONLY_LENGTH};

@@ -239,6 +239,8 @@ impl<'a> Leg<'a> {
             _ => LengthEstimate {
                 length_m: f64::NAN,
                 drift_mps: f64::NAN,
+                unexplained_mps: f64::NAN,
+                tilt_deg: f64::NAN,
                 vertical_m: f64::NAN,
                 clipped_samples: 0,
                 clip_step_m: 0.0,

@@ -2,7 +2,9 @@
 //! two clean shank gyroscopes, read through the built-in format maps (the CLI's path, ±2 g
 //! accelerometers clipping in 3-21 % of the samples), a leg either withholds its stride length
 //! with the reason, or both legs report it, their medians agree within 10 % (issue 20's
-//! criterion) and lie in the range of healthy young adults' strides.
+//! criterion) and lie in the range of healthy young adults' strides. Since the tilt correction
+//! of the stride integration (`gait/length.rs`; docs/accuracy.md "Why HuGaDB strides drift")
+//! every leg reports, so the criterion is no longer met vacuously: the test asserts that too.
 
 use super::tests_hugadb::{hugadb_dir, read_hugadb_map, HUGADB_CLEAN};
 use crate::pipeline::{analyze_pair, memory_report, AnalysisParams, LoadedLeg, SubjectInput};
@@ -51,8 +53,10 @@ fn hugadb_stride_lengths_are_withheld_or_agree_left_and_right() {
                 .cloned()
                 .unwrap_or_default();
             println!(
-                "{f} {side}: stride length {:.3} m, median {m:.3} m {why}",
-                p.stride_length_m
+                "{f} {side}: stride length {:.3} m, median {m:.3} m, {} of {} valid strides with a length {why}",
+                p.stride_length_m,
+                l.strides.iter().filter(|s| s.valid && s.stride_length_m.is_finite()).count(),
+                p.strides_valid
             );
             if p.stride_length_m.is_nan() && why.is_empty() {
                 failures.push(format!("{f} {side}: no stride length and no reason"));
@@ -64,6 +68,10 @@ fn hugadb_stride_lengths_are_withheld_or_agree_left_and_right() {
             });
         }
         let (l, r) = (medians[0], medians[1]);
+        if !(l.is_finite() && r.is_finite()) {
+            // before the tilt correction every leg withheld it (velocity drift 0.7-2.1 m/s)
+            failures.push(format!("{f}: stride length withheld ({l:.3} / {r:.3} m)"));
+        }
         if l.is_finite() != r.is_finite() {
             failures.push(format!("{f}: one leg reports {l:.3} m, the other {r:.3} m"));
         }
