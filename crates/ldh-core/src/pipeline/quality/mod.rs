@@ -5,6 +5,7 @@
 //!
 //! - [`sensor`]: gyroscope scale faults and clipping, accelerometer clipping (raw recording);
 //! - [`attitude`]: attitude health (stance pitch stride to stride, anatomical bounds);
+//! - [`height`]: a stride length that used an assumed sensor height;
 //! - this module: the leg's gait (running, a time base that cannot be right, few strides, a
 //!   device convention);
 //! - [`pair`]: the two legs together (clocks, identical files, disagreement, a possible swap).
@@ -15,10 +16,13 @@ use crate::gait::{SideParameters, Stride};
 use super::LegResult;
 
 mod attitude;
+mod height;
 mod pair;
 mod sensor;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_height;
 #[cfg(test)]
 pub(crate) mod tests_hugadb;
 #[cfg(test)]
@@ -29,6 +33,7 @@ pub use attitude::{
     attitude_checks, MAX_BDK_DEG, MAX_PITCH_DEG, MIN_PITCH_EXCURSION_DEG, OUT_OF_BOUNDS_SHARE,
     STANCE_PITCH_MAX_DEG, STANCE_PITCH_SPREAD_DEG,
 };
+pub use height::sensor_height_warning;
 pub use pair::{pair_warnings, CANONICAL_MOUNT_DEG, LR_STRIDE_LENGTH_TOL, LR_STRIDE_TIME_TOL};
 pub use sensor::{
     sensor_checks, SensorFindings, GYRO_CLIP_SHARE, SCALE_FAULT_SHARE, SHANK_MAX_DPS,

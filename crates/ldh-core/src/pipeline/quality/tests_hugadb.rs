@@ -309,8 +309,11 @@ fn hugadb_format_maps_and_raw_reading_agree_on_the_attitude() {
                    r: &crate::recording::Recording,
                    m: AttitudeModel| {
             let leg = |rec: crate::recording::Recording, s: &str| loaded(rec, format!("{f}/{s}"));
+            // The sensor height given (mid-shin, docs/input.md), so that the warnings compared
+            // are about the attitude, not an assumed height (`sensor_height_unknown`).
             let input = SubjectInput {
                 subject_id: f.into(),
+                sensor_height_m: Some(0.2),
                 ..SubjectInput::default()
             };
             let p = params.clone().model(m);
