@@ -6,9 +6,11 @@
 //! inverted-pendulum velocity update of Sci Rep 2021, doi 10.1038/s41598-021-81009-w). A
 //! wrong r is a constant velocity error ω Δr over the stride, which de-drifting cannot see (it
 //! is there at both ends), so the length is off by ≈ ω Δr T: nothing in the recording checks
-//! it. Where the ankle rests with the shank still (the simulators) ω ≈ 0 and the height
-//! hardly matters; where the shank turns over the ankle at mid-stance at 40–80 deg/s (HuGaDB),
-//! the length moves by 0.4–0.9 m per m of height (docs/accuracy.md).
+//! it. Where the ankle rests with the shank almost still (simulator family A: 2–12 deg/s) the
+//! height hardly matters (the leg's median moves by 0.1–7.3 % over the range below); where the
+//! shank turns over the ankle at mid-stance at 40–80 deg/s (HuGaDB) the length moves by
+//! 0.4–0.9 m per m of height, 16–27 % over the range (family B: 17–38 %; docs/accuracy.md
+//! "Sensor height not given (issue 20)").
 //!
 //! So when no height is given, the leg's median reported stride length is recomputed with the
 //! sensor at both ends of the range a shank sensor can sit at ([`SENSOR_HEIGHT_RANGE_M`]),
@@ -41,8 +43,9 @@ pub const SENSOR_HEIGHT_RANGE_M: [f64; 2] = [0.05, 0.35];
 /// range bounds the error the assumed height can leave whatever the true height in the range
 /// (the length is monotone in the height: ≈ ω h T), so a leg whose median moves by more is
 /// not vouched for to that tolerance. Derived from that tolerance, not fitted; on the tuning
-/// cohort (simulator family A, seed 100) no leg moves by more than 1 % (docs/accuracy.md
-/// "Sensor height not given (issue 20)"), so the value changes nothing there.
+/// cohort (simulator family A, seed 100, 15 + 15 subjects) every leg moves by 0.1–7.3 %
+/// (docs/accuracy.md "Sensor height not given (issue 20)"), so no value near 15 % changes
+/// anything there.
 pub const MAX_HEIGHT_SPREAD_SHARE: f64 = 0.15;
 
 /// A leg's median stride length at the assumed sensor height and at both ends of
