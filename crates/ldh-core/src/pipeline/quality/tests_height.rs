@@ -200,14 +200,15 @@ fn a_shank_turning_at_mid_stance_withholds_the_length_without_a_height_and_not_w
         (codes::SENSOR_HEIGHT_UNKNOWN, Severity::Warning)
     );
     assert_eq!(w.affects, params::LENGTH.map(String::from));
-    let text = format!("{lo:.2} m with the sensor 0.05 m above the ankle and {hi:.2} m with the sensor 0.35 m above the ankle, against {:.2} m at the assumed 0.10 m", h.median_m);
+    let text = format!("would be {lo:.2} and {hi:.2} m with the sensor 0.05 and 0.35 m above the ankle, {:.2} m at the assumed 0.10 m", h.median_m);
     assert!(w.message.contains(&text), "{}", w.message);
     assert!(w.message.contains(&format!(
         "a movement of {:.0} % (more than 15 %)",
         spread * 100.0
     )));
     assert!(
-        w.message.contains("manifest column sensor_height_m"),
+        w.message
+            .contains("give it (manifest column sensor_height_m"),
         "{}",
         w.message
     );
@@ -267,12 +268,12 @@ fn a_shank_almost_still_at_mid_stance_reports_the_length_with_a_note() {
     assert_eq!(w.severity, Severity::Warning);
     assert!(
         w.message
-            .contains("no length (no stride passes the integration checks) with the sensor 0.35 m"),
+            .contains("m at 0.05 m and none (no stride passes the integration checks) at 0.35 m"),
         "{}",
         w.message
     );
     assert!(
-        w.message.contains("cannot be bounded over 0.05-0.35 m"),
+        w.message.contains("a movement that cannot be bounded"),
         "{}",
         w.message
     );
