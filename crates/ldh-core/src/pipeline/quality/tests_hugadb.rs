@@ -223,6 +223,19 @@ fn hugadb_faulty_gyroscopes_are_flagged_and_clean_legs_analysed() {
                     failures.push(format!("{name} {side}: {e}"));
                 }
             }
+            // Issue 20: no shank angle outside ±90° is reported, per stride (strides.csv,
+            // valid or not) or per leg.
+            let per_stride = l
+                .strides
+                .iter()
+                .flat_map(|s| [s.wqk_deg, s.pbi_deg, s.bdk_deg]);
+            let reported = [p.wqk_deg, p.pbi_deg, p.bdk_deg];
+            if let Some(a) = per_stride
+                .chain(reported)
+                .find(|a| a.is_finite() && a.abs() > 90.0)
+            {
+                failures.push(format!("{name} {side}: angle {a:.1} deg reported"));
+            }
         }
         if let Err(e) = no_false_alarm(&res.warnings) {
             failures.push(format!("{name} pair: {e}"));
