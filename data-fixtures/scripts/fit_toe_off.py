@@ -110,7 +110,8 @@ def rows(root):
                 if None in (tp, ts, t0):
                     continue
                 tm = tp + (t0 - tp - C_SHIPPED * (tp - ts)) / B_SHIPPED
-                out.append(dict(to=to, tp=tp, ts=ts, tm=tm, T=T, sid=sid))
+                out.append(dict(to=to, tp=tp, ts=ts, tm=tm, T=T, sid=sid, side=side,
+                                hs=st["hs_time_s"], nhs=st["next_hs_time_s"]))
     return out
 
 

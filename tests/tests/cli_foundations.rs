@@ -216,3 +216,64 @@ fn demo_writes_the_embedded_cohort() {
         ldh_core::demo::file("manifest.csv").unwrap()
     );
 }
+
+/// `--acc-range-g 2` gives family a the ±2 g accelerometer of HuGaDB: the same walk (every
+/// draw unchanged), clipped in swing; the stride length reconstructs the clipped samples and is
+/// reported (issue 20). Family b draws its ranges itself and refuses the flag.
+#[test]
+fn simulate_with_a_two_g_accelerometer() {
+    let d = tempfile::tempdir().unwrap();
+    let sim = |name: &str, extra: &[&str]| {
+        let out = d.path().join(name);
+        let mut args = vec![
+            "simulate",
+            "--out",
+            out.to_str().unwrap(),
+            "--healthy",
+            "1",
+            "--ldh",
+            "0",
+            "--seconds",
+            "20",
+        ];
+        args.extend_from_slice(extra);
+        ldh_ok(&args);
+        out
+    };
+    let (g2, g8) = (sim("g2", &["--acc-range-g", "2"]), sim("g8", &[]));
+    let clipped = |dir: &std::path::Path| {
+        let o = ldh_ok(&[
+            "inspect",
+            "--json",
+            dir.join("H01/left.csv").to_str().unwrap(),
+        ]);
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        v[0]["read"]["saturated_samples"].as_u64().unwrap()
+    };
+    assert!(clipped(&g2) > 50, "{}", clipped(&g2));
+    assert_eq!(clipped(&g8), 0);
+    let out = d.path().join("a2");
+    ldh_ok(&[
+        "analyze",
+        g2.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--no-sta",
+    ]);
+    let rows = json(&out.join("recordings.json"));
+    for r in rows.as_array().unwrap() {
+        let sl = r["stride_length_m"].as_f64().unwrap_or(f64::NAN);
+        assert!((1.0..1.8).contains(&sl), "{r}");
+    }
+    let o = ldh(&[
+        "simulate",
+        "--family",
+        "b",
+        "--out",
+        d.path().join("b").to_str().unwrap(),
+        "--acc-range-g",
+        "2",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("--acc-range-g"), "{}", text(&o));
+}

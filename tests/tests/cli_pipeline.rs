@@ -273,3 +273,138 @@ fn evaluate_reports_accuracy_within_the_issue_targets() {
     assert!(a["stride_length_withheld"].as_u64().unwrap() * 2 > a["strides"].as_u64().unwrap());
     assert_eq!(f["stride_length_over_15pct"], 0);
 }
+
+/// Issue 20, `sensor_height_unknown`: a family-b walker (its shank turns over the ankle at
+/// mid-stance, so its stride length depends on the sensor height) analysed from a manifest
+/// without the `sensor_height_m` column gets, on every leg that reports a length with the
+/// height, the warning and empty stride-length, speed and SV cells with the reason, per leg and
+/// per stride; the same walker with its height (the column, or `--sensor-height-m` on the
+/// manifest without it) gets no such finding and its lengths, and everything not derived from
+/// the length is the same either way.
+#[test]
+fn a_recording_without_a_sensor_height_withholds_a_length_that_depends_on_it() {
+    let d = tempfile::tempdir().unwrap();
+    let sim = d.path().join("sim");
+    ldh_ok(&[
+        "simulate",
+        "--family",
+        "b",
+        "--out",
+        sim.to_str().unwrap(),
+        "--healthy",
+        "1",
+        "--ldh",
+        "0",
+        "--seed",
+        "2026",
+    ]);
+    // The same recordings, listed by a manifest without the height column.
+    let manifest = std::fs::read_to_string(sim.join("manifest.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = manifest.lines().map(|l| l.split(',').collect()).collect();
+    let col = rows[0]
+        .iter()
+        .position(|c| *c == "sensor_height_m")
+        .unwrap();
+    let height = rows[1][col].to_string();
+    let without: String = rows
+        .iter()
+        .map(|r| {
+            let mut r = r.clone();
+            r.remove(col);
+            r.join(",") + "\n"
+        })
+        .collect();
+    std::fs::write(sim.join("no_height.csv"), without).unwrap();
+    let analyze = |name: &str, manifest: &str, extra: &[&str]| {
+        let out = d.path().join(name);
+        let mut args = vec![
+            "analyze",
+            manifest,
+            "--out",
+            out.to_str().unwrap(),
+            "--no-sta",
+        ];
+        args.extend_from_slice(extra);
+        ldh_ok(&args);
+        (
+            json(&out.join("recordings.json")),
+            json(&out.join("strides.json")),
+        )
+    };
+    let given = analyze("given", sim.join("manifest.csv").to_str().unwrap(), &[]);
+    let none = analyze("none", sim.join("no_height.csv").to_str().unwrap(), &[]);
+    let flag = analyze(
+        "flag",
+        sim.join("no_height.csv").to_str().unwrap(),
+        &["--sensor-height-m", &height],
+    );
+    // The height given by the column or by the flag: the same results, nothing about the height.
+    assert_eq!(given, flag);
+    let fusion = |v: &serde_json::Value| -> Vec<serde_json::Value> {
+        let a = v.as_array().unwrap().iter();
+        a.filter(|r| r["model"] == "fusion").cloned().collect()
+    };
+    let (rg, rn) = (fusion(&given.0), fusion(&none.0));
+    assert_eq!(rg.len(), 2);
+    let mut withheld = 0;
+    for (g, n) in rg.iter().zip(&rn) {
+        let codes = |r: &serde_json::Value| -> Vec<String> {
+            let w = r["warnings"].as_array().unwrap().iter();
+            w.map(|w| w["code"].as_str().unwrap().to_string()).collect()
+        };
+        assert!(
+            !codes(g).iter().any(|c| c == "sensor_height_unknown"),
+            "{g}"
+        );
+        let sl = g["stride_length_m"].as_f64().unwrap();
+        assert!((0.8..1.9).contains(&sl), "{g}");
+        let mut w = n["warnings"].as_array().unwrap().iter();
+        let w = w
+            .find(|w| w["code"] == "sensor_height_unknown")
+            .expect("the finding");
+        let message = w["message"].as_str().unwrap();
+        if w["severity"] == "warning" {
+            withheld += 1;
+            assert!(message.contains("(more than 15 %)"), "{message}");
+            assert!(
+                message.contains("manifest column sensor_height_m"),
+                "{message}"
+            );
+            for p in ["stride_length_m", "speed_mps", "stride_length_cv"] {
+                assert!(n[p].is_null(), "{p}: {n}");
+                let why = n["withheld"][p].as_str().unwrap();
+                assert!(why.contains("sensor height unknown"), "{why}");
+            }
+        }
+        // What does not come from the length is the same.
+        for p in [
+            "strides_valid",
+            "stride_time_s",
+            "stance_ratio",
+            "wqk_deg",
+            "pbi_deg",
+        ] {
+            assert_eq!(g[p], n[p], "{p}");
+        }
+    }
+    assert_eq!(withheld, 2, "{rn:?}");
+    // Per stride: every length empty; a stride that had one with its height says why (the
+    // height, or a per-stride check the length at the assumed height failed), and most say
+    // it is the height.
+    let (sg, sn) = (fusion(&given.1), fusion(&none.1));
+    assert_eq!(sg.len(), sn.len());
+    assert!(sn
+        .iter()
+        .all(|s| s["stride_length_m"].is_null() && s["speed_mps"].is_null()));
+    let (mut had, mut height) = (0, 0);
+    for (g, n) in sg.iter().zip(&sn) {
+        assert_eq!(g["stride_time_s"], n["stride_time_s"]);
+        if g["stride_length_m"].is_number() {
+            let why = n["reason"].as_str().unwrap();
+            assert!(why.contains("stride length withheld: "), "{why}");
+            had += 1;
+            height += usize::from(why.contains("stride length withheld: sensor height unknown"));
+        }
+    }
+    assert!(had >= 10 && 2 * height > had, "{height} of {had}");
+}

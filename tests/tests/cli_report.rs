@@ -156,12 +156,16 @@ fn failed_side(tmp: &Path) -> PathBuf {
     std::fs::copy(demo.join("H01").join("left.csv"), s.join("left.csv")).unwrap();
     std::fs::write(s.join("right.csv"), "this is not,a sensor file\n1,2\n").unwrap();
     let out = tmp.join("failed");
+    // The demo's H01 height (its manifest): without it the left leg's `sensor_height_unknown`
+    // note is one more finding on the page, which then prints to 4 A4 pages.
     let o = ldh(&[
         "analyze",
         s.to_str().unwrap(),
         "--out",
         out.to_str().unwrap(),
         "--report",
+        "--sensor-height-m",
+        "0.077",
     ]);
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     out.join("reports")

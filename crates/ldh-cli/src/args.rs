@@ -126,7 +126,9 @@ pub struct AnalyzeArgs {
     /// (`--format` is accepted as an alias for one release.)
     #[arg(long = "input-format", alias = "format", value_name = "FORMAT")]
     pub format: Option<String>,
-    /// Sensor height above the ankle when the manifest has none, m (default 0.10).
+    /// Sensor height above the ankle joint, m, for subjects whose manifest row has none. Not
+    /// given: 0.10 m is assumed and a stride length that depends on it by more than 15 % is
+    /// withheld (warning sensor_height_unknown; docs/input.md).
     #[arg(long)]
     pub sensor_height_m: Option<f64>,
     /// Subject id of two files given directly (default: the common stem of their names).
@@ -313,6 +315,10 @@ pub struct SimulateArgs {
     /// Noise-free sensors without bias, quantisation or misalignment.
     #[arg(long)]
     pub ideal: bool,
+    /// Family a: the accelerometer's range (±), g (default 8, the paper's; 2 clips the shank's
+    /// heel-strike decelerations as HuGaDB's and family b's ±2 g devices do).
+    #[arg(long)]
+    pub acc_range_g: Option<f64>,
     /// Lowest LDH severity (0–1): each LDH subject's effects are scaled by a severity drawn in
     /// [this, 1]; 1 (default) makes every LDH subject fully affected.
     #[arg(long, default_value_t = 1.0)]

@@ -6,7 +6,8 @@
 //!
 //! Run: `RAYON_NUM_THREADS=1 cargo bench -p ldh-core --bench leg_cpu [-- ROUNDS CALLS [NAME]]`
 //! (NAME: only the cases whose name starts with it, e.g. `attitude` or `sta`, to profile one
-//! stage).
+//! stage). Events, strides and the per-side parameters are `leg_without_sta` less the stages
+//! timed alone (read, preprocess, align, attitude).
 
 mod common;
 
@@ -84,6 +85,19 @@ fn main() {
         ..AnalysisParams::default()
     };
     let with_sta = AnalysisParams::default();
+    measure("read_csv", &only, rounds, calls, || {
+        black_box(
+            read_recording_bytes(black_box(&bytes), Path::new("left.csv"), None, &rp).unwrap(),
+        );
+    });
+    let pp = PreprocessParams::default().check(rec.fs_hz).unwrap();
+    measure("preprocess", &only, rounds, calls, || {
+        black_box(preprocess(black_box(&rec), &pp).unwrap());
+    });
+    let ap = AlignParams::default().check().unwrap();
+    measure("align", &only, rounds, calls, || {
+        black_box(align(black_box(&pre), &ap).unwrap());
+    });
     measure("attitude_fusion_rts", &only, rounds, calls, || {
         black_box(estimate(black_box(&al), &fusion).unwrap());
     });

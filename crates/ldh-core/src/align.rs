@@ -101,6 +101,24 @@ pub struct Alignment {
     pub notes: Vec<String>,
 }
 
+#[cfg(test)]
+impl Alignment {
+    /// The device frame is F: no rotation, no bias, nothing found (for tests).
+    pub(crate) fn identity() -> Self {
+        Alignment {
+            r_f_from_device: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            gyro_bias_dps: [0.0; 3],
+            quiet_standing_s: None,
+            still_periods_s: vec![],
+            mirrored: false,
+            axial_rotation_deg: 0.0,
+            shank_axis_tilt_deg: 0.0,
+            sagittal_variance_share: 1.0,
+            notes: vec![],
+        }
+    }
+}
+
 /// Signals in the anatomical frame F, gyroscope bias-corrected.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Aligned {
@@ -155,29 +173,12 @@ fn still_mask(pre: &Preprocessed, p: &AlignParams) -> Vec<bool> {
     mask
 }
 
-fn runs(mask: &[bool]) -> Vec<(usize, usize)> {
-    let mut out = Vec::new();
-    let mut i = 0;
-    while i < mask.len() {
-        if mask[i] {
-            let s = i;
-            while i < mask.len() && mask[i] {
-                i += 1;
-            }
-            out.push((s, i));
-        } else {
-            i += 1;
-        }
-    }
-    out
-}
-
 /// Find the alignment of one sensor from its preprocessed signals.
 pub fn align(pre: &Preprocessed, params: &ValidAlignParams) -> Result<Aligned> {
     let p = &params.0;
     let fs = pre.fs_hz;
     let mut notes = Vec::new();
-    let still = runs(&still_mask(pre, p));
+    let still = crate::preprocess::runs(&still_mask(pre, p));
     let quiet = quiet_standing(pre, p, &still, &mut notes);
     let e3 = shank_axis(quiet.gravity)?;
     let (e2, share) = sagittal_axis(pre, p, quiet.bias, e3)?;
@@ -363,9 +364,17 @@ fn sagittal_axis(
     e2 = e2.normalize();
     // Sign: the mid-swing excursions about +e2 are negative.
     let mut proj: Vec<f64> = (0..n).map(|i| gyro_at(pre, bias, i).dot(&e2)).collect();
-    proj.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
     let k = (n / 100).max(1);
+    // The k lowest and the k highest, summed in ascending order as after a full sort (only
+    // they are sorted: a select instead of sorting all n, issue 17).
+    let cmp = |a: &f64, b: &f64| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal);
+    proj.select_nth_unstable_by(k - 1, cmp);
+    proj[..k].sort_by(cmp);
     let low = -proj[..k].iter().sum::<f64>() / k as f64;
+    if n - k >= k {
+        proj[k..].select_nth_unstable_by(n - 2 * k, cmp);
+    }
+    proj[n - k..].sort_by(cmp);
     let high = proj[n - k..].iter().sum::<f64>() / k as f64;
     if high > low {
         e2 = -e2;

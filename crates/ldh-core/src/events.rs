@@ -10,7 +10,7 @@
 //!   ω_s (θ̇ = 0), linearly interpolated between samples, then shifted by a systematic offset
 //!   expressed as a fraction of the stride time.
 //! * [`EventDetector::Salarian`] — Salarian et al. 2004 (IEEE TBME 51:1434): HS at the first local
-//!   maximum of ω_s after mid-swing (in ldh's sign, the loading-response peak), TO at the last
+//!   maximum of ω_s after mid-swing (in ldh's sign, the loading-response peak), TO at the largest
 //!   local maximum before it (late stance), parabolically interpolated, then offset-corrected.
 //! * [`EventDetector::GyroLandmarks`] (default) — HS as in `GyroZeroCrossing`; TO from three
 //!   landmarks around it: the late-stance peak of ω_s (t_s), the pitch peak (t_p, ω_s = 0) and
@@ -21,6 +21,16 @@
 //! The offsets and coefficients were fitted on a simulated tuning cohort (seed 100, 20 subjects)
 //! against its ground truth; the default detector was chosen by its error on an independent
 //! cohort (seed 200; docs/accuracy.md).
+//!
+//! Without offsets the literature's landmarks miss toe off on both simulators: the late-stance
+//! peak t_s (Aminian et al. 2002, J Biomech 35:689; Salarian et al. 2004) comes 40–100 ms early,
+//! the pitch peak t_p 60–115 ms late; the true toe off lies at 0.41–0.46 of the way between them
+//! in normal gait on both families. Offset-free rules built on that bracket (a fixed fraction of
+//! it; the fraction shifted by the leg's landmark geometry relative to the other leg's) were
+//! measured and not shipped: none holds on the pathological legs of both families, and the fixed
+//! fraction reverses the affected/unaffected stance order of family A's LDH subjects. The
+//! comparison and the decision are in docs/accuracy.md "Toe off without fitted offsets"
+//! (`data-fixtures/scripts/toe_off_landmarks.py`).
 
 mod peaks;
 

@@ -171,7 +171,7 @@ pub(crate) fn write_demo(py: Python<'_>, out: PathBuf) -> PyResult<usize> {
 
 /// Simulate a cohort into a folder as `ldh simulate` does; returns the manifest CSV text.
 #[pyfunction]
-#[pyo3(signature = (out, healthy=None, ldh=None, seconds=None, seed=None, rate_hz=None, turn=None, slow_ldh=None))]
+#[pyo3(signature = (out, healthy=None, ldh=None, seconds=None, seed=None, rate_hz=None, turn=None, slow_ldh=None, acc_range_g=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn simulate_cohort(
     py: Python<'_>,
@@ -183,8 +183,13 @@ pub(crate) fn simulate_cohort(
     rate_hz: Option<f64>,
     turn: Option<bool>,
     slow_ldh: Option<usize>,
+    acc_range_g: Option<f64>,
 ) -> PyResult<String> {
     let d = ldh_core::simulate::CohortParams::default();
+    let sensor = match acc_range_g {
+        Some(g) => d.sensor.clone().acc_range_g(g),
+        None => d.sensor.clone(),
+    };
     let params = ldh_core::simulate::CohortParams {
         healthy: healthy.unwrap_or(d.healthy),
         ldh: ldh.unwrap_or(d.ldh),
@@ -193,6 +198,7 @@ pub(crate) fn simulate_cohort(
         seed: seed.unwrap_or(d.seed),
         turn: turn.unwrap_or(d.turn),
         slow_ldh: slow_ldh.unwrap_or(d.slow_ldh),
+        sensor,
         ..d
     };
     py.detach(move || -> Result<String, LdhError> {
@@ -239,6 +245,7 @@ pub(crate) fn defaults(py: Python<'_>, d: &Bound<'_, PyDict>) -> PyResult<()> {
     sim.set_item("rate_hz", c.fs_hz)?;
     sim.set_item("turn", c.turn)?;
     sim.set_item("slow_ldh", c.slow_ldh)?;
+    sim.set_item("acc_range_g", c.sensor.acc_range_g)?;
     d.set_item("simulate_cohort", sim)?;
     Ok(())
 }

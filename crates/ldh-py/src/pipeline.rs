@@ -262,6 +262,8 @@ pub(crate) fn defaults(py: Python<'_>, d: &Bound<'_, PyDict>) -> PyResult<()> {
         "detector",
         value_of(&p.events.detector).or_raise(py)?.as_str(),
     )?;
+    // None: not given (the core assumes 0.10 m and checks the stride length's dependence on
+    // it, docs/quality.md `sensor_height_unknown`).
     named.set_item("sensor_height_m", p.strides.sensor_height_m)?;
     named.set_item("compute_sta", p.compute_sta)?;
     d.set_item("analyze", named)?;

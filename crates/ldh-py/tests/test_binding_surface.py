@@ -60,7 +60,9 @@ def test_python_defaults_equal_the_core_defaults(func):
 def test_analysis_options_default_to_the_core():
     # ldh.analyze's named options are None ("the core's default"); the core's values are these.
     named = _ldh.defaults()["analyze"]
-    assert named == {"model": "fusion", "detector": "gyro-landmarks", "sensor_height_m": 0.10, "compute_sta": True}
+    # sensor_height_m None: not given, so 0.10 m is assumed and the stride length checked for
+    # its dependence on it (``sensor_height_unknown``, docs/quality.md).
+    assert named == {"model": "fusion", "detector": "gyro-landmarks", "sensor_height_m": None, "compute_sta": True}
     for f in (ldh.analyze, ldh.analyze_pair, ldh.analyze_recording):
         sig = inspect.signature(f)
         for name in named:

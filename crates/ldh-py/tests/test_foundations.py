@@ -99,3 +99,17 @@ def test_slow_ldh_subjects_come_last_and_leave_the_others_unchanged(tmp_path):
     assert np.all(slow > normal), (slow, normal)
     with pytest.raises(ldh.LdhParamError, match="slow_ldh"):
         ldh.simulate_cohort(tmp_path / "c", slow_ldh=-1)
+
+
+def test_a_two_g_accelerometer_clips_and_the_stride_length_is_still_reported(tmp_path):
+    # as `ldh simulate --acc-range-g 2` (tests/tests/cli_foundations.rs does the same through the CLI)
+    m8 = ldh.simulate_cohort(tmp_path / "g8", healthy=1, ldh=0, seconds=20, seed=3)
+    m2 = ldh.simulate_cohort(tmp_path / "g2", healthy=1, ldh=0, seconds=20, seed=3, acc_range_g=2.0)
+    assert m8 == m2
+    _, r8 = ldh.read_recording(tmp_path / "g8" / "H01" / "left.csv")
+    _, r2 = ldh.read_recording(tmp_path / "g2" / "H01" / "left.csv")
+    assert r8["saturated_samples"] == 0 and r2["saturated_samples"] > 50, (r8, r2)
+    rows = ldh.analyze(tmp_path / "g2", as_frame=False).recordings
+    assert np.all(np.isfinite(rows["stride_length_m"])), rows["withheld"]
+    with pytest.raises(ldh.LdhParamError, match="acc_range_g"):
+        ldh.simulate_cohort(tmp_path / "c", acc_range_g=-1.0)

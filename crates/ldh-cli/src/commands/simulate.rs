@@ -29,11 +29,7 @@ pub fn run(a: SimulateArgs) -> Result<ExitCode> {
                 seed: a.seed,
                 turn: !a.no_turn,
                 ldh_severity_min: a.ldh_severity_min,
-                sensor: if a.ideal {
-                    SensorModel::ideal()
-                } else {
-                    SensorModel::default()
-                },
+                sensor: family_a_sensor(&a),
             };
             let ldh = if a.slow_ldh > 0 {
                 format!("LDH, of them {} slow", a.slow_ldh)
@@ -44,8 +40,11 @@ pub fn run(a: SimulateArgs) -> Result<ExitCode> {
         }
         Family::B => {
             anyhow::ensure!(
-                !a.no_turn && a.ldh_severity_min == 1.0 && a.slow_ldh == 0,
-                "--no-turn, --ldh-severity-min and --slow-ldh apply to --family a (family b: --setting treadmill walks without turns)"
+                !a.no_turn
+                    && a.ldh_severity_min == 1.0
+                    && a.slow_ldh == 0
+                    && a.acc_range_g.is_none(),
+                "--no-turn, --ldh-severity-min, --slow-ldh and --acc-range-g apply to --family a (family b: --setting treadmill walks without turns; its ranges are drawn per subject)"
             );
             let params = CohortParamsB {
                 healthy: a.healthy,
@@ -70,6 +69,20 @@ pub fn run(a: SimulateArgs) -> Result<ExitCode> {
                 "slow hemiparetic as 'ldh'",
             )
         }
+    }
+}
+
+/// Family a's sensor model: ideal or the default, with `--acc-range-g` when given (checked by
+/// the cohort's validation).
+fn family_a_sensor(a: &SimulateArgs) -> SensorModel {
+    let sensor = if a.ideal {
+        SensorModel::ideal()
+    } else {
+        SensorModel::default()
+    };
+    match a.acc_range_g {
+        Some(g) => sensor.acc_range_g(g),
+        None => sensor,
     }
 }
 

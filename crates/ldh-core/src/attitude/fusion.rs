@@ -19,8 +19,10 @@
 //!   foot flat is spread back over the swing before it, so drift cannot accumulate across
 //!   strides.
 
-use nalgebra::{Matrix2, Matrix3, SMatrix, SVector, Vector2, Vector3};
+use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
+mod bank;
+mod lanes;
 mod products;
 mod rts;
 #[cfg(test)]
@@ -30,24 +32,28 @@ use super::anchor::quasi_static_windows;
 use super::{acc_tilt, wrap, Attitude, AttitudeModel, AttitudeParams};
 use crate::align::Aligned;
 use crate::error::{LdhError, Result};
+use bank::Bank;
+use lanes::{Num, L4, LANES};
+use products::{Jacobian, Mat};
 use rts::{smooth, SegmentStore, SEGMENT};
 
 type V5 = SVector<f64, 5>;
 type M5 = SMatrix<f64, 5, 5>;
-type M5x2 = SMatrix<f64, 5, 2>;
 
 /// Euler-angle rates (eq. 7) and their Jacobian with respect to (φ, θ, ψ).
 pub(super) fn euler_rates(x: &Vector3<f64>, w: &Vector3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
-    euler_rates_of(&SinCos::of(x[0], x[1]), w)
+    let (r, j) = euler_rates_of(&SinCos::of(x[0], x[1]), &[w[0], w[1], w[2]]);
+    (Vector3::from(r), Matrix3::from_fn(|a, b| j[a][b]))
 }
 
-/// sin φ, cos φ, sin θ and cos θ (kept away from 0) of the tilt angles.
+/// sin φ, cos φ, sin θ and cos θ (kept away from 0) of the tilt angles, of one filter (`f64`)
+/// or of four ([`L4`]).
 #[derive(Clone, Copy)]
-struct SinCos {
-    sp: f64,
-    cp: f64,
-    st: f64,
-    ct: f64,
+struct SinCos<T = f64> {
+    sp: T,
+    cp: T,
+    st: T,
+    ct: T,
 }
 
 impl SinCos {
@@ -63,49 +69,104 @@ impl SinCos {
     }
 }
 
-/// [`euler_rates`] from the sines and cosines of the tilt.
-fn euler_rates_of(sc: &SinCos, w: &Vector3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
+impl SinCos<L4> {
+    /// [`SinCos::of`] lane by lane.
+    fn of_lanes(phi: L4, theta: L4) -> SinCos<L4> {
+        let mut out = SinCos::<L4> {
+            sp: L4::default(),
+            cp: L4::default(),
+            st: L4::default(),
+            ct: L4::default(),
+        };
+        for l in 0..LANES {
+            let s = SinCos::of(phi.0[l], theta.0[l]);
+            (out.sp.0[l], out.cp.0[l], out.st.0[l], out.ct.0[l]) = (s.sp, s.cp, s.st, s.ct);
+        }
+        out
+    }
+
+    /// Lane `l`.
+    fn lane(&self, l: usize) -> SinCos {
+        SinCos {
+            sp: self.sp.0[l],
+            cp: self.cp.0[l],
+            st: self.st.0[l],
+            ct: self.ct.0[l],
+        }
+    }
+}
+
+/// [`euler_rates`] from the sines and cosines of the tilt: the rates and the Jacobian as rows.
+#[inline(always)]
+fn euler_rates_of<T: Num>(sc: &SinCos<T>, w: &[T; 3]) -> ([T; 3], [[T; 3]; 3]) {
     let SinCos { sp, cp, st, ct } = *sc;
     let tt = st / ct;
     let a = sp * w[1] + cp * w[2];
     let b = cp * w[1] - sp * w[2];
-    let rates = Vector3::new(w[0] + a * tt, b, a / ct);
-    let j = Matrix3::new(
-        b * tt,
-        a / (ct * ct),
-        0.0,
-        -a,
-        0.0,
-        0.0,
-        b / ct,
-        a * st / (ct * ct),
-        0.0,
-    );
+    let rates = [w[0] + a * tt, b, a / ct];
+    let z = T::splat(0.0);
+    let j = [
+        [b * tt, a / (ct * ct), z],
+        [-a, z, z],
+        [b / ct, a * st / (ct * ct), z],
+    ];
     (rates, j)
 }
 
-/// One prediction step: the state, its covariance and the transition Jacobian. `sc` is
-/// [`SinCos::of`] the tilt of `x` (each filter keeps its own: the smoother's prediction from a
-/// stored state then needs no trigonometry).
-fn predict(x: &V5, sc: &SinCos, p: &M5, w_mid: &Vector3<f64>, dt: f64, q: &M5) -> (V5, M5, M5) {
-    let wc = w_mid - Vector3::new(x[3], x[4], 0.0);
-    let sc = *sc;
-    let (rates, j) = euler_rates_of(&sc, &wc);
-    let mut f = M5::identity();
-    let mut fa = f.fixed_view_mut::<3, 3>(0, 0);
-    fa += j * dt;
+/// One prediction step of one filter or four: the state, its covariance and the transition
+/// Jacobian. `sc` is [`SinCos::of`] the tilt of `x` (each filter keeps its own: the smoother's
+/// prediction from a stored state then needs no trigonometry); `q` the diagonal of Q. Every
+/// operation is nalgebra's on the dense F = I + [J·dt | bias columns] (see [`products`]).
+#[inline(always)]
+fn predict_n<T: Num>(
+    x: &[T; 5],
+    sc: &SinCos<T>,
+    p: &Mat<T>,
+    w_mid: &[f64; 3],
+    dt: f64,
+    q: &[f64; 5],
+) -> ([T; 5], Mat<T>, Jacobian<T>) {
+    // w − (b_x, b_y, 0): the third component minus 0 is itself
+    let wc = [
+        T::splat(w_mid[0]) - x[3],
+        T::splat(w_mid[1]) - x[4],
+        T::splat(w_mid[2]),
+    ];
+    let (rates, j) = euler_rates_of(sc, &wc);
+    let (zero, one, d) = (T::splat(0.0), T::splat(1.0), T::splat(dt));
+    // F = I with J·dt added to its upper 3 × 3 (F[1][1] = 1 + 0·dt = 1) and the bias columns:
     // ∂rates/∂b = −(columns x and y of the Euler-rate matrix).
-    let SinCos { sp, cp, st, ct } = sc;
-    f[(0, 3)] = -dt;
-    f[(0, 4)] = -sp * st / ct * dt;
-    f[(1, 4)] = -cp * dt;
-    f[(2, 4)] = -sp / ct * dt;
-    let mut xp = *x;
-    for i in 0..3 {
-        xp[i] += rates[i] * dt;
+    let SinCos { sp, cp, st, ct } = *sc;
+    let f = Jacobian {
+        a: [
+            [one + j[0][0] * d, zero + j[0][1] * d],
+            [zero + j[1][0] * d, one],
+            [zero + j[2][0] * d, zero + j[2][1] * d],
+        ],
+        b03: T::splat(-dt),
+        b4: [-sp * st / ct * d, -cp * d, -sp / ct * d],
+    };
+    let xp = [
+        x[0] + rates[0] * d,
+        x[1] + rates[1] * d,
+        (x[2] + rates[2] * d).wrap(),
+        x[3],
+        x[4],
+    ];
+    let mut pp = products::propagate(&f, p);
+    for (i, row) in pp.iter_mut().enumerate() {
+        for (j, v) in row.iter_mut().enumerate() {
+            *v = *v + T::splat(if i == j { q[i] } else { 0.0 });
+        }
     }
-    xp[2] = wrap(xp[2]);
-    (xp, products::propagate(&f, p) + q, f)
+    (xp, pp, f)
+}
+
+/// [`predict_n`] of one filter on nalgebra values (the smoother's fallback and its tests).
+fn predict(x: &V5, sc: &SinCos, p: &M5, w_mid: &[f64; 3], dt: f64, q: &[f64; 5]) -> (V5, M5, M5) {
+    let xa: [f64; 5] = std::array::from_fn(|i| x[i]);
+    let (xp, pp, f) = predict_n(&xa, sc, &products::rows(p), w_mid, dt, q);
+    (V5::from(xp), products::matrix(&pp), f.dense())
 }
 
 /// The fixed quantities of one run: inputs, model matrices and parameters.
@@ -113,7 +174,8 @@ struct Model<'a> {
     al: &'a Aligned,
     p: &'a AttitudeParams,
     dt: f64,
-    q: M5,
+    /// The diagonal of Q.
+    q: [f64; 5],
     r0: f64,
     rlo: f64,
     rhi: f64,
@@ -123,8 +185,8 @@ struct Model<'a> {
 
 /// What the update of sample k needs from the inputs.
 struct Sample {
-    z: Vector2<f64>,
-    wm: Vector3<f64>,
+    z: [f64; 2],
+    wm: [f64; 3],
     infl: f64,
     dyn_dev: f64,
     anchor: bool,
@@ -134,12 +196,9 @@ impl<'a> Model<'a> {
     fn new(al: &'a Aligned, p: &'a AttitudeParams) -> Model<'a> {
         let n = al.acc_g[0].len();
         let dt = 1.0 / al.fs_hz;
-        let mut q = M5::zeros();
         let qa = (p.gyro_noise_dps.to_radians() * dt).powi(2);
         let qb = p.gyro_bias_walk_dps.to_radians().powi(2) * dt;
-        for i in 0..5 {
-            q[(i, i)] = if i < 3 { qa } else { qb };
-        }
+        let q = [qa, qa, qa, qb, qb];
         let (anchor, anchor_len) = if p.reacquire_gravity {
             quasi_static_windows(
                 &al.acc_g,
@@ -170,17 +229,18 @@ impl<'a> Model<'a> {
         [a[0][i], a[1][i], a[2][i]]
     }
 
-    fn w_at(&self, i: usize) -> Vector3<f64> {
+    fn w_at(&self, i: usize) -> [f64; 3] {
         let g = &self.al.gyro_dps;
-        Vector3::new(g[0][i], g[1][i], g[2][i]) * (std::f64::consts::PI / 180.0)
+        [g[0][i], g[1][i], g[2][i]].map(|v| v * (std::f64::consts::PI / 180.0))
     }
 
     /// Angular velocity between samples k − 1 and k, rad/s.
-    fn w_mid(&self, k: usize) -> Vector3<f64> {
+    fn w_mid(&self, k: usize) -> [f64; 3] {
         if k == 0 {
             self.w_at(0)
         } else {
-            (self.w_at(k - 1) + self.w_at(k)) * 0.5
+            let (a, b) = (self.w_at(k - 1), self.w_at(k));
+            std::array::from_fn(|i| (a[i] + b[i]) * 0.5)
         }
     }
 
@@ -195,133 +255,12 @@ impl<'a> Model<'a> {
             + (w_norm_dps / p.rotation_scale_dps).powi(2);
         let (zphi, zth) = acc_tilt(f);
         Sample {
-            z: Vector2::new(zphi, zth),
+            z: [zphi, zth],
             wm: self.w_mid(k),
             infl,
             dyn_dev,
             anchor: self.anchor[k],
         }
-    }
-}
-
-/// One filter of the bank: its state, covariance and adapted measurement noise.
-#[derive(Clone)]
-struct Filter {
-    x: V5,
-    /// [`SinCos::of`] the tilt of `x`.
-    sc: SinCos,
-    p: M5,
-    r: Matrix2<f64>,
-    gate2: f64,
-    logw: f64,
-    rejected: usize,
-}
-
-impl Filter {
-    /// Predict to sample k (none at k = 0) and update with its tilt unless gated out; `d_k` is
-    /// the Sage–Husa weight of this sample.
-    fn step(&mut self, m: &Model, s: &Sample, k: usize, d_k: f64) {
-        let p = m.p;
-        let (xp, pp) = if k == 0 {
-            (self.x, self.p)
-        } else {
-            let (xp, pp, _) = predict(&self.x, &self.sc, &self.p, &s.wm, m.dt, &m.q);
-            (xp, pp)
-        };
-        // H selects (φ, θ): H x, H P Hᵀ and P Hᵀ are sub-blocks (bit for bit, see products)
-        let mut nu = s.z - Vector2::new(xp[0], xp[1]);
-        nu[0] = wrap(nu[0]);
-        nu[1] = wrap(nu[1]);
-        let hph: Matrix2<f64> = pp.fixed_view::<2, 2>(0, 0).into_owned();
-        let mut rk = self.r * s.infl;
-        if s.anchor {
-            // Gravity re-acquisition: the tilt is trusted to σ_anchor per window.
-            for i in 0..2 {
-                rk[(i, i)] = rk[(i, i)].min(m.r_anchor);
-            }
-        }
-        let sm = hph + rk;
-        let s_inv = sm
-            .try_inverse()
-            .unwrap_or_else(|| Matrix2::from_diagonal_element(1.0 / m.r0));
-        let d2 = (nu.transpose() * s_inv * nu)[0];
-        let det = sm.determinant().max(1e-300);
-        self.logw += -0.5 * d2 - 0.5 * (det * (std::f64::consts::TAU).powi(2)).ln();
-        let reacquire = self.rejected as f64 * m.dt >= p.reacquire_s;
-        let (xu, pu) = if d2 <= self.gate2 || reacquire || s.anchor {
-            self.rejected = 0;
-            let kg = products::gain(&pp, &s_inv);
-            let xu = xp + kg * nu;
-            let pu = products::joseph(&pp, &kg, &rk);
-            // Sage–Husa adaptation of R from quasi-static innovations.
-            if s.dyn_dev < 2.0 * p.dynamic_scale_g {
-                for i in 0..2 {
-                    let est = nu[i] * nu[i] - hph[(i, i)];
-                    let v = ((1.0 - d_k) * self.r[(i, i)] + d_k * est).clamp(m.rlo, m.rhi);
-                    self.r[(i, i)] = v;
-                }
-            }
-            (xu, pu)
-        } else {
-            self.rejected += 1;
-            (xp, pp)
-        };
-        self.x = xu;
-        self.x[2] = wrap(self.x[2]);
-        self.sc = SinCos::of(self.x[0], self.x[1]);
-        self.p = pu;
-    }
-}
-
-/// The bank of filters and its weights after the last step: everything the forward pass
-/// carries from one sample to the next (a smoother checkpoint is a copy of it).
-#[derive(Clone)]
-struct Bank {
-    filters: Vec<Filter>,
-    /// b^k, for the Sage–Husa weight d_k = (1 − b) / (1 − b^k).
-    bpow: f64,
-    weights: Vec<f64>,
-}
-
-impl Bank {
-    fn new(m: &Model) -> Bank {
-        let p = m.p;
-        let (phi0, th0) = acc_tilt(m.f_at(0));
-        let x0 = V5::from_column_slice(&[phi0, th0, 0.0, 0.0, 0.0]);
-        let b0 = p.gyro_bias_sd_dps.to_radians().powi(2);
-        let r0 = m.r0;
-        let p0 = M5::from_diagonal(&V5::from_column_slice(&[r0, r0, 1e-6, b0, b0]));
-        let filters: Vec<Filter> = p
-            .gates_sigma
-            .iter()
-            .map(|g| Filter {
-                x: x0,
-                sc: SinCos::of(x0[0], x0[1]),
-                p: p0,
-                r: Matrix2::from_diagonal_element(r0),
-                gate2: g * g,
-                logw: 0.0,
-                rejected: 0,
-            })
-            .collect();
-        let weights = vec![0.0; filters.len()];
-        Bank {
-            filters,
-            bpow: 1.0,
-            weights,
-        }
-    }
-
-    /// Filter sample k with every filter and re-weight the bank.
-    fn step(&mut self, m: &Model, k: usize) {
-        let s = m.sample(k);
-        let b = m.p.forgetting;
-        self.bpow *= b;
-        let d_k = (1.0 - b) / (1.0 - self.bpow);
-        for flt in self.filters.iter_mut() {
-            flt.step(m, &s, k, d_k);
-        }
-        bank_weights(&mut self.filters, m.p.min_weight, &mut self.weights);
     }
 }
 
@@ -362,12 +301,10 @@ fn fusion_segmented(al: &Aligned, p: &AttitudeParams, seg_len: usize) -> Result<
     }
     let m = Model::new(al, p);
     let mut bank = Bank::new(&m);
-    let nf = bank.filters.len();
     let keep = p.smoother;
     let mut out = Angles::new(n);
-    let mut store = SegmentStore::new(nf, if keep { seg_len.min(n) } else { 0 });
+    let mut store = SegmentStore::new(&bank, if keep { seg_len.min(n) } else { 0 });
     let mut checkpoints: Vec<Bank> = Vec::new();
-    let mut states: Vec<V5> = Vec::with_capacity(nf);
     for k in 0..n {
         if keep && k % seg_len == 0 {
             checkpoints.push(bank.clone());
@@ -377,14 +314,10 @@ fn fusion_segmented(al: &Aligned, p: &AttitudeParams, seg_len: usize) -> Result<
         if keep {
             store.push(&bank);
         } else {
-            states.clear();
-            states.extend(bank.filters.iter().map(|f| f.x));
-            out.set(k, &weighted(&states, &bank.weights));
+            out.set(k, &weighted(bank.len(), |i| bank.state(i), &bank.weights));
         }
     }
-    states.clear();
-    states.extend(bank.filters.iter().map(|f| f.x));
-    let last = weighted(&states, &bank.weights);
+    let last = weighted(bank.len(), |i| bank.state(i), &bank.weights);
     if keep {
         smooth(&m, &checkpoints, &mut store, seg_len, &mut out);
     }
@@ -395,43 +328,28 @@ fn fusion_segmented(al: &Aligned, p: &AttitudeParams, seg_len: usize) -> Result<
         pitch_deg: out.pitch,
         yaw_deg: out.yaw,
         final_weights: bank.weights.clone(),
-        final_tilt_noise_deg: bank
-            .filters
-            .iter()
-            .map(|f| ((f.r[(0, 0)] + f.r[(1, 1)]) / 2.0).sqrt().to_degrees())
+        final_tilt_noise_deg: (0..bank.len())
+            .map(|i| {
+                let r = bank.tilt_noise(i);
+                ((r[0] + r[1]) / 2.0).sqrt().to_degrees()
+            })
             .collect(),
         gyro_bias_dps: [last[3].to_degrees(), last[4].to_degrees()],
         gravity_windows: count_runs(&m.anchor),
     })
 }
 
-/// Normalised likelihood weights with a floor (eq. 15) into `w`; the filters' log-weights are
-/// reset to them.
-fn bank_weights(bank: &mut [Filter], floor: f64, w: &mut [f64]) {
-    let mx = bank.iter().map(|f| f.logw).fold(f64::MIN, f64::max);
-    for (wi, f) in w.iter_mut().zip(bank.iter()) {
-        *wi = (f.logw - mx).exp();
-    }
-    let sum: f64 = w.iter().sum();
-    w.iter_mut().for_each(|x| *x /= sum);
-    w.iter_mut().for_each(|x| *x = x.max(floor));
-    let sum: f64 = w.iter().sum();
-    w.iter_mut().for_each(|x| *x /= sum);
-    for (f, wi) in bank.iter_mut().zip(w.iter()) {
-        f.logw = wi.ln();
-    }
-}
-
 fn count_runs(mask: &[bool]) -> usize {
     mask.windows(2).filter(|w| w[1] && !w[0]).count() + usize::from(mask.first() == Some(&true))
 }
 
-/// Weighted mean of states, angles averaged as offsets from the first (no wrap artefacts).
-fn weighted(xs: &[V5], w: &[f64]) -> V5 {
-    let base = xs[0];
+/// Weighted mean of the states `x(0..nf)`, angles averaged as offsets from the first (no wrap
+/// artefacts).
+fn weighted(nf: usize, x: impl Fn(usize) -> V5, w: &[f64]) -> V5 {
+    let base = x(0);
     let mut acc = V5::zeros();
-    for (x, wi) in xs.iter().zip(w) {
-        let mut d = x - base;
+    for (i, wi) in w.iter().enumerate().take(nf) {
+        let mut d = x(i) - base;
         for i in 0..3 {
             d[i] = wrap(d[i]);
         }

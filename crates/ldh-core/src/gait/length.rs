@@ -15,19 +15,43 @@
 //! preprocessing interpolates every sample whose |a| lies beyond 3 SDs of its mean, which in
 //! slow gait (|a| varying little) is 70-110 ms of every heel strike's real deceleration; cut
 //! from the integral it made family A's slow walkers' strides up to 29 % short, so the
-//! integration reads the acceleration with those samples kept (only clipped ones replaced,
-//! and a clipped stride is withheld anyway).
+//! integration reads the acceleration with those samples kept. Samples where the
+//! accelerometer clipped are reconstructed on the axis that clipped by a local quadratic
+//! ([`crate::preprocess::declip`]; issue 20: a ±2 g shank sensor clips in 2-3 runs per stride,
+//! in push-off and swing, and interpolating them left lengths up to 40 % short).
+//!
+//! **Tilt from the zero-velocity update** (issue 20). The attitude's roll and pitch are
+//! anchored to the accelerometer's tilt at foot flat, where the sensor is not at rest: it
+//! rotates over the ankle, faster and faster through mid-stance, so a sensor h above the ankle
+//! feels α h across the shank and the anchor is off by α h / g (HuGaDB's mid-shin sensors:
+//! 2.5–15°; docs/accuracy.md "Why HuGaDB strides drift"). The gyroscope carries that error
+//! through the stride, where it leaks g sin δ along the walk: a velocity drift of g δ T
+//! against the walking direction at the next mid-stance, and an ankle that ends δ × L off
+//! the floor. Over one stride the specific force must integrate to the velocity change plus
+//! gravity, v₁ − v₀ + g T ẑ; the rotation that takes the integrated specific force onto that
+//! vector is the stride's tilt error (a zero-velocity update observes roll and pitch: Foxlin
+//! 2005, IEEE CG&A 25(6):38; Skog et al. 2010), and it is removed before integrating. Linear
+//! de-drifting already took the constant g δ of such an error out of the horizontal length, so
+//! the lengths hardly move (HuGaDB ≤ 4.4 cm, family A ≤ 0.7 mm, family B ≤ 4.4 mm); what
+//! changes is what the checks see. The floor-level closure is not used to estimate the tilt, and checks it: a
+//! horizontal drift that was not a tilt (a step lost at a clipped run) leaves the ankle |z| =
+//! δ × L off the floor after the correction, so the drift such a closure could hide, |z| g T /
+//! L, counts as unexplained ([`LengthEstimate::unexplained_mps`], never more than the
+//! horizontal drift before the correction, so no check is stricter than without it).
 //!
 //! **Plausibility** ([`LengthEstimate::implausible`]): a stride length is withheld (the stride is
-//! marked invalid with the reason) when the accelerometer clipped anywhere between the two
-//! mid-stances (the acceleration integrated there is unknown, whatever replaced it), when the
-//! integration is inconsistent — the velocity drift removed by de-drifting is large
-//! ([`MAX_DRIFT_MPS`]), or the ankle does not come back to the floor level (within
-//! [`MAX_VERTICAL_M`] and [`MAX_VERTICAL_SHARE`] of the length) — or
-//! when the length disagrees with a shank-pendulum estimate from the pitch excursion in stance
-//! by more than a factor 2 (0.45–2.2). The bout-level checks (a stride far from its bout's median, left
-//! and right disagreeing over the walk) are in [`super::mod`] and [`crate::pipeline`].
+//! marked invalid with the reason) when the integration is inconsistent — the velocity drift
+//! removed by de-drifting or the horizontal drift the tilt does not explain is large
+//! ([`MAX_DRIFT_MPS`]), the tilt correction exceeds [`MAX_TILT_DEG`], the unexplained drift
+//! over a stride whose accelerometer clipped could, as a step at a clipped run, move the ankle
+//! by more than
+//! [`MAX_CLIP_STEP_SHARE`] of the length, or the ankle does not come back to the floor level
+//! (within [`MAX_VERTICAL_M`] and [`MAX_VERTICAL_SHARE`] of the length) — or when the length
+//! disagrees with a shank-pendulum estimate from the pitch excursion in stance by more than a
+//! factor 2 (0.45–2.2). The bout-level checks (a stride far from its bout's median, left and
+//! right disagreeing over the walk) are in [`super::mod`] and [`crate::pipeline`].
 
+use nalgebra::{Matrix3, Rotation3, Vector3};
 use serde::{Deserialize, Serialize};
 
 use crate::align::Aligned;
@@ -80,20 +104,26 @@ pub fn zero_velocity_sample(
             let b = (hs + (0.65 * len).round() as usize).max(a + 1);
             let half = ((0.05 * al.fs_hz).round() as usize).max(1);
             // SHOE: ‖ω‖²/σω² + (|a| − 1 g)²/σa², σω = 20 deg/s, σa = 0.05 g, mean over the window.
-            let stat = |i: usize| -> f64 {
-                let (lo, hi) = (i.saturating_sub(half), (i + half + 1).min(w_norm.len()));
-                let s: f64 = (lo..hi)
-                    .map(|j| {
-                        let an = (al.acc_g[0][j].powi(2)
-                            + al.acc_g[1][j].powi(2)
-                            + al.acc_g[2][j].powi(2))
-                        .sqrt();
-                        (w_norm[j] / 20.0).powi(2) + ((an - 1.0) / 0.05).powi(2)
-                    })
-                    .sum();
-                s / (hi - lo) as f64
-            };
-            (a..b).min_by(|&x, &y| stat(x).total_cmp(&stat(y)))
+            // Each sample's term once, each window's mean once (summed in the same order as
+            // term by term: the same numbers; `min_by` had computed both sides of every
+            // comparison, and every term once per window holding it).
+            let (lo0, hi0) = (a.saturating_sub(half), (b + half).min(w_norm.len()));
+            let term: Vec<f64> = (lo0..hi0)
+                .map(|j| {
+                    let an =
+                        (al.acc_g[0][j].powi(2) + al.acc_g[1][j].powi(2) + al.acc_g[2][j].powi(2))
+                            .sqrt();
+                    (w_norm[j] / 20.0).powi(2) + ((an - 1.0) / 0.05).powi(2)
+                })
+                .collect();
+            let stat: Vec<f64> = (a..b)
+                .map(|i| {
+                    let (lo, hi) = (i.saturating_sub(half), (i + half + 1).min(w_norm.len()));
+                    let s: f64 = term[lo - lo0..hi - lo0].iter().sum();
+                    s / (hi - lo) as f64
+                })
+                .collect();
+            (a..b).min_by(|&x, &y| stat[x - a].total_cmp(&stat[y - a]))
         }
     }
 }
@@ -103,16 +133,39 @@ pub fn zero_velocity_sample(
 pub struct LengthEstimate {
     /// Horizontal displacement of the ankle, m.
     pub length_m: f64,
-    /// Velocity error removed by de-drifting (|v_end − ω × r| before correction), m/s.
+    /// Velocity error removed by de-drifting after the tilt correction (|v_end − ω × r|), m/s.
     pub drift_mps: f64,
+    /// Horizontal velocity drift the tilt correction does not explain, m/s: the larger of the
+    /// horizontal drift left after it and the drift the floor-level closure could hide (|z| g
+    /// T / L), never more than the horizontal drift before the correction.
+    pub unexplained_mps: f64,
+    /// Tilt of the attitude corrected over the stride (from the velocity at the next
+    /// mid-stance), deg.
+    pub tilt_deg: f64,
     /// Vertical displacement of the ankle between the two mid-stances, m (0 on level ground).
     pub vertical_m: f64,
-    /// Samples between the two mid-stances where the accelerometer clipped.
+    /// Samples between the two mid-stances where the accelerometer clipped (reconstructed,
+    /// [`crate::preprocess::declip`]).
     pub clipped_samples: usize,
+    /// Horizontal ankle displacement the unexplained drift could leave after linear
+    /// de-drifting if it were a step at one of the clipped runs, m: `unexplained_mps` ×
+    /// duration × max |½ − φ| over the runs (φ: the run's centre as a share of the
+    /// integration); 0 without clipping.
+    pub clip_step_m: f64,
 }
 
-/// Largest velocity drift over one stride accepted, m/s.
+/// Largest velocity drift over one stride accepted, m/s: what de-drifting removes after the
+/// tilt correction, and the horizontal drift the tilt does not explain.
 pub const MAX_DRIFT_MPS: f64 = 0.6;
+/// Largest tilt correction of the attitude over one stride accepted, deg.
+///
+/// The tilt the zero-velocity update finds is the error of the foot-flat anchor: the sensor's
+/// own acceleration there, α h across the shank, read as gravity. With the shank's angular
+/// acceleration through mid-stance at most ~10 rad/s² and the sensor at most 0.35 m above the
+/// ankle (a shank is ~0.43 m long), α h / g stays below 0.36 rad ≈ 20°; a larger correction
+/// means the attitude is not that of a shank pivoting over a resting foot. A physical bound,
+/// not fitted.
+pub const MAX_TILT_DEG: f64 = 20.0;
 /// Largest vertical ankle displacement over one stride accepted, m.
 pub const MAX_VERTICAL_M: f64 = 0.15;
 /// Largest vertical ankle displacement over one stride accepted, as a share of the stride
@@ -128,6 +181,17 @@ pub const MAX_VERTICAL_M: f64 = 0.15;
 /// allowed 15 cm.
 pub const MAX_VERTICAL_SHARE: f64 = 0.15;
 
+/// Largest horizontal error a step at the clipped samples could leave, as a share of the
+/// stride length.
+///
+/// What a reconstruction of clipped samples misses is a step in velocity at the clipped run
+/// (its time known), which linear de-drifting turns into a position error of drift × duration
+/// × (½ − φ) for a run at the share φ of the integration; the drift left over the stride is
+/// observed, so is that error's worst case. Held to the same 15 % as the floor-level miss
+/// ([`MAX_VERTICAL_SHARE`]): the largest per-stride error the team accepts (issue 20); not
+/// fitted.
+pub const MAX_CLIP_STEP_SHARE: f64 = MAX_VERTICAL_SHARE;
+
 impl LengthEstimate {
     /// Why this length cannot be vouched for, if so. `pendulum_m`: the shank-pendulum estimate
     /// ([`pendulum_length_m`]), NaN when unknown.
@@ -135,17 +199,32 @@ impl LengthEstimate {
         if !self.length_m.is_finite() {
             return Some("stride length not integrable".into());
         }
-        if self.clipped_samples > 0 {
-            return Some(format!(
-                "stride length withheld: the accelerometer clipped on {} sample{} of the stride, so the acceleration integrated there is unknown",
-                self.clipped_samples,
-                if self.clipped_samples == 1 { "" } else { "s" }
-            ));
-        }
         if self.drift_mps > MAX_DRIFT_MPS {
             return Some(format!(
                 "stride length withheld: velocity drift {:.2} m/s over the stride",
                 self.drift_mps
+            ));
+        }
+        if self.tilt_deg > MAX_TILT_DEG {
+            return Some(format!(
+                "stride length withheld: the attitude needed a {:.0} deg tilt correction over the stride (more than {MAX_TILT_DEG:.0})",
+                self.tilt_deg
+            ));
+        }
+        if self.unexplained_mps > MAX_DRIFT_MPS {
+            return Some(format!(
+                "stride length withheld: velocity drift {:.2} m/s over the stride that a tilt of the attitude does not explain",
+                self.unexplained_mps
+            ));
+        }
+        if self.clipped_samples > 0 && self.clip_step_m > MAX_CLIP_STEP_SHARE * self.length_m {
+            return Some(format!(
+                "stride length withheld: the accelerometer clipped on {} sample{} of the stride, and the drift left after reconstructing them could move the ankle by {:.0} cm ({:.0} % of the {:.2} m stride)",
+                self.clipped_samples,
+                if self.clipped_samples == 1 { "" } else { "s" },
+                self.clip_step_m * 100.0,
+                100.0 * self.clip_step_m / self.length_m,
+                self.length_m
             ));
         }
         if self.vertical_m.abs() > MAX_VERTICAL_M.min(MAX_VERTICAL_SHARE * self.length_m) {
@@ -191,156 +270,106 @@ pub fn pendulum_length_m(theta_hs_deg: f64, theta_to_deg: f64, stance: f64) -> f
         / stance
 }
 
+/// The rotation matrix of the attitude at sample `i` (frame F to the world).
+fn attitude_at(att: &Attitude, i: usize) -> Matrix3<f64> {
+    let r = rotation_wf(
+        att.roll_deg[i].to_radians(),
+        att.pitch_deg[i].to_radians(),
+        att.yaw_deg[i].to_radians(),
+    );
+    Matrix3::from_fn(|k, l| r[k][l])
+}
+
+/// The tilt error of the attitude over one stride, as the rotation that takes the integrated
+/// specific force `sum` (m/s, world frame, gravity included) onto what it must be,
+/// `target` = v₁ − v₀ + g T ẑ (see the module doc); the identity when either is zero.
+fn tilt_correction(sum: &Vector3<f64>, target: &Vector3<f64>) -> Rotation3<f64> {
+    Rotation3::rotation_between(sum, target).unwrap_or_else(Rotation3::identity)
+}
+
 /// Horizontal displacement of the ankle between two mid-stance samples (see the module doc).
 pub fn stride_length(al: &Aligned, att: &Attitude, z0: usize, z1: usize, h: f64) -> LengthEstimate {
-    let fs = al.fs_hz;
-    let dt = 1.0 / fs;
-    let rot = |i: usize| {
-        rotation_wf(
-            att.roll_deg[i].to_radians(),
-            att.pitch_deg[i].to_radians(),
-            att.yaw_deg[i].to_radians(),
-        )
-    };
-    let mv = |r: &[[f64; 3]; 3], v: [f64; 3]| -> [f64; 3] {
-        std::array::from_fn(|k| r[k][0] * v[0] + r[k][1] * v[1] + r[k][2] * v[2])
-    };
+    let dt = 1.0 / al.fs_hz;
     let acc = al.acc_motion_g();
-    let acc_w = |i: usize| -> [f64; 3] {
-        let f = [acc[0][i], acc[1][i], acc[2][i]];
-        let mut a = mv(&rot(i), f);
-        for x in a.iter_mut() {
-            *x *= STANDARD_GRAVITY_MPS2;
-        }
-        a[2] -= STANDARD_GRAVITY_MPS2;
-        a
-    };
+    let up = Vector3::z();
+    // Specific force in the world frame, m/s², gravity included.
+    let force: Vec<Vector3<f64>> = (z0..=z1)
+        .map(|i| {
+            attitude_at(att, i)
+                * Vector3::new(acc[0][i], acc[1][i], acc[2][i])
+                * STANDARD_GRAVITY_MPS2
+        })
+        .collect();
     // Sensor position from the ankle and its velocity when the ankle is at rest.
-    let lever = |i: usize| -> ([f64; 3], [f64; 3]) {
-        let r = rot(i);
-        let rw = mv(&r, [0.0, 0.0, h]);
-        let w = mv(
-            &r,
-            [
-                al.gyro_dps[0][i].to_radians(),
-                al.gyro_dps[1][i].to_radians(),
-                al.gyro_dps[2][i].to_radians(),
-            ],
-        );
-        let v = [
-            w[1] * rw[2] - w[2] * rw[1],
-            w[2] * rw[0] - w[0] * rw[2],
-            w[0] * rw[1] - w[1] * rw[0],
-        ];
-        (rw, v)
+    let lever = |i: usize| -> (Vector3<f64>, Vector3<f64>) {
+        let r = attitude_at(att, i);
+        let rw = r * Vector3::new(0.0, 0.0, h);
+        let g = &al.gyro_dps;
+        let w = r * Vector3::new(g[0][i], g[1][i], g[2][i]).map(f64::to_radians);
+        (rw, w.cross(&rw))
     };
     let (r0, v0) = lever(z0);
     let (r1, v1) = lever(z1);
     let m = z1 - z0;
-    let mut v = vec![[0.0f64; 3]; m + 1];
-    v[0] = v0;
-    let mut prev = acc_w(z0);
+    let duration = m as f64 * dt;
+    // Tilt: over the stride the specific force integrates to v₁ − v₀ + g T ẑ.
+    let sum: Vector3<f64> = force.windows(2).map(|p| (p[0] + p[1]) * (0.5 * dt)).sum();
+    let target = v1 - v0 + up * (STANDARD_GRAVITY_MPS2 * duration);
+    let tilt = tilt_correction(&sum, &target);
+    let raw_drift = sum - target;
+    let mut v = Vec::with_capacity(m + 1);
+    v.push(v0);
     for j in 1..=m {
-        let a = acc_w(z0 + j);
-        for k in 0..3 {
-            v[j][k] = v[j - 1][k] + 0.5 * dt * (prev[k] + a[k]);
-        }
-        prev = a;
+        let a = tilt * ((force[j - 1] + force[j]) * 0.5) - up * STANDARD_GRAVITY_MPS2;
+        v.push(v[j - 1] + a * dt);
     }
-    // Linear de-drifting so the velocity ends at the known v1.
-    let drift: [f64; 3] = std::array::from_fn(|k| v[m][k] - v1[k]);
-    for (j, vj) in v.iter_mut().enumerate() {
-        let f = j as f64 / m as f64;
-        for k in 0..3 {
-            vj[k] -= f * drift[k];
-        }
-    }
-    let mut d = [0.0f64; 3];
-    for j in 1..=m {
-        for k in 0..3 {
-            d[k] += 0.5 * dt * (v[j - 1][k] + v[j][k]);
-        }
-    }
-    let ankle = [d[0] - (r1[0] - r0[0]), d[1] - (r1[1] - r0[1])];
+    // Linear de-drifting of what the tilt leaves, so the velocity ends at the known v1.
+    let drift = v[m] - v1;
+    let dedrifted = |j: usize| v[j] - drift * (j as f64 / m as f64);
+    let d: Vector3<f64> = (1..=m)
+        .map(|j| (dedrifted(j - 1) + dedrifted(j)) * (0.5 * dt))
+        .sum();
+    let ankle = d - tilt * (r1 - r0);
+    let length = ankle.x.hypot(ankle.y);
+    // A horizontal drift that was not a tilt leaves the ankle |z| = δ·L off the floor after
+    // the correction, δ = drift / (g T): the drift such a closure could hide.
+    let hidden = ankle.z.abs() * STANDARD_GRAVITY_MPS2 * duration / length.max(0.05);
+    let unexplained = drift.xy().norm().max(hidden.min(raw_drift.xy().norm()));
+    let clipped = clipped_between(&al.acc_clipped, z0, z1);
     LengthEstimate {
-        length_m: (ankle[0] * ankle[0] + ankle[1] * ankle[1]).sqrt(),
-        drift_mps: (drift[0].powi(2) + drift[1].powi(2) + drift[2].powi(2)).sqrt(),
-        vertical_m: d[2] - (r1[2] - r0[2]),
-        clipped_samples: clipped_between(&al.acc_clipped, z0, z1),
+        length_m: length,
+        drift_mps: drift.norm(),
+        unexplained_mps: unexplained,
+        tilt_deg: tilt.angle().to_degrees(),
+        vertical_m: ankle.z,
+        clipped_samples: clipped.len(),
+        clip_step_m: unexplained * duration * worst_step_share(clipped, z0, z1),
     }
 }
 
-/// How many of the sorted sample indices `clipped` lie in `[a, b]`.
-fn clipped_between(clipped: &[usize], a: usize, b: usize) -> usize {
-    clipped.partition_point(|&i| i <= b) - clipped.partition_point(|&i| i < a)
+/// The sorted sample indices of `clipped` that lie in `[a, b]`.
+fn clipped_between(clipped: &[usize], a: usize, b: usize) -> &[usize] {
+    &clipped[clipped.partition_point(|&i| i < a)..clipped.partition_point(|&i| i <= b)]
+}
+
+/// max |½ − φ| over the runs of consecutive samples in `clipped` (sorted, within `[z0, z1]`),
+/// φ = (run centre − z0) / (z1 − z0): the share of a step's size that linear de-drifting over
+/// the duration leaves as position error (0 without clipping).
+fn worst_step_share(clipped: &[usize], z0: usize, z1: usize) -> f64 {
+    let m = (z1 - z0) as f64;
+    let mut worst = 0.0f64;
+    let mut k = 0;
+    while k < clipped.len() {
+        let start = clipped[k];
+        while k + 1 < clipped.len() && clipped[k + 1] == clipped[k] + 1 {
+            k += 1;
+        }
+        let centre = 0.5 * (start + clipped[k]) as f64;
+        worst = worst.max((0.5 - (centre - z0 as f64) / m).abs());
+        k += 1;
+    }
+    worst
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn pendulum_estimate_of_a_normal_stride() {
-        // θ from −20° at HS to +40° at TO over 60 % of the stride: ≈ 1.0 m.
-        let l = pendulum_length_m(-20.0, 40.0, 0.6);
-        assert!(
-            (l - 1.7 * 0.43 * (0.6428 + 0.3420) / 0.6).abs() < 1e-3,
-            "{l}"
-        );
-        assert!(pendulum_length_m(0.0, 10.0, 0.1).is_nan());
-    }
-
-    #[test]
-    fn implausible_lengths_say_why() {
-        let ok = LengthEstimate {
-            length_m: 1.3,
-            drift_mps: 0.1,
-            vertical_m: 0.01,
-            clipped_samples: 0,
-        };
-        assert_eq!(ok.implausible(1.1), None);
-        assert_eq!(ok.implausible(f64::NAN), None);
-        let r = ok.implausible(0.4).unwrap();
-        assert!(r.contains("shank-pendulum"), "{r}");
-        let drift = LengthEstimate {
-            drift_mps: 1.5,
-            ..ok
-        };
-        assert!(drift.implausible(1.1).unwrap().contains("drift"));
-        // 11 cm off the floor: withheld on a 0.59 m stride (19 %), not on a 1.3 m one (8 %).
-        let slow = LengthEstimate {
-            length_m: 0.59,
-            vertical_m: 0.11,
-            ..ok
-        };
-        let r = slow.implausible(0.6).unwrap();
-        assert!(
-            r.contains("11 cm off the floor level (19 % of the 0.59 m stride)"),
-            "{r}"
-        );
-        let brisk = LengthEstimate {
-            vertical_m: -0.11,
-            ..ok
-        };
-        assert_eq!(brisk.implausible(1.1), None);
-        let up = LengthEstimate {
-            vertical_m: 0.3,
-            ..ok
-        };
-        assert!(up.implausible(1.1).unwrap().contains("floor"));
-        let clipped = LengthEstimate {
-            clipped_samples: 3,
-            ..ok
-        };
-        let r = clipped.implausible(1.1).unwrap();
-        assert!(r.contains("clipped on 3 samples"), "{r}");
-        assert_eq!(clipped_between(&[2, 5, 9, 12], 5, 9), 2);
-        assert_eq!(clipped_between(&[2, 5, 9, 12], 6, 8), 0);
-        assert_eq!(clipped_between(&[], 0, 100), 0);
-        assert_eq!(
-            "min-gyro".parse::<ZeroVelocity>().unwrap(),
-            ZeroVelocity::MinGyro
-        );
-        assert!("x".parse::<ZeroVelocity>().is_err());
-    }
-}
+mod tests;

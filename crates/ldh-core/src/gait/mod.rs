@@ -10,18 +10,23 @@
 //!
 //! **Stride length** (the paper: "estimated by fusing three-axis acceleration"): the
 //! acceleration is rotated to the world with the fused attitude, gravity removed, and integrated
-//! twice between consecutive mid-stances (the minimum of |ω| between HS and TO), with linear
-//! de-drifting of the velocity. The sensor is not at rest at mid-stance: the shank pivots about
+//! twice between consecutive mid-stances (the foot-flat instant, [`ZeroVelocity`]), with the
+//! stride's tilt error removed (the velocity at the next mid-stance observes it) and linear
+//! de-drifting of the velocity; samples where the accelerometer clipped are reconstructed
+//! first ([`crate::preprocess::declip`]). The sensor is not at rest at mid-stance: the shank pivots about
 //! the ankle, which is at rest. The sensor's velocity there is ω × r (r the sensor's position from
 //! the ankle, `sensor_height_m` along the shank), used as the boundary velocity, and the change
 //! of r over the stride is removed from the displacement, so the result is the ankle's horizontal
-//! displacement: the stride length.
+//! displacement: the stride length. When the height is not given, how much the leg's length
+//! depends on it is measured ([`height_sensitivity`]) and the length withheld when the leg's
+//! median moves by more than 15 % over the heights a shank sensor can sit at.
 //!
 //! **Parameters** per stride: stride time, stance ratio, stride length, speed, WQK (max pitch),
 //! PBI (−min pitch), BDK (range of anatomical roll from TO to the next HS); per side, the means
 //! over valid strides and SV, STV (SD / mean), SF, STT (needs both legs) and STA
 //! ([`crate::nonlinear::gait_sta`]).
 
+mod height;
 mod length;
 mod params;
 mod segment;
@@ -31,12 +36,16 @@ mod times;
 use serde::{Deserialize, Serialize};
 
 use crate::recording::Side;
+pub use height::{
+    height_sensitivity, HeightSensitivity, MAX_HEIGHT_SPREAD_SHARE, SENSOR_HEIGHT_RANGE_M,
+};
 pub use length::{
     pendulum_length_m, stride_length, zero_velocity_sample, LengthEstimate, ZeroVelocity,
-    MAX_DRIFT_MPS, MAX_VERTICAL_M, MAX_VERTICAL_SHARE, PENDULUM_GAIN, SHANK_LENGTH_M,
+    MAX_CLIP_STEP_SHARE, MAX_DRIFT_MPS, MAX_TILT_DEG, MAX_VERTICAL_M, MAX_VERTICAL_SHARE,
+    PENDULUM_GAIN, SHANK_LENGTH_M,
 };
 pub use params::{check_stride_range, StrideParams, ValidStrideParams, DEFAULT_SENSOR_HEIGHT_M};
-pub use segment::{strides, strides_with_turns, TurnTest, ACC_ONLY_LENGTH};
+pub use segment::{lengths_at_heights, strides, strides_with_turns, TurnTest, ACC_ONLY_LENGTH};
 pub use side::{side_parameters, withhold_unvouched_lengths, MIN_LENGTH_SHARE, MIN_LENGTH_STRIDES};
 
 /// One stride of one leg: a row of the per-stride table (SPEC §6).

@@ -7,7 +7,9 @@ use serde::{Deserialize, Serialize};
 use super::ZeroVelocity;
 use crate::error::{LdhError, Result};
 
-/// Default sensor height above the ankle joint, m (SPEC: "just above the ankle").
+/// Sensor height above the ankle joint assumed when none is given, m (SPEC: "just above the
+/// ankle"). A stride length computed with it is checked for its dependence on the height
+/// ([`super::height_sensitivity`]).
 pub const DEFAULT_SENSOR_HEIGHT_M: f64 = 0.10;
 
 /// Stride segmentation and stride-length parameters (unchecked).
@@ -21,8 +23,12 @@ pub struct StrideParams {
     /// Heading change over one stride above which the stride is part of a turn, deg. Default 20;
     /// 180 turns the detection off (a treadmill: the heading drift of the gyroscope is no turn).
     pub turn_deg: f64,
-    /// Height of the sensor above the ankle joint along the shank, m. Default 0.10.
-    pub sensor_height_m: f64,
+    /// Height of the sensor above the ankle joint along the shank, m. Default `None`: not
+    /// given, [`DEFAULT_SENSOR_HEIGHT_M`] (0.10 m) is assumed and each leg's stride length is
+    /// checked for how much it depends on the height ([`super::height_sensitivity`]); a
+    /// manifest's `sensor_height_m` gives it per subject. Serialised as `null` when not given,
+    /// so parameters written out and read back stay "not given".
+    pub sensor_height_m: Option<f64>,
     /// Flag the first and last stride of every bout. Default true.
     pub drop_bout_edges: bool,
     /// How the zero-velocity instant of each stance is found. Default foot-flat.
@@ -38,7 +44,7 @@ impl Default for StrideParams {
             min_stride_s: 0.7,
             max_stride_s: 2.5,
             turn_deg: 20.0,
-            sensor_height_m: DEFAULT_SENSOR_HEIGHT_M,
+            sensor_height_m: None,
             drop_bout_edges: true,
             zero_velocity: ZeroVelocity::default(),
             max_length_deviation: 0.25,
@@ -47,9 +53,9 @@ impl Default for StrideParams {
 }
 
 impl StrideParams {
-    /// Set the sensor height, m.
+    /// Set the sensor height, m (given).
     pub fn sensor_height_m(mut self, h: f64) -> Self {
-        self.sensor_height_m = h;
+        self.sensor_height_m = Some(h);
         self
     }
     /// Validate.
@@ -62,12 +68,14 @@ impl StrideParams {
                 "must lie in (0, 180] (180: no stride is a turn, as on a treadmill)",
             ));
         }
-        if !(self.sensor_height_m.is_finite() && (0.0..=0.5).contains(&self.sensor_height_m)) {
-            return Err(LdhError::param(
-                "sensor_height_m",
-                self.sensor_height_m,
-                "must lie in [0, 0.5] m",
-            ));
+        if let Some(h) = self.sensor_height_m {
+            if !(h.is_finite() && (0.0..=0.5).contains(&h)) {
+                return Err(LdhError::param(
+                    "sensor_height_m",
+                    h,
+                    "must lie in [0, 0.5] m",
+                ));
+            }
         }
         if !(self.max_length_deviation > 0.0 && self.max_length_deviation <= 1.0) {
             return Err(LdhError::param(
@@ -101,6 +109,18 @@ impl ValidStrideParams {
     /// The parameters.
     pub fn params(&self) -> &StrideParams {
         &self.0
+    }
+
+    /// The sensor height the stride length uses, m: the one given, else
+    /// [`DEFAULT_SENSOR_HEIGHT_M`].
+    pub fn sensor_height_m(&self) -> f64 {
+        self.0.sensor_height_m.unwrap_or(DEFAULT_SENSOR_HEIGHT_M)
+    }
+
+    /// Whether the sensor height was given (by the manifest, an option or the parameters)
+    /// rather than assumed.
+    pub fn sensor_height_given(&self) -> bool {
+        self.0.sensor_height_m.is_some()
     }
 
     /// These parameters with a subject's sensor height, m (the height belongs to the subject:

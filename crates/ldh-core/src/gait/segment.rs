@@ -47,7 +47,7 @@ pub fn strides_with_turns(
     is_turn: &TurnTest,
 ) -> Result<Vec<Stride>> {
     let p = &params.0;
-    let leg = Leg::new(side, al, att, ev, p);
+    let leg = Leg::new(side, al, att, ev, params);
     let mut hs = ev.hs_s.clone();
     hs.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
     let mut out: Vec<Stride> = Vec::new();
@@ -95,6 +95,8 @@ struct Leg<'a> {
     att: &'a Attitude,
     ev: &'a Events,
     p: &'a StrideParams,
+    /// The sensor height the stride length uses, m (given or assumed).
+    height_m: f64,
     /// Samples of the attitude.
     n: usize,
     /// |ω|, deg/s, per sample (for the zero-velocity instant).
@@ -109,8 +111,9 @@ impl<'a> Leg<'a> {
         al: &'a Aligned,
         att: &'a Attitude,
         ev: &'a Events,
-        p: &'a StrideParams,
+        params: &'a ValidStrideParams,
     ) -> Self {
+        let p = &params.0;
         let n = att.pitch_deg.len();
         let w_norm: Vec<f64> = (0..n)
             .map(|i| {
@@ -124,6 +127,7 @@ impl<'a> Leg<'a> {
             att,
             ev,
             p,
+            height_m: params.sensor_height_m(),
             n,
             w_norm,
             tos: SortedTimes::new(&ev.to_s),
@@ -173,7 +177,7 @@ impl<'a> Leg<'a> {
         if turn {
             reasons.push(format!("turning ({dpsi:.0} deg heading change)"));
         }
-        let (length, length_note) = self.length(h0, h1, to, a);
+        let (length, length_note) = self.length(&self.span(h0, h1, to, a), self.height_m);
         Measured {
             stride: Stride {
                 stride_index: k,
@@ -228,34 +232,45 @@ impl<'a> Leg<'a> {
         rmx - rmn
     }
 
-    /// The stride length, m, between the zero-velocity instants after `h0` and `h1` s (sample
-    /// `a` is `h0`'s), NaN with the reason when it is withheld.
-    fn length(&self, h0: f64, h1: f64, to: f64, a: usize) -> (f64, Option<String>) {
-        let (att, st) = (self.att, h1 - h0);
-        let est = match (self.zero_velocity_after(h0), self.zero_velocity_after(h1)) {
-            (Some(z0), Some(z1)) if z1 > z0 + 1 => {
-                stride_length(self.al, att, z0, z1, self.p.sensor_height_m)
-            }
-            _ => LengthEstimate {
-                length_m: f64::NAN,
-                drift_mps: f64::NAN,
-                vertical_m: f64::NAN,
-                clipped_samples: 0,
-            },
+    /// What the length integration of the stride from the heel strike at `h0` s (sample `a`)
+    /// to the next at `h1` s, toe off at `to` s, reads whatever the sensor height.
+    fn span(&self, h0: f64, h1: f64, to: f64, a: usize) -> Span {
+        let att = self.att;
+        let zv = match (self.zero_velocity_after(h0), self.zero_velocity_after(h1)) {
+            (Some(z0), Some(z1)) if z1 > z0 + 1 => Some((z0, z1)),
+            _ => None,
         };
-        let pendulum = if to.is_finite() {
+        let pendulum_m = if to.is_finite() {
             pendulum_length_m(
                 att.pitch_deg[a],
                 att.pitch_deg[self.idx(to)],
-                (to - h0) / st,
+                (to - h0) / (h1 - h0),
             )
         } else {
             f64::NAN
         };
-        let note = if att.model == AttitudeModel::Acc {
+        Span { zv, pendulum_m }
+    }
+
+    /// The stride length over `span`, m, with the sensor `height_m` above the ankle, NaN with
+    /// the reason when it is withheld.
+    fn length(&self, span: &Span, height_m: f64) -> (f64, Option<String>) {
+        let est = match span.zv {
+            Some((z0, z1)) => stride_length(self.al, self.att, z0, z1, height_m),
+            None => LengthEstimate {
+                length_m: f64::NAN,
+                drift_mps: f64::NAN,
+                unexplained_mps: f64::NAN,
+                tilt_deg: f64::NAN,
+                vertical_m: f64::NAN,
+                clipped_samples: 0,
+                clip_step_m: 0.0,
+            },
+        };
+        let note = if self.att.model == AttitudeModel::Acc {
             Some(ACC_ONLY_LENGTH.to_string())
         } else {
-            est.implausible(pendulum)
+            est.implausible(span.pendulum_m)
         };
         let length = if note.is_some() {
             f64::NAN
@@ -264,6 +279,52 @@ impl<'a> Leg<'a> {
         };
         (length, note)
     }
+}
+
+/// What a stride's length integration reads besides the sensor height.
+struct Span {
+    /// Its two zero-velocity samples (`None` when not found).
+    zv: Option<(usize, usize)>,
+    /// The shank-pendulum estimate, m (NaN when unknown).
+    pendulum_m: f64,
+}
+
+/// The lengths of `strides` (segmented from these signals by [`strides`] or
+/// [`strides_with_turns`] with `params`) recomputed with the sensor at each of `heights_m`
+/// instead, m: per height, each valid stride's length through the same per-stride checks (the
+/// integration's, then its bout's median), NaN where withheld and for invalid strides. Only
+/// the length integration runs again: the zero-velocity instants (found once per stride),
+/// the attitude, the bouts and which strides are valid are the strides' own.
+pub fn lengths_at_heights(
+    side: Side,
+    al: &Aligned,
+    att: &Attitude,
+    ev: &Events,
+    params: &ValidStrideParams,
+    strides: &[Stride],
+    heights_m: &[f64],
+) -> Vec<Vec<f64>> {
+    let leg = Leg::new(side, al, att, ev, params);
+    let spans: Vec<Option<Span>> = strides
+        .iter()
+        .map(|s| {
+            s.valid.then(|| {
+                let a = leg.idx(s.hs_time_s);
+                leg.span(s.hs_time_s, s.next_hs_time_s, s.to_time_s, a)
+            })
+        })
+        .collect();
+    heights_m
+        .iter()
+        .map(|&h| {
+            let mut st = strides.to_vec();
+            for (s, span) in st.iter_mut().zip(&spans) {
+                s.stride_length_m = span.as_ref().map_or(f64::NAN, |sp| leg.length(sp, h).0);
+            }
+            withhold_length_outliers(&mut st, params.0.max_length_deviation);
+            st.iter().map(|s| s.stride_length_m).collect()
+        })
+        .collect()
 }
 
 /// Walking bouts: numbered from 0, split at pauses (a stride longer than `max_stride_s`) and at

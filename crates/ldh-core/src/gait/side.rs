@@ -162,6 +162,7 @@ fn withhold_side_length(out: &mut SideParameters, valid: &[&Stride], with_length
             ),
             ("clipped", "accelerometer clipped"),
             ("drift", "velocity drift"),
+            ("tilt correction", "attitude tilt correction too large"),
             ("floor", "ankle off the floor level"),
             ("pendulum", "disagrees with the shank-pendulum estimate"),
             ("median", "far from its bout's median"),

@@ -126,10 +126,12 @@ pub fn detect_clipping(ch: &[f64], range: Option<f64>, floor: f64) -> Vec<bool> 
         }
         return flags;
     }
+    // `v < lo` keeps what `f64::min` keeps (NaN is skipped, an equal value changes nothing but
+    // the sign of a zero extreme, which is below any floor) and vectorises
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for &v in ch {
-        lo = lo.min(v);
-        hi = hi.max(v);
+        lo = if v < lo { v } else { lo };
+        hi = if v > hi { v } else { hi };
     }
     for ext in [hi, lo] {
         if ext.abs() < floor {

@@ -148,13 +148,14 @@ fn parse_row<'l>(
     max_rows: usize,
 ) -> Result<bool> {
     let trimmed = line.trim();
-    if trimmed.is_empty()
-        || layout
-            .spec
-            .comment_prefixes
-            .iter()
-            .any(|p| trimmed.starts_with(p.as_str()))
-    {
+    let Some(&first) = trimmed.as_bytes().first() else {
+        return Ok(true);
+    };
+    // the first byte before the whole prefix: most lines start with a digit, no prefix does
+    let comment = |p: &String| {
+        p.as_bytes().first().is_none_or(|&c| c == first) && trimmed.starts_with(p.as_str())
+    };
+    if layout.spec.comment_prefixes.iter().any(comment) {
         return Ok(true);
     }
     split_fields(line, layout.delim, fields);

@@ -10,7 +10,10 @@ use crate::align::{align, Aligned, Alignment};
 use crate::attitude::{estimate, Attitude};
 use crate::error::Result;
 use crate::events::{detect, Events};
-use crate::gait::{side_parameters, strides, withhold_unvouched_lengths, SideParameters, Stride};
+use crate::gait::{
+    height_sensitivity, side_parameters, strides, withhold_unvouched_lengths, SideParameters,
+    Stride,
+};
 use crate::io::ReadReport;
 use crate::nonlinear::{gait_sta, GaitStaParams};
 use crate::preprocess::preprocess;
@@ -122,10 +125,20 @@ pub fn analyze_leg_checked(
     let omega = al.gyro_dps[1].clone();
     let ev = detect(&att.pitch_deg, &omega, fs, v.events())?;
     t.lap(Stage::Events, &mut clock);
-    let mut st = strides(side, &al, &att, &ev, &v.strides(sensor_height_m)?)?;
+    let sp = v.strides(sensor_height_m)?;
+    let mut st = strides(side, &al, &att, &ev, &sp)?;
     let before = side_parameters(&st, None);
-    let checks = leg_checks(rec, &al, &att, &mut st, &before);
+    let mut checks = leg_checks(rec, &al, &att, &mut st, &before);
     withhold_unvouched_lengths(&mut st);
+    // A length from an assumed sensor height: said, or withheld when it depends on it.
+    if let Some(h) = height_sensitivity(side, &al, &att, &ev, &sp, &st) {
+        let w = quality::sensor_height_warning(&h);
+        quality::apply_to_strides(&mut st, std::slice::from_ref(&w));
+        checks.warnings.push(w);
+        checks
+            .warnings
+            .sort_by_key(|x| std::cmp::Reverse(x.severity));
+    }
     let mut parameters = side_parameters(&st, None);
     t.lap(Stage::Strides, &mut clock);
     if params.compute_sta && !checks.gyro_fault {

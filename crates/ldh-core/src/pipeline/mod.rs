@@ -61,7 +61,9 @@ pub struct AnalysisParams {
     pub attitude: AttitudeParams,
     /// Event detection.
     pub events: EventParams,
-    /// Strides and stride length. `sensor_height_m` is overridden per subject by the manifest.
+    /// Strides and stride length. `sensor_height_m` is overridden per subject by the manifest;
+    /// when neither gives it, 0.10 m is assumed and checked (docs/quality.md
+    /// `sensor_height_unknown`).
     pub strides: StrideParams,
     /// Gait stability (STA).
     pub sta: GaitStaParams,
@@ -120,7 +122,7 @@ impl AnalysisParams {
             self.events.detector = d.parse()?;
         }
         if let Some(h) = sensor_height_m {
-            self.strides.sensor_height_m = h;
+            self.strides.sensor_height_m = Some(h);
         }
         if let Some(c) = compute_sta {
             self.compute_sta = c;
@@ -179,7 +181,10 @@ impl ValidAnalysisParams {
         &self.events
     }
     /// The checked stride parameters with a subject's sensor height, m, when it has one (the
-    /// height belongs to the subject, so it is checked here, at the call).
+    /// height belongs to the subject, so it is checked here, at the call). Without one, the
+    /// run's height applies, given or not ([`ValidStrideParams::sensor_height_given`]): a height
+    /// neither the subject nor the run gives is assumed, and the stride length is checked for
+    /// its dependence on it ([`crate::gait::height_sensitivity`]).
     pub fn strides(&self, sensor_height_m: Option<f64>) -> Result<ValidStrideParams> {
         match sensor_height_m {
             None => Ok(self.strides.clone()),

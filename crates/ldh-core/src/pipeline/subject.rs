@@ -292,7 +292,9 @@ fn heading_change(leg: &LegResult, t0: f64, t1: f64) -> Option<f64> {
 /// rotates both shanks at the same time, so a stride is a turn only when the other leg's
 /// heading also changes by more than half of `turn_deg` over the same interval (yaw drift on
 /// one leg is not a turn); on a treadmill (`input.setting`) no stride is a turn. With one leg,
-/// its own heading decides (as before).
+/// its own heading decides (as before). A heading from an attitude the checks do not vouch for
+/// ([`quality::discredits_attitude`]) decides nothing: the other leg's then decides alone (by
+/// `turn_deg`), and with neither no stride is taken for a turn.
 fn bilateral_turns(
     l: &mut LegRun,
     r: &mut LegRun,
@@ -300,12 +302,12 @@ fn bilateral_turns(
     params: &ValidAnalysisParams,
 ) {
     let treadmill = input.setting == Some(crate::recording::Setting::Treadmill);
+    let vouched = |leg: &LegResult| !leg.warnings.iter().any(quality::discredits_attitude);
     let (Ok((ll, _)), Ok((rl, _))) = (&*l, &*r) else {
-        if !treadmill {
-            return;
-        }
         for (leg, _) in [l, r].into_iter().flatten() {
-            resegment(leg, input, params, &|_, _, _| false);
+            if treadmill || !vouched(leg) {
+                resegment(leg, input, params, &|_, _, _| false);
+            }
         }
         return;
     };
@@ -314,11 +316,17 @@ fn bilateral_turns(
     for (x, other) in [(l, &rl), (r, &ll)] {
         let Ok((leg, _)) = x else { continue };
         let shift = leg.t0_s - other.t0_s;
-        let test = |h0: f64, h1: f64, d: f64| {
-            !treadmill
-                && d.abs() > turn_deg
-                && heading_change(other, h0 + shift, h1 + shift)
-                    .is_none_or(|o| o.abs() > 0.5 * turn_deg)
+        let (own_ok, other_ok) = (vouched(leg), vouched(other));
+        let other_turns = |h0: f64, h1: f64, by: f64| {
+            heading_change(other, h0 + shift, h1 + shift).is_none_or(|o| o.abs() > by)
+        };
+        let test = |h0: f64, h1: f64, d: f64| match (treadmill, own_ok, other_ok) {
+            (true, _, _) | (false, false, false) => false,
+            (false, true, true) => d.abs() > turn_deg && other_turns(h0, h1, 0.5 * turn_deg),
+            (false, true, false) => d.abs() > turn_deg,
+            (false, false, true) => {
+                heading_change(other, h0 + shift, h1 + shift).is_some_and(|o| o.abs() > turn_deg)
+            }
         };
         resegment(leg, input, params, &test);
     }

@@ -194,7 +194,8 @@ proptest! {
 
 /// A heel-strike-like deceleration that the |a| outlier rule flags is interpolated in `acc_g`
 /// (the paper's preprocessing) but kept in `acc_motion_g` (what the stride length integrates);
-/// a clipped sample is replaced in both, and without outliers nothing extra is stored.
+/// a clipped run is interpolated in `acc_g` and reconstructed in `acc_motion_g`, and with
+/// neither nothing extra is stored.
 #[test]
 fn motion_acceleration_keeps_magnitude_outliers_and_replaces_clipped_samples() {
     let n = 200;
@@ -220,21 +221,48 @@ fn motion_acceleration_keeps_magnitude_outliers_and_replaces_clipped_samples() {
     let area = |v: &[f64]| v[95..112].iter().sum::<f64>() - (95..112).map(quiet).sum::<f64>();
     assert!(area(&pre.acc_g[0]).abs() < 1.0, "{}", area(&pre.acc_g[0]));
     assert!((area(&motion[0]) - 9.0).abs() < 0.3, "{}", area(&motion[0]));
-    // Only clipped samples replaced: the motion acceleration is acc_g itself.
-    let mut clipped = vec![false; n];
-    for c in clipped.iter_mut().skip(100).take(6) {
-        *c = true;
-    }
-    let rec = rec.with_sensor_saturation(clipped, vec![false; n]).unwrap();
-    let pre = preprocess(&rec, &p).unwrap();
-    assert_eq!(pre.acc_clipped, (100..106).collect::<Vec<_>>());
-    assert_eq!(pre.acc_motion_g, None);
-    // Replacement off: nothing is replaced anywhere, nothing extra stored.
+    // A broader 1.6 g bump (a swing deceleration, SD 60 ms) read by a ±2 g accelerometer: acc_g
+    // interpolates the clipped run (the paper), the motion acceleration reconstructs it
+    // (`declip`), with or without outlier replacement.
+    let bump = |i: usize| 1.6 * (-((i as f64 - 102.5) / 6.0).powi(2) / 2.0).exp();
+    let ax: Vec<f64> = (0..n).map(|i| (quiet(i) + bump(i)).min(2.0)).collect();
+    let clipped: Vec<bool> = ax.iter().map(|&x| x >= 2.0).collect();
+    let rec = Recording::new(
+        100.0,
+        [ax, zeros(), zeros()],
+        [zeros(), zeros(), zeros()],
+        vec![],
+    )
+    .unwrap()
+    .with_sensor_saturation(clipped.clone(), vec![false; n])
+    .unwrap();
+    let truth: f64 = (80..126).map(bump).sum();
     let off = PreprocessParams {
         replace_outliers: false,
         ..PreprocessParams::default()
     }
     .check(100.0)
+    .unwrap();
+    for p in [&p, &off] {
+        let pre = preprocess(&rec, p).unwrap();
+        let run: Vec<usize> = (0..n).filter(|&i| clipped[i]).collect();
+        assert!(run.len() >= 3 && pre.acc_clipped == run, "{run:?}");
+        let area = |v: &[f64]| v[80..126].iter().sum::<f64>() - (80..126).map(quiet).sum::<f64>();
+        let motion = pre
+            .acc_motion_g
+            .as_ref()
+            .expect("clipped samples reconstructed");
+        // at least half of the area the paper's signal loses comes back
+        let (lost, left) = (truth - area(&pre.acc_g[0]), truth - area(&motion[0]));
+        assert!(lost > 1.0 && left.abs() < 0.5 * lost, "{left} of {lost}");
+    }
+    // Nothing clipped and replacement off: nothing extra stored.
+    let rec = Recording::new(
+        100.0,
+        [vec![1.0; n], zeros(), zeros()],
+        [zeros(), zeros(), zeros()],
+        vec![],
+    )
     .unwrap();
     assert_eq!(preprocess(&rec, &off).unwrap().acc_motion_g, None);
 }

@@ -169,6 +169,7 @@ def simulate_cohort(
     rate_hz: float = 100.0,
     turn: bool = True,
     slow_ldh: int = 0,
+    acc_range_g: float = 8.0,
 ) -> str:
     """Simulate a cohort into ``out`` exactly as ``ldh simulate`` does (subject folders,
     ``manifest.csv`` and ``cohort.json``); returns the manifest CSV text. The same seed gives
@@ -178,6 +179,10 @@ def simulate_cohort(
     of 1.35–2.0 s; ids ``S01``…, after the others), as ``ldh simulate --slow-ldh``; they need
     ``seconds >= 20``. Each has its own random stream, so adding them leaves the other
     subjects' files unchanged.
+
+    ``acc_range_g`` is the accelerometer's range (±g) as ``ldh simulate --acc-range-g``: 2 makes
+    the swing and heel-strike accelerations clip as HuGaDB's ±2 g devices do (the stride length
+    then reconstructs the clipped samples, docs/accuracy.md); the default 8 never clips.
 
     Sizes beyond the core's declared limits (100 000 subjects; 1 000 000 samples per leg,
     i.e. ``seconds * rate_hz``) raise :class:`LdhParamError` (a ``ValueError``) before any
@@ -194,7 +199,7 @@ def simulate_cohort(
         raise LdhParamError(f"seed must be below 2**64, got {seed!r}")
     return _ldh.simulate_cohort(
         os.fspath(out), int(healthy), int(ldh), float(seconds), int(seed), float(rate_hz), bool(turn),
-        int(slow_ldh),
+        int(slow_ldh), float(acc_range_g),
     )
 
 

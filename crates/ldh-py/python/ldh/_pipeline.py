@@ -82,7 +82,11 @@ def analyze(
     compute_sta : bool, optional
         Compute the Lyapunov stability STA (default True).
     sensor_height_m : float, optional
-        Sensor height above the ankle when the manifest has none, in metres (default 0.10).
+        Sensor height above the ankle when the manifest has none, in metres. Default: not
+        given; 0.10 m is then assumed and each leg gets a ``sensor_height_unknown`` finding in
+        ``.warnings``: a note when its median stride length moves by at most 15 % over
+        0.05-0.35 m, else a warning, and its stride length, speed and their variability are
+        withheld (docs/quality.md).
     n_jobs : int or None, default 1
         Rust threads for the subjects (the GIL is released); ``None`` or ``-1``: all cores.
         More than the machine's cores is lowered to the cores with an :class:`LdhWarning`
@@ -201,6 +205,9 @@ def analyze_pair(
         rates that differ by more than 0.5 % give a warning, not an error.
     subject_id : str, default "subject"
         The subject's id in the tables.
+    sensor_height_m : float, optional
+        Sensor height above the ankle, m; not given: 0.10 m assumed and checked, as in
+        :func:`analyze` (``sensor_height_unknown`` in ``.warnings``).
     setting : {"overground", "treadmill"}, optional
         Where the walk happened (default: not said, analysed as overground); on a treadmill
         no stride is flagged as a turn.
@@ -253,7 +260,8 @@ def analyze_recording(
     detector : str
         Event detector.
     sensor_height_m : float
-        Sensor height above the ankle, m.
+        Sensor height above the ankle, m; when not given, 0.10 m is assumed and checked
+        (``sensor_height_unknown`` in ``warnings``, as for :func:`analyze`).
     compute_sta : bool
         Compute the Lyapunov stability STA.
     setting : {"overground", "treadmill"}, optional

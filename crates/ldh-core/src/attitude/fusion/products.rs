@@ -5,78 +5,120 @@
 //! Every entry is summed over the same terms in the same order as nalgebra's dense product
 //! (k ascending, `c = a₀b₀ + a₁b₁ + …`), leaving out only terms whose factor is an exact 0
 //! (adding ±0 changes at most the sign of a zero) and writing `1·x` as `x`, so the results are
-//! those of the dense products bit for bit (tested below against nalgebra).
+//! those of the dense products bit for bit (tested below against nalgebra). They are generic
+//! over [`Num`]: on `f64` one filter, on [`super::lanes::L4`] four filters lane by lane with
+//! the same operations.
 
-use super::{M5x2, M5};
-use nalgebra::Matrix2;
+use super::lanes::{array, Num};
+use super::M5;
+
+/// A 5 × 5 matrix as rows, `m[i][j]`, of any [`Num`] (one filter or four).
+pub(super) type Mat<T> = [[T; 5]; 5];
+
+/// The entries of F that are not structural: `f[(0..3, 0..2)]`, `f[(0, 3)]`, `f[(0..3, 4)]`.
+#[derive(Clone, Copy)]
+pub(super) struct Jacobian<T> {
+    /// `F[0..3][0..2]`.
+    pub(super) a: [[T; 2]; 3],
+    /// `F[0][3]`.
+    pub(super) b03: T,
+    /// `F[0..3][4]`.
+    pub(super) b4: [T; 3],
+}
+
+impl Jacobian<f64> {
+    /// The dense F (for nalgebra's products and the scalar fallbacks).
+    pub(super) fn dense(&self) -> M5 {
+        let mut f = M5::identity();
+        for i in 0..3 {
+            for j in 0..2 {
+                f[(i, j)] = self.a[i][j];
+            }
+            f[(i, 4)] = self.b4[i];
+        }
+        f[(0, 3)] = self.b03;
+        // F[0][2] and F[1][2] are 0 + 0·dt, F[1][1] and F[2][2] 1 + 0·dt: as the identity
+        f
+    }
+}
+
+/// A nalgebra matrix as rows.
+pub(super) fn rows(m: &M5) -> Mat<f64> {
+    std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]))
+}
+
+/// Rows as a nalgebra matrix.
+pub(super) fn matrix(a: &Mat<f64>) -> M5 {
+    M5::from_fn(|i, j| a[i][j])
+}
 
 /// F P Fᵀ for the transition matrix of [`super::predict`]: F = I except `F[0..3, 0..2]`
 /// (the Euler-rate Jacobian; its third column is zero and `F[1][1]` = 1), `F[0][3]` and
 /// `F[0..3][4]` (the bias columns).
-pub(super) fn propagate(f: &M5, p: &M5) -> M5 {
-    let mut a = M5::zeros();
+#[inline(always)]
+pub(super) fn propagate<T: Num>(f: &Jacobian<T>, p: &Mat<T>) -> Mat<T> {
+    let (a, b03, b4) = (&f.a, f.b03, &f.b4);
+    let mut fp = *p;
     for j in 0..5 {
-        a[(0, j)] = ((f[(0, 0)] * p[(0, j)] + f[(0, 1)] * p[(1, j)]) + f[(0, 3)] * p[(3, j)])
-            + f[(0, 4)] * p[(4, j)];
-        a[(1, j)] = (f[(1, 0)] * p[(0, j)] + p[(1, j)]) + f[(1, 4)] * p[(4, j)];
-        a[(2, j)] =
-            ((f[(2, 0)] * p[(0, j)] + f[(2, 1)] * p[(1, j)]) + p[(2, j)]) + f[(2, 4)] * p[(4, j)];
-        a[(3, j)] = p[(3, j)];
-        a[(4, j)] = p[(4, j)];
+        fp[0][j] = ((a[0][0] * p[0][j] + a[0][1] * p[1][j]) + b03 * p[3][j]) + b4[0] * p[4][j];
+        fp[1][j] = (a[1][0] * p[0][j] + p[1][j]) + b4[1] * p[4][j];
+        fp[2][j] = ((a[2][0] * p[0][j] + a[2][1] * p[1][j]) + p[2][j]) + b4[2] * p[4][j];
     }
-    times_ft(&a, f)
+    times_ft(&fp, f)
 }
 
 /// A Fᵀ for F as in [`propagate`].
-pub(super) fn times_ft(a: &M5, f: &M5) -> M5 {
-    let mut b = M5::zeros();
-    for i in 0..5 {
-        b[(i, 0)] = ((a[(i, 0)] * f[(0, 0)] + a[(i, 1)] * f[(0, 1)]) + a[(i, 3)] * f[(0, 3)])
-            + a[(i, 4)] * f[(0, 4)];
-        b[(i, 1)] = (a[(i, 0)] * f[(1, 0)] + a[(i, 1)]) + a[(i, 4)] * f[(1, 4)];
-        b[(i, 2)] =
-            ((a[(i, 0)] * f[(2, 0)] + a[(i, 1)] * f[(2, 1)]) + a[(i, 2)]) + a[(i, 4)] * f[(2, 4)];
-        b[(i, 3)] = a[(i, 3)];
-        b[(i, 4)] = a[(i, 4)];
+#[inline(always)]
+pub(super) fn times_ft<T: Num>(m: &Mat<T>, f: &Jacobian<T>) -> Mat<T> {
+    let (a, b03, b4) = (&f.a, f.b03, &f.b4);
+    let mut b = *m;
+    for row in b.iter_mut() {
+        let r = *row;
+        row[0] = ((r[0] * a[0][0] + r[1] * a[0][1]) + r[3] * b03) + r[4] * b4[0];
+        row[1] = (r[0] * a[1][0] + r[1]) + r[4] * b4[1];
+        row[2] = ((r[0] * a[2][0] + r[1] * a[2][1]) + r[2]) + r[4] * b4[2];
     }
     b
 }
 
 /// The Kalman gain K = P Hᵀ S⁻¹ for H selecting the first two states.
-pub(super) fn gain(pp: &M5, s_inv: &Matrix2<f64>) -> M5x2 {
-    let mut k = M5x2::zeros();
-    for j in 0..2 {
-        for i in 0..5 {
-            k[(i, j)] = pp[(i, 0)] * s_inv[(0, j)] + pp[(i, 1)] * s_inv[(1, j)];
-        }
-    }
-    k
+#[inline(always)]
+pub(super) fn gain<T: Num>(pp: &Mat<T>, s_inv: &[[T; 2]; 2]) -> [[T; 2]; 5] {
+    array(|i| array(|j| pp[i][0] * s_inv[0][j] + pp[i][1] * s_inv[1][j]))
 }
 
 /// The Joseph-form update (I − KH) P (I − KH)ᵀ + K R Kᵀ for H selecting the first two states
-/// and a diagonal R.
-pub(super) fn joseph(pp: &M5, kg: &M5x2, rk: &Matrix2<f64>) -> M5 {
-    // I − KH: columns 0 and 1 are e_j − K_j, the others those of I
-    let ikh = |i: usize, j: usize| f64::from(u8::from(i == j)) - kg[(i, j)];
-    let mut a = M5::zeros();
-    for j in 0..5 {
-        for i in 0..5 {
-            let t = ikh(i, 0) * pp[(0, j)] + ikh(i, 1) * pp[(1, j)];
-            a[(i, j)] = if i >= 2 { t + pp[(i, j)] } else { t };
-        }
-    }
-    let mut out = M5::zeros();
-    for j in 0..5 {
-        for i in 0..5 {
-            let t = a[(i, 0)] * ikh(j, 0) + a[(i, 1)] * ikh(j, 1);
-            let b = if j >= 2 { t + a[(i, j)] } else { t };
-            // K R Kᵀ with R diagonal
-            let c0 = kg[(i, 0)] * rk[(0, 0)];
-            let c1 = kg[(i, 1)] * rk[(1, 1)];
-            out[(i, j)] = b + (c0 * kg[(j, 0)] + c1 * kg[(j, 1)]);
-        }
-    }
+/// and R = diag(`rk`).
+#[inline(always)]
+#[cfg(test)]
+pub(super) fn joseph<T: Num>(pp: &Mat<T>, kg: &[[T; 2]; 5], rk: [T; 2]) -> Mat<T> {
+    let mut out = *pp;
+    joseph_into(pp, kg, rk, &mut out);
     out
+}
+
+/// [`joseph`] written into `out` (the filter's covariance itself: no copy of the result).
+#[inline(always)]
+pub(super) fn joseph_into<T: Num>(pp: &Mat<T>, kg: &[[T; 2]; 5], rk: [T; 2], out: &mut Mat<T>) {
+    // I − KH: columns 0 and 1 are e_j − K_j, the others those of I
+    let ikh: [[T; 2]; 5] = array(|i| array(|j| T::splat(f64::from(u8::from(i == j))) - kg[i][j]));
+    let mut a = *pp;
+    for i in 0..5 {
+        for j in 0..5 {
+            let t = ikh[i][0] * pp[0][j] + ikh[i][1] * pp[1][j];
+            a[i][j] = if i >= 2 { t + pp[i][j] } else { t };
+        }
+    }
+    for i in 0..5 {
+        // K R Kᵀ with R diagonal
+        let c0 = kg[i][0] * rk[0];
+        let c1 = kg[i][1] * rk[1];
+        for j in 0..5 {
+            let t = a[i][0] * ikh[j][0] + a[i][1] * ikh[j][1];
+            let b = if j >= 2 { t + a[i][j] } else { t };
+            out[i][j] = b + (c0 * kg[j][0] + c1 * kg[j][1]);
+        }
+    }
 }
 
 /// `m.try_inverse()` bit for bit, for a 5 × 5 matrix: nalgebra's LU with partial pivoting
@@ -166,6 +208,7 @@ pub(super) fn lu_inverse(m: &M5) -> Option<M5> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::Matrix2;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
@@ -221,37 +264,45 @@ mod tests {
         let mut h = nalgebra::SMatrix::<f64, 2, 5>::zeros();
         h[(0, 0)] = 1.0;
         h[(1, 1)] = 1.0;
+        let flat = |m: &Mat<f64>| bits(matrix(m).as_slice());
         for _ in 0..2000 {
             let mut p = M5::zeros();
             p.iter_mut().for_each(|v| *v = r(1.0));
-            let mut f = M5::identity();
             let dt = 0.01;
-            for (i, j) in [(0, 0), (0, 1), (1, 0), (2, 0), (2, 1)] {
-                f[(i, j)] += r(50.0) * dt;
-            }
-            for (i, j) in [(0, 3), (0, 4), (1, 4), (2, 4)] {
-                f[(i, j)] = r(2.0) * dt;
-            }
+            let jac = Jacobian {
+                a: std::array::from_fn(|i| {
+                    std::array::from_fn(|j| f64::from(u8::from(i == j)) + r(50.0) * dt)
+                }),
+                b03: r(2.0) * dt,
+                b4: std::array::from_fn(|_| r(2.0) * dt),
+            };
+            let mut jac = jac;
+            jac.a[1][1] = 1.0;
+            let f = jac.dense();
+            let pr = rows(&p);
             assert_eq!(
-                bits(propagate(&f, &p).as_slice()),
+                flat(&propagate(&jac, &pr)),
                 bits((f * p * f.transpose()).as_slice())
             );
             assert_eq!(
-                bits(times_ft(&p, &f).as_slice()),
+                flat(&times_ft(&pr, &jac)),
                 bits((p * f.transpose()).as_slice())
             );
             let mut s_inv = Matrix2::zeros();
             s_inv.iter_mut().for_each(|v| *v = r(100.0));
-            let kg = gain(&p, &s_inv);
-            assert_eq!(
-                bits(kg.as_slice()),
-                bits((p * h.transpose() * s_inv).as_slice())
-            );
+            let si = [
+                [s_inv[(0, 0)], s_inv[(0, 1)]],
+                [s_inv[(1, 0)], s_inv[(1, 1)]],
+            ];
+            let kg = gain(&pr, &si);
+            let kn = p * h.transpose() * s_inv;
+            let kgm = nalgebra::SMatrix::<f64, 5, 2>::from_fn(|i, j| kg[i][j]);
+            assert_eq!(bits(kgm.as_slice()), bits(kn.as_slice()));
             let rk = Matrix2::new(r(1.0).abs(), 0.0, 0.0, r(1.0).abs());
-            let ikh = M5::identity() - kg * h;
-            let dense = ikh * p * ikh.transpose() + kg * rk * kg.transpose();
+            let ikh = M5::identity() - kn * h;
+            let dense = ikh * p * ikh.transpose() + kn * rk * kn.transpose();
             assert_eq!(
-                bits(joseph(&p, &kg, &rk).as_slice()),
+                flat(&joseph(&pr, &kg, [rk[(0, 0)], rk[(1, 1)]])),
                 bits(dense.as_slice())
             );
         }

@@ -2,7 +2,10 @@
 //! 1965;3:1445), run per filter and fused with the forward weights, in bounded memory: the
 //! forward pass keeps checkpoints and the current segment only ([`SEGMENT`]).
 
-use super::{predict, weighted, wrap, Angles, Bank, Model, SinCos, Vector3, M5, V5};
+use super::bank::Bank;
+use super::lanes::{array, Num, L4, LANES};
+use super::products::{lu_inverse, matrix, rows, times_ft, Jacobian, Mat};
+use super::{predict, predict_n, weighted, wrap, Angles, Model, SinCos, M5, V5};
 
 /// Samples per segment of the smoother's storage. The forward pass keeps a checkpoint of the
 /// bank (a few hundred bytes per filter) at the start of every segment and the filtered states
@@ -15,28 +18,31 @@ use super::{predict, weighted, wrap, Angles, Bank, Model, SinCos, Vector3, M5, V
 pub(super) const SEGMENT: usize = 1 << 13;
 
 /// Filtered states (with the sines and cosines of their tilt) and covariances of one segment,
-/// filter-major within a sample, and the bank's weights; preallocated once and reused for
+/// group-major within a sample, and the bank's weights; preallocated once and reused for
 /// every segment.
 pub(super) struct SegmentStore {
     nf: usize,
+    groups: usize,
     steps: Vec<Filtered>,
     ws: Vec<f64>,
 }
 
-/// One filter's filtered state at one sample, kept together: the backward pass reads them in
+/// One group's filtered states at one sample, kept together: the backward pass reads them in
 /// one descending stream (separate arrays of states and covariances stalled it on memory).
 struct Filtered {
-    x: V5,
-    sc: SinCos,
-    p: M5,
+    x: [L4; 5],
+    sc: SinCos<L4>,
+    p: Mat<L4>,
 }
 
 impl SegmentStore {
-    pub(super) fn new(nf: usize, len: usize) -> SegmentStore {
+    pub(super) fn new(bank: &Bank, len: usize) -> SegmentStore {
+        let groups = bank.groups.len();
         SegmentStore {
-            nf,
-            steps: Vec::with_capacity(nf * len),
-            ws: Vec::with_capacity(nf * len),
+            nf: bank.len(),
+            groups,
+            steps: Vec::with_capacity(groups * len),
+            ws: Vec::with_capacity(bank.len() * len),
         }
     }
 
@@ -46,13 +52,11 @@ impl SegmentStore {
     }
 
     pub(super) fn push(&mut self, bank: &Bank) {
-        for f in &bank.filters {
-            self.steps.push(Filtered {
-                x: f.x,
-                sc: f.sc,
-                p: f.p,
-            });
-        }
+        self.steps.extend(bank.groups.iter().map(|g| Filtered {
+            x: g.x,
+            sc: g.sc,
+            p: g.p,
+        }));
         self.ws.extend_from_slice(&bank.weights);
     }
 
@@ -79,9 +83,9 @@ pub(super) fn smooth(
     out: &mut Angles,
 ) {
     let n = out.roll.len();
-    let nf = store.nf;
-    // The smoothed state of each filter at the sample after the current one.
-    let mut next: Vec<V5> = Vec::with_capacity(nf);
+    let (nf, ng) = (store.nf, store.groups);
+    // The smoothed states of each group at the sample after the current one.
+    let mut next: Vec<[L4; 5]> = Vec::with_capacity(ng);
     for (s, checkpoint) in checkpoints.iter().enumerate().rev() {
         let k0 = s * seg_len;
         let k1 = (k0 + seg_len).min(n);
@@ -89,22 +93,91 @@ pub(super) fn smooth(
             store.refill(m, checkpoint, k0, k1);
         }
         for k in (k0..k1).rev() {
-            let j = (k - k0) * nf;
+            let j = (k - k0) * ng;
+            let steps = &store.steps[j..j + ng];
             if k == n - 1 {
-                next.extend(store.steps[j..j + nf].iter().map(|s| s.x));
+                next.extend(steps.iter().map(|s| s.x));
             } else {
-                let wm = m.w_mid(k + 1);
-                for (xs, f) in next.iter_mut().zip(&store.steps[j..j + nf]) {
-                    *xs = rts_step(&f.x, &f.sc, &f.p, xs, &wm, m);
-                }
+                rts_groups(&mut next, steps, &m.w_mid(k + 1), m);
             }
-            out.set(k, &weighted(&next, &store.ws[j..j + nf]));
+            let state = |i: usize| V5::from_fn(|r, _| next[i / LANES][r].0[i % LANES]);
+            out.set(k, &weighted(nf, state, &store.ws[(k - k0) * nf..][..nf]));
         }
     }
 }
 
-/// One RTS step: the smoothed state at k from the filtered state and covariance at k and the
-/// smoothed state at k + 1 (the filtered state when the predicted covariance is singular).
+/// [`rts_step_lanes`] of every group, in an AVX2 clone where the CPU has it (as the forward
+/// step, `bank::step_groups`).
+#[multiversion::multiversion(targets("x86_64+avx2"))]
+fn rts_groups(next: &mut [[L4; 5]], steps: &[Filtered], wm: &[f64; 3], m: &Model) {
+    for (xs, f) in next.iter_mut().zip(steps) {
+        *xs = rts_step_lanes(f, xs, wm, m);
+    }
+}
+
+/// [`rts_step`] of a group of four filters: the lanes whose predicted covariance is not
+/// numerically positive definite go through the scalar fallback.
+#[inline(always)]
+fn rts_step_lanes(f: &Filtered, xs_next: &[L4; 5], wm: &[f64; 3], m: &Model) -> [L4; 5] {
+    let (xp, pp, fj) = predict_n(&f.x, &f.sc, &f.p, wm, m.dt, &m.q);
+    let mut diff: [L4; 5] = array(|i| xs_next[i] - xp[i]);
+    diff[2] = diff[2].wrap();
+    let mut ok = [true; LANES];
+    let y = spd_solve_n(&pp, &diff, |d: L4| {
+        for l in 0..LANES {
+            ok[l] &= d.0[l] > 0.0;
+        }
+    });
+    let mut xs = correct(&f.x, &f.p, &fj, &y);
+    for l in (0..LANES).filter(|l| !ok[*l]) {
+        let lane = |v: &[L4; 5]| V5::from_fn(|r, _| v[r].0[l]);
+        let pf = M5::from_fn(|r, c| f.p[r][c].0[l]);
+        let x = rts_step(&lane(&f.x), &f.sc.lane(l), &pf, &lane(xs_next), wm, m);
+        for r in 0..5 {
+            xs[r].0[l] = x[r];
+        }
+    }
+    xs
+}
+
+/// x̂ + P (Fᵀ y), with nalgebra's operations: `tr_mul` sums each column's dot product from
+/// +0 in ascending order, the matrix-vector product each row from its first term.
+#[inline(always)]
+fn correct<T: Num>(xf: &[T; 5], pf: &Mat<T>, fj: &Jacobian<T>, y: &[T; 5]) -> [T; 5] {
+    let f = dense(fj);
+    let v: [T; 5] = array(|i| {
+        let mut s = T::splat(0.0);
+        for (row, yk) in f.iter().zip(y) {
+            s = s + row[i] * *yk;
+        }
+        s
+    });
+    array(|i| {
+        let mut s = pf[i][0] * v[0];
+        for k in 1..5 {
+            s = s + pf[i][k] * v[k];
+        }
+        xf[i] + s
+    })
+}
+
+/// The dense F of [`super::predict_n`]: the identity's 0 and 1 where F is structural.
+#[inline(always)]
+fn dense<T: Num>(fj: &Jacobian<T>) -> Mat<T> {
+    let (z, o) = (T::splat(0.0), T::splat(1.0));
+    let a = &fj.a;
+    [
+        [a[0][0], a[0][1], z, fj.b03, fj.b4[0]],
+        [a[1][0], o, z, z, fj.b4[1]],
+        [a[2][0], a[2][1], o, z, fj.b4[2]],
+        [z, z, z, o, z],
+        [z, z, z, z, o],
+    ]
+}
+
+/// One RTS step of one filter: the smoothed state at k from the filtered state and covariance
+/// at k and the smoothed state at k + 1 (the filtered state when the predicted covariance is
+/// singular).
 ///
 /// Only C (x̂ₛ − x̂ₚ) is needed, C = P Fᵀ P_pred⁻¹, so P_pred y = x̂ₛ − x̂ₚ is solved by
 /// Cholesky ([`spd_solve`]) and the correction is P Fᵀ y, instead of forming P_pred⁻¹ and the
@@ -121,7 +194,7 @@ pub(super) fn rts_step(
     sc: &SinCos,
     pf: &M5,
     xs_next: &V5,
-    wm: &Vector3<f64>,
+    wm: &[f64; 3],
     m: &Model,
 ) -> V5 {
     let (xp, pp, fj) = predict(xf, sc, pf, wm, m.dt, &m.q);
@@ -129,11 +202,21 @@ pub(super) fn rts_step(
     diff[2] = wrap(diff[2]);
     match spd_solve(&pp, &diff) {
         Some(y) => xf + pf * fj.tr_mul(&y),
-        None => match super::products::lu_inverse(&pp) {
-            Some(inv) => xf + (super::products::times_ft(pf, &fj) * inv) * diff,
+        None => match lu_inverse(&pp) {
+            Some(inv) => xf + (times_ft_dense(pf, &fj) * inv) * diff,
             None => *xf,
         },
     }
+}
+
+/// P Fᵀ for a dense F of [`predict`].
+pub(super) fn times_ft_dense(pf: &M5, f: &M5) -> M5 {
+    let jac = Jacobian {
+        a: std::array::from_fn(|i| std::array::from_fn(|j| f[(i, j)])),
+        b03: f[(0, 3)],
+        b4: std::array::from_fn(|i| f[(i, 4)]),
+    };
+    matrix(&times_ft(&rows(pf), &jac))
 }
 
 /// x with A x = b for a symmetric positive definite A (its lower triangle is read), by
@@ -141,43 +224,52 @@ pub(super) fn rts_step(
 /// definite. Written out for the fixed 5 × 5 size: nalgebra's generic `cholesky().solve()`
 /// took three times as long here.
 pub(super) fn spd_solve(a: &M5, b: &V5) -> Option<V5> {
-    let mut l = [[0.0f64; 5]; 5];
-    let mut inv_d = [0.0f64; 5];
+    let mut ok = true;
+    let bb: [f64; 5] = std::array::from_fn(|i| b[i]);
+    let y = spd_solve_n(&rows(a), &bb, |d: f64| ok &= d > 0.0);
+    ok.then(|| V5::from(y))
+}
+
+/// [`spd_solve`] of one system or four; `pivot` is shown every pivot before its square root,
+/// which must be > 0 (the result is meaningless otherwise).
+#[inline(always)]
+fn spd_solve_n<T: Num>(a: &Mat<T>, b: &[T; 5], mut pivot: impl FnMut(T)) -> [T; 5] {
+    let z = T::splat(0.0);
+    let mut l = [[z; 5]; 5];
+    let mut inv_d = [z; 5];
     for j in 0..5 {
-        let mut d = a[(j, j)];
+        let mut d = a[j][j];
         for k in 0..j {
-            d -= l[j][k] * l[j][k];
+            d = d - l[j][k] * l[j][k];
         }
-        if !(d > 0.0) {
-            return None;
-        }
+        pivot(d);
         let ljj = d.sqrt();
-        inv_d[j] = 1.0 / ljj;
+        inv_d[j] = T::splat(1.0) / ljj;
         for i in j + 1..5 {
-            let mut s = a[(i, j)];
+            let mut s = a[i][j];
             for k in 0..j {
-                s -= l[i][k] * l[j][k];
+                s = s - l[i][k] * l[j][k];
             }
             l[i][j] = s * inv_d[j];
         }
     }
-    let mut z = [0.0f64; 5];
+    let mut zv = [z; 5];
     for i in 0..5 {
         let mut s = b[i];
         for k in 0..i {
-            s -= l[i][k] * z[k];
+            s = s - l[i][k] * zv[k];
         }
-        z[i] = s * inv_d[i];
+        zv[i] = s * inv_d[i];
     }
-    let mut y = V5::zeros();
+    let mut y = [z; 5];
     for i in (0..5).rev() {
-        let mut s = z[i];
+        let mut s = zv[i];
         for k in i + 1..5 {
-            s -= l[k][i] * y[k];
+            s = s - l[k][i] * y[k];
         }
         y[i] = s * inv_d[i];
     }
-    Some(y)
+    y
 }
 
 #[cfg(test)]

@@ -7,9 +7,10 @@
 //! smoothed angles then depend on rounding) are exactly the legs whose gyroscope the quality
 //! checks reject, so no reported angle comes from an undetermined smoother.
 
-use super::products::{lu_inverse, times_ft};
-use super::rts::rts_step;
-use super::{predict, weighted, wrap, Bank, Model, SinCos, M5, V5};
+use super::bank::Bank;
+use super::products::lu_inverse;
+use super::rts::{rts_step, times_ft_dense};
+use super::{predict, weighted, wrap, Model, SinCos, M5, V5};
 use crate::align::{align, AlignParams};
 use crate::attitude::AttitudeParams;
 use crate::io::{read_recording, FormatSpec, ReadParams};
@@ -78,7 +79,11 @@ fn smooth_with(
     let set = |out: &mut Vec<[f64; 3]>, k: usize, x: &V5| {
         out[k] = [x[0].to_degrees(), x[1].to_degrees(), x[2].to_degrees()];
     };
-    set(&mut out, n - 1, &weighted(&next, &ws[n - 1]));
+    set(
+        &mut out,
+        n - 1,
+        &weighted(next.len(), |i| next[i], &ws[n - 1]),
+    );
     for k in (0..n - 1).rev() {
         let wm = m.w_mid(k + 1);
         for (xs, f) in next.iter_mut().zip(&steps[k]) {
@@ -92,12 +97,12 @@ fn smooth_with(
             let mut diff = *xs - xp;
             diff[2] = wrap(diff[2]);
             *xs = match method {
-                Method::Inverse => f.x + (times_ft(&f.p, &fj) * inv) * diff,
+                Method::Inverse => f.x + (times_ft_dense(&f.p, &fj) * inv) * diff,
                 Method::Shipped => rts_step(&f.x, &f.sc, &f.p, xs, &wm, m),
                 Method::Reference => f.x + f.p * fj.tr_mul(&reference_solve(&pp, &inv, &diff)),
             };
         }
-        set(&mut out, k, &weighted(&next, &ws[k]));
+        set(&mut out, k, &weighted(next.len(), |i| next[i], &ws[k]));
     }
     (out, worst_cond)
 }
@@ -122,7 +127,7 @@ const SINGULAR_COND: f64 = 1e12;
 
 #[test]
 fn the_smoother_is_exact_on_every_hugadb_leg_whose_gyroscope_is_accepted() {
-    let Some(dir) = crate::pipeline::quality::tests::hugadb_dir() else {
+    let Some(dir) = crate::pipeline::quality::tests_hugadb::hugadb_dir() else {
         println!("skipped: ../shared/realdata/hugadb not found (set LDH_REALDATA)");
         return;
     };
@@ -151,12 +156,10 @@ fn the_smoother_is_exact_on_every_hugadb_leg_whose_gyroscope_is_accepted() {
             for k in 0..n {
                 bank.step(&m, k);
                 steps.push(
-                    bank.filters
-                        .iter()
-                        .map(|f| Step {
-                            x: f.x,
-                            sc: f.sc,
-                            p: f.p,
+                    (0..bank.len())
+                        .map(|i| {
+                            let (x, sc, p) = bank.filter(i);
+                            Step { x, sc, p }
                         })
                         .collect::<Vec<_>>(),
                 );

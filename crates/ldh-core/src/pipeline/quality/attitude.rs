@@ -157,17 +157,7 @@ mod tests {
             gyro_dps: Default::default(),
             acc_clipped: vec![],
             acc_motion_g: None,
-            alignment: Alignment {
-                r_f_from_device: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-                gyro_bias_dps: [0.0; 3],
-                quiet_standing_s: None,
-                still_periods_s: vec![],
-                mirrored: false,
-                axial_rotation_deg: 0.0,
-                shank_axis_tilt_deg: 0.0,
-                sagittal_variance_share: 1.0,
-                notes: vec![],
-            },
+            alignment: Alignment::identity(),
         }
     }
 

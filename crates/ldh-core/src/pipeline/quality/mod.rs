@@ -5,6 +5,7 @@
 //!
 //! - [`sensor`]: gyroscope scale faults and clipping, accelerometer clipping (raw recording);
 //! - [`attitude`]: attitude health (stance pitch stride to stride, anatomical bounds);
+//! - [`height`]: a stride length that used an assumed sensor height;
 //! - this module: the leg's gait (running, a time base that cannot be right, few strides, a
 //!   device convention);
 //! - [`pair`]: the two legs together (clocks, identical files, disagreement, a possible swap).
@@ -15,16 +16,24 @@ use crate::gait::{SideParameters, Stride};
 use super::LegResult;
 
 mod attitude;
+mod height;
 mod pair;
 mod sensor;
 #[cfg(test)]
-pub(crate) mod tests;
+mod tests;
+#[cfg(test)]
+mod tests_height;
+#[cfg(test)]
+pub(crate) mod tests_hugadb;
+#[cfg(test)]
+mod tests_stride_length;
 mod warning;
 
 pub use attitude::{
     attitude_checks, MAX_BDK_DEG, MAX_PITCH_DEG, MIN_PITCH_EXCURSION_DEG, OUT_OF_BOUNDS_SHARE,
     STANCE_PITCH_MAX_DEG, STANCE_PITCH_SPREAD_DEG,
 };
+pub use height::sensor_height_warning;
 pub use pair::{pair_warnings, CANONICAL_MOUNT_DEG, LR_STRIDE_LENGTH_TOL, LR_STRIDE_TIME_TOL};
 pub use sensor::{
     sensor_checks, SensorFindings, GYRO_CLIP_SHARE, SCALE_FAULT_SHARE, SHANK_MAX_DPS,
@@ -148,6 +157,20 @@ pub fn leg_checks(
     }
 }
 
+/// Whether a finding says the leg's attitude cannot be vouched for (a faulty or clipped
+/// gyroscope, a drifting attitude, angles outside anatomical bounds): its yaw, and so every
+/// heading change computed from it, is then not a measurement either, so it neither decides
+/// turns nor is reported per stride.
+pub fn discredits_attitude(w: &Warning) -> bool {
+    [
+        codes::GYRO_SCALE_FAULT,
+        codes::GYRO_CLIPPING,
+        codes::ATTITUDE_DIVERGENCE,
+        codes::IMPLAUSIBLE_ANGLE,
+    ]
+    .contains(&w.code.as_str())
+}
+
 /// Per-stride consequences of leg-level findings: a finding that withholds every parameter
 /// invalidates every stride; one that withholds angles or stride length blanks them per stride
 /// (the strides table must not show what the recordings table withholds).
@@ -183,6 +206,9 @@ pub fn apply_to_strides(st: &mut [Stride], warnings: &[Warning]) {
             }
             if has("speed_mps") {
                 s.speed_mps = f64::NAN;
+            }
+            if discredits_attitude(w) {
+                s.heading_change_deg = f64::NAN;
             }
             let what = match (angles && has("wqk_deg"), length && has("stride_length_m")) {
                 _ if all => None,

@@ -104,7 +104,7 @@ pub fn sensor_checks(rec: &Recording) -> SensorFindings {
             codes::ACC_CLIPPING,
             Severity::Note,
             format!(
-                "accelerometer clipped at its range in {:.1} % of the samples (heel-strike impacts beyond the sensor's range are common); stride length integrates through them",
+                "accelerometer clipped at its range in {:.1} % of the samples (common at ±2 g: push-off, swing and heel strike go beyond it); the stride length reconstructs the clipped samples and withholds strides it cannot vouch for",
                 n_aclip as f64 / n as f64 * 100.0
             ),
         ));

@@ -118,6 +118,9 @@ pub mod codes {
     pub const UPSIDE_DOWN: &str = "upside_down";
     /// Too few valid strides.
     pub const FEW_STRIDES: &str = "few_strides";
+    /// The sensor height was not given: the stride length used an assumed one (a note), or
+    /// depends on it too much to be reported (a warning).
+    pub const SENSOR_HEIGHT_UNKNOWN: &str = "sensor_height_unknown";
     /// The two sensors' sampling rates differ.
     pub const RATE_MISMATCH: &str = "rate_mismatch";
     /// The two recordings do not overlap in time.
