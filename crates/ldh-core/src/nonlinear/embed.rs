@@ -6,7 +6,9 @@
 use ndarray::Array2;
 use serde::{Deserialize, Serialize};
 
-use super::neighbours::{nearest_outside_window, np_euclidean};
+use super::neighbours::{
+    delay_index, nearest_outside_window, nn_brute, np_euclidean, NeighbourIndex,
+};
 use super::{check_series, invalid, NonlinearError};
 
 /// Row-major delay embedding (`m × emb_dim`, `m = n − (emb_dim − 1)·lag`),
@@ -83,38 +85,51 @@ pub fn state_embed(channels: &[&[f64]]) -> Result<Array2<f64>, NonlinearError> {
     }))
 }
 
-/// Reused buffers of [`lag_ami`]: the bin of every sample (computed once) and the histograms.
+/// Reused buffers of [`lag_ami`]: the bin of every sample (computed once), the joint histogram,
+/// and the two marginals, kept for the current lag and updated from lag to lag.
 struct AmiBuffers {
     bins: usize,
     bin: Vec<usize>,
     joint: Vec<u32>,
     pa: Vec<u32>,
     pb: Vec<u32>,
+    /// The lag the marginals are for (0: the histogram of all samples).
+    tau: usize,
 }
 
 impl AmiBuffers {
     fn new(x: &[f64], bins: usize, lo: f64, width: f64) -> Self {
         let bin = |v: f64| (((v - lo) / width) as usize).min(bins - 1);
+        let bin: Vec<usize> = x.iter().map(|&v| bin(v)).collect();
+        let mut all = vec![0u32; bins];
+        for &b in &bin {
+            all[b] += 1;
+        }
         AmiBuffers {
             bins,
-            bin: x.iter().map(|&v| bin(v)).collect(),
+            bin,
             joint: vec![0; bins * bins],
-            pa: vec![0; bins],
-            pb: vec![0; bins],
+            pa: all.clone(),
+            pb: all,
+            tau: 0,
         }
     }
 
-    /// Average mutual information `I(τ)` (nats) between `x_t` and `x_{t+τ}`.
+    /// Average mutual information `I(τ)` (nats) between `x_t` and `x_{t+τ}`, for increasing `τ`.
     fn ami(&mut self, tau: usize) -> f64 {
         let bins = self.bins;
-        let m = self.bin.len() - tau;
+        let n = self.bin.len();
+        let m = n - tau;
+        // marginals of the m pairs: samples 0..m and tau..n; from the previous lag's, one
+        // sample fewer at each end per step (the same counts as counting again)
+        for t in self.tau..tau {
+            self.pa[self.bin[n - 1 - t]] -= 1;
+            self.pb[self.bin[t]] -= 1;
+        }
+        self.tau = tau;
         self.joint.fill(0);
-        self.pa.fill(0);
-        self.pb.fill(0);
         for (&a, &b) in self.bin[..m].iter().zip(&self.bin[tau..]) {
             self.joint[a * bins + b] += 1;
-            self.pa[a] += 1;
-            self.pb[b] += 1;
         }
         let mf = m as f64;
         let mut s = 0.0;
@@ -258,6 +273,16 @@ pub struct FnnResult {
 /// is false when `|x_{i+d·lag} − x_{j+d·lag}| / R_d > r_tol` or
 /// `R_{d+1} / σ_x > a_tol`. Pairs at distance 0 are skipped. `lag` in samples.
 pub fn emb_dim_fnn(x: &[f64], lag: usize, params: &FnnParams) -> Result<FnnResult, NonlinearError> {
+    emb_dim_fnn_index(x, lag, params).map(|(r, _)| r)
+}
+
+/// [`emb_dim_fnn`], and the neighbour index of the last dimension searched (a delay embedding
+/// of `x` with `lag`, see [`delay_index`]) for Rosenstein's method to reuse.
+pub(crate) fn emb_dim_fnn_index(
+    x: &[f64],
+    lag: usize,
+    params: &FnnParams,
+) -> Result<(FnnResult, Option<Box<dyn NeighbourIndex>>), NonlinearError> {
     check_series(x)?;
     if lag == 0 {
         return Err(invalid("lag", lag, "must be at least 1 sample"));
@@ -293,18 +318,26 @@ pub fn emb_dim_fnn(x: &[f64], lag: usize, params: &FnnParams) -> Result<FnnResul
     let mean = x.iter().sum::<f64>() / n as f64;
     let sd = (x.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n as f64).sqrt();
     let mut fractions = Vec::with_capacity(params.max_dim);
-    // one embedding buffer for every dimension; the loop stops at the first dimension that
-    // meets the criterion
-    let mut pts = Vec::with_capacity(n * params.max_dim.min(4));
+    // one index per dimension, over exactly its coordinates (a tree split on coordinates a
+    // query does not measure cannot end its searches early); the loop stops at the first
+    // dimension that meets the criterion, and its index serves Rosenstein's search
+    let mut index: Option<Box<dyn NeighbourIndex>> = None;
+    // each dimension's neighbours seed the next dimension's search (a true neighbour stays near)
+    let mut prev_nb: Vec<usize> = Vec::new();
+    let (mut a, mut b) = (Vec::new(), Vec::new());
     for d in 1..=params.max_dim {
         let rows = n - d * lag;
         // rows ≥ 2·min_tsep + 2 ≥ 2 by the length check above
-        delay_embed_into(&x[..rows + (d - 1) * lag], d, lag, &mut pts);
-        let nb = nearest_outside_window(&pts, d, params.min_tsep);
+        let nb = fnn_neighbours(x, lag, d, rows, params, &mut index, &prev_nb);
         let mut false_nb = 0usize;
         let mut counted = 0usize;
         for (i, &j) in nb.iter().enumerate() {
-            let rd = np_euclidean(&pts[i * d..(i + 1) * d], &pts[j * d..(j + 1) * d]);
+            // the distance of the d-dimensional rows, as the embedding's np_euclidean
+            a.clear();
+            b.clear();
+            a.extend((0..d).map(|c| x[i + c * lag]));
+            b.extend((0..d).map(|c| x[j + c * lag]));
+            let rd = np_euclidean(&a, &b);
             if rd == 0.0 {
                 continue;
             }
@@ -315,17 +348,19 @@ pub fn emb_dim_fnn(x: &[f64], lag: usize, params: &FnnParams) -> Result<FnnResul
                 false_nb += 1;
             }
         }
+        prev_nb = nb;
         fractions.push(if counted == 0 {
             1.0
         } else {
             false_nb as f64 / counted as f64
         });
         if fractions[d - 1] < params.threshold {
-            return Ok(FnnResult {
+            let result = FnnResult {
                 emb_dim: d,
                 fractions,
                 converged: true,
-            });
+            };
+            return Ok((result, index));
         }
     }
     let best = fractions
@@ -334,9 +369,70 @@ pub fn emb_dim_fnn(x: &[f64], lag: usize, params: &FnnParams) -> Result<FnnResul
         .min_by(|a, b| a.1.total_cmp(b.1))
         .map(|(i, _)| i + 1)
         .unwrap_or(params.max_dim);
-    Ok(FnnResult {
+    let result = FnnResult {
         emb_dim: best,
         fractions,
         converged: false,
-    })
+    };
+    Ok((result, index))
+}
+
+/// The nearest neighbour of each of the first `rows` rows of the `d`-dimensional delay
+/// embedding (Theiler window `params.min_tsep`): sorted values in one dimension, else a new
+/// `index` over the `d` coordinates (left in `index`); an exact scan above 10 dimensions.
+fn fnn_neighbours(
+    x: &[f64],
+    lag: usize,
+    d: usize,
+    rows: usize,
+    params: &FnnParams,
+    index: &mut Option<Box<dyn NeighbourIndex>>,
+    prev_nb: &[usize],
+) -> Vec<usize> {
+    if d == 1 && params.min_tsep == 0 {
+        return nearest_outside_window(&x[..rows], 1, 0, None);
+    }
+    *index = delay_index(x, lag, d, rows);
+    match index {
+        Some(ix) => ix.nearest_all(d, params.min_tsep, rows, Some(prev_nb)),
+        None => {
+            let mut pts = Vec::new();
+            delay_embed_into(&x[..rows + (d - 1) * lag], d, lag, &mut pts);
+            nn_brute(&pts, d, params.min_tsep)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The marginals carried from lag to lag are the counts of the pairs of each lag: every
+    /// AMI value equals the one from histograms counted afresh, bit for bit.
+    #[test]
+    fn ami_with_carried_marginals_equals_fresh_counts() {
+        let x: Vec<f64> = (0..2_000)
+            .map(|i| (i as f64 * 0.071).sin() + 0.3 * (i as f64 * 0.29).cos())
+            .collect();
+        let (lo, hi) = (-1.3, 1.3);
+        let bins = 12;
+        let width = (hi - lo) / bins as f64;
+        let mut carried = AmiBuffers::new(&x, bins, lo, width);
+        for tau in 1..60 {
+            let mut fresh = AmiBuffers::new(&x, bins, lo, width);
+            let counted = {
+                // the marginals of lag tau counted directly
+                fresh.pa.fill(0);
+                fresh.pb.fill(0);
+                let m = x.len() - tau;
+                for t in 0..m {
+                    fresh.pa[fresh.bin[t]] += 1;
+                    fresh.pb[fresh.bin[t + tau]] += 1;
+                }
+                fresh.tau = tau;
+                fresh.ami(tau)
+            };
+            assert_eq!(carried.ami(tau).to_bits(), counted.to_bits(), "lag {tau}");
+        }
+    }
 }

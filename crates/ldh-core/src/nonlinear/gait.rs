@@ -4,8 +4,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::embed::{emb_dim_fnn, lag_acf, lag_ami, FnnParams, FnnResult};
-use super::rosenstein::{lyap_r, RosensteinParams, RosensteinResult};
+use super::embed::{emb_dim_fnn_index, lag_acf, lag_ami, FnnParams, FnnResult};
+use super::rosenstein::{lyap_r_with, RosensteinParams, RosensteinResult};
 use super::{check_series, invalid, NonlinearError};
 
 /// How the embedding delay is chosen in [`gait_sta`].
@@ -296,11 +296,12 @@ pub fn gait_sta(
     if lag == 0 {
         return Err(invalid("lag", lag, "must be at least 1 sample"));
     }
-    let (emb_dim, fnn) = match params.emb_dim {
-        Some(d) => (d, None),
+    // FNN's neighbour index (a delay embedding of x with this lag) serves Rosenstein's search
+    let (emb_dim, fnn, index) = match params.emb_dim {
+        Some(d) => (d, None, None),
         None => {
-            let r = emb_dim_fnn(&x, lag, &params.fnn)?;
-            (r.emb_dim, Some(r))
+            let (r, index) = emb_dim_fnn_index(&x, lag, &params.fnn)?;
+            (r.emb_dim, Some(r), index)
         }
     };
     let min_tsep = (params.theiler_strides * sps).ceil() as usize;
@@ -311,7 +312,7 @@ pub fn gait_sta(
         .min_tsep(Some(min_tsep))
         .tau(1.0 / fs)
         .trajectory_len(fit_len.saturating_add(1));
-    let ros = lyap_r(&x, &rp.check()?)?;
+    let ros = lyap_r_with(&x, &rp.check()?, index.as_deref().map(|ix| (ix, lag)))?;
     Ok(GaitSta {
         lambda_per_s: ros.exponent,
         lambda_per_stride: ros.exponent * mean_stride_s,

@@ -24,6 +24,7 @@
 //! (Chebyshev: Eckmann); no O(N²) distance matrix; see `docs/lyapunov.md` for
 //! the algorithms, defaults, differences from nolds and measured speed.
 
+mod divergence;
 mod eckmann;
 mod embed;
 mod fft;

@@ -38,6 +38,7 @@ macro_rules! dispatch_dim {
         }
     };
 }
+pub(crate) use dispatch_dim;
 
 /// Sum in numpy's order (`pairwise_sum` of `numpy/_core/src/umath/loops_utils.h`):
 /// plain loop below 8 elements, eight interleaved accumulators up to 128, and a
@@ -52,25 +53,56 @@ pub(crate) fn np_sum(a: &[f64]) -> f64 {
         }
         res
     } else if n <= 128 {
+        let (blocks, rest) = a.split_at(n - n % 8);
+        let (first, blocks) = blocks.split_at(8);
         let mut r = [0.0f64; 8];
-        r.copy_from_slice(&a[..8]);
-        let mut i = 8;
-        while i < n - (n % 8) {
-            for j in 0..8 {
-                r[j] += a[i + j];
+        r.copy_from_slice(first);
+        // eight accumulators, each summing every eighth element in order (vectorised)
+        for b in blocks.chunks_exact(8) {
+            for (acc, &v) in r.iter_mut().zip(b) {
+                *acc += v;
             }
-            i += 8;
         }
         let mut res = ((r[0] + r[1]) + (r[2] + r[3])) + ((r[4] + r[5]) + (r[6] + r[7]));
-        while i < n {
-            res += a[i];
-            i += 1;
+        for &v in rest {
+            res += v;
         }
         res
     } else {
         let mut n2 = n / 2;
         n2 -= n2 % 8;
         np_sum(&a[..n2]) + np_sum(&a[n2..])
+    }
+}
+
+/// [`np_sum`] of the values `get(start)`, `get(start + 1)`, …, `get(start + n − 1)`, in the same
+/// order, without gathering them first.
+pub(crate) fn np_sum_by(start: usize, n: usize, get: &impl Fn(usize) -> f64) -> f64 {
+    if n < 8 {
+        let mut res = 0.0;
+        for i in start..start + n {
+            res += get(i);
+        }
+        res
+    } else if n <= 128 {
+        let mut r: [f64; 8] = std::array::from_fn(|j| get(start + j));
+        let full = start + n - n % 8;
+        let mut i = start + 8;
+        while i < full {
+            for (j, acc) in r.iter_mut().enumerate() {
+                *acc += get(i + j);
+            }
+            i += 8;
+        }
+        let mut res = ((r[0] + r[1]) + (r[2] + r[3])) + ((r[4] + r[5]) + (r[6] + r[7]));
+        for i in full..start + n {
+            res += get(i);
+        }
+        res
+    } else {
+        let mut n2 = n / 2;
+        n2 -= n2 % 8;
+        np_sum_by(start, n2, get) + np_sum_by(start + n2, n - n2, get)
     }
 }
 
@@ -102,6 +134,28 @@ pub(crate) fn np_euclidean(a: &[f64], b: &[f64]) -> f64 {
             })
             .collect();
         np_sum(&v).sqrt()
+    }
+}
+
+/// Squared Euclidean distance summed as `np.sum((x - y)**2)` sums it (the square of
+/// [`np_euclidean`] before its root, bit for bit), for a fixed dimension.
+#[inline(always)]
+pub(crate) fn np_sq_sum<const K: usize>(a: &[f64; K], b: &[f64; K]) -> f64 {
+    if K < 8 {
+        // np_sum's plain loop
+        let mut res = 0.0;
+        for k in 0..K {
+            let d = a[k] - b[k];
+            res += d * d;
+        }
+        res
+    } else {
+        let mut sq = [0.0; K];
+        for k in 0..K {
+            let d = a[k] - b[k];
+            sq[k] = d * d;
+        }
+        np_sum(&sq)
     }
 }
 
@@ -139,9 +193,60 @@ fn to_arrays<const K: usize>(points: &[f64]) -> Vec<[f64; K]> {
 ///
 /// Precondition (checked by callers): `n ≥ 2·min_tsep + 2`, so every row has a
 /// candidate outside its window.
-pub(crate) fn nearest_outside_window(points: &[f64], dim: usize, min_tsep: usize) -> Vec<usize> {
-    dispatch_dim!(dim, nn_kdtree, points, min_tsep)
-        .unwrap_or_else(|| nn_brute(points, dim, min_tsep))
+///
+/// `hint`, when given, holds for each row a row to measure first (e.g. its neighbour in a lower
+/// embedding dimension); it speeds the search up and never changes the result.
+pub(crate) fn nearest_outside_window(
+    points: &[f64],
+    dim: usize,
+    min_tsep: usize,
+    hint: Option<&[usize]>,
+) -> Vec<usize> {
+    if dim == 1 && min_tsep == 0 {
+        return nn_sorted_1d(points);
+    }
+    match orbit_index(points, dim) {
+        Some(index) => index.nearest_all(dim, min_tsep, points.len() / dim, hint),
+        None => nn_brute(points, dim, min_tsep),
+    }
+}
+
+/// One dimension, only the row itself excluded (FNN's first dimension): the nearest value is
+/// next to the row's own in sorted order. The computed distance `√((x − y)²)` does not
+/// decrease as `y` moves away from `x` in sorted order (rounding is monotone), so each side is
+/// walked while the distance is at most the best (rows as near as the best, with a lower
+/// index, may follow) and then stops: the answer is the brute-force one, ties included.
+fn nn_sorted_1d(points: &[f64]) -> Vec<usize> {
+    let mut order: Vec<(f64, usize)> = points.iter().copied().zip(0..).collect();
+    order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+    let mut out = vec![usize::MAX; points.len()];
+    let dist = |x: f64, y: f64| {
+        let d = x - y;
+        (d * d).sqrt()
+    };
+    for (p, &(x, i)) in order.iter().enumerate() {
+        let mut best = (f64::INFINITY, usize::MAX);
+        let sides = [&order[..p], &order[p + 1..]];
+        for (side, rows) in sides.into_iter().enumerate() {
+            let mut walk = |&(y, j): &(f64, usize)| {
+                let d = dist(x, y);
+                if d > best.0 {
+                    return false;
+                }
+                if d < best.0 || j < best.1 {
+                    best = (d, j);
+                }
+                true
+            };
+            if side == 0 {
+                rows.iter().rev().take_while(|r| walk(r)).for_each(drop);
+            } else {
+                rows.iter().take_while(|r| walk(r)).for_each(drop);
+            }
+        }
+        out[i] = best.1;
+    }
+    out
 }
 
 /// Exact brute force (reference for tests, and the path for `dim > 10`).
@@ -167,46 +272,119 @@ pub(crate) fn nn_brute(points: &[f64], dim: usize, min_tsep: usize) -> Vec<usize
         .collect()
 }
 
-/// Search through a [`WindowTree`]: rows in chunks (in parallel), each chunk in order, every
-/// query seeded with the previous row's neighbour shifted by one.
-fn nn_kdtree<const K: usize>(points: &[f64], min_tsep: usize) -> Vec<usize> {
-    let pts = to_arrays::<K>(points);
-    let n = pts.len();
-    if n > u32::MAX as usize {
-        // the tree indexes rows with u32: stay exact, no panic
-        return nn_brute(points, K, min_tsep);
-    }
-    let tree = WindowTree::new(&pts);
-    let mut out = vec![usize::MAX; n];
-    out.par_chunks_mut(512).enumerate().for_each(|(c, chunk)| {
-        let mut stack = Vec::with_capacity(64);
-        let mut seed = None;
-        for (o, slot) in chunk.iter_mut().enumerate() {
-            let i = c * 512 + o;
-            *slot = match tree.nearest_outside(i, min_tsep, seed, &mut stack) {
-                Some(j) => j,
-                // unreachable under the caller's precondition: exact scan, no panic
-                None => nn_brute_one(points, K, i, min_tsep),
-            };
-            seed = Some(*slot + 1);
-        }
-    });
-    out
+/// Rows searched in order on one thread; chunks of this many rows run in parallel.
+const CHUNK: usize = 1024;
+
+/// Fewer rows than this are searched on the calling thread: a 30 s leg's ≈ 3 000 queries take
+/// about a millisecond, and handing them to the rayon pool costs a thread hand-over per call
+/// and the worker's idle spinning; `analyze_many` already runs legs in parallel.
+const PAR_ROWS: usize = 1 << 14;
+
+/// A built neighbour search over rows of [`NeighbourIndex::dims`] coordinates (a
+/// [`WindowTree`], whose dimension is a const generic, behind one object-safe interface). One
+/// build serves queries over the first `dims` coordinates and the first `limit` rows, so false
+/// nearest neighbours searches dimensions 2, 3, 4 of one delay embedding with one tree, and
+/// Rosenstein's method reuses it.
+pub(crate) trait NeighbourIndex: Send + Sync {
+    /// Number of coordinates of every row.
+    fn dims(&self) -> usize;
+    /// Number of rows.
+    fn len(&self) -> usize;
+    /// For every row `i < limit`, the row `j < limit` with `|i − j| > min_tsep` nearest over
+    /// the first `dims` coordinates (numpy-order Euclidean distance, lowest `j` among ties;
+    /// `usize::MAX` if there is none). `hint[i]`, when given, is measured first; it speeds the
+    /// search up and never changes the result. `limit ≤ len()`, `dims ≤ self.dims()`, and the
+    /// first `dims` coordinates of the first `limit` rows are finite (callers guarantee).
+    fn nearest_all(
+        &self,
+        dims: usize,
+        min_tsep: usize,
+        limit: usize,
+        hint: Option<&[usize]>,
+    ) -> Vec<usize>;
 }
 
-fn nn_brute_one(points: &[f64], dim: usize, i: usize, min_tsep: usize) -> usize {
-    let n = points.len() / dim;
-    let p = &points[i * dim..(i + 1) * dim];
-    let mut best = (f64::INFINITY, usize::MAX);
-    for j in 0..n {
-        if outside_window(i, j, min_tsep) {
-            let d = np_euclidean(p, &points[j * dim..(j + 1) * dim]);
-            if d < best.0 || best.1 == usize::MAX {
-                best = (d, j);
-            }
-        }
+impl<const K: usize> NeighbourIndex for WindowTree<K> {
+    fn dims(&self) -> usize {
+        K
     }
-    best.1
+
+    fn len(&self) -> usize {
+        WindowTree::len(self)
+    }
+
+    /// Rows in order (in chunks, in parallel, from [`PAR_ROWS`] rows on). Every query is
+    /// seeded with the previous row's neighbour shifted by one (trajectories are continuous)
+    /// and the caller's hint for the row.
+    fn nearest_all(
+        &self,
+        dims: usize,
+        min_tsep: usize,
+        limit: usize,
+        hint: Option<&[usize]>,
+    ) -> Vec<usize> {
+        let limit = limit.min(self.len());
+        let mut out = vec![usize::MAX; limit];
+        let run = |c: usize, chunk: &mut [usize]| {
+            let mut stack = Vec::with_capacity(64);
+            let mut prev: Option<usize> = None;
+            for (o, slot) in chunk.iter_mut().enumerate() {
+                let i = c * CHUNK + o;
+                let seeds = [prev.map(|j| j + 1), hint.and_then(|h| h.get(i).copied())];
+                let query = (min_tsep, limit, dims);
+                // None only when no row is admitted (excluded by the callers' preconditions)
+                *slot = self
+                    .nearest_outside(i, query, &seeds, &mut stack)
+                    .unwrap_or(usize::MAX);
+                prev = Some(*slot);
+            }
+        };
+        if limit < PAR_ROWS {
+            run(0, &mut out);
+        } else {
+            out.par_chunks_mut(CHUNK)
+                .enumerate()
+                .for_each(|(c, chunk)| run(c, chunk));
+        }
+        out
+    }
+}
+
+fn orbit_index_k<const K: usize>(points: &[f64]) -> Box<dyn NeighbourIndex> {
+    Box::new(WindowTree::new(to_arrays::<K>(points)))
+}
+
+/// A [`NeighbourIndex`] over the rows of a row-major `n × dim` slice; `None` above 10
+/// dimensions or `u32::MAX` rows (the callers then scan exactly by brute force).
+pub(crate) fn orbit_index(points: &[f64], dim: usize) -> Option<Box<dyn NeighbourIndex>> {
+    if dim == 0 || points.len() / dim > u32::MAX as usize {
+        return None;
+    }
+    dispatch_dim!(dim, orbit_index_k, points)
+}
+
+fn delay_index_k<const K: usize>(x: &[f64], lag: usize, rows: usize) -> Box<dyn NeighbourIndex> {
+    let at = |t: usize| x.get(t).copied().unwrap_or(f64::NAN);
+    let pts = (0..rows)
+        .map(|i| std::array::from_fn(|a| at(i + a * lag)))
+        .collect();
+    Box::new(WindowTree::<K>::new(pts))
+}
+
+/// A [`NeighbourIndex`] over the first `rows` rows of the delay embedding of `x` in `dims`
+/// dimensions: row `i` is `[x_i, x_{i+lag}, …, x_{i+(dims−1)·lag}]`, NaN past the end of `x`
+/// (such rows must lie beyond the limit of every query measuring that coordinate). `None`
+/// above 10 dimensions or `u32::MAX` rows.
+pub(crate) fn delay_index(
+    x: &[f64],
+    lag: usize,
+    dims: usize,
+    rows: usize,
+) -> Option<Box<dyn NeighbourIndex>> {
+    if rows > u32::MAX as usize {
+        return None;
+    }
+    dispatch_dim!(dims, delay_index_k, x, lag, rows)
 }
 
 /// Eckmann neighbourhoods: for every row `i` of `points` (`n × dim`), the

@@ -2,11 +2,11 @@
 //! mean logarithmic divergence of nearest neighbours, with the exact semantics
 //! of `nolds.lyap_r(..., fit="poly")` (nolds 0.6.2).
 
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use super::divergence::divergence;
 use super::embed::delay_embed_flat;
-use super::neighbours::{nearest_outside_window, np_euclidean, np_sum};
+use super::neighbours::{nearest_outside_window, NeighbourIndex};
 use super::{check_series, fft, invalid, NonlinearError};
 
 /// Line-fitting method for the divergence curve (nolds' `fit`).
@@ -260,6 +260,18 @@ pub fn lyap_r(
     x: &[f64],
     params: &ValidRosensteinParams,
 ) -> Result<RosensteinResult, NonlinearError> {
+    lyap_r_with(x, params, None)
+}
+
+/// [`lyap_r`], searching the neighbours in `delay`, when given: a [`NeighbourIndex`] over the
+/// delay embedding of `x` with the lag given alongside (e.g. the one false nearest neighbours
+/// built, see [`super::embed::emb_dim_fnn_index`]), used when that lag is the one used here,
+/// it has at least `emb_dim` coordinates and enough rows; the result is the same either way.
+pub(crate) fn lyap_r_with(
+    x: &[f64],
+    params: &ValidRosensteinParams,
+    delay: Option<(&dyn NeighbourIndex, usize)>,
+) -> Result<RosensteinResult, NonlinearError> {
     check_series(x)?;
     let n = x.len();
     let min_tsep = match params.min_tsep {
@@ -282,6 +294,7 @@ pub fn lyap_r(
         });
     }
     let orbit = delay_embed_flat(x, params.emb_dim, lag)?;
+    let index = delay.and_then(|(ix, ix_lag)| (ix_lag == lag).then_some(ix));
     let mut res = rosenstein_core(
         &orbit,
         params.emb_dim,
@@ -289,6 +302,7 @@ pub fn lyap_r(
         params.trajectory_len,
         params.tau,
         params.fit_offset,
+        index,
     )?;
     if params.fit == Fit::Ransac {
         let xs: Vec<f64> = res.ks[params.fit_offset..]
@@ -351,11 +365,21 @@ pub fn lyap_r_orbit(
             needed,
         });
     }
-    rosenstein_core(&flat, dim, min_tsep, trajectory_len, tau_s, fit_offset)
+    rosenstein_core(
+        &flat,
+        dim,
+        min_tsep,
+        trajectory_len,
+        tau_s,
+        fit_offset,
+        None,
+    )
 }
 
 /// Core of Rosenstein's method on a row-major orbit (`m × dim`). Callers have
-/// checked `m ≥ trajectory_len + 2·min_tsep + 1` (nolds' `ntraj ≥ min_traj`).
+/// checked `m ≥ trajectory_len + 2·min_tsep + 1` (nolds' `ntraj ≥ min_traj`). `index`, when
+/// given, holds the orbit's rows as the prefixes of its own (the neighbours are searched there
+/// if it has `dim` coordinates and enough rows).
 pub(crate) fn rosenstein_core(
     orbit: &[f64],
     dim: usize,
@@ -363,10 +387,16 @@ pub(crate) fn rosenstein_core(
     trajectory_len: usize,
     tau: f64,
     fit_offset: usize,
+    index: Option<&dyn NeighbourIndex>,
 ) -> Result<RosensteinResult, NonlinearError> {
     let m = orbit.len() / dim;
     let ntraj = m + 1 - trajectory_len;
-    let nb = nearest_outside_window(&orbit[..ntraj * dim], dim, min_tsep);
+    let nb = match index {
+        Some(ix) if ix.dims() >= dim && ix.len() >= ntraj => {
+            ix.nearest_all(dim, min_tsep, ntraj, None)
+        }
+        _ => nearest_outside_window(&orbit[..ntraj * dim], dim, min_tsep, None),
+    };
     let div = divergence(orbit, dim, &nb, trajectory_len);
     let (ks, divergence): (Vec<usize>, Vec<f64>) = div
         .iter()
@@ -394,63 +424,6 @@ pub(crate) fn rosenstein_core(
         slope,
         intercept,
     })
-}
-
-/// Rows at or above which the log distances of one step are computed in parallel.
-const PAR_ROWS: usize = 1 << 14;
-
-/// The mean log divergence `div[k]` (k = 0..trajectory_len) of the pairs (i + k, nb[i] + k):
-/// the mean over i of ln ‖row(i + k) − row(nb[i] + k)‖, pairs at distance 0 left out (−∞ when
-/// every pair is), summed in numpy's order over i as nolds does.
-///
-/// On a continuous trajectory the neighbour of row i + 1 is usually the neighbour of row i
-/// shifted by one (nb[i + 1] = nb[i] + 1); then pair (i + 1, k) is pair (i, k + 1), and its
-/// distance and logarithm (the bulk of the cost) are taken from step k + 1 instead of being
-/// computed again. Steps run from the last to the first so that step k + 1 is at hand; the
-/// values, and the order in which they are summed, are those of the direct computation.
-fn divergence(orbit: &[f64], dim: usize, nb: &[usize], trajectory_len: usize) -> Vec<f64> {
-    let ntraj = nb.len();
-    let row = |i: usize| &orbit[i * dim..(i + 1) * dim];
-    let log_dist = |a: usize, b: usize| {
-        let d = np_euclidean(row(a), row(b));
-        // ln d is finite for every d > 0; −∞ marks a pair left out
-        if d == 0.0 {
-            f64::NEG_INFINITY
-        } else {
-            d.ln()
-        }
-    };
-    let shifted: Vec<bool> = (0..ntraj)
-        .map(|i| i > 0 && nb[i] == nb[i - 1] + 1)
-        .collect();
-    let mut cur = vec![0.0; ntraj];
-    let mut next = vec![0.0; ntraj];
-    let mut logs = Vec::with_capacity(ntraj);
-    let mut div = vec![0.0; trajectory_len];
-    for k in (0..trajectory_len).rev() {
-        let reuse = k + 1 < trajectory_len;
-        let fill = |i: usize, v: &mut f64| {
-            *v = if reuse && shifted[i] {
-                next[i - 1]
-            } else {
-                log_dist(i + k, nb[i] + k)
-            };
-        };
-        if ntraj >= PAR_ROWS {
-            cur.par_iter_mut().enumerate().for_each(|(i, v)| fill(i, v));
-        } else {
-            cur.iter_mut().enumerate().for_each(|(i, v)| fill(i, v));
-        }
-        logs.clear();
-        logs.extend(cur.iter().copied().filter(|v| *v != f64::NEG_INFINITY));
-        div[k] = if logs.is_empty() {
-            f64::NEG_INFINITY
-        } else {
-            np_sum(&logs) / logs.len() as f64
-        };
-        std::mem::swap(&mut cur, &mut next);
-    }
-    div
 }
 
 /// Ordinary least-squares line `y ≈ slope·x + intercept` (same solution as

@@ -148,3 +148,99 @@ fn gait_sta_rejects_bad_input() {
         Err(NonlinearError::Constant { .. })
     ));
 }
+
+/// `gait_sta`'s steps, each called on its own, give its result bit for bit (the Rosenstein
+/// search reuses the tree false nearest neighbours built; a fresh search finds the same).
+#[test]
+fn gait_sta_equals_its_steps() {
+    let (x, _) = gait_like(4_000, 7);
+    let g = gait_sta(&x, 100.0, 1.0, &GaitStaParams::default()).unwrap();
+    let lag = lag_ami(&x, 100, None).unwrap();
+    let fnn = emb_dim_fnn(&x, lag, &FnnParams::default()).unwrap();
+    let p = RosensteinParams::default()
+        .emb_dim(fnn.emb_dim)
+        .lag(Some(lag))
+        .min_tsep(Some(100))
+        .tau(0.01)
+        .trajectory_len(51);
+    let ros = lyap_r(&x, &p).unwrap();
+    assert_eq!((g.lag, g.emb_dim), (lag, fnn.emb_dim));
+    assert_eq!(g.fnn.as_ref(), Some(&fnn));
+    assert_eq!(g.rosenstein.exponent.to_bits(), ros.exponent.to_bits());
+    assert_eq!(g.rosenstein, ros);
+}
+
+/// False nearest neighbours equal a plain reference (every dimension embedded, its
+/// neighbours by brute force, Kennel's criteria) bit for bit in every fraction computed, with
+/// and without a Theiler window, on a gait-like, a quantised (tied) and a white-noise series
+/// (on noise no fraction reaches 0, so every dimension up to `max_dim` is computed and the
+/// index is rebuilt past the dimensions its first build covers).
+#[test]
+fn false_nearest_neighbours_equal_a_brute_force_reference() {
+    use crate::nonlinear::neighbours::{nn_brute, np_euclidean};
+    let reference = |x: &[f64], lag: usize, p: &FnnParams| -> Vec<f64> {
+        let n = x.len();
+        let mean = x.iter().sum::<f64>() / n as f64;
+        let sd = (x.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n as f64).sqrt();
+        (1..=p.max_dim)
+            .map(|d| {
+                let rows = n - d * lag;
+                let pts: Vec<f64> = (0..rows)
+                    .flat_map(|i| (0..d).map(move |c| x[i + c * lag]))
+                    .collect();
+                let nb = nn_brute(&pts, d, p.min_tsep);
+                let (mut bad, mut counted) = (0, 0);
+                for (i, &j) in nb.iter().enumerate() {
+                    let rd = np_euclidean(&pts[i * d..(i + 1) * d], &pts[j * d..(j + 1) * d]);
+                    if rd == 0.0 {
+                        continue;
+                    }
+                    counted += 1;
+                    let extra = (x[i + d * lag] - x[j + d * lag]).abs();
+                    let rd1 = (rd * rd + extra * extra).sqrt();
+                    if extra / rd > p.r_tol || rd1 / sd > p.a_tol {
+                        bad += 1;
+                    }
+                }
+                if counted == 0 {
+                    1.0
+                } else {
+                    bad as f64 / counted as f64
+                }
+            })
+            .collect()
+    };
+    let (smooth, _) = gait_like(1_200, 11);
+    let tied: Vec<f64> = smooth.iter().map(|v| (v * 8.0).round() / 8.0).collect();
+    let noise: Vec<f64> = {
+        use rand::SeedableRng;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        (0..1_200)
+            .map(|_| rand_distr_free::normal(&mut rng))
+            .collect()
+    };
+    let mut longest = 0;
+    for x in [&smooth, &tied, &noise] {
+        for (min_tsep, max_dim) in [(0, 9), (30, 5)] {
+            let p = FnnParams {
+                max_dim,
+                min_tsep,
+                threshold: 1e-300,
+                ..FnnParams::default()
+            };
+            let want = reference(x, 9, &p);
+            let got = emb_dim_fnn(x, 9, &p).unwrap();
+            let bits = |v: &[f64]| v.iter().map(|f| f.to_bits()).collect::<Vec<_>>();
+            // the loop stops at the first dimension that meets the criterion
+            let computed = got.fractions.len();
+            assert!(got.emb_dim <= computed);
+            assert_eq!(
+                bits(&got.fractions),
+                bits(&want[..computed]),
+                "min_tsep {min_tsep}"
+            );
+            longest = longest.max(computed);
+        }
+    }
+    assert_eq!(longest, 9, "some case computes every dimension");
+}
