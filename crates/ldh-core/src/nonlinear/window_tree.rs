@@ -390,7 +390,11 @@ impl<const K: usize> WindowTree<K> {
         }
     }
 
-    /// Top-down search of the subtree under `root`, pruned by boxes, the window and the limit.
+    /// Top-down search of the subtree under `root`, pruned by boxes, the window and the limit:
+    /// the nearer child is visited next without going through the stack, the farther one is
+    /// pushed only if its box may still hold a winner (the threshold only shrinks, so it is
+    /// tested again when popped).
+    #[inline(always)]
     fn search_subtree<const FULL: bool>(
         &self,
         root: usize,
@@ -399,27 +403,33 @@ impl<const K: usize> WindowTree<K> {
         stack: &mut Vec<(u32, f64)>,
     ) {
         stack.clear();
-        stack.push((root as u32, self.box_dist_sq(root, qy)));
-        while let Some((k, lb)) = stack.pop() {
-            let k = k as usize;
-            if lb > best.thr || qy.excludes(self.boxes[k].span) {
-                continue;
+        let mut cur = (root as u32, self.box_dist_sq(root, qy));
+        loop {
+            let (k, lb) = (cur.0 as usize, cur.1);
+            if lb <= best.thr && !qy.excludes(self.boxes[k].span) {
+                if k >= self.first_leaf {
+                    self.scan_leaf(k, qy, best);
+                } else {
+                    let (l, r) = (2 * k as u32, 2 * k as u32 + 1);
+                    let (dl, dr) = (
+                        self.box_dist_sq(l as usize, qy),
+                        self.box_dist_sq(r as usize, qy),
+                    );
+                    // selects, no branch
+                    let left_first = dl <= dr;
+                    let near = if left_first { (l, dl) } else { (r, dr) };
+                    let far = if left_first { (r, dr) } else { (l, dl) };
+                    if far.1 <= best.thr {
+                        stack.push(far);
+                    }
+                    cur = near;
+                    continue;
+                }
             }
-            if k >= self.first_leaf {
-                self.scan_leaf(k, qy, best);
-                continue;
+            match stack.pop() {
+                Some(next) => cur = next,
+                None => return,
             }
-            let (l, r) = (2 * k as u32, 2 * k as u32 + 1);
-            let (dl, dr) = (
-                self.box_dist_sq(l as usize, qy),
-                self.box_dist_sq(r as usize, qy),
-            );
-            // nearer child last: popped first (selects, no branch)
-            let left_first = dl <= dr;
-            let near = if left_first { (l, dl) } else { (r, dr) };
-            let far = if left_first { (r, dr) } else { (l, dl) };
-            stack.push(far);
-            stack.push(near);
         }
     }
 
