@@ -94,6 +94,15 @@ fn sq_dist<const K: usize>(a: &[f64; K], b: &[f64; K], dims: usize) -> f64 {
     }
 }
 
+/// An integer whose order is [`f64::total_cmp`]'s (the same transformation): the median
+/// selection of the build compares integers instead of transforming both floats at every
+/// comparison.
+#[inline(always)]
+fn total_order_key(v: f64) -> i64 {
+    let b = v.to_bits() as i64;
+    b ^ ((((b >> 63) as u64) >> 1) as i64)
+}
+
 /// Widen the box `lo..hi` to hold `p` (NaN coordinates are left out).
 #[inline(always)]
 fn grow<const K: usize>(lo: &mut [f64; K], hi: &mut [f64; K], p: &[f64; K]) {
@@ -205,7 +214,7 @@ impl<const K: usize> WindowTree<K> {
             ],
             cells: vec![([f64::NEG_INFINITY; K], [f64::INFINITY; K]); nodes],
         };
-        let mut keys = vec![(0.0, 0u32); n];
+        let mut keys = vec![(0i64, 0u32); n];
         t.split(1, 0, n, (lo, hi), &mut keys);
         t.fill_blocks();
         t.boxes();
@@ -226,7 +235,7 @@ impl<const K: usize> WindowTree<K> {
         start: usize,
         end: usize,
         ext: ([f64; K], [f64; K]),
-        keys: &mut [(f64, u32)],
+        keys: &mut [(i64, u32)],
     ) {
         self.range[k] = (start as u32, end as u32);
         if k >= self.first_leaf {
@@ -246,15 +255,15 @@ impl<const K: usize> WindowTree<K> {
         if end > start {
             let keys = &mut keys[start..end];
             for (key, &r) in keys.iter_mut().zip(&self.idx[start..end]) {
-                *key = (self.rows[r as usize][axis], r);
+                *key = (total_order_key(self.rows[r as usize][axis]), r);
             }
-            keys.select_nth_unstable_by(mid - start, |a, b| a.0.total_cmp(&b.0));
+            keys.select_nth_unstable_by_key(mid - start, |key| key.0);
             for (r, key) in self.idx[start..end].iter_mut().zip(keys.iter()) {
                 *r = key.1;
             }
             // left rows ≤ v ≤ right rows on the axis (total order ⊂ numeric order; NaN, which
             // sorts last, leaves the cells as they are)
-            let v = keys[mid - start].0;
+            let v = self.rows[keys[mid - start].1 as usize][axis];
             if !v.is_nan() {
                 self.cells[left].1[axis] = v;
                 self.cells[right].0[axis] = v;
