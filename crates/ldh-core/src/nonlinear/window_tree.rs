@@ -94,6 +94,15 @@ fn sq_dist<const K: usize>(a: &[f64; K], b: &[f64; K], dims: usize) -> f64 {
     }
 }
 
+/// An integer whose order is [`f64::total_cmp`]'s (the same transformation): the median
+/// selection of the build compares integers instead of transforming both floats at every
+/// comparison.
+#[inline(always)]
+fn total_order_key(v: f64) -> i64 {
+    let b = v.to_bits() as i64;
+    b ^ ((((b >> 63) as u64) >> 1) as i64)
+}
+
 /// Widen the box `lo..hi` to hold `p` (NaN coordinates are left out).
 #[inline(always)]
 fn grow<const K: usize>(lo: &mut [f64; K], hi: &mut [f64; K], p: &[f64; K]) {
@@ -205,7 +214,7 @@ impl<const K: usize> WindowTree<K> {
             ],
             cells: vec![([f64::NEG_INFINITY; K], [f64::INFINITY; K]); nodes],
         };
-        let mut keys = vec![(0.0, 0u32); n];
+        let mut keys = vec![(0i64, 0u32); n];
         t.split(1, 0, n, (lo, hi), &mut keys);
         t.fill_blocks();
         t.boxes();
@@ -226,7 +235,7 @@ impl<const K: usize> WindowTree<K> {
         start: usize,
         end: usize,
         ext: ([f64; K], [f64; K]),
-        keys: &mut [(f64, u32)],
+        keys: &mut [(i64, u32)],
     ) {
         self.range[k] = (start as u32, end as u32);
         if k >= self.first_leaf {
@@ -246,15 +255,15 @@ impl<const K: usize> WindowTree<K> {
         if end > start {
             let keys = &mut keys[start..end];
             for (key, &r) in keys.iter_mut().zip(&self.idx[start..end]) {
-                *key = (self.rows[r as usize][axis], r);
+                *key = (total_order_key(self.rows[r as usize][axis]), r);
             }
-            keys.select_nth_unstable_by(mid - start, |a, b| a.0.total_cmp(&b.0));
+            keys.select_nth_unstable_by_key(mid - start, |key| key.0);
             for (r, key) in self.idx[start..end].iter_mut().zip(keys.iter()) {
                 *r = key.1;
             }
             // left rows ≤ v ≤ right rows on the axis (total order ⊂ numeric order; NaN, which
             // sorts last, leaves the cells as they are)
-            let v = keys[mid - start].0;
+            let v = self.rows[keys[mid - start].1 as usize][axis];
             if !v.is_nan() {
                 self.cells[left].1[axis] = v;
                 self.cells[right].0[axis] = v;
@@ -390,7 +399,11 @@ impl<const K: usize> WindowTree<K> {
         }
     }
 
-    /// Top-down search of the subtree under `root`, pruned by boxes, the window and the limit.
+    /// Top-down search of the subtree under `root`, pruned by boxes, the window and the limit:
+    /// the nearer child is visited next without going through the stack, the farther one is
+    /// pushed only if its box may still hold a winner (the threshold only shrinks, so it is
+    /// tested again when popped).
+    #[inline(always)]
     fn search_subtree<const FULL: bool>(
         &self,
         root: usize,
@@ -399,27 +412,33 @@ impl<const K: usize> WindowTree<K> {
         stack: &mut Vec<(u32, f64)>,
     ) {
         stack.clear();
-        stack.push((root as u32, self.box_dist_sq(root, qy)));
-        while let Some((k, lb)) = stack.pop() {
-            let k = k as usize;
-            if lb > best.thr || qy.excludes(self.boxes[k].span) {
-                continue;
+        let mut cur = (root as u32, self.box_dist_sq(root, qy));
+        loop {
+            let (k, lb) = (cur.0 as usize, cur.1);
+            if lb <= best.thr && !qy.excludes(self.boxes[k].span) {
+                if k >= self.first_leaf {
+                    self.scan_leaf(k, qy, best);
+                } else {
+                    let (l, r) = (2 * k as u32, 2 * k as u32 + 1);
+                    let (dl, dr) = (
+                        self.box_dist_sq(l as usize, qy),
+                        self.box_dist_sq(r as usize, qy),
+                    );
+                    // selects, no branch
+                    let left_first = dl <= dr;
+                    let near = if left_first { (l, dl) } else { (r, dr) };
+                    let far = if left_first { (r, dr) } else { (l, dl) };
+                    if far.1 <= best.thr {
+                        stack.push(far);
+                    }
+                    cur = near;
+                    continue;
+                }
             }
-            if k >= self.first_leaf {
-                self.scan_leaf(k, qy, best);
-                continue;
+            match stack.pop() {
+                Some(next) => cur = next,
+                None => return,
             }
-            let (l, r) = (2 * k as u32, 2 * k as u32 + 1);
-            let (dl, dr) = (
-                self.box_dist_sq(l as usize, qy),
-                self.box_dist_sq(r as usize, qy),
-            );
-            // nearer child last: popped first (selects, no branch)
-            let left_first = dl <= dr;
-            let near = if left_first { (l, dl) } else { (r, dr) };
-            let far = if left_first { (r, dr) } else { (l, dl) };
-            stack.push(far);
-            stack.push(near);
         }
     }
 
