@@ -116,11 +116,17 @@ fn main() {
             .unwrap(),
         );
     });
-    for (name, params) in [("leg_without_sta", &no_sta), ("leg_with_sta", &with_sta)] {
+    // Without a sensor height (the leg's length is recomputed at two more heights,
+    // `sensor_height_unknown`), and with the leg's own height given.
+    for (name, params, height) in [
+        ("leg_without_sta", &no_sta, None),
+        ("leg_with_sta", &with_sta, None),
+        ("leg_with_sta_height_given", &with_sta, Some(0.1)),
+    ] {
         measure(name, &only, rounds, calls, || {
             let (r, _) =
                 read_recording_bytes(black_box(&bytes), Path::new("left.csv"), None, &rp).unwrap();
-            black_box(analyze_leg(&r, Side::Left, params, None).unwrap());
+            black_box(analyze_leg(&r, Side::Left, params, height).unwrap());
         });
     }
 }
