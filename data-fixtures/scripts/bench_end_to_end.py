@@ -22,7 +22,7 @@ Run from the repository root after `cargo build --release -p ldh-cli`, with nump
 pandas, "nolds==0.6.2" and "setuptools<81" installed (e.g. target/bench-venv, see bench_all.sh):
 
     target/bench-venv/bin/python data-fixtures/scripts/bench_end_to_end.py \\
-        [--subjects 35] [--seconds 30] [--repeats 5] [--scaling] [--ldh PATH]
+        [--subjects 35] [--seconds 30] [--repeats 5] [--ldh-runs 3] [--scaling] [--ldh PATH]
 
 Results and the session they were measured in: docs/benchmarks.md.
 """
@@ -100,6 +100,9 @@ def main():
     ap.add_argument("--seed", type=int, default=17)
     ap.add_argument("--repeats", type=int, default=5, help="timing rounds (>= 3)")
     ap.add_argument("--scaling", action="store_true", help="also 1 min / 30 min / 2 h legs")
+    ap.add_argument("--ldh-runs", type=int, default=3,
+                    help="runs of each ldh variant per round (a run takes ~0.2-0.3 s, so one "
+                         "noisy run moves a median of 5; the Python side runs once per round)")
     args = ap.parse_args()
     if args.peer:
         peer(args.peer, args.sta)
@@ -132,17 +135,19 @@ def main():
         n_rec = None
         for _ in range(repeats):
             for k, cmd in variants.items():
-                w, c, o = timed(cmd, None if k == "ldh_sta_j2" else env,
-                                out if k.startswith("ldh") else None)
-                wall[k].append(w)
-                cpu[k].append(c)
-                if k == "py":
-                    n_rec = int(o.strip())
+                for _ in range(max(args.ldh_runs, 1) if k.startswith("ldh") else 1):
+                    w, c, o = timed(cmd, None if k == "ldh_sta_j2" else env,
+                                    out if k.startswith("ldh") else None)
+                    wall[k].append(w)
+                    cpu[k].append(c)
+                    if k == "py":
+                        n_rec = int(o.strip())
         _, _, table = timed(lh + ["--jobs", "1", "--timings"], env, out, stderr=True)
         mw = {k: med(v) for k, v in wall.items()}
         mc = {k: med(v) for k, v in cpu.items()}
         print(f"## {args.subjects} simulated subjects × 2 legs ({n_rec} recordings), "
-              f"{args.seconds:g} s at 100 Hz, one thread each, median of {repeats}\n")
+              f"{args.seconds:g} s at 100 Hz, one thread each, median of {repeats} rounds "
+              f"(ldh: {max(args.ldh_runs, 1)} runs of each variant per round)\n")
         print("| | wall s | per leg ms | CPU s | ratio (wall) | ratio (CPU) |")
         print("|---|---:|---:|---:|---:|---:|")
         rows = [("Python: pandas, scipy, Kalman loop, nolds `lyap_r(emb_dim=5)`", "py_sta", "ldh_sta"),
