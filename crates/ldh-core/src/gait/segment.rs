@@ -293,8 +293,9 @@ struct Span {
 /// [`strides_with_turns`] with `params`) recomputed with the sensor at each of `heights_m`
 /// instead, m: per height, each valid stride's length through the same per-stride checks (the
 /// integration's, then its bout's median), NaN where withheld and for invalid strides. Only
-/// the length integration runs again: the zero-velocity instants (found once per stride),
-/// the attitude, the bouts and which strides are valid are the strides' own.
+/// the length integration runs again per height: the zero-velocity spans are found once more
+/// per stride here, for all heights (the same spans [`strides`] found: they do not depend on
+/// the height); the attitude, the bouts and which strides are valid are the strides' own.
 pub fn lengths_at_heights(
     side: Side,
     al: &Aligned,
