@@ -20,7 +20,8 @@
 //!    the 4-8° of the untouched gyroscope (docs/quality.md).
 //! 3. A `filter_order`-th order Butterworth low-pass at `cutoff_hz`, designed as second-order
 //!    sections and applied forward and backward with `scipy.signal.sosfiltfilt`'s odd padding
-//!    and initial conditions (sci-rs `butter_dyn` + `sosfiltfilt_dyn`, equal to scipy to ~1e-14).
+//!    and initial conditions (sci-rs `butter_dyn` + `sosfiltfilt_dyn`, equal to scipy to ~1e-14;
+//!    the latter written out bit for bit, a sensor's three axes side by side: [`sosfiltfilt_each`]).
 //! 4. For the stride length only, a second acceleration (`Preprocessed::acc_motion_g`): the
 //!    magnitude outliers kept and the clipped samples reconstructed on the axis that clipped by
 //!    a local quadratic ([`declip`], `declip.rs`), then the same low-pass.
