@@ -34,9 +34,10 @@
 //! Exactness: every candidate's squared distance is summed in numpy's order (`sq_dist`, the
 //! sum of `np.sum((x - y)**2)`; the vector lanes of a leaf scan perform the same IEEE
 //! operations in the same order), the distance is its square root, the best is the smallest
-//! such distance with the lowest index among ties (`np.argmin`). A row,
+//! such distance with the lowest index among ties (`np.argmin`; see `Best::take`, which
+//! compares the squares and takes roots only for near ties). A row,
 //! box or cell is set aside only when a lower bound of its squared distance exceeds the best
-//! distance squared by a relative 1e-9 — far more than the rounding of either sum (the bounds
+//! squared distance by a relative 1e-9 — far more than the rounding of either sum (the bounds
 //! are monotone in the rounded coordinate differences, and a sum of non-negative terms is never
 //! below one of its terms), so nothing that could win or tie is ever left out. The result
 //! equals the brute-force scan bit for bit whatever the seeds or the visiting order (unit test
@@ -61,30 +62,42 @@ const _: () = assert!(LEAF.is_multiple_of(4) && LEAF <= 32);
 /// Relative margin of every pruning test (see the module docs).
 const MARGIN: f64 = 1.0 + 1e-9;
 
-/// The best candidate so far: distance, row, and the pruning threshold `d² · MARGIN`.
+/// The best candidate so far: squared distance (numpy's sum), row, and the pruning threshold
+/// `s · MARGIN`.
 #[derive(Clone, Copy)]
 struct Best {
-    d: f64,
+    s: f64,
     j: usize,
     thr: f64,
 }
 
 impl Best {
     const NONE: Best = Best {
-        d: f64::INFINITY,
+        s: f64::INFINITY,
         j: usize::MAX,
         thr: f64::INFINITY,
     };
 
-    /// Keep row `j` at squared distance `s` if it is nearer, or as near with a lower index.
+    /// Keep row `j` at squared distance `s` if its distance `√s` (rounded, as nolds compares
+    /// distances) is smaller, or equal with a lower index. The roots are taken only when the
+    /// two squares lie within a relative 4e-15 of each other: beyond that gap the rounded roots
+    /// are ordered as the squares are (√ halves the relative gap, ≈ 2e-15 after the rounding of
+    /// the product, far more than the two roundings of 2⁻⁵³), so the hot paths need no root.
     #[inline(always)]
     fn take(&mut self, s: f64, j: usize) {
-        let d = s.sqrt();
-        if d < self.d || (d == self.d && j < self.j) {
+        let better = if s < self.s * (1.0 - 4e-15) {
+            true
+        } else if s > self.s * (1.0 + 4e-15) {
+            false
+        } else {
+            let (d, d_best) = (s.sqrt(), self.s.sqrt());
+            d < d_best || (d == d_best && j < self.j)
+        };
+        if better {
             *self = Best {
-                d,
+                s,
                 j,
-                thr: d * d * MARGIN,
+                thr: s * MARGIN,
             };
         }
     }
@@ -264,13 +277,35 @@ impl<const K: usize> WindowTree<K> {
         let clear = (max_i as usize) < qy.limit
             && ((max_i as usize) < qy.win.0 || (min_i as usize) > qy.win.1);
         let rows = &self.slot_row[l * LEAF..][..LEAF];
+        if !clear {
+            // the admitted slots only
+            let mut m = mask;
+            while m != 0 {
+                let slot = m.trailing_zeros() as usize;
+                m &= m - 1;
+                mask &= !((!qy.admits(rows[slot] as usize) as u32) << slot);
+            }
+        }
+        // the least squared distance of the leaf first (no square root, no chain of updates
+        // of the best through it): a slot with v > v_min·(1 + 4e-15) has √v > √v_min once
+        // rounded (√ halves the relative gap, ≈ 2e-15 after the rounding of the product, far
+        // more than the two roundings of 2⁻⁵³), so it can neither win nor tie; the rest (nearly
+        // always the one slot) go through `take`, which keeps the lowest index among ties
+        let mut v_min = f64::INFINITY;
+        let mut m = mask;
+        while m != 0 {
+            let slot = m.trailing_zeros() as usize;
+            m &= m - 1;
+            v_min = v_min.min(s[slot]);
+        }
+        let near = v_min * (1.0 + 4e-15);
         while mask != 0 {
             let slot = mask.trailing_zeros() as usize;
             mask &= mask - 1;
-            let (v, j) = (s[slot], rows[slot] as usize);
-            // v > thr ⇒ √v > d: cannot win or tie (the threshold may have shrunk meanwhile)
-            if v <= best.thr && (clear || qy.admits(j)) {
-                best.take(v, j);
+            let v = s[slot];
+            // v > thr ⇒ √v > d: cannot win or tie
+            if v <= near && v <= best.thr {
+                best.take(v, rows[slot] as usize);
             }
         }
     }
