@@ -277,13 +277,14 @@ pub fn emb_dim_fnn(x: &[f64], lag: usize, params: &FnnParams) -> Result<FnnResul
     emb_dim_fnn_index(x, lag, params).map(|(r, _)| r)
 }
 
-/// [`emb_dim_fnn`], and the neighbour index of the last dimension searched (a delay embedding
-/// of `x` with `lag`, see [`delay_index`]) for Rosenstein's method to reuse.
+/// [`emb_dim_fnn`], and the last dimension's search (its neighbour index, a delay embedding of
+/// `x` with `lag` (see [`delay_index`]), and the neighbours found) for Rosenstein's method to
+/// reuse.
 pub(crate) fn emb_dim_fnn_index(
     x: &[f64],
     lag: usize,
     params: &FnnParams,
-) -> Result<(FnnResult, Option<Box<dyn NeighbourIndex>>), NonlinearError> {
+) -> Result<(FnnResult, Option<FnnSearch>), NonlinearError> {
     check_series(x)?;
     if lag == 0 {
         return Err(invalid("lag", lag, "must be at least 1 sample"));
@@ -363,7 +364,7 @@ pub(crate) fn emb_dim_fnn_index(
                 fractions,
                 converged: true,
             };
-            return Ok((result, index));
+            return Ok((result, FnnSearch::of(index, prev_nb, params.min_tsep)));
         }
     }
     let best = fractions
@@ -377,7 +378,33 @@ pub(crate) fn emb_dim_fnn_index(
         fractions,
         converged: false,
     };
-    Ok((result, index))
+    Ok((result, FnnSearch::of(index, prev_nb, params.min_tsep)))
+}
+
+/// The last search of [`emb_dim_fnn_index`], for Rosenstein's method to reuse: the neighbour
+/// index over the delay embedding (its `dims()` coordinates, the lag of the call), and every
+/// row's neighbour over all those coordinates and all the index's rows, with Theiler window
+/// `min_tsep`.
+pub(crate) struct FnnSearch {
+    pub(crate) index: Box<dyn NeighbourIndex>,
+    pub(crate) neighbours: Vec<usize>,
+    pub(crate) min_tsep: usize,
+}
+
+impl FnnSearch {
+    fn of(
+        index: Option<Box<dyn NeighbourIndex>>,
+        neighbours: Vec<usize>,
+        min_tsep: usize,
+    ) -> Option<Self> {
+        let index = index?;
+        // the index was built for the dimension whose neighbours these are, over its rows
+        (neighbours.len() == index.len()).then_some(FnnSearch {
+            index,
+            neighbours,
+            min_tsep,
+        })
+    }
 }
 
 /// [`np_euclidean`] of rows `i` and `j` of the `d`-dimensional delay embedding of `x`, read in
@@ -423,7 +450,7 @@ fn fnn_neighbours(
     }
     *index = delay_index(x, lag, d, rows, x_order);
     match index {
-        Some(ix) => ix.nearest_all(d, params.min_tsep, rows, Some(prev_nb)),
+        Some(ix) => ix.nearest_all(d, params.min_tsep, rows, Some(prev_nb), None),
         None => {
             let mut pts = Vec::new();
             delay_embed_into(&x[..rows + (d - 1) * lag], d, lag, &mut pts);

@@ -233,7 +233,7 @@ pub(crate) fn nearest_outside_window(
         return nn_sorted_1d(points, &total_order(points));
     }
     match orbit_index(points, dim) {
-        Some(index) => index.nearest_all(dim, min_tsep, points.len() / dim, hint),
+        Some(index) => index.nearest_all(dim, min_tsep, points.len() / dim, hint, None),
         None => nn_brute(points, dim, min_tsep),
     }
 }
@@ -326,12 +326,19 @@ pub(crate) trait NeighbourIndex: Send + Sync {
     /// `usize::MAX` if there is none). `hint[i]`, when given, is measured first; it speeds the
     /// search up and never changes the result. `limit ≤ len()`, `dims ≤ self.dims()`, and the
     /// first `dims` coordinates of the first `limit` rows are finite (callers guarantee).
+    ///
+    /// `known[i]`, when given, is row i's neighbour over the same `dims` coordinates among more
+    /// rows: a Theiler window no wider and a limit no lower (e.g. false nearest neighbours'
+    /// last search, for Rosenstein's method; callers guarantee). Wherever it is admitted here
+    /// it is the answer, without a search: the nearest row of a set, lowest index among ties,
+    /// is the nearest row of any subset that holds it, lowest index among ties.
     fn nearest_all(
         &self,
         dims: usize,
         min_tsep: usize,
         limit: usize,
         hint: Option<&[usize]>,
+        known: Option<&[usize]>,
     ) -> Vec<usize>;
 }
 
@@ -353,6 +360,7 @@ impl<const K: usize> NeighbourIndex for WindowTree<K> {
         min_tsep: usize,
         limit: usize,
         hint: Option<&[usize]>,
+        known: Option<&[usize]>,
     ) -> Vec<usize> {
         let limit = limit.min(self.len());
         let mut out = vec![usize::MAX; limit];
@@ -361,6 +369,12 @@ impl<const K: usize> NeighbourIndex for WindowTree<K> {
             let mut prev: Option<usize> = None;
             for (o, slot) in chunk.iter_mut().enumerate() {
                 let i = c * CHUNK + o;
+                let admitted = |j: &usize| *j < limit && i.abs_diff(*j) > min_tsep;
+                if let Some(j) = known.and_then(|k| k.get(i).copied()).filter(admitted) {
+                    *slot = j;
+                    prev = Some(j);
+                    continue;
+                }
                 let seeds = [prev.map(|j| j + 1), hint.and_then(|h| h.get(i).copied())];
                 let query = (min_tsep, limit, dims);
                 // None only when no row is admitted (excluded by the callers' preconditions)

@@ -143,8 +143,8 @@ proptest! {
 
     /// One tree over `k` delay coordinates answers every query over its first `d ≤ k`
     /// coordinates and first `limit` rows as the brute-force scan does (windows, ties, the
-    /// rows past the series' end NaN, arbitrary hints), as false nearest neighbours and
-    /// Rosenstein's method use it.
+    /// rows past the series' end NaN, arbitrary hints, the answers of a wider search taken where
+    /// admitted), as false nearest neighbours and Rosenstein's method use it.
     #[test]
     fn delay_index_prefix_queries_equal_brute_force(
         n in 150usize..700,
@@ -168,9 +168,13 @@ proptest! {
         let hint: Vec<usize> = (0..limit)
             .map(|i| (i as u64 ^ hint_seed).wrapping_mul(2654435761) as usize % (2 * n))
             .collect();
-        let fast = index.nearest_all(d, w, limit, Some(&hint));
+        let fast = index.nearest_all(d, w, limit, Some(&hint), None);
         let slow = nn_brute(&embed_rows(&x, lag, d, limit), d, w);
-        prop_assert_eq!(fast, slow);
+        prop_assert_eq!(&fast, &slow);
+        // with the answers of a wider search (a narrower window, all rows) taken where admitted
+        let known = index.nearest_all(d, w / 3, rows, None, None);
+        let reused = index.nearest_all(d, w, limit, Some(&hint), Some(&known));
+        prop_assert_eq!(reused, slow);
     }
 }
 
