@@ -239,12 +239,15 @@ fn evaluate_reports_accuracy_within_the_issue_targets() {
     let c = d.path().join("cohort");
     simulate_cohort(&c, 3, 3, 30, 300);
     let j = d.path().join("acc.json");
+    let per_stride = d.path().join("strides.csv");
     let o = ldh(&[
         "evaluate",
         "--truth",
         c.to_str().unwrap(),
         "--json",
         j.to_str().unwrap(),
+        "--strides-csv",
+        per_stride.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", text(&o));
     assert!(text(&o).contains("| HS MAE / P95 (ms) |"));
@@ -272,6 +275,37 @@ fn evaluate_reports_accuracy_within_the_issue_targets() {
     assert!(a["stride_length_mae_pct"].as_f64().is_none_or(|x| x > 10.0));
     assert!(a["stride_length_withheld"].as_u64().unwrap() * 2 > a["strides"].as_u64().unwrap());
     assert_eq!(f["stride_length_over_15pct"], 0);
+    per_stride_scores_agree_with_the_table(&per_stride, f);
+}
+
+/// `--strides-csv`: one row per steady true stride and model, and the fusion rows give the
+/// table's stride count, withheld lengths and stride-length MAE.
+fn per_stride_scores_agree_with_the_table(path: &std::path::Path, f: &serde_json::Value) {
+    let mut r = csv::Reader::from_path(path).unwrap();
+    let h = r.headers().unwrap().clone();
+    let col = |name: &str| h.iter().position(|c| c == name).unwrap();
+    let (model, err, valid) = (col("model"), col("stride_length_error_pct"), col("valid"));
+    let rows: Vec<csv::StringRecord> = r.records().map(|x| x.unwrap()).collect();
+    let fusion: Vec<_> = rows.iter().filter(|x| &x[model] == "fusion").collect();
+    assert_eq!(fusion.len() as u64, f["strides"].as_u64().unwrap());
+    assert_eq!(rows.len(), 2 * fusion.len(), "fusion and acc rows");
+    let errs: Vec<f64> = fusion
+        .iter()
+        .filter(|x| !x[err].is_empty())
+        .map(|x| x[err].parse::<f64>().unwrap())
+        .collect();
+    assert_eq!(
+        (fusion.len() - errs.len()) as u64,
+        f["stride_length_withheld"].as_u64().unwrap()
+    );
+    let mae = errs.iter().map(|e| e.abs()).sum::<f64>() / errs.len() as f64;
+    let want = f["stride_length_mae_pct"].as_f64().unwrap();
+    assert!((mae - want).abs() < 1e-9 * want.max(1.0), "{mae} vs {want}");
+    // a reported length belongs to a valid stride
+    assert!(fusion
+        .iter()
+        .filter(|x| !x[err].is_empty())
+        .all(|x| &x[valid] == "true"));
 }
 
 /// Issue 20, `sensor_height_unknown`: a family-b walker (its shank turns over the ankle at

@@ -280,6 +280,11 @@ pub struct EvaluateArgs {
     /// Also write the accuracy as JSON here.
     #[arg(long)]
     pub json: Option<PathBuf>,
+    /// Also write every steady stride's errors as CSV here (one row per true stride and model:
+    /// HS, TO, stride time, stance and stride length errors, the reported length, valid and
+    /// reason; empty cells where nothing was matched or a value was withheld).
+    #[arg(long)]
+    pub strides_csv: Option<PathBuf>,
     /// Worker threads (default: all cores).
     #[arg(short, long)]
     pub jobs: Option<usize>,

@@ -6,6 +6,8 @@
 //! Stride length is scored on the reported lengths only (valid strides with a length); the
 //! strides whose length was withheld are counted, and so are reported lengths more than 15 %
 //! off (a clinical tool may withhold, never report a wrong number).
+//! Each steady stride's scores are also available one by one ([`stride_scores`],
+//! `ldh evaluate --strides-csv`); the figures here are aggregated from them.
 //! Attitude errors are RMS over the whole recording, pitch against the true shank pitch θ and
 //! roll against the true anatomical roll. Like stride length, they are scored on the legs whose
 //! angles the pipeline reports: a leg whose angle parameters a quality check withheld (the
@@ -14,9 +16,12 @@
 
 use serde::{Deserialize, Serialize};
 
+mod strides;
+pub use strides::{stride_scores, write_stride_scores, StrideScore, MATCH_WINDOW_S};
+
 use crate::gait::anatomical_roll_deg;
-use crate::pipeline::{LegResult, SubjectResult};
-use crate::simulate::{LegTruth, SubjectTruth};
+use crate::pipeline::SubjectResult;
+use crate::simulate::SubjectTruth;
 
 /// Accuracy figures for one model over a cohort.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
@@ -94,18 +99,6 @@ fn p95(v: &[f64]) -> f64 {
     a[((a.len() as f64 * 0.95).ceil() as usize).clamp(1, a.len()) - 1]
 }
 
-fn nearest(v: &[f64], t: f64) -> Option<f64> {
-    v.iter()
-        .copied()
-        .min_by(|a, b| {
-            (a - t)
-                .abs()
-                .partial_cmp(&(b - t).abs())
-                .unwrap_or(std::cmp::Ordering::Equal)
-        })
-        .filter(|x| (x - t).abs() < 0.25)
-}
-
 /// Score results against truths (matched by subject id); `results` may hold one model.
 pub fn evaluate(results: &[SubjectResult], truths: &[SubjectTruth]) -> Accuracy {
     let mut hs = Vec::new();
@@ -130,17 +123,17 @@ pub fn evaluate(results: &[SubjectResult], truths: &[SubjectTruth]) -> Accuracy 
         for (leg, truth) in [(&r.left, &t.left), (&r.right, &t.right)] {
             let Ok(leg) = leg else { continue };
             recs += 1;
-            score_leg(
-                leg,
-                truth,
-                &mut hs,
-                &mut to,
-                &mut st,
-                &mut stance,
-                &mut sl,
-                &mut missed,
-                &mut withheld,
-            );
+            for sc in strides::leg_scores(leg, truth, (r.model.as_str(), &t.subject_id, t.group)) {
+                add_score(&sc, &mut hs, &mut to, &mut missed);
+                if sc.stride_index.is_some() {
+                    st.extend(sc.stride_time_error_ms);
+                    stance.extend(sc.stance_ratio_error);
+                    match sc.stride_length_error_pct {
+                        Some(e) => sl.push(e),
+                        None => withheld += 1,
+                    }
+                }
+            }
             if let Some(att) = &leg.attitude {
                 let n = att.pitch_deg.len().min(truth.pitch_deg.len());
                 let ep: f64 = (0..n)
@@ -200,40 +193,12 @@ pub fn evaluate(results: &[SubjectResult], truths: &[SubjectTruth]) -> Accuracy 
     }
 }
 
-#[allow(clippy::too_many_arguments)]
-fn score_leg(
-    leg: &LegResult,
-    truth: &LegTruth,
-    hs: &mut Vec<f64>,
-    to: &mut Vec<f64>,
-    st: &mut Vec<f64>,
-    stance: &mut Vec<f64>,
-    sl: &mut Vec<f64>,
-    missed: &mut usize,
-    withheld: &mut usize,
-) {
-    for ts in truth.strides.iter().filter(|s| !s.turning && !s.bout_edge) {
-        match nearest(&leg.events.hs_s, ts.hs_time_s) {
-            Some(d) => hs.push((d - ts.hs_time_s) * 1e3),
+/// A stride's event errors into the cohort's lists (a missed event counted).
+fn add_score(sc: &strides::StrideScore, hs: &mut Vec<f64>, to: &mut Vec<f64>, missed: &mut usize) {
+    for (e, list) in [(sc.hs_error_ms, hs), (sc.to_error_ms, to)] {
+        match e {
+            Some(e) => list.push(e),
             None => *missed += 1,
-        }
-        match nearest(&leg.events.to_s, ts.to_time_s) {
-            Some(d) => to.push((d - ts.to_time_s) * 1e3),
-            None => *missed += 1,
-        }
-        if let Some(s) = leg.strides.iter().find(|s| {
-            (s.hs_time_s - ts.hs_time_s).abs() < 0.25
-                && (s.next_hs_time_s - ts.next_hs_time_s).abs() < 0.25
-        }) {
-            st.push((s.stride_time_s - ts.stride_time_s) * 1e3);
-            if s.stance_ratio.is_finite() {
-                stance.push(s.stance_ratio - ts.stance_ratio);
-            }
-            if s.valid && s.stride_length_m.is_finite() && ts.stride_length_m.is_finite() {
-                sl.push((s.stride_length_m - ts.stride_length_m) / ts.stride_length_m * 100.0);
-            } else {
-                *withheld += 1;
-            }
         }
     }
 }

@@ -25,10 +25,14 @@ pub fn run(a: EvaluateArgs) -> Result<ExitCode> {
     let read = ReadParams::default().check()?;
     let pool = thread_pool(a.jobs)?;
     let mut accs = Vec::new();
+    let mut scores = Vec::new();
     for model in [AttitudeModel::Fusion, AttitudeModel::Acc] {
         let params = analysis_params(None, Some(model), Some(a.detector), None, true)?;
         let results = pool.install(|| analyze_many(&subjects, &params, None, &read));
         accs.push(ldh_core::evaluate::evaluate(&results, &truths));
+        if a.strides_csv.is_some() {
+            scores.extend(ldh_core::evaluate::stride_scores(&results, &truths));
+        }
     }
     println!(
         "Accuracy against ground truth: {} subjects in {}, detector {}\n",
@@ -39,6 +43,9 @@ pub fn run(a: EvaluateArgs) -> Result<ExitCode> {
     println!("{}", ldh_core::evaluate::markdown(&accs));
     if let Some(j) = a.json {
         ldh_core::io::write_atomic(&j, serde_json::to_string_pretty(&accs)?.as_bytes())?;
+    }
+    if let Some(p) = a.strides_csv {
+        ldh_core::evaluate::write_stride_scores(&p, &scores)?;
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -14,7 +14,7 @@
 
 use rayon::prelude::*;
 
-use super::neighbours::{dispatch_dim, np_euclidean, np_sq_sum, np_sum, np_sum_by};
+use super::neighbours::{dispatch_dim, np_euclidean, np_sq_sum, np_sum, np_sum_rows};
 
 /// Rows at or above which the streaming computation (parallel over rows) is used.
 const PAR_ROWS: usize = 1 << 14;
@@ -111,21 +111,23 @@ fn divergence_by_offset(
         .enumerate()
         .map(|(i, &r)| start[r] + (i - runs[r].0))
         .collect();
+    if all_finite {
+        // summed where they lie, in the same order: row i's logs of all steps are
+        // logs[at[i]..][..trajectory_len], added to the step sums together
+        let mut sums = vec![0.0; trajectory_len];
+        np_sum_rows(0, ntraj, &|i| &logs[at[i]..][..trajectory_len], &mut sums);
+        return Some(sums.iter().map(|s| s / ntraj as f64).collect());
+    }
     let mut vals = Vec::new();
     let div = (0..trajectory_len)
         .map(|k| {
-            if all_finite {
-                // summed where they lie, in the same order
-                np_sum_by(0, ntraj, &|i| logs[at[i] + k]) / ntraj as f64
-            } else {
-                vals.clear();
-                vals.extend(
-                    at.iter()
-                        .map(|&p| logs[p + k])
-                        .filter(|v| *v != f64::NEG_INFINITY),
-                );
-                step_mean(&vals)
-            }
+            vals.clear();
+            vals.extend(
+                at.iter()
+                    .map(|&p| logs[p + k])
+                    .filter(|v| *v != f64::NEG_INFINITY),
+            );
+            step_mean(&vals)
         })
         .collect();
     Some(div)

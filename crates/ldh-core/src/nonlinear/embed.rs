@@ -7,7 +7,8 @@ use ndarray::Array2;
 use serde::{Deserialize, Serialize};
 
 use super::neighbours::{
-    delay_index, nearest_outside_window, nn_brute, np_euclidean, NeighbourIndex,
+    delay_index, nearest_outside_window, nn_brute, nn_sorted_1d, np_euclidean, total_order,
+    NeighbourIndex,
 };
 use super::{check_series, invalid, NonlinearError};
 
@@ -276,13 +277,14 @@ pub fn emb_dim_fnn(x: &[f64], lag: usize, params: &FnnParams) -> Result<FnnResul
     emb_dim_fnn_index(x, lag, params).map(|(r, _)| r)
 }
 
-/// [`emb_dim_fnn`], and the neighbour index of the last dimension searched (a delay embedding
-/// of `x` with `lag`, see [`delay_index`]) for Rosenstein's method to reuse.
+/// [`emb_dim_fnn`], and the last dimension's search (its neighbour index, a delay embedding of
+/// `x` with `lag` (see [`delay_index`]), and the neighbours found) for Rosenstein's method to
+/// reuse.
 pub(crate) fn emb_dim_fnn_index(
     x: &[f64],
     lag: usize,
     params: &FnnParams,
-) -> Result<(FnnResult, Option<Box<dyn NeighbourIndex>>), NonlinearError> {
+) -> Result<(FnnResult, Option<FnnSearch>), NonlinearError> {
     check_series(x)?;
     if lag == 0 {
         return Err(invalid("lag", lag, "must be at least 1 sample"));
@@ -324,20 +326,22 @@ pub(crate) fn emb_dim_fnn_index(
     let mut index: Option<Box<dyn NeighbourIndex>> = None;
     // each dimension's neighbours seed the next dimension's search (a true neighbour stays near)
     let mut prev_nb: Vec<usize> = Vec::new();
-    let (mut a, mut b) = (Vec::new(), Vec::new());
+    // one sort of the series gives every dimension's order on every axis (empty, and the
+    // searches exact scans, beyond u32::MAX samples)
+    let x_order = if n <= u32::MAX as usize {
+        total_order(x)
+    } else {
+        Vec::new()
+    };
     for d in 1..=params.max_dim {
         let rows = n - d * lag;
         // rows ≥ 2·min_tsep + 2 ≥ 2 by the length check above
-        let nb = fnn_neighbours(x, lag, d, rows, params, &mut index, &prev_nb);
+        let nb = fnn_neighbours((x, &x_order), lag, d, rows, params, &mut index, &prev_nb);
         let mut false_nb = 0usize;
         let mut counted = 0usize;
         for (i, &j) in nb.iter().enumerate() {
             // the distance of the d-dimensional rows, as the embedding's np_euclidean
-            a.clear();
-            b.clear();
-            a.extend((0..d).map(|c| x[i + c * lag]));
-            b.extend((0..d).map(|c| x[j + c * lag]));
-            let rd = np_euclidean(&a, &b);
+            let rd = delay_dist(x, lag, d, i, j);
             if rd == 0.0 {
                 continue;
             }
@@ -360,7 +364,7 @@ pub(crate) fn emb_dim_fnn_index(
                 fractions,
                 converged: true,
             };
-            return Ok((result, index));
+            return Ok((result, FnnSearch::of(index, prev_nb, params.min_tsep)));
         }
     }
     let best = fractions
@@ -374,14 +378,57 @@ pub(crate) fn emb_dim_fnn_index(
         fractions,
         converged: false,
     };
-    Ok((result, index))
+    Ok((result, FnnSearch::of(index, prev_nb, params.min_tsep)))
+}
+
+/// The last search of [`emb_dim_fnn_index`], for Rosenstein's method to reuse: the neighbour
+/// index over the delay embedding (its `dims()` coordinates, the lag of the call), and every
+/// row's neighbour over all those coordinates and all the index's rows, with Theiler window
+/// `min_tsep`.
+pub(crate) struct FnnSearch {
+    pub(crate) index: Box<dyn NeighbourIndex>,
+    pub(crate) neighbours: Vec<usize>,
+    pub(crate) min_tsep: usize,
+}
+
+impl FnnSearch {
+    fn of(
+        index: Option<Box<dyn NeighbourIndex>>,
+        neighbours: Vec<usize>,
+        min_tsep: usize,
+    ) -> Option<Self> {
+        let index = index?;
+        // the index was built for the dimension whose neighbours these are, over its rows
+        (neighbours.len() == index.len()).then_some(FnnSearch {
+            index,
+            neighbours,
+            min_tsep,
+        })
+    }
+}
+
+/// [`np_euclidean`] of rows `i` and `j` of the `d`-dimensional delay embedding of `x`, read in
+/// place below eight dimensions (numpy's plain loop), gathered from eight on.
+fn delay_dist(x: &[f64], lag: usize, d: usize, i: usize, j: usize) -> f64 {
+    if d < 8 {
+        let mut s = 0.0;
+        for c in 0..d {
+            let t = x[i + c * lag] - x[j + c * lag];
+            s += t * t;
+        }
+        s.sqrt()
+    } else {
+        let a: Vec<f64> = (0..d).map(|c| x[i + c * lag]).collect();
+        let b: Vec<f64> = (0..d).map(|c| x[j + c * lag]).collect();
+        np_euclidean(&a, &b)
+    }
 }
 
 /// The nearest neighbour of each of the first `rows` rows of the `d`-dimensional delay
 /// embedding (Theiler window `params.min_tsep`): sorted values in one dimension, else a new
 /// `index` over the `d` coordinates (left in `index`); an exact scan above 10 dimensions.
 fn fnn_neighbours(
-    x: &[f64],
+    (x, x_order): (&[f64], &[u32]),
     lag: usize,
     d: usize,
     rows: usize,
@@ -390,11 +437,20 @@ fn fnn_neighbours(
     prev_nb: &[usize],
 ) -> Vec<usize> {
     if d == 1 && params.min_tsep == 0 {
-        return nearest_outside_window(&x[..rows], 1, 0, None);
+        if x_order.len() != x.len() {
+            return nearest_outside_window(&x[..rows], 1, 0, None);
+        }
+        // the series' order, restricted to the rows, is the rows' order
+        let order: Vec<u32> = x_order
+            .iter()
+            .copied()
+            .filter(|&t| (t as usize) < rows)
+            .collect();
+        return nn_sorted_1d(&x[..rows], &order);
     }
-    *index = delay_index(x, lag, d, rows);
+    *index = delay_index(x, lag, d, rows, x_order);
     match index {
-        Some(ix) => ix.nearest_all(d, params.min_tsep, rows, Some(prev_nb)),
+        Some(ix) => ix.nearest_all(d, params.min_tsep, rows, Some(prev_nb), None),
         None => {
             let mut pts = Vec::new();
             delay_embed_into(&x[..rows + (d - 1) * lag], d, lag, &mut pts);

@@ -312,7 +312,7 @@ pub fn gait_sta(
         .min_tsep(Some(min_tsep))
         .tau(1.0 / fs)
         .trajectory_len(fit_len.saturating_add(1));
-    let ros = lyap_r_with(&x, &rp.check()?, index.as_deref().map(|ix| (ix, lag)))?;
+    let ros = lyap_r_with(&x, &rp.check()?, index.as_ref().map(|s| (s, lag)))?;
     Ok(GaitSta {
         lambda_per_s: ros.exponent,
         lambda_per_stride: ros.exponent * mean_stride_s,

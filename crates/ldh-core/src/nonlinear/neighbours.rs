@@ -16,7 +16,8 @@ use std::num::NonZeroUsize;
 
 use kiddo::{Chebyshev, ImmutableKdTree};
 
-use super::window_tree::WindowTree;
+pub(crate) use super::window_tree::total_order;
+use super::window_tree::{delay_orders, WindowTree};
 use rayon::prelude::*;
 
 /// Dispatches a const-generic function over dimensions 1..=10; `None` for
@@ -75,34 +76,60 @@ pub(crate) fn np_sum(a: &[f64]) -> f64 {
     }
 }
 
-/// [`np_sum`] of the values `get(start)`, `get(start + 1)`, …, `get(start + n − 1)`, in the same
-/// order, without gathering them first.
-pub(crate) fn np_sum_by(start: usize, n: usize, get: &impl Fn(usize) -> f64) -> f64 {
+/// [`np_sum`] of the rows `get(start)`, `get(start + 1)`, …, `get(start + n − 1)` (each of
+/// `out.len()` values), lane by lane into `out`: `out[k]` has the bits of `np_sum` over the
+/// values `get(i)[k]`, in the same order (every lane goes through the same additions), without
+/// gathering a lane's values first. A row is read once for all lanes, so the additions run
+/// along contiguous memory (vectorised) instead of one gathered value at a time per lane.
+pub(crate) fn np_sum_rows<'a>(
+    start: usize,
+    n: usize,
+    get: &impl Fn(usize) -> &'a [f64],
+    out: &mut [f64],
+) {
+    let t = out.len();
     if n < 8 {
-        let mut res = 0.0;
+        out.fill(0.0);
         for i in start..start + n {
-            res += get(i);
+            for (o, &v) in out.iter_mut().zip(get(i)) {
+                *o += v;
+            }
         }
-        res
     } else if n <= 128 {
-        let mut r: [f64; 8] = std::array::from_fn(|j| get(start + j));
+        // eight accumulator rows, each summing every eighth row in order
+        let mut r = vec![0.0f64; 8 * t];
+        for (j, acc) in r.chunks_exact_mut(t).enumerate() {
+            acc.copy_from_slice(&get(start + j)[..t]);
+        }
         let full = start + n - n % 8;
         let mut i = start + 8;
         while i < full {
-            for (j, acc) in r.iter_mut().enumerate() {
-                *acc += get(i + j);
+            for (j, acc) in r.chunks_exact_mut(t).enumerate() {
+                for (a, &v) in acc.iter_mut().zip(get(i + j)) {
+                    *a += v;
+                }
             }
             i += 8;
         }
-        let mut res = ((r[0] + r[1]) + (r[2] + r[3])) + ((r[4] + r[5]) + (r[6] + r[7]));
-        for i in full..start + n {
-            res += get(i);
+        let r: Vec<&[f64]> = r.chunks_exact(t).collect();
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = ((r[0][k] + r[1][k]) + (r[2][k] + r[3][k]))
+                + ((r[4][k] + r[5][k]) + (r[6][k] + r[7][k]));
         }
-        res
+        for i in full..start + n {
+            for (o, &v) in out.iter_mut().zip(get(i)) {
+                *o += v;
+            }
+        }
     } else {
         let mut n2 = n / 2;
         n2 -= n2 % 8;
-        np_sum_by(start, n2, get) + np_sum_by(start + n2, n - n2, get)
+        let mut right = vec![0.0f64; t];
+        np_sum_rows(start, n2, get, out);
+        np_sum_rows(start + n2, n - n2, get, &mut right);
+        for (o, r) in out.iter_mut().zip(&right) {
+            *o += r;
+        }
     }
 }
 
@@ -202,11 +229,11 @@ pub(crate) fn nearest_outside_window(
     min_tsep: usize,
     hint: Option<&[usize]>,
 ) -> Vec<usize> {
-    if dim == 1 && min_tsep == 0 {
-        return nn_sorted_1d(points);
+    if dim == 1 && min_tsep == 0 && points.len() <= u32::MAX as usize {
+        return nn_sorted_1d(points, &total_order(points));
     }
     match orbit_index(points, dim) {
-        Some(index) => index.nearest_all(dim, min_tsep, points.len() / dim, hint),
+        Some(index) => index.nearest_all(dim, min_tsep, points.len() / dim, hint, None),
         None => nn_brute(points, dim, min_tsep),
     }
 }
@@ -215,10 +242,14 @@ pub(crate) fn nearest_outside_window(
 /// next to the row's own in sorted order. The computed distance `√((x − y)²)` does not
 /// decrease as `y` moves away from `x` in sorted order (rounding is monotone), so each side is
 /// walked while the distance is at most the best (rows as near as the best, with a lower
-/// index, may follow) and then stops: the answer is the brute-force one, ties included.
-fn nn_sorted_1d(points: &[f64]) -> Vec<usize> {
-    let mut order: Vec<(f64, usize)> = points.iter().copied().zip(0..).collect();
-    order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+/// index, may follow) and then stops: the answer is the brute-force one, ties included, in
+/// whatever order `order` (the positions of `points` sorted by [`f64::total_cmp`], e.g. from
+/// [`total_order`]) holds them.
+pub(crate) fn nn_sorted_1d(points: &[f64], order: &[u32]) -> Vec<usize> {
+    let order: Vec<(f64, usize)> = order
+        .iter()
+        .map(|&t| (points[t as usize], t as usize))
+        .collect();
     let mut out = vec![usize::MAX; points.len()];
     let dist = |x: f64, y: f64| {
         let d = x - y;
@@ -295,12 +326,19 @@ pub(crate) trait NeighbourIndex: Send + Sync {
     /// `usize::MAX` if there is none). `hint[i]`, when given, is measured first; it speeds the
     /// search up and never changes the result. `limit ≤ len()`, `dims ≤ self.dims()`, and the
     /// first `dims` coordinates of the first `limit` rows are finite (callers guarantee).
+    ///
+    /// `known[i]`, when given, is row i's neighbour over the same `dims` coordinates among more
+    /// rows: a Theiler window no wider and a limit no lower (e.g. false nearest neighbours'
+    /// last search, for Rosenstein's method; callers guarantee). Wherever it is admitted here
+    /// it is the answer, without a search: the nearest row of a set, lowest index among ties,
+    /// is the nearest row of any subset that holds it, lowest index among ties.
     fn nearest_all(
         &self,
         dims: usize,
         min_tsep: usize,
         limit: usize,
         hint: Option<&[usize]>,
+        known: Option<&[usize]>,
     ) -> Vec<usize>;
 }
 
@@ -322,6 +360,7 @@ impl<const K: usize> NeighbourIndex for WindowTree<K> {
         min_tsep: usize,
         limit: usize,
         hint: Option<&[usize]>,
+        known: Option<&[usize]>,
     ) -> Vec<usize> {
         let limit = limit.min(self.len());
         let mut out = vec![usize::MAX; limit];
@@ -330,6 +369,12 @@ impl<const K: usize> NeighbourIndex for WindowTree<K> {
             let mut prev: Option<usize> = None;
             for (o, slot) in chunk.iter_mut().enumerate() {
                 let i = c * CHUNK + o;
+                let admitted = |j: &usize| *j < limit && i.abs_diff(*j) > min_tsep;
+                if let Some(j) = known.and_then(|k| k.get(i).copied()).filter(admitted) {
+                    *slot = j;
+                    prev = Some(j);
+                    continue;
+                }
                 let seeds = [prev.map(|j| j + 1), hint.and_then(|h| h.get(i).copied())];
                 let query = (min_tsep, limit, dims);
                 // None only when no row is admitted (excluded by the callers' preconditions)
@@ -363,28 +408,36 @@ pub(crate) fn orbit_index(points: &[f64], dim: usize) -> Option<Box<dyn Neighbou
     dispatch_dim!(dim, orbit_index_k, points)
 }
 
-fn delay_index_k<const K: usize>(x: &[f64], lag: usize, rows: usize) -> Box<dyn NeighbourIndex> {
+fn delay_index_k<const K: usize>(
+    x: &[f64],
+    lag: usize,
+    rows: usize,
+    x_order: &[u32],
+) -> Box<dyn NeighbourIndex> {
     let at = |t: usize| x.get(t).copied().unwrap_or(f64::NAN);
     let pts = (0..rows)
         .map(|i| std::array::from_fn(|a| at(i + a * lag)))
         .collect();
-    Box::new(WindowTree::<K>::new(pts))
+    let orders = delay_orders::<K>(x.len(), x_order, lag, rows);
+    Box::new(WindowTree::<K>::with_orders(pts, orders))
 }
 
 /// A [`NeighbourIndex`] over the first `rows` rows of the delay embedding of `x` in `dims`
 /// dimensions: row `i` is `[x_i, x_{i+lag}, …, x_{i+(dims−1)·lag}]`, NaN past the end of `x`
-/// (such rows must lie beyond the limit of every query measuring that coordinate). `None`
-/// above 10 dimensions or `u32::MAX` rows.
+/// (such rows must lie beyond the limit of every query measuring that coordinate). `x_order`
+/// is [`total_order`] of `x` (one sort serves every dimension's index). `None` above 10
+/// dimensions or `u32::MAX` samples.
 pub(crate) fn delay_index(
     x: &[f64],
     lag: usize,
     dims: usize,
     rows: usize,
+    x_order: &[u32],
 ) -> Option<Box<dyn NeighbourIndex>> {
-    if rows > u32::MAX as usize {
+    if x.len() > u32::MAX as usize || x_order.len() != x.len() {
         return None;
     }
-    dispatch_dim!(dims, delay_index_k, x, lag, rows)
+    dispatch_dim!(dims, delay_index_k, x, lag, rows, x_order)
 }
 
 /// Eckmann neighbourhoods: for every row `i` of `points` (`n × dim`), the

@@ -6,7 +6,8 @@ use serde::{Deserialize, Serialize};
 
 use super::divergence::divergence;
 use super::embed::delay_embed_flat;
-use super::neighbours::{nearest_outside_window, NeighbourIndex};
+use super::embed::FnnSearch;
+use super::neighbours::nearest_outside_window;
 use super::{check_series, fft, invalid, NonlinearError};
 
 /// Line-fitting method for the divergence curve (nolds' `fit`).
@@ -263,14 +264,16 @@ pub fn lyap_r(
     lyap_r_with(x, params, None)
 }
 
-/// [`lyap_r`], searching the neighbours in `delay`, when given: a [`NeighbourIndex`] over the
-/// delay embedding of `x` with the lag given alongside (e.g. the one false nearest neighbours
-/// built, see [`super::embed::emb_dim_fnn_index`]), used when that lag is the one used here,
-/// it has at least `emb_dim` coordinates and enough rows; the result is the same either way.
+/// [`lyap_r`], searching the neighbours in `delay`, when given: false nearest neighbours' last
+/// search over the delay embedding of `x` with the lag given alongside (see
+/// [`super::embed::emb_dim_fnn_index`]), used when that lag is the one used here and its index
+/// has at least `emb_dim` coordinates and enough rows (its neighbours are taken where they are
+/// admitted, see [`super::neighbours::NeighbourIndex::nearest_all`]); the result is the same
+/// either way.
 pub(crate) fn lyap_r_with(
     x: &[f64],
     params: &ValidRosensteinParams,
-    delay: Option<(&dyn NeighbourIndex, usize)>,
+    delay: Option<(&FnnSearch, usize)>,
 ) -> Result<RosensteinResult, NonlinearError> {
     check_series(x)?;
     let n = x.len();
@@ -378,8 +381,8 @@ pub fn lyap_r_orbit(
 
 /// Core of Rosenstein's method on a row-major orbit (`m × dim`). Callers have
 /// checked `m ≥ trajectory_len + 2·min_tsep + 1` (nolds' `ntraj ≥ min_traj`). `index`, when
-/// given, holds the orbit's rows as the prefixes of its own (the neighbours are searched there
-/// if it has `dim` coordinates and enough rows).
+/// given, is a search whose index holds the orbit's rows as the prefixes of its own (the
+/// neighbours are searched there if it has `dim` coordinates and enough rows).
 pub(crate) fn rosenstein_core(
     orbit: &[f64],
     dim: usize,
@@ -387,13 +390,18 @@ pub(crate) fn rosenstein_core(
     trajectory_len: usize,
     tau: f64,
     fit_offset: usize,
-    index: Option<&dyn NeighbourIndex>,
+    index: Option<&FnnSearch>,
 ) -> Result<RosensteinResult, NonlinearError> {
     let m = orbit.len() / dim;
     let ntraj = m + 1 - trajectory_len;
     let nb = match index {
-        Some(ix) if ix.dims() >= dim && ix.len() >= ntraj => {
-            ix.nearest_all(dim, min_tsep, ntraj, None)
+        Some(s) if s.index.dims() >= dim && s.index.len() >= ntraj => {
+            // false nearest neighbours' answers over the same coordinates, with a window no
+            // wider and all the index's rows, are the answers wherever admitted here (on a gait
+            // leg two rows in three: the nearest row is usually on another stride)
+            let known =
+                (s.index.dims() == dim && s.min_tsep <= min_tsep).then_some(&s.neighbours[..]);
+            s.index.nearest_all(dim, min_tsep, ntraj, None, known)
         }
         _ => nearest_outside_window(&orbit[..ntraj * dim], dim, min_tsep, None),
     };

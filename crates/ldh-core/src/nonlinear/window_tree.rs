@@ -9,9 +9,11 @@
 //! a node lying wholly inside the window is skipped, and rows inside it are never measured.
 //!
 //! The search is Friedman, Bentley & Finkel's bottom-up one: the tree is balanced and stored in
-//! heap order (node `k` has children `2k`, `2k + 1`; all leaves at one depth), the rows are
-//! stored leaf by leaf (axis by axis, so a leaf is measured in a few vector operations), and
-//! each node knows its *cell* (the half-spaces of its ancestors' splits). A query first measures
+//! heap order (node `k` has children `2k`, `2k + 1`; all leaves at one depth; built from rows
+//! kept sorted on every axis, see `build.rs`), the rows are stored leaf by leaf (axis by axis,
+//! so a leaf is measured four slots at a time with `wide`'s vectors, and the rows that may win
+//! come out as a bit mask), and each node knows its *cell* (the half-spaces of its ancestors'
+//! splits). A query first measures
 //! a few seed rows given by the caller (e.g. the previous row's neighbour shifted by one:
 //! trajectories are continuous, so that is usually the answer), then its own leaf, and walks
 //! up: at each level the subtree not yet visited is searched top-down with box pruning, and the
@@ -30,44 +32,72 @@
 //! every metric that uses the axis, and NaN fails every comparison.
 //!
 //! Exactness: every candidate's squared distance is summed in numpy's order (`sq_dist`, the
-//! sum of `np.sum((x - y)**2)`), the distance is its square root, the best is the smallest such distance with the lowest index among ties (`np.argmin`). A row,
+//! sum of `np.sum((x - y)**2)`; the vector lanes of a leaf scan perform the same IEEE
+//! operations in the same order), the distance is its square root, the best is the smallest
+//! such distance with the lowest index among ties (`np.argmin`; see `Best::take`, which
+//! compares the squares and takes roots only for near ties). A row,
 //! box or cell is set aside only when a lower bound of its squared distance exceeds the best
-//! distance squared by a relative 1e-9 — far more than the rounding of either sum (the bounds
+//! squared distance by a relative 1e-9 — far more than the rounding of either sum (the bounds
 //! are monotone in the rounded coordinate differences, and a sum of non-negative terms is never
 //! below one of its terms), so nothing that could win or tie is ever left out. The result
 //! equals the brute-force scan bit for bit whatever the seeds or the visiting order (unit test
 //! below; property tests in `tests/neighbours.rs`).
 
-/// Most rows per leaf (leaves hold between `LEAF / 2` and `LEAF` rows).
-const LEAF: usize = 12;
+use wide::f64x4;
+
+mod build;
+pub(crate) use build::{delay_orders, total_order};
+
+/// Most rows per leaf (leaves hold between `LEAF / 2` and `LEAF` rows). 24 (a 30 s leg's tree
+/// is then 7 levels deep, ≈ 23 rows a leaf): with the four-lane scans, fewer and fuller leaves
+/// cost less than more node visits (12: 3.5 ms, 24: 3.1–3.2 ms, 48: 3.3 ms per `gait_sta`).
+const LEAF: usize = 24;
+
+/// Four-lane vectors per leaf axis.
+const LANES: usize = LEAF / 4;
+
+// a leaf is whole four-lane vectors, and its slots fit the bit mask of a scan
+const _: () = assert!(LEAF.is_multiple_of(4) && LEAF <= 32);
 
 /// Relative margin of every pruning test (see the module docs).
 const MARGIN: f64 = 1.0 + 1e-9;
 
-/// The best candidate so far: distance, row, and the pruning threshold `d² · MARGIN`.
+/// The best candidate so far: squared distance (numpy's sum), row, and the pruning threshold
+/// `s · MARGIN`.
 #[derive(Clone, Copy)]
 struct Best {
-    d: f64,
+    s: f64,
     j: usize,
     thr: f64,
 }
 
 impl Best {
     const NONE: Best = Best {
-        d: f64::INFINITY,
+        s: f64::INFINITY,
         j: usize::MAX,
         thr: f64::INFINITY,
     };
 
-    /// Keep row `j` at squared distance `s` if it is nearer, or as near with a lower index.
+    /// Keep row `j` at squared distance `s` if its distance `√s` (rounded, as nolds compares
+    /// distances) is smaller, or equal with a lower index. The roots are taken only when the
+    /// two squares lie within a relative 4e-15 of each other: beyond that gap the rounded roots
+    /// are ordered as the squares are (√ halves the relative gap, ≈ 2e-15 after the rounding of
+    /// the product, far more than the two roundings of 2⁻⁵³), so the hot paths need no root.
     #[inline(always)]
     fn take(&mut self, s: f64, j: usize) {
-        let d = s.sqrt();
-        if d < self.d || (d == self.d && j < self.j) {
+        let better = if s < self.s * (1.0 - 4e-15) {
+            true
+        } else if s > self.s * (1.0 + 4e-15) {
+            false
+        } else {
+            let (d, d_best) = (s.sqrt(), self.s.sqrt());
+            d < d_best || (d == d_best && j < self.j)
+        };
+        if better {
             *self = Best {
-                d,
+                s,
                 j,
-                thr: d * d * MARGIN,
+                thr: s * MARGIN,
             };
         }
     }
@@ -91,28 +121,6 @@ fn sq_dist<const K: usize>(a: &[f64; K], b: &[f64; K], dims: usize) -> f64 {
             sq[ax] = d * d;
         }
         super::neighbours::np_sum(&sq[..dims])
-    }
-}
-
-/// An integer whose order is [`f64::total_cmp`]'s (the same transformation): the median
-/// selection of the build compares integers instead of transforming both floats at every
-/// comparison.
-#[inline(always)]
-fn total_order_key(v: f64) -> i64 {
-    let b = v.to_bits() as i64;
-    b ^ ((((b >> 63) as u64) >> 1) as i64)
-}
-
-/// Widen the box `lo..hi` to hold `p` (NaN coordinates are left out).
-#[inline(always)]
-fn grow<const K: usize>(lo: &mut [f64; K], hi: &mut [f64; K], p: &[f64; K]) {
-    for a in 0..K {
-        if p[a] < lo[a] {
-            lo[a] = p[a];
-        }
-        if p[a] > hi[a] {
-            hi[a] = p[a];
-        }
     }
 }
 
@@ -183,143 +191,9 @@ struct NodeBox<const K: usize> {
 }
 
 impl<const K: usize> WindowTree<K> {
-    /// Build the tree (`O(n log n)`). `rows.len()` must fit in `u32` (callers check).
-    pub(crate) fn new(rows: Vec<[f64; K]>) -> Self {
-        let n = rows.len();
-        let mut depth = 0;
-        while n.div_ceil(1 << depth) > LEAF {
-            depth += 1;
-        }
-        let first_leaf = 1usize << depth;
-        let nodes = 2 * first_leaf;
-        let (mut lo, mut hi) = ([f64::INFINITY; K], [f64::NEG_INFINITY; K]);
-        for p in &rows {
-            grow(&mut lo, &mut hi, p);
-        }
-        let mut t = WindowTree {
-            rows,
-            block: Vec::new(),
-            slot_row: Vec::new(),
-            idx: (0..n as u32).collect(),
-            leaf_of: vec![0; n],
-            first_leaf,
-            range: vec![(0, 0); nodes],
-            boxes: vec![
-                NodeBox {
-                    lo: [f64::INFINITY; K],
-                    hi: [f64::NEG_INFINITY; K],
-                    span: (u32::MAX, 0),
-                };
-                nodes
-            ],
-            cells: vec![([f64::NEG_INFINITY; K], [f64::INFINITY; K]); nodes],
-        };
-        let mut keys = vec![(0i64, 0u32); n];
-        t.split(1, 0, n, (lo, hi), &mut keys);
-        t.fill_blocks();
-        t.boxes();
-        t
-    }
-
     /// Number of rows.
     pub(crate) fn len(&self) -> usize {
         self.rows.len()
-    }
-
-    /// Partition node `k` (rows `idx[start..end]`) and its descendants: median split on the
-    /// widest side of `ext` (the node's cell clipped to the bounding box of all rows; choosing
-    /// the axis from it needs no pass over the rows), the leaf of every row.
-    fn split(
-        &mut self,
-        k: usize,
-        start: usize,
-        end: usize,
-        ext: ([f64; K], [f64; K]),
-        keys: &mut [(i64, u32)],
-    ) {
-        self.range[k] = (start as u32, end as u32);
-        if k >= self.first_leaf {
-            for &r in &self.idx[start..end] {
-                self.leaf_of[r as usize] = k as u32;
-            }
-            return;
-        }
-        let (lo, hi) = ext;
-        let axis = (0..K)
-            .max_by(|&a, &b| (hi[a] - lo[a]).total_cmp(&(hi[b] - lo[b])))
-            .unwrap_or(0);
-        let mid = start + (end - start) / 2;
-        let (left, right) = (2 * k, 2 * k + 1);
-        (self.cells[left], self.cells[right]) = (self.cells[k], self.cells[k]);
-        let (mut ext_l, mut ext_r) = (ext, ext);
-        if end > start {
-            let keys = &mut keys[start..end];
-            for (key, &r) in keys.iter_mut().zip(&self.idx[start..end]) {
-                *key = (total_order_key(self.rows[r as usize][axis]), r);
-            }
-            keys.select_nth_unstable_by_key(mid - start, |key| key.0);
-            for (r, key) in self.idx[start..end].iter_mut().zip(keys.iter()) {
-                *r = key.1;
-            }
-            // left rows ≤ v ≤ right rows on the axis (total order ⊂ numeric order; NaN, which
-            // sorts last, leaves the cells as they are)
-            let v = self.rows[keys[mid - start].1 as usize][axis];
-            if !v.is_nan() {
-                self.cells[left].1[axis] = v;
-                self.cells[right].0[axis] = v;
-                ext_l.1[axis] = v;
-                ext_r.0[axis] = v;
-            }
-        }
-        self.split(left, start, mid, ext_l, keys);
-        self.split(right, mid, end, ext_r, keys);
-    }
-
-    /// The padded leaf blocks, from the rows in leaf order.
-    fn fill_blocks(&mut self) {
-        let leaves = self.first_leaf;
-        self.block = vec![f64::NAN; leaves * K * LEAF];
-        self.slot_row = vec![u32::MAX; leaves * LEAF];
-        for l in 0..leaves {
-            let (a, b) = self.range[leaves + l];
-            for (slot, &r) in self.idx[a as usize..b as usize].iter().enumerate() {
-                self.slot_row[l * LEAF + slot] = r;
-                for ax in 0..K {
-                    self.block[(l * K + ax) * LEAF + slot] = self.rows[r as usize][ax];
-                }
-            }
-        }
-    }
-
-    /// Bounding boxes and row spans, from the leaves up.
-    fn boxes(&mut self) {
-        for k in self.first_leaf..2 * self.first_leaf {
-            let (a, b) = self.range[k];
-            let (mut lo, mut hi) = ([f64::INFINITY; K], [f64::NEG_INFINITY; K]);
-            let (mut min_i, mut max_i) = (u32::MAX, 0u32);
-            for &r in &self.idx[a as usize..b as usize] {
-                grow(&mut lo, &mut hi, &self.rows[r as usize]);
-                min_i = min_i.min(r);
-                max_i = max_i.max(r);
-            }
-            self.boxes[k] = NodeBox {
-                lo,
-                hi,
-                span: (min_i, max_i),
-            };
-        }
-        for k in (1..self.first_leaf).rev() {
-            let (l, r) = (2 * k, 2 * k + 1);
-            let (a, b) = (self.boxes[l], self.boxes[r]);
-            let (mut lo, mut hi) = (a.lo, a.hi);
-            grow(&mut lo, &mut hi, &b.lo);
-            grow(&mut lo, &mut hi, &b.hi);
-            self.boxes[k] = NodeBox {
-                lo,
-                hi,
-                span: (a.span.0.min(b.span.0), a.span.1.max(b.span.1)),
-            };
-        }
     }
 
     /// Squared distance from the query to node `k`'s box (0 inside), summed in axis order.
@@ -356,45 +230,82 @@ impl<const K: usize> WindowTree<K> {
         inside
     }
 
+    /// Squared distances from the query to the slots of leaf `l` over the measured axes, below
+    /// eight axes: numpy's plain loop (`0.0 + d₀² + d₁² + …`, axis by axis), for four slots at
+    /// a time (`wide`'s lanewise subtract, multiply and add are the scalar IEEE operations, so
+    /// every lane holds the bits of [`sq_dist`]). NaN padding stays NaN.
+    #[inline(always)]
+    fn leaf_sq_lanes<const FULL: bool>(&self, l: usize, qy: &Query<K, FULL>) -> [f64x4; LANES] {
+        let (cols, _) = self.block[l * K * LEAF..][..K * LEAF].as_chunks::<LEAF>();
+        let mut acc = [f64x4::ZERO; LANES];
+        for (col, &qa) in cols.iter().zip(&qy.q[..qy.dims()]) {
+            let qv = f64x4::splat(qa);
+            for (a, c) in acc.iter_mut().zip(col.as_chunks::<4>().0) {
+                let d = qv - f64x4::new(*c);
+                *a += d * d;
+            }
+        }
+        acc
+    }
+
     /// Measure the admitted rows of leaf `k`.
     #[inline(always)]
     fn scan_leaf<const FULL: bool>(&self, k: usize, qy: &Query<K, FULL>, best: &mut Best) {
         let l = k - self.first_leaf;
         let mut s = [0.0f64; LEAF];
+        // the slots that may win or tie (v ≤ thr; NaN padding never is), one bit each
+        let mut mask = 0u32;
         if qy.dims() < 8 {
-            // numpy's plain loop, axis by axis, for all slots at once (vectorised)
-            for (ax, &qa) in qy.q[..qy.dims()].iter().enumerate() {
-                let col = &self.block[(l * K + ax) * LEAF..][..LEAF];
-                for (sp, &x) in s.iter_mut().zip(col) {
-                    let d = qa - x;
-                    *sp += d * d;
-                }
+            let thr = f64x4::splat(best.thr);
+            for (c, a) in self.leaf_sq_lanes(l, qy).iter().enumerate() {
+                mask |= a.simd_le(thr).to_bitmask() << (4 * c);
+                s[4 * c..][..4].copy_from_slice(a.as_array());
             }
         } else {
             for (slot, sp) in s.iter_mut().enumerate() {
                 let p: [f64; K] = std::array::from_fn(|ax| self.block[(l * K + ax) * LEAF + slot]);
                 *sp = sq_dist(qy.q, &p, qy.dims());
+                mask |= ((*sp <= best.thr) as u32) << slot;
             }
         }
-        // most leaves hold no row that can win or tie: one test for the leaf, on the least
-        // squared distance (two lanes of selects; NaN padding is never selected)
-        let mut m = [f64::INFINITY; 2];
-        for pair in s.chunks_exact(2) {
-            for (m, &v) in m.iter_mut().zip(pair) {
-                *m = if v < *m { v } else { *m };
-            }
-        }
-        if !(m[0] <= best.thr || m[1] <= best.thr) {
+        // most leaves hold no row that can win or tie: one test for the leaf
+        if mask == 0 {
             return;
         }
         let (min_i, max_i) = self.boxes[k].span;
         // every row of the leaf admitted: no test per row
         let clear = (max_i as usize) < qy.limit
             && ((max_i as usize) < qy.win.0 || (min_i as usize) > qy.win.1);
-        for (&v, &j) in s.iter().zip(&self.slot_row[l * LEAF..][..LEAF]) {
+        let rows = &self.slot_row[l * LEAF..][..LEAF];
+        if !clear {
+            // the admitted slots only
+            let mut m = mask;
+            while m != 0 {
+                let slot = m.trailing_zeros() as usize;
+                m &= m - 1;
+                mask &= !((!qy.admits(rows[slot] as usize) as u32) << slot);
+            }
+        }
+        // the least squared distance of the leaf first (no square root, no chain of updates
+        // of the best through it): a slot with v > v_min·(1 + 4e-15) has √v > √v_min once
+        // rounded (√ halves the relative gap, ≈ 2e-15 after the rounding of the product, far
+        // more than the two roundings of 2⁻⁵³), so it can neither win nor tie; the rest (nearly
+        // always the one slot) go through `take`, which keeps the lowest index among ties
+        let mut v_min = f64::INFINITY;
+        let mut m = mask;
+        while m != 0 {
+            let slot = m.trailing_zeros() as usize;
+            m &= m - 1;
+            v_min = v_min.min(s[slot]);
+        }
+        let near = v_min * (1.0 + 4e-15);
+        while mask != 0 {
+            let slot = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            let v = s[slot];
             // v > thr ⇒ √v > d: cannot win or tie
-            if v <= best.thr && (clear || qy.admits(j as usize)) {
-                best.take(v, j as usize);
+            if v <= near && v <= best.thr {
+                best.take(v, rows[slot] as usize);
             }
         }
     }
@@ -424,10 +335,11 @@ impl<const K: usize> WindowTree<K> {
                         self.box_dist_sq(l as usize, qy),
                         self.box_dist_sq(r as usize, qy),
                     );
-                    // selects, no branch
-                    let left_first = dl <= dr;
-                    let near = if left_first { (l, dl) } else { (r, dr) };
-                    let far = if left_first { (r, dr) } else { (l, dl) };
+                    // the nearer child (the left one on a tie) next: index arithmetic and
+                    // min/max, no branch (box distances are never NaN)
+                    let right_first = dl > dr;
+                    let near = (l | right_first as u32, dl.min(dr));
+                    let far = (near.0 ^ 1, dl.max(dr));
                     if far.1 <= best.thr {
                         stack.push(far);
                     }

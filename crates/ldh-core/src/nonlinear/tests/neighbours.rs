@@ -75,6 +75,43 @@ fn numpy_summation_order() {
     assert_eq!(np_sum(&big), 499_500.0);
 }
 
+/// Row-wise numpy sums equal `np_sum` of each lane bit for bit, across the plain loop (< 8
+/// rows), the eight accumulators (≤ 128) and the recursive split, from any start row.
+#[test]
+fn row_sums_equal_numpy_sums_of_each_lane() {
+    use crate::nonlinear::neighbours::{np_sum, np_sum_rows};
+    let lanes = 5;
+    // values of very different magnitudes, so that any change of order changes the bits
+    let rows: Vec<Vec<f64>> = (0..3000)
+        .map(|i| {
+            (0..lanes)
+                .map(|k| ((i * 7 + k * 13) as f64 * 0.37).sin() * 10f64.powi((i % 7) as i32 * 3))
+                .collect()
+        })
+        .collect();
+    for (start, n) in [
+        (0, 0),
+        (3, 1),
+        (0, 7),
+        (5, 8),
+        (0, 9),
+        (2, 128),
+        (0, 129),
+        (11, 2898),
+    ] {
+        let mut out = vec![f64::NAN; lanes];
+        np_sum_rows(start, n, &|i| &rows[i][..], &mut out);
+        for (k, &o) in out.iter().enumerate() {
+            let lane: Vec<f64> = (start..start + n).map(|i| rows[i][k]).collect();
+            assert_eq!(
+                o.to_bits(),
+                np_sum(&lane).to_bits(),
+                "start {start}, n {n}, lane {k}"
+            );
+        }
+    }
+}
+
 /// A noisy two-harmonic loop (a trajectory, like gait: the rows' neighbours are shifted copies
 /// of each other), quantised when asked so that exact ties occur.
 fn trajectory(n: usize, seed: u64, quantise: bool) -> Vec<f64> {
@@ -106,8 +143,8 @@ proptest! {
 
     /// One tree over `k` delay coordinates answers every query over its first `d ≤ k`
     /// coordinates and first `limit` rows as the brute-force scan does (windows, ties, the
-    /// rows past the series' end NaN, arbitrary hints), as false nearest neighbours and
-    /// Rosenstein's method use it.
+    /// rows past the series' end NaN, arbitrary hints, the answers of a wider search taken where
+    /// admitted), as false nearest neighbours and Rosenstein's method use it.
     #[test]
     fn delay_index_prefix_queries_equal_brute_force(
         n in 150usize..700,
@@ -126,13 +163,18 @@ proptest! {
         let rows = n - d * lag;
         let limit = rows.saturating_sub(cut).max(2);
         let w = ((limit as f64 * w_frac) as usize).min((limit - 2) / 2);
-        let index = crate::nonlinear::neighbours::delay_index(&x, lag, k, rows).unwrap();
+        let order = crate::nonlinear::neighbours::total_order(&x);
+        let index = crate::nonlinear::neighbours::delay_index(&x, lag, k, rows, &order).unwrap();
         let hint: Vec<usize> = (0..limit)
             .map(|i| (i as u64 ^ hint_seed).wrapping_mul(2654435761) as usize % (2 * n))
             .collect();
-        let fast = index.nearest_all(d, w, limit, Some(&hint));
+        let fast = index.nearest_all(d, w, limit, Some(&hint), None);
         let slow = nn_brute(&embed_rows(&x, lag, d, limit), d, w);
-        prop_assert_eq!(fast, slow);
+        prop_assert_eq!(&fast, &slow);
+        // with the answers of a wider search (a narrower window, all rows) taken where admitted
+        let known = index.nearest_all(d, w / 3, rows, None, None);
+        let reused = index.nearest_all(d, w, limit, Some(&hint), Some(&known));
+        prop_assert_eq!(reused, slow);
     }
 }
 
