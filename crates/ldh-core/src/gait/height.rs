@@ -19,7 +19,7 @@
 //! ([`HeightSensitivity::vouched`]; the finding is `sensor_height_unknown` in
 //! [`crate::pipeline::quality`]: a note when vouched, a warning withholding the length when not).
 
-use super::segment::lengths_at_heights;
+use super::segment::{lengths_at_heights, LengthsAtHeights};
 use super::{Stride, ValidStrideParams};
 use crate::align::Aligned;
 use crate::attitude::{Attitude, AttitudeModel};
@@ -102,7 +102,8 @@ fn median_of(strides: &[Stride], lengths: impl Iterator<Item = f64>) -> Option<f
 /// length: `strides` are the leg's final strides at the assumed height (after its quality
 /// checks). `None` when the height was given, the attitude model reports no length (ACC-only),
 /// or no valid stride has a length (nothing to qualify). Costs two more length integrations
-/// per valid stride (not the attitude).
+/// per valid stride (not the attitude); the pipeline measures them during the segmentation
+/// instead ([`height_sensitivity_measured`]).
 pub fn height_sensitivity(
     side: Side,
     al: &Aligned,
@@ -111,11 +112,55 @@ pub fn height_sensitivity(
     params: &ValidStrideParams,
     strides: &[Stride],
 ) -> Option<HeightSensitivity> {
-    if params.sensor_height_given() || att.model == AttitudeModel::Acc {
+    if heights_to_measure(params, att.model).is_empty() {
         return None;
     }
-    let median_m = median_of(strides, strides.iter().map(|s| s.stride_length_m))?;
+    // the median first: no integration when no valid stride has a length
+    median_of(strides, strides.iter().map(|s| s.stride_length_m))?;
     let ends = lengths_at_heights(side, al, att, ev, params, strides, &SENSOR_HEIGHT_RANGE_M);
+    sensitivity(params, strides, &ends)
+}
+
+/// The sensor heights, m, at which the segmentation has to measure the strides
+/// ([`super::strides_at_heights`]) for [`height_sensitivity_measured`]:
+/// [`SENSOR_HEIGHT_RANGE_M`] when the height was assumed and the attitude model reports a
+/// length, none otherwise.
+pub fn heights_to_measure(params: &ValidStrideParams, model: AttitudeModel) -> &'static [f64] {
+    if params.sensor_height_given() || model == AttitudeModel::Acc {
+        &[]
+    } else {
+        &SENSOR_HEIGHT_RANGE_M
+    }
+}
+
+/// [`height_sensitivity`] from the lengths the segmentation measured (`measured`: from
+/// [`super::strides_at_heights`] at [`heights_to_measure`]'s heights; `strides`: the same
+/// strides after the leg's checks): the same value, without finding the strides'
+/// zero-velocity spans and rotating their acceleration again. `None` also when `measured`
+/// does not hold [`SENSOR_HEIGHT_RANGE_M`] for these strides.
+pub fn height_sensitivity_measured(
+    params: &ValidStrideParams,
+    model: AttitudeModel,
+    strides: &[Stride],
+    measured: &LengthsAtHeights,
+) -> Option<HeightSensitivity> {
+    let complete = measured.heights_m == SENSOR_HEIGHT_RANGE_M
+        && measured.lengths_m.iter().all(|l| l.len() == strides.len());
+    if heights_to_measure(params, model).is_empty() || !complete {
+        return None;
+    }
+    let ends = measured.checked(strides, params.0.max_length_deviation);
+    sensitivity(params, strides, &ends)
+}
+
+/// The sensitivity from the lengths of `strides` at the ends of [`SENSOR_HEIGHT_RANGE_M`]
+/// (`ends`: per end, per stride, through the same checks).
+fn sensitivity(
+    params: &ValidStrideParams,
+    strides: &[Stride],
+    ends: &[Vec<f64>],
+) -> Option<HeightSensitivity> {
+    let median_m = median_of(strides, strides.iter().map(|s| s.stride_length_m))?;
     Some(HeightSensitivity {
         assumed_m: params.sensor_height_m(),
         median_m,

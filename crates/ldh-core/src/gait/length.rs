@@ -289,17 +289,51 @@ fn tilt_correction(sum: &Vector3<f64>, target: &Vector3<f64>) -> Rotation3<f64> 
 
 /// Horizontal displacement of the ankle between two mid-stance samples (see the module doc).
 pub fn stride_length(al: &Aligned, att: &Attitude, z0: usize, z1: usize, h: f64) -> LengthEstimate {
-    let dt = 1.0 / al.fs_hz;
+    integrate(al, att, &world_force(al, att, z0, z1), z0, z1, h)
+}
+
+/// [`stride_length`] with the sensor at each of `heights_m` above the ankle, in that order: the
+/// specific force in the world frame, which does not depend on the height, is computed once
+/// (its rotations are most of the integration's cost), so each estimate is the one
+/// [`stride_length`] gives, bit for bit.
+pub fn stride_lengths(
+    al: &Aligned,
+    att: &Attitude,
+    z0: usize,
+    z1: usize,
+    heights_m: &[f64],
+) -> Vec<LengthEstimate> {
+    let force = world_force(al, att, z0, z1);
+    heights_m
+        .iter()
+        .map(|&h| integrate(al, att, &force, z0, z1, h))
+        .collect()
+}
+
+/// Specific force in the world frame, m/s², gravity included, at samples `z0..=z1`.
+fn world_force(al: &Aligned, att: &Attitude, z0: usize, z1: usize) -> Vec<Vector3<f64>> {
     let acc = al.acc_motion_g();
-    let up = Vector3::z();
-    // Specific force in the world frame, m/s², gravity included.
-    let force: Vec<Vector3<f64>> = (z0..=z1)
+    (z0..=z1)
         .map(|i| {
             attitude_at(att, i)
                 * Vector3::new(acc[0][i], acc[1][i], acc[2][i])
                 * STANDARD_GRAVITY_MPS2
         })
-        .collect();
+        .collect()
+}
+
+/// [`stride_length`] from the specific force of its samples ([`world_force`]), the sensor `h`
+/// above the ankle.
+fn integrate(
+    al: &Aligned,
+    att: &Attitude,
+    force: &[Vector3<f64>],
+    z0: usize,
+    z1: usize,
+    h: f64,
+) -> LengthEstimate {
+    let dt = 1.0 / al.fs_hz;
+    let up = Vector3::z();
     // Sensor position from the ankle and its velocity when the ankle is at rest.
     let lever = |i: usize| -> (Vector3<f64>, Vector3<f64>) {
         let r = attitude_at(att, i);

@@ -37,15 +37,19 @@ use serde::{Deserialize, Serialize};
 
 use crate::recording::Side;
 pub use height::{
-    height_sensitivity, HeightSensitivity, MAX_HEIGHT_SPREAD_SHARE, SENSOR_HEIGHT_RANGE_M,
+    height_sensitivity, height_sensitivity_measured, heights_to_measure, HeightSensitivity,
+    MAX_HEIGHT_SPREAD_SHARE, SENSOR_HEIGHT_RANGE_M,
 };
 pub use length::{
-    pendulum_length_m, stride_length, zero_velocity_sample, LengthEstimate, ZeroVelocity,
-    MAX_CLIP_STEP_SHARE, MAX_DRIFT_MPS, MAX_TILT_DEG, MAX_VERTICAL_M, MAX_VERTICAL_SHARE,
-    PENDULUM_GAIN, SHANK_LENGTH_M,
+    pendulum_length_m, stride_length, stride_lengths, zero_velocity_sample, LengthEstimate,
+    ZeroVelocity, MAX_CLIP_STEP_SHARE, MAX_DRIFT_MPS, MAX_TILT_DEG, MAX_VERTICAL_M,
+    MAX_VERTICAL_SHARE, PENDULUM_GAIN, SHANK_LENGTH_M,
 };
 pub use params::{check_stride_range, StrideParams, ValidStrideParams, DEFAULT_SENSOR_HEIGHT_M};
-pub use segment::{lengths_at_heights, strides, strides_with_turns, TurnTest, ACC_ONLY_LENGTH};
+pub use segment::{
+    lengths_at_heights, strides, strides_at_heights, strides_with_turns, LengthsAtHeights,
+    TurnTest, ACC_ONLY_LENGTH,
+};
 pub use side::{side_parameters, withhold_unvouched_lengths, MIN_LENGTH_SHARE, MIN_LENGTH_STRIDES};
 
 /// One stride of one leg: a row of the per-stride table (SPEC §6).

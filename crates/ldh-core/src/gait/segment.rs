@@ -5,7 +5,7 @@
 
 use super::times::SortedTimes;
 use super::{
-    anatomical_roll_deg, append_reason, pendulum_length_m, stride_length, zero_velocity_sample,
+    anatomical_roll_deg, append_reason, pendulum_length_m, stride_lengths, zero_velocity_sample,
     LengthEstimate, Stride, StrideParams, ValidStrideParams,
 };
 use crate::align::Aligned;
@@ -46,6 +46,36 @@ pub fn strides_with_turns(
     params: &ValidStrideParams,
     is_turn: &TurnTest,
 ) -> Result<Vec<Stride>> {
+    Ok(strides_with_turns_at(side, al, att, ev, params, is_turn, &[])?.0)
+}
+
+/// [`strides`], also measuring each stride's length with the sensor at each of `heights_m`
+/// (for [`super::height_sensitivity_measured`]): the same integration as the stride's own
+/// length, sharing its zero-velocity search and its rotation of the acceleration, so the
+/// lengths are [`lengths_at_heights`]' bit for bit at a fraction of its cost.
+pub fn strides_at_heights(
+    side: Side,
+    al: &Aligned,
+    att: &Attitude,
+    ev: &Events,
+    params: &ValidStrideParams,
+    heights_m: &[f64],
+) -> Result<(Vec<Stride>, LengthsAtHeights)> {
+    let turn_deg = params.0.turn_deg;
+    let is_turn = |_: f64, _: f64, d: f64| d.abs() > turn_deg;
+    strides_with_turns_at(side, al, att, ev, params, &is_turn, heights_m)
+}
+
+/// [`strides_with_turns`] and [`strides_at_heights`].
+fn strides_with_turns_at(
+    side: Side,
+    al: &Aligned,
+    att: &Attitude,
+    ev: &Events,
+    params: &ValidStrideParams,
+    is_turn: &TurnTest,
+    heights_m: &[f64],
+) -> Result<(Vec<Stride>, LengthsAtHeights)> {
     let p = &params.0;
     let leg = Leg::new(side, al, att, ev, params);
     let mut hs = ev.hs_s.clone();
@@ -55,11 +85,13 @@ pub fn strides_with_turns(
     let mut length_notes: Vec<Option<String>> = Vec::new();
     // Whether a stride is part of a turn (a turn ends a walking bout).
     let mut turns: Vec<bool> = Vec::new();
+    let mut at_heights = LengthsAtHeights::new(heights_m);
     for (k, w) in hs.windows(2).enumerate() {
-        let m = leg.measure(k, w[0], w[1], is_turn);
+        let m = leg.measure(k, w[0], w[1], is_turn, heights_m);
         out.push(m.stride);
         length_notes.push(m.length_note);
         turns.push(m.turn);
+        at_heights.push(&m.at_heights_m);
     }
     let bouts = assign_bouts(&out, &turns, p.max_stride_s);
     if p.drop_bout_edges {
@@ -75,7 +107,51 @@ pub fn strides_with_turns(
         }
     }
     withhold_length_outliers(&mut out, p.max_length_deviation);
-    Ok(out)
+    Ok((out, at_heights))
+}
+
+/// The lengths of a leg's strides with the sensor at other heights, as the segmentation
+/// measured them ([`strides_at_heights`]): per height, per stride, the length after the
+/// stride's own checks (NaN where they withhold it), before its bout's median check.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LengthsAtHeights {
+    /// The heights, m.
+    pub heights_m: Vec<f64>,
+    /// Per height, per stride (in the order of the strides), m.
+    pub lengths_m: Vec<Vec<f64>>,
+}
+
+impl LengthsAtHeights {
+    fn new(heights_m: &[f64]) -> LengthsAtHeights {
+        LengthsAtHeights {
+            heights_m: heights_m.to_vec(),
+            lengths_m: vec![Vec::new(); heights_m.len()],
+        }
+    }
+
+    /// Add the next stride's lengths, one per height.
+    fn push(&mut self, lengths_m: &[f64]) {
+        for (v, l) in self.lengths_m.iter_mut().zip(lengths_m) {
+            v.push(*l);
+        }
+    }
+
+    /// Per height, the lengths of `strides` (the strides these lengths were measured with,
+    /// after any later check) as [`lengths_at_heights`] gives them: each valid stride's length
+    /// through its bout's median check, NaN where withheld and for invalid strides.
+    pub fn checked(&self, strides: &[Stride], max_length_deviation: f64) -> Vec<Vec<f64>> {
+        self.lengths_m
+            .iter()
+            .map(|lengths| {
+                let mut st = strides.to_vec();
+                for (s, l) in st.iter_mut().zip(lengths) {
+                    s.stride_length_m = if s.valid { *l } else { f64::NAN };
+                }
+                withhold_length_outliers(&mut st, max_length_deviation);
+                st.iter().map(|s| s.stride_length_m).collect()
+            })
+            .collect()
+    }
 }
 
 /// One measured stride, before bouts are known.
@@ -86,6 +162,9 @@ struct Measured {
     length_note: Option<String>,
     /// Whether it is part of a turn.
     turn: bool,
+    /// Its length with the sensor at each of the other heights asked for, m (NaN where the
+    /// stride's own checks withhold it).
+    at_heights_m: Vec<f64>,
 }
 
 /// One leg's signals and the stride parameters: what measuring a stride reads.
@@ -153,7 +232,14 @@ impl<'a> Leg<'a> {
     }
 
     /// Stride `k` from the heel strike at `h0` s to the next at `h1` s.
-    fn measure(&self, k: usize, h0: f64, h1: f64, is_turn: &TurnTest) -> Measured {
+    fn measure(
+        &self,
+        k: usize,
+        h0: f64,
+        h1: f64,
+        is_turn: &TurnTest,
+        heights_m: &[f64],
+    ) -> Measured {
         let (p, att, n) = (self.p, self.att, self.n);
         let st = h1 - h0;
         let mut reasons: Vec<String> = Vec::new();
@@ -177,7 +263,12 @@ impl<'a> Leg<'a> {
         if turn {
             reasons.push(format!("turning ({dpsi:.0} deg heading change)"));
         }
-        let (length, length_note) = self.length(&self.span(h0, h1, to, a), self.height_m);
+        let span = self.span(h0, h1, to, a);
+        let mut heights = Vec::with_capacity(heights_m.len() + 1);
+        heights.push(self.height_m);
+        heights.extend_from_slice(heights_m);
+        let mut lengths = self.lengths(&span, &heights).into_iter();
+        let (length, length_note) = lengths.next().unwrap_or((f64::NAN, None));
         Measured {
             stride: Stride {
                 stride_index: k,
@@ -198,6 +289,7 @@ impl<'a> Leg<'a> {
             },
             length_note,
             turn,
+            at_heights_m: lengths.map(|(l, _)| l).collect(),
         }
     }
 
@@ -252,32 +344,39 @@ impl<'a> Leg<'a> {
         Span { zv, pendulum_m }
     }
 
-    /// The stride length over `span`, m, with the sensor `height_m` above the ankle, NaN with
-    /// the reason when it is withheld.
-    fn length(&self, span: &Span, height_m: f64) -> (f64, Option<String>) {
-        let est = match span.zv {
-            Some((z0, z1)) => stride_length(self.al, self.att, z0, z1, height_m),
-            None => LengthEstimate {
-                length_m: f64::NAN,
-                drift_mps: f64::NAN,
-                unexplained_mps: f64::NAN,
-                tilt_deg: f64::NAN,
-                vertical_m: f64::NAN,
-                clipped_samples: 0,
-                clip_step_m: 0.0,
-            },
+    /// The stride length over `span`, m, with the sensor at each of `heights_m` above the
+    /// ankle, NaN with the reason where it is withheld.
+    fn lengths(&self, span: &Span, heights_m: &[f64]) -> Vec<(f64, Option<String>)> {
+        let ests = match span.zv {
+            Some((z0, z1)) => stride_lengths(self.al, self.att, z0, z1, heights_m),
+            None => vec![
+                LengthEstimate {
+                    length_m: f64::NAN,
+                    drift_mps: f64::NAN,
+                    unexplained_mps: f64::NAN,
+                    tilt_deg: f64::NAN,
+                    vertical_m: f64::NAN,
+                    clipped_samples: 0,
+                    clip_step_m: 0.0,
+                };
+                heights_m.len()
+            ],
         };
-        let note = if self.att.model == AttitudeModel::Acc {
-            Some(ACC_ONLY_LENGTH.to_string())
-        } else {
-            est.implausible(span.pendulum_m)
-        };
-        let length = if note.is_some() {
-            f64::NAN
-        } else {
-            est.length_m
-        };
-        (length, note)
+        ests.into_iter()
+            .map(|est| {
+                let note = if self.att.model == AttitudeModel::Acc {
+                    Some(ACC_ONLY_LENGTH.to_string())
+                } else {
+                    est.implausible(span.pendulum_m)
+                };
+                let length = if note.is_some() {
+                    f64::NAN
+                } else {
+                    est.length_m
+                };
+                (length, note)
+            })
+            .collect()
     }
 }
 
@@ -292,10 +391,12 @@ struct Span {
 /// The lengths of `strides` (segmented from these signals by [`strides`] or
 /// [`strides_with_turns`] with `params`) recomputed with the sensor at each of `heights_m`
 /// instead, m: per height, each valid stride's length through the same per-stride checks (the
-/// integration's, then its bout's median), NaN where withheld and for invalid strides. Only
-/// the length integration runs again per height: the zero-velocity spans are found once more
-/// per stride here, for all heights (the same spans [`strides`] found: they do not depend on
-/// the height); the attitude, the bouts and which strides are valid are the strides' own.
+/// integration's, then its bout's median), NaN where withheld and for invalid strides. The
+/// zero-velocity spans are found once more per stride here and the acceleration rotated once
+/// more, for all heights (they do not depend on the height); the attitude, the bouts and which
+/// strides are valid are the strides' own. The pipeline does not call this: it measures the
+/// heights during the segmentation ([`strides_at_heights`], the same numbers without the
+/// repetition).
 pub fn lengths_at_heights(
     side: Side,
     al: &Aligned,
@@ -306,26 +407,21 @@ pub fn lengths_at_heights(
     heights_m: &[f64],
 ) -> Vec<Vec<f64>> {
     let leg = Leg::new(side, al, att, ev, params);
-    let spans: Vec<Option<Span>> = strides
-        .iter()
-        .map(|s| {
-            s.valid.then(|| {
-                let a = leg.idx(s.hs_time_s);
-                leg.span(s.hs_time_s, s.next_hs_time_s, s.to_time_s, a)
-            })
-        })
-        .collect();
-    heights_m
-        .iter()
-        .map(|&h| {
-            let mut st = strides.to_vec();
-            for (s, span) in st.iter_mut().zip(&spans) {
-                s.stride_length_m = span.as_ref().map_or(f64::NAN, |sp| leg.length(sp, h).0);
-            }
-            withhold_length_outliers(&mut st, params.0.max_length_deviation);
-            st.iter().map(|s| s.stride_length_m).collect()
-        })
-        .collect()
+    let mut measured = LengthsAtHeights::new(heights_m);
+    for s in strides {
+        let lengths: Vec<f64> = if s.valid {
+            let a = leg.idx(s.hs_time_s);
+            let span = leg.span(s.hs_time_s, s.next_hs_time_s, s.to_time_s, a);
+            leg.lengths(&span, heights_m)
+                .into_iter()
+                .map(|(l, _)| l)
+                .collect()
+        } else {
+            vec![f64::NAN; heights_m.len()]
+        };
+        measured.push(&lengths);
+    }
+    measured.checked(strides, params.0.max_length_deviation)
 }
 
 /// Walking bouts: numbered from 0, split at pauses (a stride longer than `max_stride_s`) and at

@@ -11,8 +11,8 @@ use crate::attitude::{estimate, Attitude};
 use crate::error::Result;
 use crate::events::{detect, Events};
 use crate::gait::{
-    height_sensitivity, side_parameters, strides, withhold_unvouched_lengths, SideParameters,
-    Stride,
+    height_sensitivity_measured, heights_to_measure, side_parameters, strides_at_heights,
+    withhold_unvouched_lengths, SideParameters, Stride,
 };
 use crate::io::ReadReport;
 use crate::nonlinear::{gait_sta, GaitStaParams};
@@ -126,12 +126,15 @@ pub fn analyze_leg_checked(
     let ev = detect(&att.pitch_deg, &omega, fs, v.events())?;
     t.lap(Stage::Events, &mut clock);
     let sp = v.strides(sensor_height_m)?;
-    let mut st = strides(side, &al, &att, &ev, &sp)?;
+    // With an assumed sensor height, each stride is also measured at the ends of the range
+    // of heights, for the check below.
+    let heights = heights_to_measure(&sp, att.model);
+    let (mut st, at_heights) = strides_at_heights(side, &al, &att, &ev, &sp, heights)?;
     let before = side_parameters(&st, None);
     let mut checks = leg_checks(rec, &al, &att, &mut st, &before);
     withhold_unvouched_lengths(&mut st);
     // A length from an assumed sensor height: said, or withheld when it depends on it.
-    if let Some(h) = height_sensitivity(side, &al, &att, &ev, &sp, &st) {
+    if let Some(h) = height_sensitivity_measured(&sp, att.model, &st, &at_heights) {
         let w = quality::sensor_height_warning(&h);
         quality::apply_to_strides(&mut st, std::slice::from_ref(&w));
         checks.warnings.push(w);

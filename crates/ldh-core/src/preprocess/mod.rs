@@ -20,7 +20,8 @@
 //!    the 4-8° of the untouched gyroscope (docs/quality.md).
 //! 3. A `filter_order`-th order Butterworth low-pass at `cutoff_hz`, designed as second-order
 //!    sections and applied forward and backward with `scipy.signal.sosfiltfilt`'s odd padding
-//!    and initial conditions (sci-rs `butter_dyn` + `sosfiltfilt_dyn`, equal to scipy to ~1e-14).
+//!    and initial conditions (sci-rs `butter_dyn` + `sosfiltfilt_dyn`, equal to scipy to ~1e-14;
+//!    the latter written out bit for bit, a sensor's three axes side by side: [`sosfiltfilt_each`]).
 //! 4. For the stride length only, a second acceleration (`Preprocessed::acc_motion_g`): the
 //!    magnitude outliers kept and the clipped samples reconstructed on the axis that clipped by
 //!    a local quadratic ([`declip`], `declip.rs`), then the same low-pass.
@@ -39,7 +40,9 @@ use crate::error::{LdhError, Result};
 use crate::recording::Recording;
 pub(crate) use declip::runs;
 pub use declip::{clipped_axes, declip, DECLIP_NEIGHBOURS};
-pub use filter::{butter_filtfilt, butterworth_lowpass_sos, sosfiltfilt, BUTTERWORTH_WN_RANGE};
+pub use filter::{
+    butter_filtfilt, butterworth_lowpass_sos, sosfiltfilt, sosfiltfilt_each, BUTTERWORTH_WN_RANGE,
+};
 use outliers::norm_and_outliers;
 pub use outliers::{
     interpolate_over, magnitude, mean_sd, outlier_summary, outliers_sd, OutlierSummary,
@@ -108,11 +111,13 @@ pub fn preprocess(rec: &Recording, params: &ValidPreprocessParams) -> Result<Pre
             interpolate_over(ch, &gyro_bad);
         }
     }
-    let filt = |ch: &Vec<f64>| {
-        sosfiltfilt(&params.sos, ch).map_err(|e| LdhError::signal(ctx(), e.to_string()))
+    // the three axes of a sensor side by side (`sosfiltfilt_each`)
+    let filt = |ch: &[Vec<f64>; 3]| {
+        sosfiltfilt_each(&params.sos, [&ch[0][..], &ch[1], &ch[2]])
+            .map_err(|e| LdhError::signal(ctx(), e.to_string()))
     };
-    let acc_f = [filt(&acc[0])?, filt(&acc[1])?, filt(&acc[2])?];
-    let gyro_f = [filt(&gyro[0])?, filt(&gyro[1])?, filt(&gyro[2])?];
+    let acc_f = filt(&acc)?;
+    let gyro_f = filt(&gyro)?;
     let acc_norm_g = magnitude(&acc_f[0], &acc_f[1], &acc_f[2]);
     let acc_clipped: Vec<usize> = (0..rec.len())
         .filter(|&i| rec.acc_saturated_at(i))
@@ -129,7 +134,7 @@ pub fn preprocess(rec: &Recording, params: &ValidPreprocessParams) -> Result<Pre
             declip(ch, bad);
             interpolate_over(ch, &unknown);
         }
-        Some([filt(&acc[0])?, filt(&acc[1])?, filt(&acc[2])?])
+        Some(filt(&acc)?)
     } else {
         None
     };

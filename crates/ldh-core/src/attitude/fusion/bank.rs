@@ -11,15 +11,25 @@ use super::{acc_tilt, predict_n, Model, Sample, SinCos, M5, V5};
 /// of the last one repeat its first filter and are never read).
 #[derive(Clone)]
 pub(super) struct Group {
-    pub(super) x: [L4; 5],
-    /// [`SinCos::of`] the tilt of `x`.
-    pub(super) sc: SinCos<L4>,
-    pub(super) p: Mat<L4>,
+    /// The filtered states, what the smoother stores of each step (one copy).
+    pub(super) f: Filtered,
     /// The diagonal of the adapted R (its off-diagonal stays 0).
     r: [L4; 2],
     gate2: L4,
     logw: L4,
     rejected: [usize; LANES],
+}
+
+/// One group's filtered states (with the sines and cosines of their tilt) and covariances:
+/// what the smoother keeps of every step, kept together so that the store copies it in one
+/// block (its fields copied one by one went through three `memcpy` calls and a copy on the
+/// stack) and the backward pass reads it in one descending stream.
+#[derive(Clone, Copy)]
+pub(super) struct Filtered {
+    pub(super) x: [L4; 5],
+    /// [`SinCos::of`] the tilt of `x`.
+    pub(super) sc: SinCos<L4>,
+    pub(super) p: Mat<L4>,
 }
 
 impl Group {
@@ -30,9 +40,9 @@ impl Group {
         let p = m.p;
         let sp = L4::splat;
         let (xp, pp) = if k == 0 {
-            (self.x, self.p)
+            (self.f.x, self.f.p)
         } else {
-            let (xp, pp, _) = predict_n(&self.x, &self.sc, &self.p, &s.wm, m.dt, &m.q);
+            let (xp, pp, _) = predict_n(&self.f.x, &self.f.sc, &self.f.p, &s.wm, m.dt, &m.q);
             (xp, pp)
         };
         // H selects (φ, θ): H x, H P Hᵀ and P Hᵀ are sub-blocks (bit for bit, see products)
@@ -79,7 +89,7 @@ impl Group {
         let kg = products::gain(&pp, &s_inv);
         let xu: [L4; 5] = array(|i| xp[i] + (kg[i][0] * nu[0] + kg[i][1] * nu[1]));
         // the updated covariance straight into the filter's (the gated lanes get P_pred back)
-        products::joseph_into(&pp, &kg, rk, &mut self.p);
+        products::joseph_into(&pp, &kg, rk, &mut self.f.p);
         // Sage–Husa adaptation of R from quasi-static innovations.
         if s.dyn_dev < 2.0 * p.dynamic_scale_g {
             for i in 0..2 {
@@ -92,17 +102,17 @@ impl Group {
             self.rejected[l] = if *a { 0 } else { self.rejected[l] + 1 };
         }
         if accept.iter().all(|a| *a) {
-            self.x = xu;
+            self.f.x = xu;
         } else {
-            self.x = array(|i| L4::select(accept, xu[i], xp[i]));
-            for (row, pp_row) in self.p.iter_mut().zip(&pp) {
+            self.f.x = array(|i| L4::select(accept, xu[i], xp[i]));
+            for (row, pp_row) in self.f.p.iter_mut().zip(&pp) {
                 for (v, pv) in row.iter_mut().zip(pp_row) {
                     *v = L4::select(accept, *v, *pv);
                 }
             }
         }
-        self.x[2] = self.x[2].wrap();
-        self.sc = SinCos::of_lanes(self.x[0], self.x[1]);
+        self.f.x[2] = self.f.x[2].wrap();
+        self.f.sc = SinCos::of_lanes(self.f.x[0], self.f.x[1]);
     }
 }
 
@@ -141,9 +151,11 @@ impl Bank {
         let groups = gates
             .chunks(LANES)
             .map(|g| Group {
-                x: x0,
-                sc: SinCos::of_lanes(x0[0], x0[1]),
-                p: p0,
+                f: Filtered {
+                    x: x0,
+                    sc: SinCos::of_lanes(x0[0], x0[1]),
+                    p: p0,
+                },
                 r: [L4::splat(r0); 2],
                 gate2: L4(std::array::from_fn(|l| g.get(l).unwrap_or(&g[0]).powi(2))),
                 logw: L4::splat(0.0),
@@ -166,7 +178,7 @@ impl Bank {
     /// The state of filter `i`.
     pub(super) fn state(&self, i: usize) -> V5 {
         let (g, l) = (&self.groups[i / LANES], i % LANES);
-        V5::from_fn(|r, _| g.x[r].0[l])
+        V5::from_fn(|r, _| g.f.x[r].0[l])
     }
 
     /// State, sin/cos of the tilt and covariance of filter `i`.
@@ -175,8 +187,8 @@ impl Bank {
         let (g, l) = (&self.groups[i / LANES], i % LANES);
         (
             self.state(i),
-            g.sc.lane(l),
-            M5::from_fn(|r, c| g.p[r][c].0[l]),
+            g.f.sc.lane(l),
+            M5::from_fn(|r, c| g.f.p[r][c].0[l]),
         )
     }
 

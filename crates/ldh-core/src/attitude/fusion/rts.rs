@@ -2,7 +2,7 @@
 //! 1965;3:1445), run per filter and fused with the forward weights, in bounded memory: the
 //! forward pass keeps checkpoints and the current segment only ([`SEGMENT`]).
 
-use super::bank::Bank;
+use super::bank::{Bank, Filtered};
 use super::lanes::{array, Num, L4, LANES};
 use super::products::{lu_inverse, matrix, rows, times_ft, Jacobian, Mat};
 use super::{predict, predict_n, weighted, wrap, Angles, Model, SinCos, M5, V5};
@@ -27,14 +27,6 @@ pub(super) struct SegmentStore {
     ws: Vec<f64>,
 }
 
-/// One group's filtered states at one sample, kept together: the backward pass reads them in
-/// one descending stream (separate arrays of states and covariances stalled it on memory).
-struct Filtered {
-    x: [L4; 5],
-    sc: SinCos<L4>,
-    p: Mat<L4>,
-}
-
 impl SegmentStore {
     pub(super) fn new(bank: &Bank, len: usize) -> SegmentStore {
         let groups = bank.groups.len();
@@ -52,11 +44,7 @@ impl SegmentStore {
     }
 
     pub(super) fn push(&mut self, bank: &Bank) {
-        self.steps.extend(bank.groups.iter().map(|g| Filtered {
-            x: g.x,
-            sc: g.sc,
-            p: g.p,
-        }));
+        self.steps.extend(bank.groups.iter().map(|g| g.f));
         self.ws.extend_from_slice(&bank.weights);
     }
 

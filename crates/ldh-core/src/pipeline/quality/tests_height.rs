@@ -11,8 +11,9 @@ use crate::align::{Aligned, Alignment};
 use crate::attitude::{Attitude, AttitudeModel};
 use crate::events::Events;
 use crate::gait::{
-    height_sensitivity, side_parameters, strides, HeightSensitivity, Stride, StrideParams,
-    ValidStrideParams,
+    height_sensitivity, height_sensitivity_measured, heights_to_measure, lengths_at_heights,
+    side_parameters, strides, strides_at_heights, HeightSensitivity, Stride, StrideParams,
+    ValidStrideParams, SENSOR_HEIGHT_RANGE_M,
 };
 use crate::recording::{Side, STANDARD_GRAVITY_MPS2};
 
@@ -276,5 +277,77 @@ fn a_shank_almost_still_at_mid_stance_reports_the_length_with_a_note() {
         w.message.contains("a movement that cannot be bounded"),
         "{}",
         w.message
+    );
+}
+
+/// The pipeline measures the lengths at the ends of the height range during the segmentation
+/// (`strides_at_heights`) instead of integrating the final strides again: the same bits, on the
+/// synthetic walks and on a simulated leg with some strides invalidated after the
+/// segmentation (as the leg's checks do), and nothing measured with a height given.
+#[test]
+fn lengths_measured_during_the_segmentation_are_those_recomputed_bit_for_bit() {
+    use crate::align::{align, AlignParams};
+    use crate::attitude::{estimate, AttitudeParams};
+    use crate::events::{detect, EventParams};
+    use crate::preprocess::{preprocess, PreprocessParams};
+    let assumed = StrideParams::default().check().unwrap();
+    let sim = crate::simulate::CohortParams {
+        healthy: 0,
+        ldh: 1,
+        seed: 7,
+        duration_s: 40.0,
+        ..Default::default()
+    }
+    .simulate(0)
+    .unwrap();
+    let rec = &sim.left.recording;
+    let pre = preprocess(rec, &PreprocessParams::default().check(rec.fs_hz).unwrap()).unwrap();
+    let al = align(&pre, &AlignParams::default().check().unwrap()).unwrap();
+    let att = estimate(&al, &AttitudeParams::default().check().unwrap()).unwrap();
+    let ev = detect(
+        &att.pitch_deg,
+        &al.gyro_dps[1],
+        rec.fs_hz,
+        &EventParams::default().check().unwrap(),
+    )
+    .unwrap();
+    let mut legs = vec![(al, att, ev)];
+    legs.extend([5.0, 60.0].map(|mid_dps| Walk { mid_dps }.leg()));
+    let bits = |v: &[Vec<f64>]| -> Vec<Vec<u64>> {
+        v.iter()
+            .map(|l| l.iter().map(|x| x.to_bits()).collect())
+            .collect()
+    };
+    for (al, att, ev) in &legs {
+        let heights = heights_to_measure(&assumed, att.model);
+        assert_eq!(heights, SENSOR_HEIGHT_RANGE_M);
+        let (mut st, measured) =
+            strides_at_heights(Side::Left, al, att, ev, &assumed, heights).unwrap();
+        assert_eq!(st, strides(Side::Left, al, att, ev, &assumed).unwrap());
+        for k in [1, st.len() / 2] {
+            st[k].valid = false;
+        }
+        let again = lengths_at_heights(Side::Left, al, att, ev, &assumed, &st, heights);
+        let checked = measured.checked(&st, assumed.params().max_length_deviation);
+        assert_eq!(bits(&checked), bits(&again));
+        assert!(checked[0].iter().filter(|l| l.is_finite()).count() >= 5);
+        let h = height_sensitivity(Side::Left, al, att, ev, &assumed, &st);
+        assert!(h.is_some());
+        assert_eq!(
+            height_sensitivity_measured(&assumed, att.model, &st, &measured),
+            h
+        );
+    }
+    let given = StrideParams::default()
+        .sensor_height_m(0.2)
+        .check()
+        .unwrap();
+    let (al, att, ev) = &legs[0];
+    assert!(heights_to_measure(&given, att.model).is_empty());
+    let (_, none) = strides_at_heights(Side::Left, al, att, ev, &given, &[]).unwrap();
+    assert!(none.lengths_m.is_empty());
+    assert_eq!(
+        height_sensitivity_measured(&given, att.model, &[], &none),
+        None
     );
 }
