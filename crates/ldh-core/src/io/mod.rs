@@ -9,6 +9,7 @@ pub mod format;
 mod header;
 mod inspect;
 mod limits;
+mod number;
 pub mod reader;
 mod rows;
 mod text;

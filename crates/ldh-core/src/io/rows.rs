@@ -9,7 +9,8 @@ use std::path::Path;
 use super::columns::Columns;
 use super::format::{FormatSpec, TimeUnit};
 use super::limits::reserve;
-use super::text::{parse_number, split_fields, CellAt, Lines};
+use super::number::{parse_number, CellAt};
+use super::text::{split_fields, Lines};
 use super::timebase::parse_iso8601;
 use crate::error::{LdhError, Location, Result};
 
