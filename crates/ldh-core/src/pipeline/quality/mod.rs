@@ -26,6 +26,8 @@ mod tests_height;
 #[cfg(test)]
 pub(crate) mod tests_hugadb;
 #[cfg(test)]
+mod tests_hugadb_feet;
+#[cfg(test)]
 mod tests_stride_length;
 mod warning;
 

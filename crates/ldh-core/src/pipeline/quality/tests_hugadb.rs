@@ -32,7 +32,7 @@ fn hugadb_or_skip() -> Option<PathBuf> {
 }
 
 /// The default analysis without STA (the HuGaDB checks do not need it).
-pub(super) fn without_sta() -> AnalysisParams {
+pub(crate) fn without_sta() -> AnalysisParams {
     AnalysisParams {
         compute_sta: false,
         ..AnalysisParams::default()
