@@ -11,6 +11,7 @@
 use maud::{html, Markup};
 
 use super::html::fmt;
+use super::reference::no_published_reason;
 use super::subject::Citations;
 use super::{symmetry_index_pct, Reference, ReferenceRange, ReferenceSource, ValidReportParams};
 use crate::output::{Parameter, RecordingRow};
@@ -148,7 +149,12 @@ fn range_cells(
         }
         Some(r) => (
             format!("no reference (n = {})", r.n_reference),
-            "too few healthy subjects".into(),
+            // the reason is in section 2's note (one line here keeps the page count)
+            if no_published_reason(&r.column).is_some() {
+                "too few healthy subjects; no published range (section 2)".into()
+            } else {
+                "too few healthy subjects".into()
+            },
         ),
         None => ("no reference".into(), "none available".into()),
     }

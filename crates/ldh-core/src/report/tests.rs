@@ -66,6 +66,27 @@ fn reference_from_the_cohort_needs_enough_healthy_subjects() {
     let sta = r.ranges.iter().find(|x| x.code == "STA").unwrap();
     assert_eq!(sta.source, ReferenceSource::None);
     assert_eq!(sta.z(1.0), None);
+    // Stance and swing neither: no force-plate range for a shank-sensor toe off.
+    for col in ["stance_ratio", "swing_ratio"] {
+        let x = r.ranges.iter().find(|x| x.column == col).unwrap();
+        assert_eq!(
+            (x.source.clone(), x.low, x.z(0.7)),
+            (ReferenceSource::None, None, None)
+        );
+        assert!(super::reference::no_published_reason(col).is_some());
+    }
+    // With enough healthy subjects the cohort's own range is used for them as for the rest.
+    let mut rows = rows.clone();
+    for (i, x) in rows.iter_mut().enumerate() {
+        x.stance_ratio = Some(0.60 + 0.01 * i as f64);
+    }
+    let r = Reference::from_rows(&rows, &p);
+    let x = r
+        .ranges
+        .iter()
+        .find(|x| x.column == "stance_ratio")
+        .unwrap();
+    assert_eq!(x.source, ReferenceSource::Cohort { n_subjects: 4 });
 }
 
 #[test]
@@ -313,9 +334,13 @@ fn the_summary_uses_clinical_units_and_plain_flags() {
         "96–126",
         "0.60 ▼",
         "1.20 <span class=\"flagword\">within normal</span>",
-        "62.0 <span class=\"flagword\">within normal</span>",
-        "70.0 ▲ <span class=\"flagword\">above normal</span>",
-        // SI of speed is not in the summary; stance SI = 100·(0.62 − 0.70)/0.66.
+        // Stance has no published range (toe off from shank sensors, docs/accuracy.md):
+        // never "above normal" against force-plate values, and the reason is given.
+        "62.0 <span class=\"flagword\">no reference</span>",
+        "70.0 <span class=\"flagword\">no reference</span>",
+        "too few healthy subjects; no published range (section 2)",
+        // but its asymmetry is judged (the method's offset cancels): SI of speed is not in the
+        // summary; stance SI = 100·(0.62 − 0.70)/0.66.
         "-12.1 ◆",
         "published normal values [",
     ] {
@@ -324,11 +349,17 @@ fn the_summary_uses_clinical_units_and_plain_flags() {
     // Stride length is not in the rows: "not measured", never a number.
     assert!(summary.contains("not measured: not computable from these strides"));
     assert!(html.contains("Outside the normal range: </b>cadence below normal (left)"));
-    // No cohort: the shank angles have no reference and say how many healthy subjects there were.
+    // No cohort: the shank angles have no reference and say how many healthy subjects there
+    // were, and why no published range stands in.
     assert!(
         html.contains("no reference (n = 0 healthy subjects passing every check; 4 needed)"),
         "{html}"
     );
+    assert!(
+        html.contains("No published range stands in for STP, SWP: shank sensors time toe off"),
+        "{html}"
+    );
+    assert!(!html.contains("stance above normal"));
 }
 
 /// A trace beyond the physical ranges is drawn clipped, and the captions say so.

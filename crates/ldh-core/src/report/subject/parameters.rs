@@ -10,6 +10,7 @@ use crate::error::Result;
 use crate::output::RecordingRow;
 use crate::plots;
 use crate::report::html::{decimals, figure, fmt, side_label};
+use crate::report::reference::no_published_reason;
 use crate::report::{symmetry_index_pct, Reference, ReferenceRange, ReferenceSource};
 use crate::report::{SubjectReport, ValidReportParams};
 
@@ -140,8 +141,30 @@ pub(super) fn parameter_table(
             @for r in &rows { (r) }
         }
         "\n"
-        p { (out_of_range) " value(s) lie outside the reference range." } "\n"
+        p { (out_of_range) " value(s) lie outside the reference range." (no_published_note(reference)) } "\n"
     }
+}
+
+/// One sentence on why the parameters without a range here have no published range (none when
+/// every parameter has a range).
+fn no_published_note(reference: &Reference) -> String {
+    let mut why: Vec<(&str, Vec<&str>)> = Vec::new();
+    for r in reference.ranges.iter().filter(|r| r.low.is_none()) {
+        if let Some(w) = no_published_reason(&r.column) {
+            match why.iter_mut().find(|(x, _)| *x == w) {
+                Some((_, codes)) => codes.push(&r.code),
+                None => why.push((w, vec![&r.code])),
+            }
+        }
+    }
+    if why.is_empty() {
+        return String::new();
+    }
+    let parts: Vec<String> = why
+        .iter()
+        .map(|(w, codes)| format!("{}: {w}", codes.join(", ")))
+        .collect();
+    format!(" No published range stands in for {}.", parts.join("; "))
 }
 
 /// Radar of the subject's z-scores against the reference.
