@@ -26,7 +26,7 @@ mod sink;
 use labels::empty_is_none;
 pub use labels::{AffectedSide, Known, Label, SideRole, Status};
 pub use parameter::{Parameter, UnknownParameter};
-pub use sink::TableSink;
+pub use sink::{finish_tables, RenderedRows, TableSink};
 
 fn num(x: f64, decimals: i32) -> Option<f64> {
     if x.is_finite() {

@@ -14,7 +14,7 @@ use super::{
 };
 use crate::error::Result;
 use crate::io::{FormatSpec, ValidReadParams};
-use crate::output::{self, RecordingRow, TableSink};
+use crate::output::{self, RecordingRow, RenderedRows, TableSink};
 use crate::report::{file_stem, SubjectTraces, ValidTraceParams};
 use crate::timings::{Stage, StageTimings};
 
@@ -100,8 +100,11 @@ pub fn analyze_to_folder(
     let mut recordings = TableSink::create(out, "recordings", &[], true)?;
     let mut sum = FolderSummary::default();
     let checked = params.check().ok();
+    let json = [strides.has_json(), events.has_json(), recordings.has_json()];
     for part in subjects.chunks(opts.chunk.max(1)) {
-        let tables: Vec<Result<(output::Tables, StageTimings)>> = part
+        // Each subject's rows are rendered to bytes on the thread that analysed it; the loop
+        // below only copies them in input order.
+        let tables: Vec<Result<(Rendered, StageTimings)>> = part
             .par_iter()
             .map(|s| {
                 let r = match &checked {
@@ -109,28 +112,28 @@ pub fn analyze_to_folder(
                     None => analyze_subject(s, params, format, read),
                 };
                 let mut spent = r.timings;
-                let tables = spent.time(Stage::Write, || -> Result<output::Tables> {
+                let rendered = spent.time(Stage::Write, || -> Result<Rendered> {
                     if let Some(tp) = opts.traces {
                         write_traces(out, &r, tp)?;
                     }
-                    Ok(output::Tables::of(std::slice::from_ref(&r)))
+                    Rendered::of(output::Tables::of(std::slice::from_ref(&r)), json)
                 })?;
                 done();
-                Ok((tables, spent))
+                Ok((rendered, spent))
             })
             .collect();
         for t in tables {
             let (t, spent) = t?;
             sum.timings.add(&spent);
             let clock = std::time::Instant::now();
-            sum.valid_strides += t.strides.iter().filter(|s| s.valid).count();
-            strides.push(&t.strides)?;
-            events.push(&t.events)?;
-            recordings.push(&t.recordings)?;
-            sum.recordings += t.recordings.len();
-            sum.failed += t.recordings.iter().filter(|r| !r.is_ok()).count();
+            sum.valid_strides += t.valid_strides;
+            strides.push_rendered(&t.strides)?;
+            events.push_rendered(&t.events)?;
+            recordings.push_rendered(&t.recordings)?;
+            sum.recordings += t.rows.len();
+            sum.failed += t.rows.iter().filter(|r| !r.is_ok()).count();
             sum.flagged.extend(
-                t.recordings
+                t.rows
                     .into_iter()
                     .filter(|r| !r.is_ok() || !r.warnings.is_empty()),
             );
@@ -139,11 +142,32 @@ pub fn analyze_to_folder(
     }
     sum.strides = strides.rows();
     let clock = std::time::Instant::now();
-    strides.finish()?;
-    events.finish()?;
-    recordings.finish()?;
+    output::finish_tables(vec![strides, events, recordings])?;
     sum.timings.write_s += clock.elapsed().as_secs_f64();
     Ok(sum)
+}
+
+/// One subject's three tables rendered for the sinks of [`analyze_to_folder`], with what the
+/// summary needs.
+struct Rendered {
+    strides: RenderedRows,
+    events: RenderedRows,
+    recordings: RenderedRows,
+    valid_strides: usize,
+    rows: Vec<RecordingRow>,
+}
+
+impl Rendered {
+    /// `json`: whether the strides, events and recordings tables have a JSON file.
+    fn of(t: output::Tables, json: [bool; 3]) -> Result<Rendered> {
+        Ok(Rendered {
+            strides: RenderedRows::of(&t.strides, json[0])?,
+            events: RenderedRows::of(&t.events, json[1])?,
+            recordings: RenderedRows::of(&t.recordings, json[2])?,
+            valid_strides: t.strides.iter().filter(|s| s.valid).count(),
+            rows: t.recordings,
+        })
+    }
 }
 
 impl FolderSummary {
