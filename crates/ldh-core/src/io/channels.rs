@@ -112,6 +112,9 @@ pub(super) fn to_ldh_frame(
     Ok((acc_g, gyro_dps))
 }
 
+/// Samples [`detect_clipping`] tests at once for a run near an extreme.
+const CLIP_BLOCK: usize = 16;
+
 /// Flag clipped samples of one channel.
 ///
 /// With a known `range`: every sample with |v| ≥ 99.9 % of it. Without: samples at the channel's
@@ -140,6 +143,15 @@ pub fn detect_clipping(ch: &[f64], range: Option<f64>, floor: f64) -> Vec<bool> 
         let near = |v: f64| (v - ext).abs() <= 1e-3 * ext.abs();
         let mut i = 0;
         while i < n {
+            // a block with no sample near the extreme, where the walk below would only step
+            // on, is passed in one test that vectorises (issue 17: this was a branch per
+            // sample, run on six channels by the reader and again by the sensor checks)
+            if let Some(block) = ch.get(i..i + CLIP_BLOCK) {
+                if !block.iter().fold(false, |any, &v| any | near(v)) {
+                    i += CLIP_BLOCK;
+                    continue;
+                }
+            }
             if near(ch[i]) {
                 let mut j = i;
                 while j + 1 < n && ch[j + 1] == ch[i] {
@@ -215,6 +227,71 @@ map = ["-y", "+x", "+z"]
             notes[0].starts_with("axes mapped to ldh's frame"),
             "{notes:?}"
         );
+    }
+
+    /// The block skip flags what the sample-by-sample walk flagged: runs of 1-5 equal values
+    /// at and near both extremes, anywhere relative to the blocks, NaN among them.
+    #[test]
+    fn clipping_by_blocks_is_the_walk_sample_by_sample() {
+        let walk = |ch: &[f64], floor: f64| -> Vec<bool> {
+            let n = ch.len();
+            let mut flags = vec![false; n];
+            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for &v in ch {
+                lo = if v < lo { v } else { lo };
+                hi = if v > hi { v } else { hi };
+            }
+            for ext in [hi, lo] {
+                if ext.abs() < floor {
+                    continue;
+                }
+                let near = |v: f64| (v - ext).abs() <= 1e-3 * ext.abs();
+                let mut i = 0;
+                while i < n {
+                    if near(ch[i]) {
+                        let mut j = i;
+                        while j + 1 < n && ch[j + 1] == ch[i] {
+                            j += 1;
+                        }
+                        if j + 1 - i >= 3 {
+                            flags[i..=j].iter_mut().for_each(|f| *f = true);
+                        }
+                        i = j + 1;
+                    } else {
+                        i += 1;
+                    }
+                }
+            }
+            flags
+        };
+        let mut seed = 12345u64;
+        let mut next = |m: u64| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 33) % m
+        };
+        for case in 0..3000 {
+            let n = 1 + next(200) as usize;
+            let mut ch: Vec<f64> = (0..n).map(|_| next(1000) as f64 - 500.0).collect();
+            for _ in 0..next(6) {
+                let (at, len) = (next(n as u64) as usize, 1 + next(5) as usize);
+                let v = [500.0, -500.0, 499.9, -499.8, 250.0][next(5) as usize];
+                for x in ch.iter_mut().skip(at).take(len) {
+                    *x = v;
+                }
+            }
+            if case % 17 == 0 {
+                ch[next(n as u64) as usize] = f64::NAN;
+            }
+            for floor in [0.0, 200.0, 499.95, 600.0] {
+                assert_eq!(
+                    detect_clipping(&ch, None, floor),
+                    walk(&ch, floor),
+                    "case {case}"
+                );
+            }
+        }
     }
 
     #[test]
