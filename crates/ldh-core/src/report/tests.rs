@@ -66,6 +66,10 @@ fn reference_from_the_cohort_needs_enough_healthy_subjects() {
     let sta = r.ranges.iter().find(|x| x.code == "STA").unwrap();
     assert_eq!(sta.source, ReferenceSource::None);
     assert_eq!(sta.z(1.0), None);
+    // A parameter is either published or says why it is not, never both.
+    for (col, _) in super::reference::NO_PUBLISHED {
+        assert!(super::reference::PUBLISHED.iter().all(|p| p.0 != col), "{col}");
+    }
     // Stance and swing neither: no force-plate range for a shank-sensor toe off.
     for col in ["stance_ratio", "swing_ratio"] {
         let x = r.ranges.iter().find(|x| x.column == col).unwrap();
