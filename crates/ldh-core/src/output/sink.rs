@@ -218,7 +218,9 @@ mod tests {
         let mut j = String::from("[");
         for (k, r) in rows.iter().enumerate() {
             j += if k == 0 { "\n  " } else { ",\n  " };
-            j += &serde_json::to_string_pretty(r).unwrap().replace('\n', "\n  ");
+            j += &serde_json::to_string_pretty(r)
+                .unwrap()
+                .replace('\n', "\n  ");
         }
         j += if rows.is_empty() { "]" } else { "\n]" };
         (w.into_inner().unwrap(), j)
@@ -238,8 +240,8 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         for cuts in [vec![], vec![0, 0, 3], vec![1, 2, 2, 6], vec![7]] {
             for n in [0, 1, 7] {
-                let mut sink = TableSink::create(dir.path(), "t", &["id", "x", "note"], true)
-                    .unwrap();
+                let mut sink =
+                    TableSink::create(dir.path(), "t", &["id", "x", "note"], true).unwrap();
                 let mut at = 0;
                 for c in cuts.iter().map(|&c| c.min(n)).chain([n]) {
                     let piece = RenderedRows::of(&rows[at..c.max(at)], sink.has_json()).unwrap();

@@ -68,7 +68,10 @@ fn reference_from_the_cohort_needs_enough_healthy_subjects() {
     assert_eq!(sta.z(1.0), None);
     // A parameter is either published or says why it is not, never both.
     for (col, _) in super::reference::NO_PUBLISHED {
-        assert!(super::reference::PUBLISHED.iter().all(|p| p.0 != col), "{col}");
+        assert!(
+            super::reference::PUBLISHED.iter().all(|p| p.0 != col),
+            "{col}"
+        );
     }
     // Stance and swing neither: no force-plate range for a shank-sensor toe off.
     for col in ["stance_ratio", "swing_ratio"] {
