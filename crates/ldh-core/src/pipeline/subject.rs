@@ -244,7 +244,10 @@ fn pair_legs(
             leg
         })
     };
-    let (left, right) = (finish(l, rhs), finish(r, lhs));
+    let (mut left, mut right) = (finish(l, rhs), finish(r, lhs));
+    if let (Ok(a), Ok(b)) = (&mut left, &mut right) {
+        quality::check_length_variability(a, b);
+    }
     let mut warnings = warnings;
     if input.affected_side_unknown {
         warnings.push(Warning::new(

@@ -8,7 +8,8 @@
 //! - [`height`]: a stride length that used an assumed sensor height;
 //! - this module: the leg's gait (running, a time base that cannot be right, few strides, a
 //!   device convention);
-//! - [`pair`]: the two legs together (clocks, identical files, disagreement, a possible swap).
+//! - [`pair`]: the two legs together (clocks, identical files, disagreement, a possible swap);
+//! - [`noise`]: stride length variability against the measurement noise the two legs show.
 
 use crate::align::Alignment;
 use crate::gait::{SideParameters, Stride};
@@ -17,6 +18,7 @@ use super::LegResult;
 
 mod attitude;
 mod height;
+mod noise;
 mod pair;
 mod sensor;
 #[cfg(test)]
@@ -36,6 +38,10 @@ pub use attitude::{
     STANCE_PITCH_MAX_DEG, STANCE_PITCH_SPREAD_DEG,
 };
 pub use height::sensor_height_warning;
+pub use noise::{
+    check_length_variability, noise_share, residual_variances, variability_warning, walk_noise,
+    SV_MAX_INFLATION, SV_MIN_PAIRS,
+};
 pub use pair::{pair_warnings, CANONICAL_MOUNT_DEG, LR_STRIDE_LENGTH_TOL, LR_STRIDE_TIME_TOL};
 pub use sensor::{
     sensor_checks, SensorFindings, GYRO_CLIP_SHARE, SCALE_FAULT_SHARE, SHANK_MAX_DPS,

@@ -127,6 +127,8 @@ pub mod codes {
     pub const NO_OVERLAP: &str = "no_overlap";
     /// The two recordings differ in length or start.
     pub const LENGTH_MISMATCH: &str = "length_mismatch";
+    /// Stride length variability mostly the measurement's own noise (from the two legs).
+    pub const SV_NOISE: &str = "sv_noise";
 }
 
 /// Column names of recordings.csv, by what they are computed from.
