@@ -51,14 +51,18 @@ fn reported(leg: &LegResult, shift_s: f64) -> Vec<(f64, f64, f64)> {
 /// direction's mean removed (a constant left–right bias is not noise).
 fn residuals(a: &[(f64, f64, f64)], b: &[(f64, f64, f64)], out: &mut Vec<f64>) {
     let mut e = Vec::new();
+    // both in time order: one sweep (linear in the strides, issue 19)
+    let mut k = 0;
     for &(t0, t1, len) in a {
-        let mut inside = b.iter().enumerate().filter(|(_, s)| s.0 > t0 && s.0 < t1);
-        let (Some((k, b1)), None) = (inside.next(), inside.next()) else {
+        while k < b.len() && b[k].0 <= t0 {
+            k += 1;
+        }
+        // exactly one stride of `b` starts inside (t0, t1), and the one before it is contiguous
+        let one = k < b.len() && b[k].0 < t1 && b.get(k + 1).is_none_or(|n| n.0 >= t1);
+        if !one || k == 0 {
             continue;
-        };
-        let Some(b0) = k.checked_sub(1).map(|j| b[j]) else {
-            continue;
-        };
+        }
+        let (b0, b1) = (b[k - 1], b[k]);
         if (b0.1 - b1.0).abs() < 1e-6 {
             e.push(len / (0.5 * (b0.2 + b1.2)) - 1.0);
         }
