@@ -4,7 +4,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::embed::{emb_dim_fnn_index, lag_acf, lag_ami, FnnParams, FnnResult};
+use super::embed::{lag_acf, lag_ami};
+use super::fnn::{emb_dim_fnn_index, FnnParams, FnnResult};
 use super::rosenstein::{lyap_r_with, RosensteinParams, RosensteinResult};
 use super::{check_series, invalid, NonlinearError};
 

@@ -28,6 +28,7 @@ mod divergence;
 mod eckmann;
 mod embed;
 mod fft;
+mod fnn;
 mod gait;
 mod linalg;
 mod neighbours;
@@ -39,7 +40,8 @@ mod window_tree;
 mod tests;
 
 pub use eckmann::{lyap_e, lyap_e_len, EckmannParams, EckmannResult, ValidEckmannParams};
-pub use embed::{delay_embed, emb_dim_fnn, lag_acf, lag_ami, state_embed, FnnParams, FnnResult};
+pub use embed::{delay_embed, lag_acf, lag_ami, state_embed};
+pub use fnn::{emb_dim_fnn, FnnParams, FnnResult};
 pub use gait::{gait_sta, GaitSta, GaitStaParams, LagRule, TimeNormalisation};
 pub use rosenstein::{
     lyap_r, lyap_r_len, lyap_r_orbit, Fit, RosensteinParams, RosensteinResult,

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use super::divergence::divergence;
 use super::embed::delay_embed_flat;
-use super::embed::FnnSearch;
+use super::fnn::FnnSearch;
 use super::neighbours::nearest_outside_window;
 use super::{check_series, fft, invalid, NonlinearError};
 
@@ -266,7 +266,7 @@ pub fn lyap_r(
 
 /// [`lyap_r`], searching the neighbours in `delay`, when given: false nearest neighbours' last
 /// search over the delay embedding of `x` with the lag given alongside (see
-/// [`super::embed::emb_dim_fnn_index`]), used when that lag is the one used here and its index
+/// [`super::fnn::emb_dim_fnn_index`]), used when that lag is the one used here and its index
 /// has at least `emb_dim` coordinates and enough rows (its neighbours are taken where they are
 /// admitted, see [`super::neighbours::NeighbourIndex::nearest_all`]); the result is the same
 /// either way.
