@@ -41,7 +41,7 @@ mod tests;
 
 pub use eckmann::{lyap_e, lyap_e_len, EckmannParams, EckmannResult, ValidEckmannParams};
 pub use embed::{delay_embed, lag_acf, lag_ami, state_embed};
-pub use fnn::{emb_dim_fnn, FnnParams, FnnResult};
+pub use fnn::{emb_dim_fnn, FnnParams, FnnResult, FnnRows};
 pub use gait::{gait_sta, GaitSta, GaitStaParams, LagRule, TimeNormalisation};
 pub use rosenstein::{
     lyap_r, lyap_r_len, lyap_r_orbit, Fit, RosensteinParams, RosensteinResult,

@@ -13,6 +13,7 @@
 //! nolds' distance matrix.
 
 use std::num::NonZeroUsize;
+use std::ops::Range;
 
 use kiddo::{Chebyshev, ImmutableKdTree};
 
@@ -339,6 +340,21 @@ pub(crate) trait NeighbourIndex: Send + Sync {
         limit: usize,
         hint: Option<&[usize]>,
         known: Option<&[usize]>,
+    ) -> Vec<usize> {
+        let limit = limit.min(self.len());
+        self.nearest_rows((dims, min_tsep, limit), 0..limit, None, hint, known)
+    }
+    /// [`NeighbourIndex::nearest_all`]'s answers for the rows `rows` only (`rows.end ≤ limit ≤
+    /// len()`), in order; `prev`, row `rows.start − 1`'s neighbour, seeds the first query. False
+    /// nearest neighbours searches a dimension's rows block by block and stops once the
+    /// dimension is rejected.
+    fn nearest_rows(
+        &self,
+        search: (usize, usize, usize),
+        rows: Range<usize>,
+        prev: Option<usize>,
+        hint: Option<&[usize]>,
+        known: Option<&[usize]>,
     ) -> Vec<usize>;
 }
 
@@ -354,21 +370,23 @@ impl<const K: usize> NeighbourIndex for WindowTree<K> {
     /// Rows in order (in chunks, in parallel, from [`PAR_ROWS`] rows on). Every query is
     /// seeded with the previous row's neighbour shifted by one (trajectories are continuous)
     /// and the caller's hint for the row.
-    fn nearest_all(
+    fn nearest_rows(
         &self,
-        dims: usize,
-        min_tsep: usize,
-        limit: usize,
+        (dims, min_tsep, limit): (usize, usize, usize),
+        rows: Range<usize>,
+        prev: Option<usize>,
         hint: Option<&[usize]>,
         known: Option<&[usize]>,
     ) -> Vec<usize> {
         let limit = limit.min(self.len());
-        let mut out = vec![usize::MAX; limit];
+        let rows = rows.start.min(limit)..rows.end.min(limit);
+        let mut out = vec![usize::MAX; rows.len()];
         let run = |c: usize, chunk: &mut [usize]| {
             let mut stack = Vec::with_capacity(64);
-            let mut prev: Option<usize> = None;
+            // the first chunk continues the caller's rows; the others start unseeded
+            let mut prev = if c == 0 { prev } else { None };
             for (o, slot) in chunk.iter_mut().enumerate() {
-                let i = c * CHUNK + o;
+                let i = rows.start + c * CHUNK + o;
                 let admitted = |j: &usize| *j < limit && i.abs_diff(*j) > min_tsep;
                 if let Some(j) = known.and_then(|k| k.get(i).copied()).filter(admitted) {
                     *slot = j;
@@ -384,7 +402,7 @@ impl<const K: usize> NeighbourIndex for WindowTree<K> {
                 prev = Some(*slot);
             }
         };
-        if limit < PAR_ROWS {
+        if rows.len() < PAR_ROWS {
             run(0, &mut out);
         } else {
             out.par_chunks_mut(CHUNK)

@@ -226,6 +226,7 @@ fn false_nearest_neighbours_equal_a_brute_force_reference() {
                 max_dim,
                 min_tsep,
                 threshold: 1e-300,
+                rows: FnnRows::All,
                 ..FnnParams::default()
             };
             let want = reference(x, 9, &p);
@@ -240,7 +241,72 @@ fn false_nearest_neighbours_equal_a_brute_force_reference() {
                 "min_tsep {min_tsep}"
             );
             longest = longest.max(computed);
+            // stopping a rejected dimension early changes no decision; its fraction is a
+            // lower bound above the threshold
+            let early = FnnParams {
+                rows: FnnRows::UntilRejected,
+                ..p.clone()
+            };
+            let fast = emb_dim_fnn(x, 9, &early).unwrap();
+            assert_eq!((fast.emb_dim, fast.converged), (got.emb_dim, got.converged));
+            assert_eq!(fast.fractions.len(), computed);
+            for (f, w) in fast.fractions.iter().zip(&got.fractions) {
+                assert!(f == w || (*f > p.threshold && f <= w), "{f} vs {w}");
+            }
         }
     }
     assert_eq!(longest, 9, "some case computes every dimension");
+}
+
+/// The default [`FnnRows::UntilRejected`] on a 30 s gait-like leg: dimensions are rejected
+/// after a part of their rows (some fraction is a lower bound below the exact one), yet
+/// `gait_sta` is bit for bit that of [`FnnRows::All`]; where no dimension converges (white
+/// noise, at most 3 dimensions) every fraction is the exact one.
+#[test]
+fn false_nearest_neighbours_until_rejected_decide_as_all_rows() {
+    let (x, _) = gait_like(3_000, 3);
+    let all = GaitStaParams::default().fnn(FnnParams {
+        rows: FnnRows::All,
+        ..FnnParams::default()
+    });
+    let want = gait_sta(&x, 100.0, 1.0, &all).unwrap();
+    let got = gait_sta(&x, 100.0, 1.0, &GaitStaParams::default()).unwrap();
+    assert_eq!(got.rosenstein, want.rosenstein);
+    assert_eq!((got.lag, got.emb_dim), (want.lag, want.emb_dim));
+    let (f_got, f_want) = (got.fnn.unwrap(), want.fnn.unwrap());
+    assert_eq!(f_got.converged, f_want.converged);
+    let lower = f_got
+        .fractions
+        .iter()
+        .zip(&f_want.fractions)
+        .filter(|(g, w)| g < w)
+        .count();
+    assert!(
+        lower >= 1,
+        "{:?} vs {:?}",
+        f_got.fractions,
+        f_want.fractions
+    );
+
+    let noise: Vec<f64> = {
+        use rand::SeedableRng;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(8);
+        (0..2_000)
+            .map(|_| rand_distr_free::normal(&mut rng))
+            .collect()
+    };
+    let p = FnnParams {
+        max_dim: 3,
+        ..FnnParams::default()
+    };
+    let exact = FnnParams {
+        rows: FnnRows::All,
+        ..p.clone()
+    };
+    let (fast, slow) = (
+        emb_dim_fnn(&noise, 1, &p).unwrap(),
+        emb_dim_fnn(&noise, 1, &exact).unwrap(),
+    );
+    assert!(!slow.converged);
+    assert_eq!(fast, slow);
 }
