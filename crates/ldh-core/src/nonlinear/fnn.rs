@@ -7,8 +7,8 @@ use serde::{Deserialize, Serialize};
 
 use super::embed::delay_embed_into;
 use super::neighbours::{
-    delay_index, nearest_outside_window, nn_brute, nn_sorted_1d, np_euclidean, total_order,
-    NeighbourIndex,
+    delay_index, nearest_outside_window, nn_brute, np_euclidean, total_order, NeighbourIndex,
+    Sorted1d,
 };
 use super::{check_series, invalid, NonlinearError};
 
@@ -238,10 +238,11 @@ fn fnn_dimension(
     let (x, lag) = (s.x, s.lag);
     // rows ≥ 2·min_tsep + 2 ≥ 2 by the length check of emb_dim_fnn_index
     let rows = x.len() - d * lag;
-    // the 1-D walk and the exact scans answer every row at once; an index block by block
-    let (mut nb, ix) = match fnn_neighbours_at_once(s, d, rows, params, index) {
-        Some(nb) => (nb, None),
-        None => (Vec::with_capacity(rows), index.as_deref()),
+    let search = dim_search(s, d, rows, params, index);
+    let (mut nb, ix, sorted) = match search {
+        DimSearch::Scanned(nb) => (nb, None, None),
+        DimSearch::Sorted(sorted) => (Vec::with_capacity(rows), None, Some(sorted)),
+        DimSearch::Index => (Vec::with_capacity(rows), index.as_deref(), None),
     };
     let early = params.rows == FnnRows::UntilRejected;
     let (mut false_nb, mut counted, mut done) = (0usize, 0usize, 0usize);
@@ -255,6 +256,8 @@ fn fnn_dimension(
             let search = (d, params.min_tsep, rows);
             let prev = nb.last().copied();
             nb.extend(ix.nearest_rows(search, done..done + block, prev, Some(prev_nb), None));
+        } else if let Some(sorted) = &sorted {
+            nb.extend((done..done + block).map(|i| sorted.nearest(i)));
         }
         for (i, &j) in nb.iter().enumerate().take(done + block).skip(done) {
             // the distance of the d-dimensional rows, as the embedding's np_euclidean
@@ -328,21 +331,30 @@ fn delay_dist(x: &[f64], lag: usize, d: usize, i: usize, j: usize) -> f64 {
     }
 }
 
-/// The nearest neighbour of each of the first `rows` rows of the `d`-dimensional delay
-/// embedding (Theiler window `params.min_tsep`) where no index serves: sorted values in one
-/// dimension, an exact scan above 10 dimensions. `None` when a new `index` over the `d`
-/// coordinates (left in `index`) is to answer.
-fn fnn_neighbours_at_once(
+/// How [`fnn_dimension`] finds the nearest neighbours of dimension `d`.
+enum DimSearch {
+    /// Every row's neighbour, found at once by an exact scan (above 10 dimensions or
+    /// `u32::MAX` samples).
+    Scanned(Vec<usize>),
+    /// One dimension, only the row itself excluded: row by row along the sorted values.
+    Sorted(Sorted1d),
+    /// Row by row through the new index over the `d` coordinates (left in `index`).
+    Index,
+}
+
+/// The search for the first `rows` rows of the `d`-dimensional delay embedding (Theiler window
+/// `params.min_tsep`).
+fn dim_search(
     s: &FnnSeries,
     d: usize,
     rows: usize,
     params: &FnnParams,
     index: &mut Option<Box<dyn NeighbourIndex>>,
-) -> Option<Vec<usize>> {
+) -> DimSearch {
     let (x, x_order, lag) = (s.x, s.order, s.lag);
     if d == 1 && params.min_tsep == 0 {
         if x_order.len() != x.len() {
-            return Some(nearest_outside_window(&x[..rows], 1, 0, None));
+            return DimSearch::Scanned(nearest_outside_window(&x[..rows], 1, 0, None));
         }
         // the series' order, restricted to the rows, is the rows' order
         let order: Vec<u32> = x_order
@@ -350,13 +362,13 @@ fn fnn_neighbours_at_once(
             .copied()
             .filter(|&t| (t as usize) < rows)
             .collect();
-        return Some(nn_sorted_1d(&x[..rows], &order));
+        return DimSearch::Sorted(Sorted1d::new(&x[..rows], &order));
     }
     *index = delay_index(x, lag, d, rows, x_order);
     if index.is_some() {
-        return None;
+        return DimSearch::Index;
     }
     let mut pts = Vec::new();
     delay_embed_into(&x[..rows + (d - 1) * lag], d, lag, &mut pts);
-    Some(nn_brute(&pts, d, params.min_tsep))
+    DimSearch::Scanned(nn_brute(&pts, d, params.min_tsep))
 }

@@ -247,18 +247,44 @@ pub(crate) fn nearest_outside_window(
 /// whatever order `order` (the positions of `points` sorted by [`f64::total_cmp`], e.g. from
 /// [`total_order`]) holds them.
 pub(crate) fn nn_sorted_1d(points: &[f64], order: &[u32]) -> Vec<usize> {
-    let order: Vec<(f64, usize)> = order
-        .iter()
-        .map(|&t| (points[t as usize], t as usize))
-        .collect();
-    let mut out = vec![usize::MAX; points.len()];
-    let dist = |x: f64, y: f64| {
-        let d = x - y;
-        (d * d).sqrt()
-    };
-    for (p, &(x, i)) in order.iter().enumerate() {
+    let sorted = Sorted1d::new(points, order);
+    (0..points.len()).map(|i| sorted.nearest(i)).collect()
+}
+
+/// The values of [`nn_sorted_1d`] in sorted order and each row's place among them, so that any
+/// row's nearest row is found on its own (false nearest neighbours' first dimension searches
+/// only the rows it needs before rejecting the dimension).
+pub(crate) struct Sorted1d {
+    /// `(value, row)` in `order`'s order.
+    sorted: Vec<(f64, usize)>,
+    /// Row `i`'s place in `sorted`.
+    place: Vec<u32>,
+}
+
+impl Sorted1d {
+    /// `order`: the positions of `points` sorted by [`f64::total_cmp`] (fewer than `u32::MAX`).
+    pub(crate) fn new(points: &[f64], order: &[u32]) -> Self {
+        let sorted: Vec<(f64, usize)> = order
+            .iter()
+            .map(|&t| (points[t as usize], t as usize))
+            .collect();
+        let mut place = vec![0u32; points.len()];
+        for (p, &t) in order.iter().enumerate() {
+            place[t as usize] = p as u32;
+        }
+        Sorted1d { sorted, place }
+    }
+
+    /// Row `i`'s nearest other row, lowest index among ties (`usize::MAX` if there is none).
+    pub(crate) fn nearest(&self, i: usize) -> usize {
+        let p = self.place[i] as usize;
+        let (x, _) = self.sorted[p];
+        let dist = |x: f64, y: f64| {
+            let d = x - y;
+            (d * d).sqrt()
+        };
         let mut best = (f64::INFINITY, usize::MAX);
-        let sides = [&order[..p], &order[p + 1..]];
+        let sides = [&self.sorted[..p], &self.sorted[p + 1..]];
         for (side, rows) in sides.into_iter().enumerate() {
             let mut walk = |&(y, j): &(f64, usize)| {
                 let d = dist(x, y);
@@ -276,9 +302,8 @@ pub(crate) fn nn_sorted_1d(points: &[f64], order: &[u32]) -> Vec<usize> {
                 rows.iter().take_while(|r| walk(r)).for_each(drop);
             }
         }
-        out[i] = best.1;
+        best.1
     }
-    out
 }
 
 /// Exact brute force (reference for tests, and the path for `dim > 10`).
