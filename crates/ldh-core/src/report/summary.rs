@@ -181,10 +181,15 @@ fn side_cell(r: Option<&&RecordingRow>, m: &Measure, rr: Option<&ReferenceRange>
 /// One plain sentence: what lies outside its range and what was not measured.
 fn headline(sides: &[&RecordingRow], reference: &Reference) -> Markup {
     let mut outside: Vec<String> = Vec::new();
-    let mut missing: Vec<String> = Vec::new();
+    // a leg not analysed is one entry, not one per measure
+    let mut missing: Vec<String> = sides
+        .iter()
+        .filter(|r| !r.is_ok())
+        .map(|r| format!("every measure of the {} leg (not analysed)", r.side))
+        .collect();
     for m in &MEASURES {
         let rr = reference.range(m.parameter);
-        for r in sides {
+        for r in sides.iter().filter(|r| r.is_ok()) {
             match not_measured(r, m.parameter) {
                 Some(_) => missing.push(format!("{} ({})", m.label.to_lowercase(), r.side)),
                 None => {
@@ -238,6 +243,13 @@ pub(crate) fn clinical_summary(
         );
         symmetry_index_pct(a, b).ok_or_else(|| "not defined for these values".into())
     };
+    let no_pair = match (left, right) {
+        (None, _) => Some("no left recording".to_string()),
+        (_, None) => Some("no right recording".to_string()),
+        (Some(l), _) if !l.is_ok() => Some("the left leg was not analysed (see above)".into()),
+        (_, Some(r)) if !r.is_ok() => Some("the right leg was not analysed (see above)".into()),
+        _ => None,
+    };
     html! {
         h2 #summary { "Clinical summary" } "\n"
         (headline(sides, reference))
@@ -254,10 +266,20 @@ pub(crate) fn clinical_summary(
                 }
                 "\n"
             }
-            @for (label, parameter) in ASYMMETRY {
+            @if let Some(why) = &no_pair {
+                // no asymmetry can be computed: one row says why, not one per measure
+                tr {
+                    td { b { "Left–right asymmetry" } " (SI %)" }
+                    td.nm colspan="2" { "not measured: " (why) }
+                    td.num { "|SI| ≤ " (format!("{limit:.0}")) }
+                    td { "asymmetry threshold (Robinson et al. 1987)" }
+                }
+                "\n"
+            }
+            @for (label, parameter) in ASYMMETRY.iter().filter(|_| no_pair.is_none()) {
                 tr {
                     td { b { (label) } " (SI %, left vs right)" }
-                    @match si(parameter) {
+                    @match si(*parameter) {
                         Ok(v) => {
                             @let flag = v.abs() > limit;
                             td.num.out[flag] colspan="2" {
