@@ -97,28 +97,47 @@ impl Dataset {
         let cohort = Cohort::from_rows(rows)?;
         let mut x: Vec<Vec<f64>> = Vec::new();
         let (mut y, mut groups, mut ids, mut dropped) = (vec![], vec![], vec![], vec![]);
-        let mut push = |vals: Option<Vec<f64>>, label: usize, subject: &str, what: &str| match vals
-        {
-            Some(v) => {
-                x.push(v);
-                y.push(label);
-                groups.push(subject.to_string());
-                ids.push(format!("{subject}/{what}"));
-            }
-            None => dropped.push(format!("{subject}/{what}: a feature is missing")),
-        };
+        // how many dropped rows lack each feature, for the refusal's message
+        let mut missing_count = vec![0usize; features.len()];
+        let mut push =
+            |vals: Option<Vec<f64>>, label: usize, subject: &str, what: &str, miss: Vec<usize>| {
+                match vals {
+                    Some(v) => {
+                        x.push(v);
+                        y.push(label);
+                        groups.push(subject.to_string());
+                        ids.push(format!("{subject}/{what}"));
+                    }
+                    None => {
+                        let names: Vec<&str> = miss.iter().map(|&f| features[f].column()).collect();
+                        for f in miss {
+                            missing_count[f] += 1;
+                        }
+                        dropped.push(format!(
+                            "{subject}/{what}: not measured: {}",
+                            names.join(", ")
+                        ));
+                    }
+                }
+            };
         let get = |r: &RecordingRow| -> Option<Vec<f64>> {
             features.iter().map(|&p| r.value(p)).collect()
         };
+        let miss = |rows: &[&RecordingRow]| -> Vec<usize> {
+            (0..features.len())
+                .filter(|&f| rows.iter().any(|r| r.value(features[f]).is_none()))
+                .collect()
+        };
         for s in &cohort.ldh {
             if task == Task::ThreeClass {
-                push(get(&s.a), 0, &s.subject_id, "unaffected");
+                push(get(&s.a), 0, &s.subject_id, "unaffected", miss(&[&s.a]));
             }
             push(
                 get(&s.b),
                 1, // affected: 1 in both tasks
                 &s.subject_id,
                 "affected",
+                miss(&[&s.b]),
             );
         }
         for s in &cohort.healthy {
@@ -131,6 +150,7 @@ impl Dataset {
                 if task == Task::ThreeClass { 2 } else { 0 },
                 &s.subject_id,
                 "healthy",
+                miss(&[&s.a, &s.b]),
             );
         }
         let n = x.len();
@@ -148,7 +168,30 @@ impl Dataset {
             row_ids: ids,
             dropped,
         };
-        ds.validate()?;
+        ds.validate().map_err(|e| {
+            // a refusal after dropping rows says which features were not measured
+            let mut lacking: Vec<(usize, &str)> = missing_count
+                .iter()
+                .zip(&features)
+                .filter(|(&c, _)| c > 0)
+                .map(|(&c, p)| (c, p.column()))
+                .collect();
+            if lacking.is_empty() {
+                return e;
+            }
+            lacking.sort_by_key(|l| std::cmp::Reverse(l.0));
+            let list: Vec<String> = lacking.iter().map(|(c, f)| format!("{f} on {c}")).collect();
+            let e = e.to_string();
+            let e = e.strip_prefix("dataset: ").unwrap_or(&e);
+            LdhError::signal(
+                "dataset",
+                format!(
+                    "{e}; {} rows were left out for a feature not measured ({}): choose features that are measured (`ldh train --features`, Python `features=`)",
+                    ds.dropped.len(),
+                    list.join(", ")
+                ),
+            )
+        })?;
         Ok(ds)
     }
 
