@@ -178,8 +178,11 @@ fn train_refuses_what_it_cannot_do() {
         "3",
         "--ldh",
         "3",
+        // 30 s: at 15 s some legs have too few strides, and their partners' stride length
+        // variability, which nothing can then check, is withheld (`sv_unchecked`): the
+        // refusal would be about missing features, not the folds
         "--seconds",
-        "15",
+        "30",
         "--seed",
         "2"
     ])
@@ -223,4 +226,37 @@ fn train_refuses_what_it_cannot_do() {
     ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(text(&o).contains("height_cm") && text(&o).contains("unknown feature"));
+    // 15 s walks: some legs have too few strides, every parameter withheld, and their
+    // partners' stride length variability is unchecked; the refusal names what was not
+    // measured and how to choose features
+    let short = d.path().join("short");
+    assert!(ldh(&[
+        "simulate",
+        "--out",
+        short.to_str().unwrap(),
+        "--healthy",
+        "3",
+        "--ldh",
+        "3",
+        "--seconds",
+        "15",
+        "--seed",
+        "2"
+    ])
+    .status
+    .success());
+    let o = ldh(&[
+        "train",
+        short.to_str().unwrap(),
+        "--out",
+        d.path().join("t15").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    for want in [
+        "left out for a feature not measured",
+        "stride_length_cv on",
+        "--features",
+    ] {
+        assert!(text(&o).contains(want), "{want}: {}", text(&o));
+    }
 }

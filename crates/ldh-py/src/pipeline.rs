@@ -216,7 +216,7 @@ pub(crate) fn analyze_recording<'py>(
                 _ => o.params()?,
             };
             let rec = Recording::new(fs_hz, acc, gyro, vec![])?.with_side(side);
-            Ok(core::analyze_leg(&rec, side, &p, None)?.0)
+            core::analyze_leg_alone(&rec, side, &p, None)
         })
         .or_raise(py)?;
     let d = PyDict::new(py);

@@ -57,11 +57,15 @@ def test_analyze_recording_from_arrays(tmp_path):
     assert 0.55 < out["parameters"]["stance_ratio"] < 0.7
     assert len(out["events"]["hs_s"]) > 10
     assert np.isnan(out["parameters"]["step_time_s"])  # one leg: no step time
-    # No sensor height given: the only finding is the note that 0.10 m was assumed (the demo's
-    # shank hardly turns at mid-stance, so the length is reported; issue 20). Given, nothing.
-    assert [(w["code"], w["severity"]) for w in out["warnings"]] == [("sensor_height_unknown", "note")]
+    # No sensor height given: the note that 0.10 m was assumed (the demo's shank hardly turns at
+    # mid-stance, so the length is reported; issue 20). One leg alone: its stride length
+    # variability has no other leg to be checked against, and is withheld (sv_unchecked).
+    sv = ("sv_unchecked", "warning")
+    assert [(w["code"], w["severity"]) for w in out["warnings"]] == [("sensor_height_unknown", "note"), sv]
+    assert np.isnan(out["parameters"]["stride_length_cv"])
+    assert "sv unchecked" in out["parameters"]["withheld"]["stride_length_cv"]
     given = ldh.analyze_recording(acc, gyro, rec["fs_hz"], side="right", sensor_height_m=0.1, compute_sta=False)
-    assert given["warnings"] == []
+    assert [(w["code"], w["severity"]) for w in given["warnings"]] == [sv]
     assert given["parameters"]["stride_length_m"] == out["parameters"]["stride_length_m"]
     # The device turned upside down (180 deg about its y axis): analysed, with a note.
     flip = lambda ch: [-ch[0], ch[1], -ch[2]]

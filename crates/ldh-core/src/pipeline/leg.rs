@@ -73,6 +73,20 @@ pub fn analyze_leg(
     )
 }
 
+/// One leg with no other leg to pair it with (Python's `analyze_recording`): [`analyze_leg`],
+/// then what only the other leg could vouch for is withheld with the reason — stride length
+/// variability (`sv_unchecked`, [`quality::check_length_variability`]).
+pub fn analyze_leg_alone(
+    rec: &Recording,
+    side: Side,
+    params: &AnalysisParams,
+    sensor_height_m: Option<f64>,
+) -> Result<LegResult> {
+    let (mut leg, _) = analyze_leg(rec, side, params, sensor_height_m)?;
+    quality::check_length_variability(Some(&mut leg), None);
+    Ok(leg)
+}
+
 /// [`analyze_leg`], adding the wall time of each stage to `t` and 1 to `t.recordings`
 /// (timing never changes the result). Checks `params` first (the recording, then the
 /// preprocessing at its rate, then the other stages); a run over many legs checks once and

@@ -24,7 +24,10 @@ pub use inputs::{
     demo_inputs, discover, discover_with, is_manifest, read_manifest, subject_id_from_files,
     InputOptions, Source, SubjectInput,
 };
-pub use leg::{analyze_leg, analyze_leg_checked, analyze_leg_timed, memory_report, LegResult};
+pub use leg::{
+    analyze_leg, analyze_leg_alone, analyze_leg_checked, analyze_leg_timed, memory_report,
+    LegResult,
+};
 pub use manifest::{is_manifest_text, GroupLabel, MANIFEST_COLUMNS};
 pub use many::{
     analyze_many, analyze_to_folder, bounded_jobs, recording_rows_many, FolderOptions,

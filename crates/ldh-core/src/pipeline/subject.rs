@@ -245,9 +245,7 @@ fn pair_legs(
         })
     };
     let (mut left, mut right) = (finish(l, rhs), finish(r, lhs));
-    if let (Ok(a), Ok(b)) = (&mut left, &mut right) {
-        quality::check_length_variability(a, b);
-    }
+    quality::check_length_variability(left.as_mut().ok(), right.as_mut().ok());
     let mut warnings = warnings;
     if input.affected_side_unknown {
         warnings.push(Warning::new(

@@ -15,7 +15,9 @@
 //! walk's: where σ accounts for more than [`SV_MAX_INFLATION`] of the legs' root-mean-square SV
 //! (SV − √(SV² − σ²)), both legs' SV is withheld — a clinician reading it would read the
 //! sensor, not the gait (one leg's alone cannot be told apart on a short walk: the estimate's
-//! own error is ≈ 30 % at 10 pairs). docs/quality.md `sv_noise`; docs/accuracy.md "Stride
+//! own error is ≈ 30 % at 10 pairs). A leg whose SV no other leg can check (the other leg not
+//! analysed, or without an SV) has it withheld (`sv_unchecked`): on the real walks that could
+//! be checked the noise dominated every SV. docs/quality.md `sv_noise`; docs/accuracy.md "Stride
 //! length variability against its noise" has the numbers (families A and B against the truth,
 //! and HuGaDB).
 
@@ -27,9 +29,12 @@ use super::LegResult;
 /// a point above the gait's own would move a walker across it. A resolution, not fitted.
 pub const SV_MAX_INFLATION: f64 = 0.01;
 
-/// Fewest paired strides in each direction (8): fewer give a residual variance whose own
-/// error exceeds ≈ 50 %, and the check does not run.
-pub const SV_MIN_PAIRS: usize = 8;
+/// Fewest paired strides in each direction (5) for the check to run: a residual variance from
+/// n pairs has a relative standard error of √(2/(n − 1)), 71 % at 5, so the check then still
+/// catches a gross noise (HuGaDB's 3–5 % a stride) but decides near its threshold by chance.
+/// With fewer (a walk under ≈ 25 s) SV is reported unchecked. A resolution, not fitted (8 until
+/// 2026-11-26, which left every 25 s demo walk unchecked).
+pub const SV_MIN_PAIRS: usize = 5;
 
 /// A leg's reported strides: (start, end) on the left leg's clock and the length, m.
 fn reported(leg: &LegResult, shift_s: f64) -> Vec<(f64, f64, f64)> {
@@ -75,14 +80,25 @@ fn residuals(a: &[(f64, f64, f64)], b: &[(f64, f64, f64)], out: &mut Vec<f64>) {
 /// Σe²/(n − 1) of the mean-removed residuals; `None` when a direction has fewer than
 /// [`SV_MIN_PAIRS`].
 pub fn residual_variances(l: &LegResult, r: &LegResult) -> Option<[(f64, usize); 2]> {
+    let v = residual_stats(l, r);
+    v.iter().all(|(_, n)| *n >= SV_MIN_PAIRS).then_some(v)
+}
+
+/// [`residual_variances`] whatever the counts (the variance is NaN below two residuals).
+fn residual_stats(l: &LegResult, r: &LegResult) -> [(f64, usize); 2] {
     let (a, b) = (reported(l, 0.0), reported(r, r.t0_s - l.t0_s));
     let var = |x: &[(f64, f64, f64)], y: &[(f64, f64, f64)]| {
         let mut e = Vec::new();
         residuals(x, y, &mut e);
         let n = e.len();
-        (n >= SV_MIN_PAIRS).then(|| (e.iter().map(|v| v * v).sum::<f64>() / (n - 1) as f64, n))
+        let v = if n < 2 {
+            f64::NAN
+        } else {
+            e.iter().map(|v| v * v).sum::<f64>() / (n - 1) as f64
+        };
+        (v, n)
     };
-    Some([var(&a, &b)?, var(&b, &a)?])
+    [var(&a, &b), var(&b, &a)]
 }
 
 /// The per-stride noise variance both legs' comparisons show: min(v_left, v_right)/1.5.
@@ -115,20 +131,67 @@ pub fn variability_warning(sv: [f64; 2], sigma2: f64, n: usize) -> Option<Warnin
 }
 
 /// Withhold both legs' SV when the walk's measurement noise inflates it (the warning goes to
-/// each leg). Runs only when both legs have an SV and enough strides pair up.
-pub fn check_length_variability(l: &mut LegResult, r: &mut LegResult) {
+/// each leg), and a leg's SV that no other leg can check ([`unchecked_warning`]): the other leg
+/// not analysed (`None`) or without an SV. With fewer than [`SV_MIN_PAIRS`] strides paired in
+/// a direction (a short walk) SV is reported unchecked.
+pub fn check_length_variability(l: Option<&mut LegResult>, r: Option<&mut LegResult>) {
+    let (l, r) = match (l, r) {
+        (Some(l), Some(r)) => (l, r),
+        (Some(leg), None) | (None, Some(leg)) => {
+            let other = leg.side.other();
+            withhold_unchecked(leg, &format!("the {other} leg was not analysed"));
+            return;
+        }
+        (None, None) => return,
+    };
     let sv = [l.parameters.stride_length_cv, r.parameters.stride_length_cv];
-    if !sv.iter().all(|x| x.is_finite()) {
+    match sv.map(f64::is_finite) {
+        [true, true] => {}
+        [true, false] => {
+            return withhold_unchecked(l, "the right leg reports no stride length variability")
+        }
+        [false, true] => {
+            return withhold_unchecked(r, "the left leg reports no stride length variability")
+        }
+        [false, false] => return,
+    }
+    let [(vl, nl), (vr, nr)] = residual_stats(l, r);
+    if nl.min(nr) < SV_MIN_PAIRS {
+        // a short walk: too few pairs to estimate the noise, and SV stays reported unchecked
+        // (withholding it would take SV from every walk under ≈ 25 s; docs/quality.md)
         return;
     }
-    let Some([(vl, nl), (vr, nr)]) = residual_variances(l, r) else {
-        return;
-    };
     if let Some(w) = variability_warning(sv, walk_noise([vl, vr]), nl + nr) {
         for leg in [l, r] {
             super::withhold(&mut leg.parameters, std::slice::from_ref(&w));
             leg.warnings.push(w.clone());
         }
+    }
+}
+
+/// The warning that withholds a leg's SV `sv` whose noise cannot be checked, `why` saying
+/// what is missing. The two-leg comparison is the only check of SV against the length
+/// measurement's noise, and on real walks it found that noise to dominate (HuGaDB: every
+/// checked leg), so an unchecked SV is not reported.
+pub fn unchecked_warning(sv: f64, why: &str) -> Warning {
+    Warning::new(
+        codes::SV_UNCHECKED,
+        Severity::Warning,
+        format!(
+            "not checked against its noise: stride length variability ({:.1} %) not measured, as its noise is checked against the other leg's strides and {why}",
+            100.0 * sv
+        ),
+    )
+    .withholding(&["stride_length_cv"])
+}
+
+/// Withhold `leg`'s SV, if it has one, with [`unchecked_warning`].
+fn withhold_unchecked(leg: &mut LegResult, why: &str) {
+    let sv = leg.parameters.stride_length_cv;
+    if sv.is_finite() {
+        let w = unchecked_warning(sv, why);
+        super::withhold(&mut leg.parameters, std::slice::from_ref(&w));
+        leg.warnings.push(w);
     }
 }
 

@@ -342,12 +342,14 @@ fn hugadb_format_maps_and_raw_reading_agree_on_the_attitude() {
                 b.as_ref().unwrap(),
                 c.as_ref().unwrap(),
             );
-            // attitude and sensor findings; the stride-length noise of `sv_noise` (whether it
-            // runs depends on which lengths a path vouches for) has its own test below
+            // attitude and sensor findings; the stride-length noise of `sv_noise` and
+            // `sv_unchecked` (whether the check runs depends on which lengths a path vouches
+            // for) has its own test below
             let codes_of = |l: &crate::pipeline::LegResult| -> Vec<String> {
                 l.warnings
                     .iter()
-                    .filter(|w| w.severity > Severity::Note && w.code != codes::SV_NOISE)
+                    .filter(|w| w.severity > Severity::Note)
+                    .filter(|w| w.code != codes::SV_NOISE && w.code != codes::SV_UNCHECKED)
                     .map(|w| w.code.clone())
                     .collect()
             };
@@ -509,4 +511,30 @@ fn hugadb_stride_length_variability_is_withheld_where_the_noise_makes_it() {
             assert!(w.unwrap().message.contains("measurement noise"));
         }
     }
+    // 06_00: the left leg withholds its lengths (velocity drift), so the right leg's SV cannot
+    // be checked against the left's and is withheld too, saying why; its length stays
+    let input = SubjectInput {
+        subject_id: "06_00".into(),
+        sensor_height_m: Some(0.22),
+        ..SubjectInput::default()
+    };
+    let leg = |side: &str| {
+        loaded(
+            read_hugadb_map(&dir, "06_00", side),
+            format!("06_00/{side}"),
+        )
+    };
+    let res = analyze_pair(&input, leg("left"), leg("right"), &params);
+    let right = res.right.as_ref().unwrap();
+    let w = right
+        .warnings
+        .iter()
+        .find(|w| w.code == codes::SV_UNCHECKED);
+    assert!(w.is_some(), "{:?}", right.warnings);
+    assert!(right.parameters.stride_length_cv.is_nan());
+    assert!(right.parameters.stride_length_m.is_finite());
+    assert!(w
+        .unwrap()
+        .message
+        .contains("left leg reports no stride length variability"));
 }

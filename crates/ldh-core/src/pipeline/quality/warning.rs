@@ -129,6 +129,8 @@ pub mod codes {
     pub const LENGTH_MISMATCH: &str = "length_mismatch";
     /// Stride length variability mostly the measurement's own noise (from the two legs).
     pub const SV_NOISE: &str = "sv_noise";
+    /// Stride length variability whose noise cannot be checked (no other leg to compare with).
+    pub const SV_UNCHECKED: &str = "sv_unchecked";
 }
 
 /// Column names of recordings.csv, by what they are computed from.
