@@ -83,7 +83,7 @@ pub fn analyze_leg_alone(
     sensor_height_m: Option<f64>,
 ) -> Result<LegResult> {
     let (mut leg, _) = analyze_leg(rec, side, params, sensor_height_m)?;
-    quality::check_length_variability(Some(&mut leg), None);
+    quality::withhold_unchecked(&mut leg, "no other leg was given");
     Ok(leg)
 }
 

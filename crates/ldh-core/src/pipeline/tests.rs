@@ -274,3 +274,59 @@ fn bad_sta_parameters_are_refused_up_front() {
     p.compute_sta = false;
     assert!(p.check().is_ok());
 }
+
+/// Stride length variability that no other leg can check is withheld, saying why, in every
+/// case of `check_length_variability` (family A, 30 s: its SV is reported when checked).
+#[test]
+fn stride_length_variability_unchecked_is_withheld_with_its_reason() {
+    use crate::pipeline::quality::{check_length_variability, codes};
+    let c = CohortParams {
+        healthy: 1,
+        ldh: 0,
+        duration_s: 30.0,
+        seed: 4,
+        ..CohortParams::default()
+    };
+    let params = AnalysisParams {
+        compute_sta: false,
+        ..AnalysisParams::default()
+    };
+    let r = analyze_simulated(&c.simulate(0).unwrap(), &params);
+    let (l0, r0) = (r.left.clone().unwrap(), r.right.clone().unwrap());
+    let code = |leg: &LegResult| {
+        leg.warnings
+            .iter()
+            .find(|w| w.code == codes::SV_UNCHECKED)
+            .map(|w| w.message.clone())
+    };
+    // both legs, enough pairs: checked, reported
+    assert!(l0.parameters.stride_length_cv.is_finite() && code(&l0).is_none());
+    let withheld = |leg: &LegResult, why: &str| {
+        assert!(leg.parameters.stride_length_cv.is_nan(), "{why}");
+        assert!(leg.parameters.withheld.contains_key("stride_length_cv"));
+        let m = code(leg).unwrap_or_default();
+        assert!(m.contains(why), "{m}");
+    };
+    // the other leg not analysed
+    let mut l = l0.clone();
+    check_length_variability(Some(&mut l), None);
+    withheld(&l, "the right leg was not analysed");
+    // the other leg without an SV
+    let (mut l, mut r) = (l0.clone(), r0.clone());
+    r.parameters.stride_length_cv = f64::NAN;
+    check_length_variability(Some(&mut l), Some(&mut r));
+    withheld(&l, "the right leg reports no stride length variability");
+    assert!(code(&r).is_none());
+    // no stride pairs up: the right leg's walk an hour later
+    let (mut l, mut r) = (l0.clone(), r0.clone());
+    r.t0_s += 3600.0;
+    check_length_variability(Some(&mut l), Some(&mut r));
+    withheld(&l, "no stride of one leg pairs up");
+    withheld(&r, "no stride of one leg pairs up");
+    // a few pairs (a short walk): reported unchecked
+    let (mut l, mut r) = (l0.clone(), r0.clone());
+    l.strides.truncate(5);
+    r.strides.truncate(5);
+    check_length_variability(Some(&mut l), Some(&mut r));
+    assert!(code(&l).is_none() && l.parameters.stride_length_cv.is_finite());
+}

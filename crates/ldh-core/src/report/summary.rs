@@ -244,6 +244,10 @@ pub(crate) fn clinical_summary(
         symmetry_index_pct(a, b).ok_or_else(|| "not defined for these values".into())
     };
     let no_pair = match (left, right) {
+        (None, None) => Some("no recording".to_string()),
+        (Some(l), Some(r)) if !l.is_ok() && !r.is_ok() => {
+            Some("neither leg was analysed (see above)".into())
+        }
         (None, _) => Some("no left recording".to_string()),
         (_, None) => Some("no right recording".to_string()),
         (Some(l), _) if !l.is_ok() => Some("the left leg was not analysed (see above)".into()),

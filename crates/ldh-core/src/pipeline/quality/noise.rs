@@ -156,6 +156,14 @@ pub fn check_length_variability(l: Option<&mut LegResult>, r: Option<&mut LegRes
         [false, false] => return,
     }
     let [(vl, nl), (vr, nr)] = residual_stats(l, r);
+    if nl.min(nr) == 0 {
+        // no comparison at all (recordings that do not overlap, strides all lost to turns)
+        let why = "no stride of one leg pairs up with two of the other (the walks do not overlap in time, or no stretch of both legs' strides is vouched for)";
+        for leg in [l, r] {
+            withhold_unchecked(leg, why);
+        }
+        return;
+    }
     if nl.min(nr) < SV_MIN_PAIRS {
         // a short walk: too few pairs to estimate the noise, and SV stays reported unchecked
         // (withholding it would take SV from every walk under ≈ 25 s; docs/quality.md)
@@ -185,8 +193,9 @@ pub fn unchecked_warning(sv: f64, why: &str) -> Warning {
     .withholding(&["stride_length_cv"])
 }
 
-/// Withhold `leg`'s SV, if it has one, with [`unchecked_warning`].
-fn withhold_unchecked(leg: &mut LegResult, why: &str) {
+/// Withhold `leg`'s SV, if it has one, with [`unchecked_warning`] (`why`: what is missing, e.g.
+/// "no other leg was given").
+pub fn withhold_unchecked(leg: &mut LegResult, why: &str) {
     let sv = leg.parameters.stride_length_cv;
     if sv.is_finite() {
         let w = unchecked_warning(sv, why);
