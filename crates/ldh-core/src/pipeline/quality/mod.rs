@@ -39,8 +39,8 @@ pub use attitude::{
 };
 pub use height::sensor_height_warning;
 pub use noise::{
-    check_length_variability, noise_share, residual_variances, unchecked_warning,
-    variability_warning, walk_noise, withhold_unchecked, SV_MAX_INFLATION, SV_MIN_PAIRS,
+    check_length_variability, noise_share, unchecked_warning, variability_warning, walk_noise,
+    withhold_unchecked, SV_MAX_INFLATION, SV_MIN_PAIRS,
 };
 pub use pair::{pair_warnings, CANONICAL_MOUNT_DEG, LR_STRIDE_LENGTH_TOL, LR_STRIDE_TIME_TOL};
 pub use sensor::{

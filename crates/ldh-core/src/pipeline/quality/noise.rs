@@ -76,15 +76,8 @@ fn residuals(a: &[(f64, f64, f64)], b: &[(f64, f64, f64)], out: &mut Vec<f64>) {
     out.extend(e.iter().map(|x| x - m));
 }
 
-/// Residual variances of the two directions: (v_left, v_right) with their counts, each
-/// Σe²/(n − 1) of the mean-removed residuals; `None` when a direction has fewer than
-/// [`SV_MIN_PAIRS`].
-pub fn residual_variances(l: &LegResult, r: &LegResult) -> Option<[(f64, usize); 2]> {
-    let v = residual_stats(l, r);
-    v.iter().all(|(_, n)| *n >= SV_MIN_PAIRS).then_some(v)
-}
-
-/// [`residual_variances`] whatever the counts (the variance is NaN below two residuals).
+/// Residual variances of the two directions, (v_left, n_left) and (v_right, n_right): each
+/// Σe²/(n − 1) of the mean-removed residuals, NaN below two residuals.
 fn residual_stats(l: &LegResult, r: &LegResult) -> [(f64, usize); 2] {
     let (a, b) = (reported(l, 0.0), reported(r, r.t0_s - l.t0_s));
     let var = |x: &[(f64, f64, f64)], y: &[(f64, f64, f64)]| {
