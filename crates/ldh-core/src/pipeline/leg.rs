@@ -113,7 +113,7 @@ pub fn analyze_leg_timed(
 
 /// [`analyze_leg_timed`] with parameters checked once per run ([`AnalysisParams::check`]);
 /// only what belongs to the recording (its rate, for preprocessing) and to the subject (its
-/// sensor height) is checked here.
+/// sensor height) is checked here. [`leg_front`] then [`leg_back`], with no other leg.
 pub fn analyze_leg_checked(
     rec: &Recording,
     side: Side,
@@ -121,6 +121,33 @@ pub fn analyze_leg_checked(
     sensor_height_m: Option<f64>,
     t: &mut StageTimings,
 ) -> Result<(LegResult, Vec<f64>)> {
+    let front = leg_front(rec, v, t)?;
+    leg_back(rec, side, v, sensor_height_m, front, t)
+}
+
+/// One leg up to its events: what [`leg_back`] continues from. A subject places each leg's
+/// events with the other leg's in between (`pipeline::subject`).
+#[derive(Debug, Clone)]
+pub struct LegFront {
+    /// Samples replaced as outliers or clipped.
+    pub outliers_replaced: usize,
+    /// The preprocessed signals in the anatomical frame.
+    pub aligned: Aligned,
+    /// The attitude.
+    pub attitude: Attitude,
+    /// The sagittal angular velocity ω_s, deg/s (events and STA read it).
+    pub omega_s_dps: Vec<f64>,
+    /// The events.
+    pub events: Events,
+}
+
+/// Preprocess, align, estimate the attitude and detect the events of one recording, adding
+/// 1 to `t.recordings` and the stages' wall time.
+pub fn leg_front(
+    rec: &Recording,
+    v: &ValidAnalysisParams,
+    t: &mut StageTimings,
+) -> Result<LegFront> {
     let params = v.params();
     t.recordings += 1;
     let mut clock = Instant::now();
@@ -133,12 +160,40 @@ pub fn analyze_leg_checked(
     t.lap(Stage::Align, &mut clock);
     let att = estimate(&al, v.attitude())?;
     t.lap(Stage::Attitude, &mut clock);
-    let fs = rec.fs_hz;
     // Events come from the gyroscope's sagittal rate in both models (the ACC-only model replaces
     // the attitude only, so the comparison isolates it; SPEC §3.7).
     let omega = al.gyro_dps[1].clone();
-    let ev = detect(&att.pitch_deg, &omega, fs, v.events())?;
+    let ev = detect(&att.pitch_deg, &omega, rec.fs_hz, v.events())?;
     t.lap(Stage::Events, &mut clock);
+    Ok(LegFront {
+        outliers_replaced: pre.replaced.len(),
+        aligned: al,
+        attitude: att,
+        omega_s_dps: omega,
+        events: ev,
+    })
+}
+
+/// From a leg's events to its strides, checks, parameters and STA (its result and its heel
+/// strikes for the other leg).
+pub fn leg_back(
+    rec: &Recording,
+    side: Side,
+    v: &ValidAnalysisParams,
+    sensor_height_m: Option<f64>,
+    front: LegFront,
+    t: &mut StageTimings,
+) -> Result<(LegResult, Vec<f64>)> {
+    let params = v.params();
+    let mut clock = Instant::now();
+    let fs = rec.fs_hz;
+    let LegFront {
+        outliers_replaced,
+        aligned: al,
+        attitude: att,
+        omega_s_dps: omega,
+        events: ev,
+    } = front;
     let sp = v.strides(sensor_height_m)?;
     // With an assumed sensor height, each stride is also measured at the ends of the range
     // of heights, for the check below.
@@ -193,7 +248,7 @@ pub fn analyze_leg_checked(
             source: rec.label(),
             t0_s: rec.t0_s,
             read: memory_report(rec),
-            outliers_replaced: pre.replaced.len(),
+            outliers_replaced,
             alignment: al.alignment.clone(),
             events: ev,
             strides: st,

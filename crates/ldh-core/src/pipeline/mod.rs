@@ -25,8 +25,8 @@ pub use inputs::{
     InputOptions, Source, SubjectInput,
 };
 pub use leg::{
-    analyze_leg, analyze_leg_alone, analyze_leg_checked, analyze_leg_timed, memory_report,
-    LegResult,
+    analyze_leg, analyze_leg_alone, analyze_leg_checked, analyze_leg_timed, leg_back, leg_front,
+    memory_report, LegFront, LegResult,
 };
 pub use manifest::{is_manifest_text, GroupLabel, MANIFEST_COLUMNS};
 pub use many::{

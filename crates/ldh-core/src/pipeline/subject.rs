@@ -177,20 +177,27 @@ fn pair_legs(
 ) -> SubjectResult {
     let mut timings = StageTimings::default();
     let h = input.sensor_height_m;
-    let mut run =
-        |loaded: LoadedLeg, side: Side| -> std::result::Result<(LegResult, Vec<f64>), String> {
-            let (rec, report, label) = loaded?;
-            let (mut leg, hs) = match checked {
-                Some(v) => analyze_leg_checked(&rec, side, v, h, &mut timings),
-                None => analyze_leg_timed(&rec, side, params, h, &mut timings),
-            }
-            .map_err(|e| format!("{label}: {e}"))?;
-            leg.read = report;
-            leg.source = label;
-            Ok((leg, hs))
-        };
-    let mut l = run(left, Side::Left);
-    let mut r = run(right, Side::Right);
+    let (mut l, mut r) = match checked {
+        Some(v) => {
+            let lf = front(left, v, &mut timings);
+            let rf = front(right, v, &mut timings);
+            (
+                back(lf, Side::Left, v, h, &mut timings),
+                back(rf, Side::Right, v, h, &mut timings),
+            )
+        }
+        None => {
+            let mut run = |loaded: LoadedLeg, side: Side| -> LegRun {
+                let (rec, report, label) = loaded?;
+                let (mut leg, hs) = analyze_leg_timed(&rec, side, params, h, &mut timings)
+                    .map_err(|e| format!("{label}: {e}"))?;
+                leg.read = report;
+                leg.source = label;
+                Ok((leg, hs))
+            };
+            (run(left, Side::Left), run(right, Side::Right))
+        }
+    };
     // The pairing below (turns from both legs, step times, the pair's checks) counts as strides.
     let clock = std::time::Instant::now();
     if let Some(v) = checked {
@@ -275,6 +282,31 @@ fn pair_legs(
 
 /// One leg's analysis up to its strides (the leg and its heel strikes), or its error.
 type LegRun = std::result::Result<(LegResult, Vec<f64>), String>;
+
+/// One leg read and analysed up to its events ([`leg_front`]), or its error naming the file.
+type FrontRun = std::result::Result<(Recording, ReadReport, String, LegFront), String>;
+
+/// [`leg_front`] of a leg read (or its read error).
+fn front(loaded: LoadedLeg, v: &ValidAnalysisParams, t: &mut StageTimings) -> FrontRun {
+    let (rec, report, label) = loaded?;
+    let f = leg_front(&rec, v, t).map_err(|e| format!("{label}: {e}"))?;
+    Ok((rec, report, label, f))
+}
+
+/// [`leg_back`] of a leg's front (or its error), with the reader's report and label.
+fn back(
+    f: FrontRun,
+    side: Side,
+    v: &ValidAnalysisParams,
+    h: Option<f64>,
+    t: &mut StageTimings,
+) -> LegRun {
+    let (rec, report, label, f) = f?;
+    let (mut leg, hs) = leg_back(&rec, side, v, h, f, t).map_err(|e| format!("{label}: {e}"))?;
+    leg.read = report;
+    leg.source = label;
+    Ok((leg, hs))
+}
 
 /// Heading change of a leg between two times on its own clock, deg (wrapped to ±180).
 fn heading_change(leg: &LegResult, t0: f64, t1: f64) -> Option<f64> {
