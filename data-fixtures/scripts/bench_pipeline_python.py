@@ -71,7 +71,7 @@ ATT = dict(gates_sigma=[2.5, 4.0, 8.0, 1e6], gyro_noise_dps=2.0, acc_tilt_noise_
            acc_tilt_noise_bounds_deg=(3.0, 30.0), dynamic_scale_g=0.02, rotation_scale_dps=100.0,
            reacquire_s=0.5, forgetting=0.995, min_weight=1e-3)
 EV = dict(min_midswing_dps=100.0, min_stride_s=0.7, max_stride_s=2.5,
-          hs_offset=0.0160, to_coeffs=(-0.10139, 0.56902, -0.60292))
+          hs_offset=0.0160, to_bracket_k0=0.38855)
 STRIDE = dict(min_stride_s=0.7, max_stride_s=2.5, turn_deg=20.0, sensor_height_m=0.10)
 
 
@@ -476,7 +476,7 @@ def detect_events(om, fs):
     down = (om[:-1] >= 0.0) & (om[1:] < 0.0)    # ... downwards
     lmax = np.zeros(n, dtype=bool)              # late-stance local maxima
     lmax[1:-1] = (om[1:-1] >= om[2:]) & (om[1:-1] > om[:-2])
-    a, bc, cc = p["to_coeffs"]
+    k0 = p["to_bracket_k0"]
     hs, to = [], []
     for mi in mid:
         end = min(mi + half, n - 1)
@@ -493,8 +493,9 @@ def detect_events(om, fs):
                 late = start + c2[-1]
                 tp = (zc + om[zc] / (om[zc] - om[zc + 1])) / fs
                 ts = parabolic(om, late) / fs
-                tm = parabolic(neg, mi) / fs
-                to.append(tp + a * t_med + bc * (tm - tp) + cc * (tp - ts))
+                # ldh's gyro-bracket; ldh then moves the stiffer leg's toe offs later with the
+                # other leg's landmark geometry (a median per leg, not mirrored here).
+                to.append(ts + k0 * (tp - ts))
     return hs, to, t_med
 
 

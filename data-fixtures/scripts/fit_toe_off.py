@@ -33,7 +33,7 @@ SHIPPED = [-0.10139, B_SHIPPED, C_SHIPPED]
 PARAMS = {
     "zc": '[events]\ndetector = "gyro-zero-crossing"\nhs_offset_stride = 0.0\nto_offset_stride = 0.0\n',
     "sa": '[events]\ndetector = "salarian"\nhs_offset_stride = 0.0\nto_offset_stride = 0.0\n',
-    "g0": "[events]\nto_offset_stride = 0.0\n",
+    "g0": '[events]\ndetector = "gyro-landmarks"\nto_offset_stride = 0.0\n',
 }
 MODELS = {
     "M0 a·T (shipped form)": lambda r: [r["T"], r["tm"] - r["tp"], r["tp"] - r["ts"]],

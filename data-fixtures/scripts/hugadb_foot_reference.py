@@ -211,7 +211,7 @@ def main():
           "ms, median [p10, p90]:\n")
     print("| toe-off rule | − push-off peak (ms) | − zero crossing (ms) | between the two |")
     print("|---|---|---|---:|")
-    for name, t in (("shipped model", to[ok]), ("t_s (Aminian 2002, Salarian 2004)", ts[ok]),
+    for name, t in (("ldh default detector", to[ok]), ("t_s (Aminian 2002, Salarian 2004)", ts[ok]),
                     ("t_p (pitch peak)", tp[ok]),
                     (f"fraction t_s + {FRACTION}·(t_p − t_s)", ts[ok] + FRACTION * (tp[ok] - ts[ok]))):
         inside = np.mean((pk[ok] <= t) & (t <= zr[ok]))

@@ -39,8 +39,9 @@ from fit_toe_off import events, near, run
 PARAMS = {
     "zc": '[events]\ndetector = "gyro-zero-crossing"\nhs_offset_stride = 0.0\nto_offset_stride = 0.0\n',
     "sa": '[events]\ndetector = "salarian"\nhs_offset_stride = 0.0\nto_offset_stride = 0.0\n',
-    "g0": "[events]\nto_offset_stride = 0.0\n",
-    "def": "",
+    "g0": '[events]\ndetector = "gyro-landmarks"\nto_offset_stride = 0.0\n',
+    "def": '[events]\ndetector = "gyro-landmarks"\n',
+    "new": "",
 }
 A_ARGS = ["--healthy", "10", "--ldh", "10", "--slow-ldh", "10", "--seconds", "30"]
 B_ARGS = ["--family", "b", "--healthy", "15", "--ldh", "15"]
@@ -63,9 +64,10 @@ def make(ldh, ldh_new, work):
         if not os.path.exists(os.path.join(root, "manifest.csv")):
             run([ldh, "simulate", "--out", root, "-q"] + args)
         for p in PARAMS:
-            jobs.append((ldh, root, f"{root}_{p}", p))
+            if p != "new":
+                jobs.append((ldh, root, f"{root}_{p}", p))
         if ldh_new:
-            jobs.append((ldh_new, root, f"{root}_new", "def"))
+            jobs.append((ldh_new, root, f"{root}_new", "new"))
 
     def analyze(job):
         exe, root, out, p = job

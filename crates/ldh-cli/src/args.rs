@@ -118,8 +118,8 @@ pub struct AnalyzeArgs {
     /// Attitude model: fusion (adaptive Kalman; default) or acc (accelerometer tilt only).
     #[arg(long, value_enum)]
     pub model: Option<AttitudeModel>,
-    /// Event detector: gyro-landmarks (default), gyro-zero-crossing, salarian or pitch-peaks (the
-    /// paper's).
+    /// Event detector: gyro-bracket (default), gyro-landmarks, gyro-zero-crossing, salarian or
+    /// pitch-peaks (the paper's).
     #[arg(long, value_enum)]
     pub detector: Option<EventDetector>,
     /// Input sensor format: a built-in name or a TOML column map; default: detect.
@@ -275,7 +275,7 @@ pub struct EvaluateArgs {
     #[arg(long)]
     pub truth: PathBuf,
     /// Event detector to score.
-    #[arg(long, value_enum, default_value = "gyro-landmarks")]
+    #[arg(long, value_enum, default_value = "gyro-bracket")]
     pub detector: EventDetector,
     /// Also write the accuracy as JSON here.
     #[arg(long)]

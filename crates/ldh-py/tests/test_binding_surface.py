@@ -62,7 +62,7 @@ def test_analysis_options_default_to_the_core():
     named = _ldh.defaults()["analyze"]
     # sensor_height_m None: not given, so 0.10 m is assumed and the stride length checked for
     # its dependence on it (``sensor_height_unknown``, docs/quality.md).
-    assert named == {"model": "fusion", "detector": "gyro-landmarks", "sensor_height_m": None, "compute_sta": True}
+    assert named == {"model": "fusion", "detector": "gyro-bracket", "sensor_height_m": None, "compute_sta": True}
     for f in (ldh.analyze, ldh.analyze_pair, ldh.analyze_recording):
         sig = inspect.signature(f)
         for name in named:

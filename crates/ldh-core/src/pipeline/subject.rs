@@ -179,8 +179,14 @@ fn pair_legs(
     let h = input.sensor_height_m;
     let (mut l, mut r) = match checked {
         Some(v) => {
-            let lf = front(left, v, &mut timings);
-            let rf = front(right, v, &mut timings);
+            let mut lf = front(left, v, &mut timings);
+            let mut rf = front(right, v, &mut timings);
+            // Each leg's toe offs from both legs' landmarks (the default detector).
+            crate::events::place_bilateral(
+                lf.as_mut().ok().map(|f| &mut f.3.events),
+                rf.as_mut().ok().map(|f| &mut f.3.events),
+                v.events(),
+            );
             (
                 back(lf, Side::Left, v, h, &mut timings),
                 back(rf, Side::Right, v, h, &mut timings),

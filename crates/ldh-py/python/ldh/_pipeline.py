@@ -75,8 +75,8 @@ def analyze(
     model : {"fusion", "acc"}, optional
         Attitude model (default: from ``params``, else "fusion").
     detector : str, optional
-        Event detector (``gyro-landmarks`` — the default —, ``gyro-zero-crossing``,
-        ``salarian``, ``pitch-peaks``).
+        Event detector (``gyro-bracket`` — the default —, ``gyro-landmarks``,
+        ``gyro-zero-crossing``, ``salarian``, ``pitch-peaks``).
     format : str, optional
         Sensor format name or TOML column map; default: detect.
     compute_sta : bool, optional

@@ -137,6 +137,7 @@ impl Walk {
             midswing_s: hs.iter().map(|h| h + 0.8 * T).collect(),
             hs_s: hs,
             median_stride_s: T,
+            ..Events::default()
         };
         (al, att, ev)
     }

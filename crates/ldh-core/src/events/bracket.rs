@@ -1,0 +1,166 @@
+//! Toe off inside the shank's landmark bracket, referenced to the subject's other leg
+//! ([`EventDetector::GyroBracket`], the default detector; issue 20 item 4).
+//!
+//! Toe off leaves no mark of its own on a shank: the literature's landmarks bracket it. The
+//! late-stance peak of the sagittal angular velocity t_s (Aminian et al. 2002, J Biomech
+//! 35:689; Salarian et al. 2004, IEEE TBME 51:1434) comes before it and the pitch peak t_p (the
+//! paper's toe off) after it, on both simulators and on HuGaDB's foot sensors
+//! (docs/accuracy.md "Toe off without fitted offsets", "Toe off against the feet of HuGaDB").
+//! Where inside the bracket it lies depends on the leg's swing: a stiff-knee leg reaches its
+//! pitch peak early in its swing and leaves the ground late in the bracket. That geometry is
+//! read as ρ = (t_m − t_p)/(t_p − t_s) (t_m mid-swing), and a population threshold on it does
+//! not carry from one simulator to the other (their normal legs differ by 40 % in ρ). The
+//! subject's other leg does: the same sensors, walk and speed, so only the difference between
+//! the legs is read.
+//!
+//! TO = t_s + k·(t_p − t_s), k = k₀ + s·max(0, ln(ρ/ρ_other)), clamped to [k₀, 1.5]: ρ is the
+//! leg's median over its strides. With no other leg (or fewer than [`MIN_BRACKETS`] strides on
+//! either) k = k₀. k₀ and s are least squares on family A's tuning cohort (seed 100: 10 healthy,
+//! 10 LDH, 10 slow LDH, 756 steady strides; `data-fixtures/scripts/toe_off_landmarks.py`);
+//! family B was not fitted on. The cap [`BRACKET_MAX`] only guards against a partner whose
+//! landmarks are not gait.
+
+use super::{EventDetector, Events, ValidEventParams};
+
+/// k₀: the fraction of the bracket at which a leg no stiffer than its partner leaves the ground
+/// (least squares on family A seed 100).
+pub const BRACKET_K0: f64 = 0.38855;
+
+/// s: how much k rises per unit of ln(ρ/ρ_other) (least squares on family A seed 100).
+pub const BRACKET_SLOPE: f64 = 0.87179;
+
+/// Largest bracket fraction: half a bracket past the pitch peak. A guard against a partner leg
+/// whose landmarks are not gait (not fitted): stiff-knee legs of family B leave the ground up to
+/// 0.37 of a bracket after their pitch peak, so the pitch peak itself is not a bound.
+pub const BRACKET_MAX: f64 = 1.5;
+
+/// Fewest toe-off brackets a leg needs for its landmark geometry ρ to be read.
+pub const MIN_BRACKETS: usize = 5;
+
+/// The toe off at fraction `k` of the bracket `[t_s, t_p]` of landmarks `lm` (t_s, t_p, t_m), plus
+/// `offset_s`, s.
+pub fn bracket_toe_off_s(lm: [f64; 3], k: f64, offset_s: f64) -> f64 {
+    let [ts, tp, _] = lm;
+    ts + k * (tp - ts) + offset_s
+}
+
+/// A leg's landmark geometry ρ = (t_m − t_p)/(t_p − t_s), the median over its strides (upper
+/// median); `None` with fewer than [`MIN_BRACKETS`] usable strides.
+pub fn landmark_geometry(ev: &Events) -> Option<f64> {
+    let mut r: Vec<f64> = ev
+        .to_landmarks_s
+        .iter()
+        .filter(|[ts, tp, tm]| tp > ts && tm > tp)
+        .map(|[ts, tp, tm]| (tm - tp) / (tp - ts))
+        .filter(|x| x.is_finite())
+        .collect();
+    if r.len() < MIN_BRACKETS {
+        return None;
+    }
+    r.sort_by(f64::total_cmp);
+    Some(r[r.len() / 2])
+}
+
+/// The bracket fraction of a leg of geometry `rho` whose other leg's is `other`.
+pub fn bracket_fraction(rho: Option<f64>, other: Option<f64>) -> f64 {
+    match (rho, other) {
+        (Some(a), Some(b)) if a > 0.0 && b > 0.0 => {
+            (BRACKET_K0 + BRACKET_SLOPE * (a / b).ln().max(0.0)).clamp(BRACKET_K0, BRACKET_MAX)
+        }
+        _ => BRACKET_K0,
+    }
+}
+
+/// Place both legs' toe offs of one subject ([`EventDetector::GyroBracket`] only; the other
+/// detectors are left as they are): each leg's at its fraction of its brackets, from its own
+/// and the other leg's landmark geometry. A leg not given (not read, or failed) is `None`; the
+/// other then keeps k₀.
+pub fn place_bilateral(
+    left: Option<&mut Events>,
+    right: Option<&mut Events>,
+    params: &ValidEventParams,
+) {
+    if params.p.detector != EventDetector::GyroBracket {
+        return;
+    }
+    let rho_l = left.as_deref().and_then(landmark_geometry);
+    let rho_r = right.as_deref().and_then(landmark_geometry);
+    for (ev, own, other) in [(left, rho_l, rho_r), (right, rho_r, rho_l)] {
+        let Some(ev) = ev else { continue };
+        let k = bracket_fraction(own, other);
+        let offset = params.to_offset * ev.median_stride_s;
+        ev.to_s = ev
+            .to_landmarks_s
+            .iter()
+            .map(|&lm| bracket_toe_off_s(lm, k, offset))
+            .collect();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::events::EventParams;
+
+    fn events(rho: f64, n: usize) -> Events {
+        // Brackets of 0.1 s at 1 s strides; mid-swing ρ·0.1 s after the pitch peak.
+        let lm: Vec<[f64; 3]> = (0..n)
+            .map(|i| {
+                let ts = i as f64 + 0.5;
+                [ts, ts + 0.1, ts + 0.1 + rho * 0.1]
+            })
+            .collect();
+        Events {
+            to_s: lm
+                .iter()
+                .map(|&l| bracket_toe_off_s(l, BRACKET_K0, 0.0))
+                .collect(),
+            to_landmarks_s: lm,
+            median_stride_s: 1.0,
+            ..Events::default()
+        }
+    }
+
+    #[test]
+    fn the_stiffer_leg_leaves_the_ground_later_in_its_bracket() {
+        let p = EventParams::default().check().unwrap();
+        let (mut l, mut r) = (events(2.0, 8), events(1.0, 8));
+        place_bilateral(Some(&mut l), Some(&mut r), &p);
+        // ln 2 · 0.87179 + 0.38855 = 0.99282 of the 0.1 s bracket for the left leg.
+        let k = BRACKET_K0 + BRACKET_SLOPE * 2f64.ln();
+        assert!((l.to_s[0] - (0.5 + 0.1 * k)).abs() < 1e-12, "{}", l.to_s[0]);
+        // The less stiff leg keeps k₀.
+        assert!((r.to_s[0] - (0.5 + 0.1 * BRACKET_K0)).abs() < 1e-12);
+        // A much stiffer leg is capped half a bracket past the pitch peak.
+        let (mut l, mut r) = (events(5.0, 8), events(1.0, 8));
+        place_bilateral(Some(&mut l), Some(&mut r), &p);
+        assert!((l.to_s[3] - 3.65).abs() < 1e-12, "{}", l.to_s[3]);
+    }
+
+    #[test]
+    fn without_a_usable_other_leg_every_leg_keeps_k0() {
+        let p = EventParams::default().check().unwrap();
+        let mut l = events(2.0, 8);
+        let before = l.to_s.clone();
+        place_bilateral(Some(&mut l), None, &p);
+        assert_eq!(l.to_s, before);
+        // Too few strides on the other leg to read its geometry.
+        let mut r = events(1.0, MIN_BRACKETS - 1);
+        place_bilateral(Some(&mut l), Some(&mut r), &p);
+        assert_eq!(l.to_s, before);
+        assert_eq!(landmark_geometry(&r), None);
+        assert!((landmark_geometry(&l).unwrap() - 2.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn other_detectors_are_left_alone() {
+        let p = EventParams::default()
+            .detector(EventDetector::GyroLandmarks)
+            .check()
+            .unwrap();
+        let (mut l, mut r) = (events(2.0, 8), events(1.0, 8));
+        let before = l.to_s.clone();
+        place_bilateral(Some(&mut l), Some(&mut r), &p);
+        assert_eq!(l.to_s, before);
+    }
+}
