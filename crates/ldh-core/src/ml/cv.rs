@@ -136,8 +136,23 @@ pub fn prf(conf: &[Vec<usize>]) -> Vec<(f64, f64, f64)> {
         .collect()
 }
 
-/// The fold assignment of one repeat.
+/// The fold assignment of one repeat. A refusal (too few rows or subjects for the folds) after
+/// rows were dropped for features not measured says so, and how to choose other features.
 pub fn folds(ds: &Dataset, p: &CvParams, repeat: usize) -> Result<Vec<usize>> {
+    fold_assignment(ds, p, repeat).map_err(|e| match (e, ds.dropped.first()) {
+        (LdhError::Param { name, value, reason }, Some(first)) => LdhError::Param {
+            name,
+            value,
+            reason: format!(
+                "{reason}; {} rows were left out for a feature not measured (the first: {first}): choose features that are measured (`ldh train --features`, Python `features=`)",
+                ds.dropped.len()
+            ),
+        },
+        (e, _) => e,
+    })
+}
+
+fn fold_assignment(ds: &Dataset, p: &CvParams, repeat: usize) -> Result<Vec<usize>> {
     let seed = p.seed.wrapping_add(repeat as u64 * 7919);
     match p.kind {
         CvKind::Stratified => {

@@ -168,6 +168,16 @@ fn degenerate_inputs_give_clear_errors() {
             .to_string()
             .contains("smallest class")
     );
+    // The same refusal after rows were dropped says so, and how to choose other features.
+    let mut dropped = ds.clone();
+    dropped.dropped = vec!["L03/affected: not measured: stride_length_var_pct".into(); 4];
+    let e = folds(&dropped, &small, 0).unwrap_err().to_string();
+    assert!(
+        e.contains("smallest class")
+            && e.contains("4 rows were left out for a feature not measured (the first: L03/affected: not measured: stride_length_var_pct)")
+            && e.contains("`ldh train --features`"),
+        "{e}"
+    );
     // Constant features are harmless (scaled to 0); a fully constant table still trains.
     let mut flat = ds.clone();
     flat.x.column_mut(0).fill(3.0);
