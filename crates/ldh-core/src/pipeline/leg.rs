@@ -139,6 +139,9 @@ pub struct LegFront {
     pub omega_s_dps: Vec<f64>,
     /// The events.
     pub events: Events,
+    /// What the sensor checks found on the recording (a faulty gyroscope's events are not lent
+    /// to the other leg).
+    pub sensor: quality::SensorFindings,
 }
 
 /// Preprocess, align, estimate the attitude and detect the events of one recording, adding
@@ -165,12 +168,16 @@ pub fn leg_front(
     let omega = al.gyro_dps[1].clone();
     let ev = detect(&att.pitch_deg, &omega, rec.fs_hz, v.events())?;
     t.lap(Stage::Events, &mut clock);
+    // Counted with the strides' checks, where it ran before the subject needed it here.
+    let sensor = quality::sensor_checks(rec);
+    t.lap(Stage::Strides, &mut clock);
     Ok(LegFront {
         outliers_replaced: pre.replaced.len(),
         aligned: al,
         attitude: att,
         omega_s_dps: omega,
         events: ev,
+        sensor,
     })
 }
 
@@ -193,6 +200,7 @@ pub fn leg_back(
         attitude: att,
         omega_s_dps: omega,
         events: ev,
+        sensor,
     } = front;
     let sp = v.strides(sensor_height_m)?;
     // With an assumed sensor height, each stride is also measured at the ends of the range
@@ -200,7 +208,7 @@ pub fn leg_back(
     let heights = heights_to_measure(&sp, att.model);
     let (mut st, at_heights) = strides_at_heights(side, &al, &att, &ev, &sp, heights)?;
     let before = side_parameters(&st, None);
-    let mut checks = leg_checks(rec, &al, &att, &mut st, &before);
+    let mut checks = leg_checks(rec, sensor, &al, &att, &mut st, &before);
     withhold_unvouched_lengths(&mut st);
     // A length from an assumed sensor height: said, or withheld when it depends on it.
     if let Some(h) = height_sensitivity_measured(&sp, att.model, &st, &at_heights) {

@@ -181,12 +181,9 @@ fn pair_legs(
         Some(v) => {
             let mut lf = front(left, v, &mut timings);
             let mut rf = front(right, v, &mut timings);
-            // Each leg's toe offs from both legs' landmarks (the default detector).
-            crate::events::place_bilateral(
-                lf.as_mut().ok().map(|f| &mut f.3.events),
-                rf.as_mut().ok().map(|f| &mut f.3.events),
-                v.events(),
-            );
+            // Each leg's toe offs from both legs' landmarks (the default detector); a faulty
+            // gyroscope's landmarks are not lent to the other leg.
+            crate::events::place_bilateral(sound(&mut lf), sound(&mut rf), v.events());
             (
                 back(lf, Side::Left, v, h, &mut timings),
                 back(rf, Side::Right, v, h, &mut timings),
@@ -297,6 +294,14 @@ fn front(loaded: LoadedLeg, v: &ValidAnalysisParams, t: &mut StageTimings) -> Fr
     let (rec, report, label) = loaded?;
     let f = leg_front(&rec, v, t).map_err(|e| format!("{label}: {e}"))?;
     Ok((rec, report, label, f))
+}
+
+/// The events of a leg whose gyroscope is sound (`None`: not read, failed, or faulty).
+fn sound(f: &mut FrontRun) -> Option<&mut crate::events::Events> {
+    match f {
+        Ok((.., front)) if !front.sensor.gyro_fault => Some(&mut front.events),
+        _ => None,
+    }
 }
 
 /// [`leg_back`] of a leg's front (or its error), with the reader's report and label.

@@ -385,3 +385,56 @@ fn family_b_normal_toe_off_is_not_late_like_the_family_a_model() {
     assert!(mean(&abs) < 0.012, "{bracket:?}");
     assert!(mean(&model) > 0.010, "{model:?}");
 }
+
+/// A leg's toe offs come from both legs' landmarks, unless the other leg's gyroscope is faulty
+/// (×10, `gyro_scale_fault`): then they are the leg's own, as if it had been given alone.
+#[test]
+fn a_faulty_gyroscope_lends_no_landmarks_to_the_other_leg() {
+    let c = CohortParams {
+        healthy: 0,
+        ldh: 1,
+        duration_s: 20.0,
+        seed: 7,
+        ..CohortParams::default()
+    };
+    let s = c.simulate(0).unwrap();
+    let params = AnalysisParams {
+        compute_sta: false,
+        ..AnalysisParams::default()
+    };
+    let alone = |l: &crate::simulate::SimLeg, side| {
+        analyze_leg(&l.recording, side, &params, None)
+            .unwrap()
+            .0
+            .events
+            .to_s
+    };
+    let (left_alone, right_alone) = (alone(&s.left, Side::Left), alone(&s.right, Side::Right));
+    let both = analyze_simulated(&s, &params);
+    let to = |r: &std::result::Result<LegResult, String>| r.as_ref().unwrap().events.to_s.clone();
+    // With a sound partner the stiffer leg's toe offs move later in their bracket.
+    let (l, r) = (to(&both.left), to(&both.right));
+    assert_eq!(l.len(), left_alone.len());
+    let later = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| x >= y);
+    assert!(
+        (l != left_alone) ^ (r != right_alone),
+        "exactly one leg moves"
+    );
+    assert!(later(&l, &left_alone) && later(&r, &right_alone));
+    // A ×10 gyroscope on the moved leg's partner: the moved leg keeps its own.
+    let mut faulty = s.clone();
+    let (sound_side, bad) = if l != left_alone {
+        (Side::Left, &mut faulty.right)
+    } else {
+        (Side::Right, &mut faulty.left)
+    };
+    for ch in bad.recording.gyro_dps.iter_mut() {
+        ch.iter_mut().for_each(|x| *x *= 10.0);
+    }
+    let r = analyze_simulated(&faulty, &params);
+    let (got, own) = match sound_side {
+        Side::Left => (to(&r.left), left_alone),
+        Side::Right => (to(&r.right), right_alone),
+    };
+    assert_eq!(got, own);
+}

@@ -136,15 +136,16 @@ pub struct LegChecks {
 }
 
 /// Run every check of one leg on its recording, alignment, attitude and strides; strides are
-/// invalidated or lose values as the checks say. `p` are the leg's parameters before the checks.
+/// invalidated or lose values as the checks say. `sensor` is what [`sensor_checks`] found on
+/// the recording; `p` are the leg's parameters before the checks.
 pub fn leg_checks(
     rec: &crate::recording::Recording,
+    sensor: SensorFindings,
     al: &crate::align::Aligned,
     att: &crate::attitude::Attitude,
     st: &mut [Stride],
     p: &SideParameters,
 ) -> LegChecks {
-    let sensor = sensor_checks(rec);
     let mut warnings = sensor.warnings;
     if !sensor.gyro_fault {
         warnings.extend(attitude_checks(al, att, st));
