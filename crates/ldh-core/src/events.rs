@@ -34,11 +34,15 @@
 //! fitted offsets" (`data-fixtures/scripts/toe_off_landmarks.py`).
 
 mod bracket;
+mod impact;
 mod peaks;
 
 pub use bracket::{
     bracket_fraction, bracket_toe_off_s, landmark_geometry, place_bilateral, BRACKET_K0,
-    BRACKET_MAX, BRACKET_SLOPE, MIN_BRACKETS,
+    BRACKET_MAX, BRACKET_SLOPE, MIN_BRACKETS, SAME_WALK_STRIDE_TOLERANCE,
+};
+pub use impact::{
+    heel_strikes_at_impacts, IMPACT_MIN_G, IMPACT_MIN_STRIKES, IMPACT_RATIO, IMPACT_SHARE,
 };
 
 use serde::{Deserialize, Serialize};
@@ -147,6 +151,9 @@ pub struct EventParams {
     pub min_stride_s: f64,
     /// Longest plausible stride, s. Default 2.5.
     pub max_stride_s: f64,
+    /// Heel strikes at the impact in the acceleration where the leg shows impacts
+    /// ([`heel_strikes_at_impacts`]); `gyro-bracket` only. Default true.
+    pub hs_impact: bool,
 }
 
 impl Default for EventParams {
@@ -159,6 +166,7 @@ impl Default for EventParams {
             adaptive_midswing: true,
             min_stride_s: 0.7,
             max_stride_s: 2.5,
+            hs_impact: true,
         }
     }
 }
@@ -211,6 +219,22 @@ impl ValidEventParams {
     pub fn params(&self) -> &EventParams {
         &self.p
     }
+}
+
+/// Move the heel strikes of `ev` to the impacts in the raw acceleration `acc_g` (g, sampled at
+/// `fs_hz` on the events' clock) when the parameters ask for it (`hs_impact` with
+/// `gyro-bracket`) and the leg shows impacts ([`heel_strikes_at_impacts`]); the number moved.
+pub fn place_heel_strikes(
+    ev: &mut Events,
+    acc_g: [&[f64]; 3],
+    fs_hz: f64,
+    params: &ValidEventParams,
+) -> usize {
+    if !(params.p.hs_impact && params.p.detector == EventDetector::GyroBracket) {
+        return 0;
+    }
+    let offset_s = params.hs_offset * ev.median_stride_s;
+    heel_strikes_at_impacts(ev, acc_g, fs_hz, offset_s)
 }
 
 /// Events of one shank, in seconds from the first sample (sub-sample precision).
@@ -354,7 +378,7 @@ pub fn detect(
         let start = m.saturating_sub(half).max(1);
         if p.detector == EventDetector::GyroBracket {
             if let Some(lm) = landmarks_s(&sig, start, m) {
-                to.push(bracket_toe_off_s(lm, BRACKET_K0, params.to_offset * t_med));
+                to.push(bracket_toe_off_s(lm, BRACKET_K0, params.to_offset * t_med).min(lm[2]));
                 marks.push(lm);
             }
         } else if let Some(t) = toe_off_s(&sig, params, t_med, start, m) {
@@ -453,10 +477,15 @@ fn toe_off_s(
 ) -> Option<f64> {
     let (pitch_deg, omega_s_dps, fs_hz) = (sig.pitch_deg, sig.omega_s_dps, sig.fs_hz);
     let to_idx: Option<f64> = match params.p.detector {
-        EventDetector::GyroLandmarks | EventDetector::GyroBracket => {
+        EventDetector::GyroLandmarks => {
             let [ts, tp, tm] = landmarks_s(sig, start, m)?;
             let [_, b, c] = TO_LANDMARK_COEFFS;
             return Some(tp + params.to_offset * t_med + b * (tm - tp) + c * (tp - ts));
+        }
+        // `detect` places these itself (it keeps their landmarks); the same toe off.
+        EventDetector::GyroBracket => {
+            let lm = landmarks_s(sig, start, m)?;
+            return Some(bracket_toe_off_s(lm, BRACKET_K0, params.to_offset * t_med).min(lm[2]));
         }
         EventDetector::PitchPeaks => (start..=m)
             .max_by(|&a, &b| {

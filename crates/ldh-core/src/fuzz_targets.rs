@@ -333,7 +333,7 @@ impl Flags {
                 AttitudeModel::Fusion
             },
             detector: [
-                EventDetector::GyroLandmarks,
+                EventDetector::GyroBracket,
                 EventDetector::GyroZeroCrossing,
                 EventDetector::Salarian,
                 EventDetector::PitchPeaks,

@@ -73,8 +73,9 @@ pub fn bracket_fraction(rho: Option<f64>, other: Option<f64>) -> f64 {
 
 /// Place both legs' toe offs of one subject ([`EventDetector::GyroBracket`] only; the other
 /// detectors are left as they are): each leg's at its fraction of its brackets, from its own
-/// and the other leg's landmark geometry. A leg not given (not read, or failed) is `None`; the
-/// other then keeps k₀.
+/// and the other leg's landmark geometry, and never after its mid-swing. A leg not given (not
+/// read, failed, or faulty) is `None`; the other then keeps k₀, as do both legs when their
+/// median stride times differ by more than [`SAME_WALK_STRIDE_TOLERANCE`] (not one walk).
 pub fn place_bilateral(
     left: Option<&mut Events>,
     right: Option<&mut Events>,
@@ -83,18 +84,36 @@ pub fn place_bilateral(
     if params.p.detector != EventDetector::GyroBracket {
         return;
     }
-    let rho_l = left.as_deref().and_then(landmark_geometry);
-    let rho_r = right.as_deref().and_then(landmark_geometry);
+    // Events of another detector (or deserialised, without their landmarks) are left alone.
+    let usable = |e: &&mut Events| e.to_landmarks_s.len() == e.to_s.len();
+    let (left, right) = (left.filter(usable), right.filter(usable));
+    let mut rho_l = left.as_deref().and_then(landmark_geometry);
+    let mut rho_r = right.as_deref().and_then(landmark_geometry);
+    // Both legs of one walk share its stride time: a partner that does not is another walk.
+    if let (Some(l), Some(r)) = (left.as_deref(), right.as_deref()) {
+        if !same_walk(l.median_stride_s, r.median_stride_s) {
+            (rho_l, rho_r) = (None, None);
+        }
+    }
     for (ev, own, other) in [(left, rho_l, rho_r), (right, rho_r, rho_l)] {
         let Some(ev) = ev else { continue };
         let k = bracket_fraction(own, other);
         let offset = params.to_offset * ev.median_stride_s;
+        // Never past mid-swing, whatever the fraction.
         ev.to_s = ev
             .to_landmarks_s
             .iter()
-            .map(|&lm| bracket_toe_off_s(lm, k, offset))
+            .map(|&lm| bracket_toe_off_s(lm, k, offset).min(lm[2]))
             .collect();
     }
+}
+
+/// Largest relative difference of the two legs' median stride times for them to be one walk.
+pub const SAME_WALK_STRIDE_TOLERANCE: f64 = 0.1;
+
+/// Whether two median stride times (s) can be the two legs of one walk.
+fn same_walk(a: f64, b: f64) -> bool {
+    a > 0.0 && b > 0.0 && (a / b - 1.0).abs() <= SAME_WALK_STRIDE_TOLERANCE
 }
 
 #[cfg(test)]
@@ -150,6 +169,26 @@ mod tests {
         assert_eq!(l.to_s, before);
         assert_eq!(landmark_geometry(&r), None);
         assert!((landmark_geometry(&l).unwrap() - 2.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn legs_of_different_walks_keep_k0() {
+        let p = EventParams::default().check().unwrap();
+        let (mut l, mut r) = (events(2.0, 8), events(1.0, 8));
+        r.median_stride_s = 1.2;
+        let before = l.to_s.clone();
+        place_bilateral(Some(&mut l), Some(&mut r), &p);
+        assert_eq!(l.to_s, before);
+        // A user's toe-off offset is added once, in stride times.
+        let p = EventParams {
+            to_offset_stride: Some(0.05),
+            ..EventParams::default()
+        }
+        .check()
+        .unwrap();
+        let (mut l, mut r) = (events(1.0, 8), events(1.0, 8));
+        place_bilateral(Some(&mut l), Some(&mut r), &p);
+        assert!((l.to_s[2] - (2.5 + 0.1 * BRACKET_K0 + 0.05)).abs() < 1e-12);
     }
 
     #[test]

@@ -140,7 +140,8 @@ pub fn prf(conf: &[Vec<usize>]) -> Vec<(f64, f64, f64)> {
 /// rows were dropped for features not measured says so, and how to choose other features.
 pub fn folds(ds: &Dataset, p: &CvParams, repeat: usize) -> Result<Vec<usize>> {
     fold_assignment(ds, p, repeat).map_err(|e| match (e, ds.dropped.first()) {
-        (LdhError::Param { name, value, reason }, Some(first)) => LdhError::Param {
+        // Only a count refusal (too few rows or subjects) can be helped by other features.
+        (LdhError::Param { name, value, reason }, Some(first)) if p.k >= 2 => LdhError::Param {
             name,
             value,
             reason: format!(

@@ -166,7 +166,9 @@ pub fn leg_front(
     // Events come from the gyroscope's sagittal rate in both models (the ACC-only model replaces
     // the attitude only, so the comparison isolates it; SPEC §3.7).
     let omega = al.gyro_dps[1].clone();
-    let ev = detect(&att.pitch_deg, &omega, rec.fs_hz, v.events())?;
+    let mut ev = detect(&att.pitch_deg, &omega, rec.fs_hz, v.events())?;
+    let a = &rec.acc_g;
+    crate::events::place_heel_strikes(&mut ev, [&a[0], &a[1], &a[2]], rec.fs_hz, v.events());
     t.lap(Stage::Events, &mut clock);
     // Counted with the strides' checks, where it ran before the subject needed it here.
     let sensor = quality::sensor_checks(rec);
