@@ -13,8 +13,10 @@ with the same algorithms and default parameters:
              angular velocity (numpy.linalg.eigh), sign from mid-swing, rotation to frame F;
 4. attitude  (attitude.rs) bank of EKFs on ZYX Euler angles, gates [2.5, 4, 8, 1e6], Sage-Husa R
              with bounds, R inflation, likelihood weights with floor, RTS smoother;
-5. events    (events.rs, gyro-landmarks) scipy.signal.find_peaks for mid-swing, zero crossings,
-             landmark toe-off model;
+5. events    (events.rs, gyro-bracket) scipy.signal.find_peaks for mid-swing, zero crossings,
+             toe off at 0.38855 of the [t_s, t_p] bracket (ldh's rule for a leg no stiffer than
+             its partner; ldh's per-subject placement and its impact heel strike, which on the
+             demo's family-A walks moves nothing, are not ported);
 6. strides   (gait.rs) stride table with validity rules, stride length by rotation + double
              integration with lever-arm correction, per-side means (no STA/Lyapunov).
 

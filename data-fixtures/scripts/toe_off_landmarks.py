@@ -9,11 +9,11 @@ detectors, so they are exactly what the pipeline finds):
   t_s  the largest late-stance peak of the sagittal angular velocity ω_s before mid-swing
        (`salarian`, offsets 0): Aminian 2002's and Salarian 2004's toe-off landmark
   t_p  the first zero crossing of ω_s after it, the pitch peak (`gyro-zero-crossing`, offsets 0)
-  t_m  mid-swing, recovered from `gyro-landmarks` with a = 0 and the shipped b, c
+  t_m  mid-swing, recovered from `gyro-landmarks` with a = 0 and its b, c
   HS   the heel strikes of both legs (a window from the other leg's HS, after Trojaniello 2014)
-`--ldh` is a binary whose default `gyro-landmarks` is the 3-coefficient model (the shipped one):
+`--ldh` runs `gyro-landmarks` (the 3-coefficient model, the default until 2026-11-26) by name:
 t_m is recovered from it, and it is scored as "shipped". With `--ldh-new` a second binary's
-default detector is scored as well (to check a change against these tables).
+default detector is scored as well (`gyro-bracket` since 2026-11-26).
 
 Prints: where the true toe off lies in the bracket [t_s, t_p] per group; the TO error of each
 rule (t_s, t_s after the other leg's HS, t_p, a fixed fraction of the bracket, the fraction with

@@ -57,7 +57,10 @@ pub struct LegResult {
     pub warnings: Vec<Warning>,
 }
 
-/// Analyse one recording up to its strides (no bilateral parameters yet).
+/// Analyse one recording up to its strides (no bilateral parameters yet). With no other leg the
+/// default detector places every toe off at k₀ of its bracket (`events::place_bilateral` needs
+/// both legs), so a leg analysed alone may differ from the same leg in
+/// [`crate::pipeline::analyze_pair`].
 pub fn analyze_leg(
     rec: &Recording,
     side: Side,

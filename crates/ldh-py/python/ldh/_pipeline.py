@@ -258,7 +258,10 @@ def analyze_recording(
     model : {"fusion", "acc"}
         Attitude model.
     detector : str
-        Event detector.
+        Event detector. With the default ``gyro-bracket`` a leg analysed alone places
+        every toe off at the same fraction of its bracket (0.389): the step that moves
+        the stiffer leg's toe offs later needs the other leg, so :func:`analyze_pair` or
+        :func:`analyze` may give this leg's stance slightly differently.
     sensor_height_m : float
         Sensor height above the ankle, m; when not given, 0.10 m is assumed and checked
         (``sensor_height_unknown`` in ``warnings``, as for :func:`analyze`).
