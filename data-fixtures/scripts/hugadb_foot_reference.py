@@ -221,6 +221,53 @@ def main():
     k_zr = (zr[ok] - ts[ok]) / (tp[ok] - ts[ok])
     print(f"\nthe foot landmarks as fractions k of the shank bracket [t_s, t_p]: push-off peak "
           f"{q(k_pk, '{:.2f}')}, zero crossing {q(k_zr, '{:.2f}')}")
+    heel_strikes(args.hugadb, st)
+
+
+def foot_contact(gf, an, hs, t):
+    """Around ldh's heel strike `hs` (stride `t` s): the foot's reversal from toes-up to
+    toes-down rotation (the last upward-to-downward zero crossing before its toes-down peak;
+    linear), that peak (parabolic), and the largest |a| of the foot within 80 ms before and
+    50 ms after the peak (a stand-in for gaitmap's Rampp initial contact, which reads the
+    antero-posterior axis: HuGaDB's foot axes are not documented). Times in s, or None."""
+    a, b = int((hs - 0.15 * t) * FS_HZ), int((hs + 0.15 * t) * FS_HZ)
+    if a < 1 or b >= len(gf) - 1:
+        return None
+    im = a + int(np.argmin(gf[a:b]))
+    j = im
+    while j > a and gf[j - 1] < 0:
+        j -= 1
+    if gf[j - 1] <= 0:
+        return None
+    zc = (j - 1 + gf[j - 1] / (gf[j - 1] - gf[j])) / FS_HZ
+    lo, hi = max(0, im - int(0.08 * FS_HZ)), min(len(an), im + int(0.05 * FS_HZ) + 1)
+    return zc, parabolic(gf, im) / FS_HZ, (lo + int(np.argmax(an[lo:hi]))) / FS_HZ
+
+
+def heel_strikes(hugadb, st):
+    """ldh's heel strikes against the foot's contact landmarks (docs/accuracy.md "Heel strike at
+    the impact")."""
+    rows = []
+    for sid, name in FILES.items():
+        d = pd.read_csv(os.path.join(hugadb, name), sep="\t", comment="#")
+        for side, s in (("right", "R"), ("left", "L")):
+            if (sid, side) in FAULTY_FEET:
+                continue
+            gs = sagittal(sensor(d, s + "S", "gyro"))
+            if np.percentile(gs, 99.5) < -np.percentile(gs, 0.5):
+                gs = -gs
+            gf = sagittal(sensor(d, s + "F", "gyro"))
+            if np.corrcoef(gs, gf)[0, 1] < 0:
+                gf = -gf
+            an = np.linalg.norm(sensor(d, s + "F", "acc"), axis=0)
+            for hs, _, nhs in st[(sid, side)]:
+                c = foot_contact(gf, an, hs, nhs - hs)
+                if c is not None:
+                    rows.append([hs - x for x in c])
+    r = 1000 * np.array(rows)
+    print(f"\nldh's heel strike against the foot ({len(r)} strides), ms, median [p10, p90]: "
+          f"after the foot's toes-up → toes-down reversal {q(r[:, 0])}; after its toes-down peak "
+          f"{q(r[:, 1])}; after the foot's largest |a| near that peak (Rampp-like) {q(r[:, 2])}")
 
 
 if __name__ == "__main__":
