@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """Toe off on real gait against a second sensor: HuGaDB's foot IMUs (issue 20; docs/accuracy.md
-"Toe off against the feet of HuGaDB"). Report only: nothing in ldh is fitted to it.
+"Toe off against the feet of HuGaDB"), and, on its last line, the heel strike against the
+foot's contact landmarks ("Heel strike at the impact"). Report only: nothing in ldh is fitted
+to it.
 
 HuGaDB (Chereshnev & Kertész-Farkas 2018) has an IMU on each foot as well as on each shin. ldh
 reads only the shins; the feet give an independent look at when the foot leaves the ground:
