@@ -17,7 +17,9 @@
 //!   (t_m): TO = t_p + a·T + b·(t_m − t_p) + c·(t_p − t_s), T the median stride time. The pitch
 //!   peak alone drifts relative to TO with the subject's swing knee flexion; the two intervals
 //!   measure the local phase speed on either side of it and cancel most of that drift.
-//! * [`EventDetector::GyroBracket`] (default) — HS as in `GyroZeroCrossing`; TO at a fraction of
+//! * [`EventDetector::GyroBracket`] (default) — HS at the zero crossing plus the walk's own
+//!   delay to the heel's impact where the walk shows impacts (`events/impact.rs`), else as in
+//!   `GyroZeroCrossing`; TO at a fraction of
 //!   the bracket [t_s, t_p], raised on the leg whose landmark geometry is stiffer than the
 //!   subject's other leg's, placed per subject by [`place_bilateral`] (`events/bracket.rs`).
 //!
@@ -42,7 +44,7 @@ pub use bracket::{
     BRACKET_MAX, BRACKET_SLOPE, MIN_BRACKETS, SAME_WALK_STRIDE_TOLERANCE,
 };
 pub use impact::{
-    heel_strikes_at_impacts, IMPACT_MIN_G, IMPACT_MIN_STRIKES, IMPACT_RATIO, IMPACT_SHARE,
+    impact_delays_s, shift_to_impacts, IMPACT_MIN_G, IMPACT_MIN_STRIKES, IMPACT_RATIO, IMPACT_SHARE,
 };
 
 use serde::{Deserialize, Serialize};
@@ -62,7 +64,8 @@ pub enum EventDetector {
     Salarian,
     /// HS from the ω_s zero crossing, TO from three landmarks with a model fitted on family A.
     GyroLandmarks,
-    /// HS from the ω_s zero crossing, TO at a fraction of the bracket between the late-stance
+    /// HS from the ω_s zero crossing (plus the walk's delay to the impact where it shows
+    /// impacts), TO at a fraction of the bracket between the late-stance
     /// peak of ω_s and the pitch peak, raised on the leg whose landmark geometry is stiffer than
     /// the subject's other leg's (default; [`place_bilateral`]).
     #[default]
@@ -137,7 +140,9 @@ impl EventDetector {
 pub struct EventParams {
     /// Detector. Default gyro-bracket.
     pub detector: EventDetector,
-    /// Offset added to every HS, fraction of the stride time; `None`: the detector's default.
+    /// Offset added to every HS, fraction of the stride time; `None`: the detector's default (for
+    /// `gyro-bracket`, replaced by the walk's own delay to the impact where it shows impacts;
+    /// a value given here always applies).
     pub hs_offset_stride: Option<f64>,
     /// Offset added to every TO, fraction of the stride time; `None`: the detector's default.
     pub to_offset_stride: Option<f64>,
@@ -151,8 +156,9 @@ pub struct EventParams {
     pub min_stride_s: f64,
     /// Longest plausible stride, s. Default 2.5.
     pub max_stride_s: f64,
-    /// Heel strikes at the impact in the acceleration where the leg shows impacts
-    /// ([`heel_strikes_at_impacts`]); `gyro-bracket` only. Default true.
+    /// Heel strikes at the zero crossing plus the walk's own delay to the impact in the
+    /// acceleration, where the walk shows impacts ([`shift_to_impacts`]); `gyro-bracket` only,
+    /// and not when `hs_offset_stride` is given (an explicit offset wins). Default true.
     pub hs_impact: bool,
 }
 
@@ -221,20 +227,29 @@ impl ValidEventParams {
     }
 }
 
-/// Move the heel strikes of `ev` to the impacts in the raw acceleration `acc_g` (g, sampled at
-/// `fs_hz` on the events' clock) when the parameters ask for it (`hs_impact` with
-/// `gyro-bracket`) and the leg shows impacts ([`heel_strikes_at_impacts`]); the number moved.
-pub fn place_heel_strikes(
+/// Find the impact after each heel strike of `ev` in the raw acceleration `acc_g` (g, sampled
+/// at `fs_hz` on the events' clock) into `ev.hs_impact_delays_s`, when the parameters place
+/// heel strikes by impacts (`hs_impact` with `gyro-bracket` and no `hs_offset_stride`);
+/// [`place_bilateral`] then uses them. The number of strikes with an impact.
+pub fn find_impacts(
     ev: &mut Events,
     acc_g: [&[f64]; 3],
     fs_hz: f64,
     params: &ValidEventParams,
 ) -> usize {
-    if !(params.p.hs_impact && params.p.detector == EventDetector::GyroBracket) {
+    if !uses_impacts(params) {
         return 0;
     }
-    let offset_s = params.hs_offset * ev.median_stride_s;
-    heel_strikes_at_impacts(ev, acc_g, fs_hz, offset_s)
+    ev.hs_impact_delays_s =
+        impact_delays_s(ev, acc_g, fs_hz, params.hs_offset * ev.median_stride_s);
+    ev.hs_impact_delays_s.iter().flatten().count()
+}
+
+/// Whether heel strikes are placed by impacts with these parameters.
+fn uses_impacts(params: &ValidEventParams) -> bool {
+    params.p.hs_impact
+        && params.p.detector == EventDetector::GyroBracket
+        && params.p.hs_offset_stride.is_none()
 }
 
 /// Events of one shank, in seconds from the first sample (sub-sample precision).
@@ -253,6 +268,14 @@ pub struct Events {
     /// other detectors. Not serialised (what [`place_bilateral`] reads).
     #[serde(skip)]
     pub to_landmarks_s: Vec<[f64; 3]>,
+    /// The delay from each heel strike's zero crossing to its impact (same order as `hs_s`),
+    /// s; empty unless [`find_impacts`] ran. Not serialised (what [`place_bilateral`] reads).
+    #[serde(skip)]
+    pub hs_impact_delays_s: Vec<Option<f64>>,
+    /// The delay from the zero crossing used for every heel strike, s, when they were placed
+    /// by impacts ([`shift_to_impacts`]). Not serialised.
+    #[serde(skip)]
+    pub hs_impact_delay_s: Option<f64>,
 }
 
 /// Parabolic sub-sample position of an extremum at `i`.
@@ -391,6 +414,7 @@ pub fn detect(
         midswing_s: mid.iter().map(|&i| parabolic(&neg, i) / fs_hz).collect(),
         median_stride_s: t_med,
         to_landmarks_s: marks,
+        ..Events::default()
     })
 }
 

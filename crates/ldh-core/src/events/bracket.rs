@@ -71,8 +71,11 @@ pub fn bracket_fraction(rho: Option<f64>, other: Option<f64>) -> f64 {
     }
 }
 
-/// Place both legs' toe offs of one subject ([`EventDetector::GyroBracket`] only; the other
-/// detectors are left as they are): each leg's at its fraction of its brackets, from its own
+/// Place both legs' events of one subject ([`EventDetector::GyroBracket`] only; the other
+/// detectors are left as they are; one leg alone: the other `None`). Heel strikes: both legs'
+/// at their zero crossings plus the walk's median delay to the impact, when the walk shows
+/// impacts ([`super::shift_to_impacts`]; each leg alone when the two are not one walk). Toe
+/// offs: each leg's at its fraction of its brackets, from its own
 /// and the other leg's landmark geometry, and never after its mid-swing. A leg not given (not
 /// read, failed, or faulty) is `None`; the other then keeps k₀, as do both legs when their
 /// median stride times differ by more than [`SAME_WALK_STRIDE_TOLERANCE`] (not one walk).
@@ -86,14 +89,32 @@ pub fn place_bilateral(
     }
     // Events of another detector (or deserialised, without their landmarks) are left alone.
     let usable = |e: &&mut Events| e.to_landmarks_s.len() == e.to_s.len();
-    let (left, right) = (left.filter(usable), right.filter(usable));
+    let (mut left, mut right) = (left.filter(usable), right.filter(usable));
+    // Both legs of one walk share its stride time: a partner that does not is another walk.
+    let one_walk = match (left.as_deref(), right.as_deref()) {
+        (Some(l), Some(r)) => same_walk(l.median_stride_s, r.median_stride_s),
+        _ => false,
+    };
+    // Heel strikes: one delay to the impact for the walk (each leg alone if not one walk).
+    let hs_offset = params.hs_offset;
+    let place_hs = |legs: &mut [&mut Events]| {
+        let d = super::shift_to_impacts(legs, hs_offset);
+        for ev in legs.iter_mut() {
+            ev.hs_impact_delay_s = d;
+        }
+    };
+    match (left.as_deref_mut(), right.as_deref_mut()) {
+        (Some(l), Some(r)) if one_walk => place_hs(&mut [l, r]),
+        (l, r) => {
+            for ev in [l, r].into_iter().flatten() {
+                place_hs(&mut [ev]);
+            }
+        }
+    }
     let mut rho_l = left.as_deref().and_then(landmark_geometry);
     let mut rho_r = right.as_deref().and_then(landmark_geometry);
-    // Both legs of one walk share its stride time: a partner that does not is another walk.
-    if let (Some(l), Some(r)) = (left.as_deref(), right.as_deref()) {
-        if !same_walk(l.median_stride_s, r.median_stride_s) {
-            (rho_l, rho_r) = (None, None);
-        }
+    if !one_walk {
+        (rho_l, rho_r) = (None, None);
     }
     for (ev, own, other) in [(left, rho_l, rho_r), (right, rho_r, rho_l)] {
         let Some(ev) = ev else { continue };

@@ -124,7 +124,9 @@ pub fn analyze_leg_checked(
     sensor_height_m: Option<f64>,
     t: &mut StageTimings,
 ) -> Result<(LegResult, Vec<f64>)> {
-    let front = leg_front(rec, v, t)?;
+    let mut front = leg_front(rec, v, t)?;
+    // This leg's events by itself (a subject places both legs' together).
+    crate::events::place_bilateral(Some(&mut front.events), None, v.events());
     leg_back(rec, side, v, sensor_height_m, front, t)
 }
 
@@ -171,7 +173,7 @@ pub fn leg_front(
     let omega = al.gyro_dps[1].clone();
     let mut ev = detect(&att.pitch_deg, &omega, rec.fs_hz, v.events())?;
     let a = &rec.acc_g;
-    crate::events::place_heel_strikes(&mut ev, [&a[0], &a[1], &a[2]], rec.fs_hz, v.events());
+    crate::events::find_impacts(&mut ev, [&a[0], &a[1], &a[2]], rec.fs_hz, v.events());
     t.lap(Stage::Events, &mut clock);
     // Counted with the strides' checks, where it ran before the subject needed it here.
     let sensor = quality::sensor_checks(rec);
@@ -245,6 +247,18 @@ pub fn leg_back(
         ev.hs_s.clone()
     };
     let mut warnings = checks.warnings;
+    if let Some(d) = ev.hs_impact_delay_s {
+        // Which rule placed the heel strikes (they move 15-30 ms with it on real walks).
+        warnings.push(quality::Warning::new(
+            codes::HS_AT_IMPACT,
+            quality::Severity::Note,
+            format!(
+                "heel strikes at the gyroscope's zero crossing + {:.0} ms, this walk's own delay to the heel's impact (instead of the fitted {:.1} % of the stride)",
+                d * 1e3,
+                100.0 * v.events().params().detector.offsets().0
+            ),
+        ));
+    }
     if st.is_empty() {
         // Why no stride was found (too slow for the mid-swing threshold, too short…).
         let reason = crate::events::no_strides_reason(&omega, &ev, v.events().params());

@@ -131,6 +131,9 @@ pub mod codes {
     pub const SV_NOISE: &str = "sv_noise";
     /// Stride length variability whose noise cannot be checked (no other leg to compare with).
     pub const SV_UNCHECKED: &str = "sv_unchecked";
+    /// The heel strikes were placed at the walk's own delay from the gyroscope's landmark to
+    /// the impact (a note: which rule placed them, and the delay).
+    pub const HS_AT_IMPACT: &str = "hs_at_impact";
 }
 
 /// Column names of recordings.csv, by what they are computed from.
