@@ -15,8 +15,9 @@
 //!
 //! TO = t_s + k·(t_p − t_s), k = k₀ + s·max(0, ln(ρ/ρ_other)), clamped to [k₀, 1.5]: ρ is the
 //! leg's median over its strides. With no other leg (or fewer than [`MIN_BRACKETS`] strides on
-//! either, or a partner whose gyroscope is faulty: `pipeline::subject` does not pass it) k = k₀. k₀ and s are least squares on family A's tuning cohort (seed 100: 10 healthy,
-//! 10 LDH, 10 slow LDH, 756 steady strides; `data-fixtures/scripts/toe_off_landmarks.py`);
+//! either, or a partner whose gyroscope is faulty: `pipeline::subject` does not pass it)
+//! k = k₀. k₀ and s are least squares on family A's tuning cohort (seed 100: 10 healthy, 10 LDH,
+//! 10 slow LDH, 756 steady strides; `data-fixtures/scripts/toe_off_landmarks.py`);
 //! family B was not fitted on. The cap [`BRACKET_MAX`] only guards against a partner whose
 //! landmarks are not gait.
 
@@ -101,6 +102,8 @@ pub fn place_bilateral(
         let d = super::shift_to_impacts(legs, hs_offset);
         for ev in legs.iter_mut() {
             ev.hs_impact_delay_s = d;
+            // Used once: a second placement must not shift the heel strikes again.
+            ev.hs_impact_delays_s.clear();
         }
     };
     match (left.as_deref_mut(), right.as_deref_mut()) {

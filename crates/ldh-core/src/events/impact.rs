@@ -37,9 +37,10 @@ use super::Events;
 pub const IMPACT_RATIO: f64 = 4.0;
 /// Smallest |Δa| of an impact, g (noise floor of a still sensor is ≈ 0.01 g).
 pub const IMPACT_MIN_G: f64 = 0.1;
-/// Smallest share of a leg's heel strikes that must show an impact for the leg to use them.
+/// Smallest share of a walk's heel strikes (both legs pooled) that must show an impact for the
+/// walk to use them.
 pub const IMPACT_SHARE: f64 = 0.5;
-/// Fewest heel strikes with an impact for a leg to use them.
+/// Fewest heel strikes with an impact for a walk to use them.
 pub const IMPACT_MIN_STRIKES: usize = 5;
 
 /// The impact after the gyroscope's heel-strike landmark `zc_s` (s), or `None`: the time half a
@@ -175,6 +176,15 @@ mod tests {
         let d = shift_to_impacts(&mut [&mut l, &mut r], 0.016).unwrap();
         assert!((d - 0.035).abs() < 1e-9, "{d}");
         assert!((l.hs_s[1] - 1.535).abs() < 1e-9 && (r.hs_s[1] - 1.535).abs() < 1e-9);
+        // Placed once: the pipeline's placement clears the delays, so a second one is a no-op.
+        let p = crate::events::EventParams::default().check().unwrap();
+        for e in [&mut l, &mut r] {
+            e.to_landmarks_s = vec![[0.1, 0.2, 0.3]; e.to_s.len()];
+        }
+        crate::events::place_bilateral(Some(&mut l), Some(&mut r), &p);
+        let before = l.hs_s.clone();
+        crate::events::place_bilateral(Some(&mut l), Some(&mut r), &p);
+        assert_eq!(l.hs_s, before);
     }
 
     #[test]
