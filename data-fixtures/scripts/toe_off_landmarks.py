@@ -13,7 +13,9 @@ detectors, so they are exactly what the pipeline finds):
   HS   the heel strikes of both legs (a window from the other leg's HS, after Trojaniello 2014)
 `--ldh` runs `gyro-landmarks` (the 3-coefficient model, the default until 2026-11-26) by name:
 t_m is recovered from it, and it is scored as "shipped". With `--ldh-new` a second binary's
-default detector is scored as well (`gyro-bracket` since 2026-11-26).
+default detector is scored as well (`gyro-bracket` since 2026-11-26). The "bilateral" rule
+below reads ρ alone; the default's later sign test on the swing arc (docs/accuracy.md "The
+stiffer leg by its swing arc too") is scored only through --ldh-new.
 
 Prints: where the true toe off lies in the bracket [t_s, t_p] per group; the TO error of each
 rule (t_s, t_s after the other leg's HS, t_p, a fixed fraction of the bracket, the fraction with

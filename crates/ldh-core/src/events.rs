@@ -20,8 +20,9 @@
 //! * [`EventDetector::GyroBracket`] (default) — HS at the zero crossing plus the walk's own
 //!   delay to the heel's impact where the walk shows impacts (`events/impact.rs`), else as in
 //!   `GyroZeroCrossing`; TO at a fraction of
-//!   the bracket [t_s, t_p], raised on the leg whose landmark geometry is stiffer than the
-//!   subject's other leg's, placed per subject by [`place_bilateral`] (`events/bracket.rs`).
+//!   the bracket [t_s, t_p], raised on the leg whose landmark geometry and swing arc are both
+//!   stiffer than the subject's other leg's, placed per subject by [`place_bilateral`]
+//!   (`events/bracket.rs`).
 //!
 //! The offsets and coefficients were fitted on a simulated tuning cohort (family A seed 100)
 //! against its ground truth (docs/accuracy.md).
@@ -40,8 +41,8 @@ mod impact;
 mod peaks;
 
 pub use bracket::{
-    bracket_fraction, bracket_toe_off_s, landmark_geometry, place_bilateral, BRACKET_K0,
-    BRACKET_MAX, BRACKET_SLOPE, MIN_BRACKETS, SAME_WALK_STRIDE_TOLERANCE,
+    bracket_fraction, bracket_toe_off_s, landmark_geometry, place_bilateral, LegGeometry,
+    BRACKET_K0, BRACKET_MAX, BRACKET_SLOPE, MIN_BRACKETS, SAME_WALK_STRIDE_TOLERANCE,
 };
 pub use impact::{
     impact_delays_s, shift_to_impacts, IMPACT_MIN_G, IMPACT_MIN_STRIKES, IMPACT_RATIO, IMPACT_SHARE,
@@ -66,8 +67,8 @@ pub enum EventDetector {
     GyroLandmarks,
     /// HS from the ω_s zero crossing (plus the walk's delay to the impact where it shows
     /// impacts), TO at a fraction of the bracket between the late-stance
-    /// peak of ω_s and the pitch peak, raised on the leg whose landmark geometry is stiffer than
-    /// the subject's other leg's (default; [`place_bilateral`]).
+    /// peak of ω_s and the pitch peak, raised on the leg whose landmark geometry and swing arc
+    /// are both stiffer than the subject's other leg's (default; [`place_bilateral`]).
     #[default]
     GyroBracket,
 }
@@ -268,6 +269,12 @@ pub struct Events {
     /// other detectors. Not serialised (what [`place_bilateral`] reads).
     #[serde(skip)]
     pub to_landmarks_s: Vec<[f64; 3]>,
+    /// The shank's swing arc after each toe off of [`EventDetector::GyroBracket`] (same order
+    /// as `to_s`): −∫ω_s dt from the pitch peak t_p to the next heel strike's zero crossing,
+    /// deg; NaN when that heel strike was not found. Empty for the other detectors. Not
+    /// serialised (what [`place_bilateral`] reads).
+    #[serde(skip)]
+    pub to_swing_arc_deg: Vec<f64>,
     /// The delay from each heel strike's zero crossing to its impact (same order as `hs_s`),
     /// s; empty unless [`find_impacts`] ran. Not serialised (what [`place_bilateral`] reads).
     #[serde(skip)]
@@ -391,10 +398,12 @@ pub fn detect(
     let mut hs = Vec::new();
     let mut to = Vec::new();
     let mut marks = Vec::new();
+    let mut arcs = Vec::new();
     for &m in &mid {
         // HS: after mid-swing, within half a stride.
         let end = (m + half).min(n - 1);
-        if let Some(i) = heel_strike(&sig, p.detector, m, end) {
+        let hs_i = heel_strike(&sig, p.detector, m, end);
+        if let Some(i) = hs_i {
             hs.push(i / fs_hz + params.hs_offset * t_med);
         }
         // TO: before mid-swing, within half a stride.
@@ -403,6 +412,7 @@ pub fn detect(
             if let Some(lm) = landmarks_s(&sig, start, m) {
                 to.push(bracket_toe_off_s(lm, BRACKET_K0, params.to_offset * t_med).min(lm[2]));
                 marks.push(lm);
+                arcs.push(hs_i.map_or(f64::NAN, |h| swing_arc_deg(omega_s_dps, fs_hz, lm[1], h)));
             }
         } else if let Some(t) = toe_off_s(&sig, params, t_med, start, m) {
             to.push(t);
@@ -414,8 +424,20 @@ pub fn detect(
         midswing_s: mid.iter().map(|&i| parabolic(&neg, i) / fs_hz).collect(),
         median_stride_s: t_med,
         to_landmarks_s: marks,
+        to_swing_arc_deg: arcs,
         ..Events::default()
     })
+}
+
+/// The shank's swing arc from the pitch peak at `tp_s` (s) to the heel strike's zero crossing at
+/// sub-sample `hs` of ω_s, deg: −∫ω_s dt by the rectangle rule over the samples between them
+/// (gyroscope only, so both attitude models read the same); NaN when they are not in order.
+fn swing_arc_deg(omega_s_dps: &[f64], fs_hz: f64, tp_s: f64, hs: f64) -> f64 {
+    let (a, b) = ((tp_s * fs_hz).ceil(), hs.floor());
+    if !(a >= 0.0 && b >= a && (b as usize) < omega_s_dps.len()) {
+        return f64::NAN;
+    }
+    -omega_s_dps[a as usize..=b as usize].iter().sum::<f64>() / fs_hz
 }
 
 /// The signals the event rules read: pitch (deg), ω_s (deg/s), −ω_s and the rate (Hz).
@@ -558,5 +580,17 @@ mod tests {
         // No positive peak in the window: no landmark.
         let neg: Vec<f64> = w.iter().map(|x| -x.abs() - 1.0).collect();
         assert_eq!(late_stance(&neg, 30, 100), None);
+    }
+
+    #[test]
+    fn the_swing_arc_sums_the_backward_rotation_between_the_pitch_peak_and_the_heel_strike() {
+        // −100 deg/s from sample 10 to 29 at 100 Hz: 20 samples, 20 degrees.
+        let w: Vec<f64> = (0..40)
+            .map(|i| if (10..30).contains(&i) { -100.0 } else { 5.0 })
+            .collect();
+        assert!((swing_arc_deg(&w, 100.0, 0.095, 29.5) - 20.0).abs() < 1e-12);
+        // Out of order or past the end: unknown.
+        assert!(swing_arc_deg(&w, 100.0, 0.3, 20.0).is_nan());
+        assert!(swing_arc_deg(&w, 100.0, 0.1, 45.0).is_nan());
     }
 }
