@@ -271,7 +271,8 @@ pub struct Events {
     pub to_landmarks_s: Vec<[f64; 3]>,
     /// The shank's swing arc after each toe off of [`EventDetector::GyroBracket`] (same order
     /// as `to_s`): −∫ω_s dt from the pitch peak t_p to the next heel strike's zero crossing,
-    /// deg; NaN when that heel strike was not found. Empty for the other detectors. Not
+    /// deg; NaN when that heel strike was not found (or not after t_p). Empty for the other
+    /// detectors. Not
     /// serialised (what [`place_bilateral`] reads).
     #[serde(skip)]
     pub to_swing_arc_deg: Vec<f64>,
@@ -412,7 +413,9 @@ pub fn detect(
             if let Some(lm) = landmarks_s(&sig, start, m) {
                 to.push(bracket_toe_off_s(lm, BRACKET_K0, params.to_offset * t_med).min(lm[2]));
                 marks.push(lm);
-                arcs.push(hs_i.map_or(f64::NAN, |h| swing_arc_deg(omega_s_dps, fs_hz, lm[1], h)));
+                arcs.push(hs_i.map_or(f64::NAN, |h| {
+                    bracket::swing_arc_deg(omega_s_dps, fs_hz, lm[1], h)
+                }));
             }
         } else if let Some(t) = toe_off_s(&sig, params, t_med, start, m) {
             to.push(t);
@@ -427,17 +430,6 @@ pub fn detect(
         to_swing_arc_deg: arcs,
         ..Events::default()
     })
-}
-
-/// The shank's swing arc from the pitch peak at `tp_s` (s) to the heel strike's zero crossing at
-/// sub-sample `hs` of ω_s, deg: −∫ω_s dt by the rectangle rule over the samples between them
-/// (gyroscope only, so both attitude models read the same); NaN when they are not in order.
-fn swing_arc_deg(omega_s_dps: &[f64], fs_hz: f64, tp_s: f64, hs: f64) -> f64 {
-    let (a, b) = ((tp_s * fs_hz).ceil(), hs.floor());
-    if !(a >= 0.0 && b >= a && (b as usize) < omega_s_dps.len()) {
-        return f64::NAN;
-    }
-    -omega_s_dps[a as usize..=b as usize].iter().sum::<f64>() / fs_hz
 }
 
 /// The signals the event rules read: pitch (deg), ω_s (deg/s), −ω_s and the rate (Hz).
@@ -580,17 +572,5 @@ mod tests {
         // No positive peak in the window: no landmark.
         let neg: Vec<f64> = w.iter().map(|x| -x.abs() - 1.0).collect();
         assert_eq!(late_stance(&neg, 30, 100), None);
-    }
-
-    #[test]
-    fn the_swing_arc_sums_the_backward_rotation_between_the_pitch_peak_and_the_heel_strike() {
-        // −100 deg/s from sample 10 to 29 at 100 Hz: 20 samples, 20 degrees.
-        let w: Vec<f64> = (0..40)
-            .map(|i| if (10..30).contains(&i) { -100.0 } else { 5.0 })
-            .collect();
-        assert!((swing_arc_deg(&w, 100.0, 0.095, 29.5) - 20.0).abs() < 1e-12);
-        // Out of order or past the end: unknown.
-        assert!(swing_arc_deg(&w, 100.0, 0.3, 20.0).is_nan());
-        assert!(swing_arc_deg(&w, 100.0, 0.1, 45.0).is_nan());
     }
 }

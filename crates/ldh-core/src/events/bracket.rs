@@ -73,16 +73,29 @@ fn upper_median(values: impl Iterator<Item = f64>) -> Option<f64> {
     Some(v[v.len() / 2])
 }
 
-/// A leg's landmark geometry and swing arc, medians over its strides; `None` with fewer than
-/// [`MIN_BRACKETS`] usable brackets.
+/// A leg's landmark geometry and swing arc, medians over its strides whose landmarks are in
+/// order; `None` with fewer than [`MIN_BRACKETS`] of them. The arc is `None` with fewer than
+/// [`MIN_BRACKETS`] finite arcs, or when the events carry none for some toe offs.
 pub fn landmark_geometry(ev: &Events) -> Option<LegGeometry> {
+    let in_order = |[ts, tp, tm]: &[f64; 3]| tp > ts && tm > tp;
     let rho = upper_median(
         ev.to_landmarks_s
             .iter()
-            .filter(|[ts, tp, tm]| tp > ts && tm > tp)
+            .filter(|lm| in_order(lm))
             .map(|[ts, tp, tm]| (tm - tp) / (tp - ts)),
     )?;
-    let swing_arc_deg = upper_median(ev.to_swing_arc_deg.iter().copied());
+    let arcs = &ev.to_swing_arc_deg;
+    let swing_arc_deg = (arcs.len() == ev.to_landmarks_s.len())
+        .then(|| {
+            upper_median(
+                ev.to_landmarks_s
+                    .iter()
+                    .zip(arcs)
+                    .filter(|(lm, _)| in_order(lm))
+                    .map(|(_, &a)| a),
+            )
+        })
+        .flatten();
     Some(LegGeometry { rho, swing_arc_deg })
 }
 
@@ -97,11 +110,24 @@ pub fn bracket_fraction(own: Option<LegGeometry>, other: Option<LegGeometry>) ->
         return BRACKET_K0;
     }
     if let (Some(arc), Some(arc_other)) = (a.swing_arc_deg, b.swing_arc_deg) {
+        // A sign, no margin: arcs within a gyroscope's gain tolerance (a few %) of each other
+        // decide by chance; a 3 % margin cost family A (docs/accuracy.md).
         if arc >= arc_other {
             return BRACKET_K0;
         }
     }
     (BRACKET_K0 + BRACKET_SLOPE * (a.rho / b.rho).ln().max(0.0)).clamp(BRACKET_K0, BRACKET_MAX)
+}
+
+/// The shank's swing arc from the pitch peak at `tp_s` (s) to the heel strike's zero crossing at
+/// sub-sample `hs` of ω_s, deg: −∫ω_s dt by the rectangle rule over the samples between them
+/// (gyroscope only, so both attitude models read the same); NaN when they are not in order.
+pub(super) fn swing_arc_deg(omega_s_dps: &[f64], fs_hz: f64, tp_s: f64, hs: f64) -> f64 {
+    let (a, b) = ((tp_s * fs_hz).ceil(), hs.floor());
+    if !(a >= 0.0 && b >= a && (b as usize) < omega_s_dps.len()) {
+        return f64::NAN;
+    }
+    -omega_s_dps[a as usize..=b as usize].iter().sum::<f64>() / fs_hz
 }
 
 /// Place both legs' events of one subject ([`EventDetector::GyroBracket`] only; the other
@@ -235,6 +261,21 @@ mod tests {
         place_bilateral(Some(&mut l), Some(&mut r), &p);
         assert!((l.to_s[0] - (0.5 + 0.1 * k)).abs() < 1e-12, "{}", l.to_s[0]);
         assert_eq!(landmark_geometry(&r).unwrap().swing_arc_deg, None);
+        // Equal arcs: neither is the shorter, neither leg is raised.
+        let (mut l, mut r) = (with_arc(2.0, 60.0), with_arc(1.0, 60.0));
+        let before = l.to_s.clone();
+        place_bilateral(Some(&mut l), Some(&mut r), &p);
+        assert_eq!(l.to_s, before);
+        // Five finite arcs are enough to read a leg's arc, four are not.
+        let mut e = with_arc(1.0, 60.0);
+        e.to_swing_arc_deg[..3].fill(f64::NAN);
+        assert_eq!(landmark_geometry(&e).unwrap().swing_arc_deg, Some(60.0));
+        e.to_swing_arc_deg[3] = f64::NAN;
+        assert_eq!(landmark_geometry(&e).unwrap().swing_arc_deg, None);
+        // Arcs for some toe offs only (events built by hand): not read.
+        let mut e = with_arc(1.0, 60.0);
+        e.to_swing_arc_deg.pop();
+        assert_eq!(landmark_geometry(&e).unwrap().swing_arc_deg, None);
     }
 
     #[test]
@@ -282,5 +323,17 @@ mod tests {
         let before = l.to_s.clone();
         place_bilateral(Some(&mut l), Some(&mut r), &p);
         assert_eq!(l.to_s, before);
+    }
+
+    #[test]
+    fn the_swing_arc_sums_the_backward_rotation_between_the_pitch_peak_and_the_heel_strike() {
+        // −100 deg/s from sample 10 to 29 at 100 Hz: 20 samples, 20 degrees.
+        let w: Vec<f64> = (0..40)
+            .map(|i| if (10..30).contains(&i) { -100.0 } else { 5.0 })
+            .collect();
+        assert!((swing_arc_deg(&w, 100.0, 0.095, 29.5) - 20.0).abs() < 1e-12);
+        // Out of order or past the end: unknown.
+        assert!(swing_arc_deg(&w, 100.0, 0.3, 20.0).is_nan());
+        assert!(swing_arc_deg(&w, 100.0, 0.1, 45.0).is_nan());
     }
 }

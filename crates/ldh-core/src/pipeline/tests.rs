@@ -440,3 +440,48 @@ fn a_faulty_gyroscope_lends_no_landmarks_to_the_other_leg() {
     };
     assert_eq!(got, own);
 }
+
+/// The events of `gyro-bracket` carry each toe off's swing arc (the shank's backward rotation
+/// from the pitch peak to the next heel strike), and an LDH leg swings through the smaller arc
+/// and has the larger landmark geometry: the leg the bilateral rule raises.
+#[test]
+fn each_toe_off_carries_its_swing_arc_and_the_affected_leg_swings_less() {
+    let c = CohortParams {
+        healthy: 0,
+        ldh: 1,
+        duration_s: 30.0,
+        seed: 5,
+        ..CohortParams::default()
+    };
+    let s = c.simulate(0).unwrap();
+    let v = AnalysisParams {
+        compute_sta: false,
+        ..AnalysisParams::default()
+    }
+    .check()
+    .unwrap();
+    let front = |rec| leg_front(rec, &v, &mut crate::timings::StageTimings::default()).unwrap();
+    let (l, r) = (front(&s.left.recording), front(&s.right.recording));
+    let geometry = |f: &LegFront| {
+        let ev = &f.events;
+        assert_eq!(ev.to_swing_arc_deg.len(), ev.to_s.len());
+        let finite = ev.to_swing_arc_deg.iter().filter(|a| a.is_finite()).count();
+        assert!(finite + 2 >= ev.to_s.len(), "{:?}", ev.to_swing_arc_deg);
+        crate::events::landmark_geometry(ev).unwrap()
+    };
+    let (gl, gr) = (geometry(&l), geometry(&r));
+    let (aff, other) = match s.params.affected_side.unwrap() {
+        Side::Left => (gl, gr),
+        Side::Right => (gr, gl),
+    };
+    let (arc_a, arc_o) = (aff.swing_arc_deg.unwrap(), other.swing_arc_deg.unwrap());
+    // A shank swings through tens of degrees, forward of the pitch peak back to heel strike.
+    assert!(arc_o > 40.0 && arc_o < 120.0, "{arc_o}");
+    assert!(arc_a < arc_o && aff.rho > other.rho, "{aff:?} {other:?}");
+    let k = crate::events::bracket_fraction(Some(aff), Some(other));
+    assert!(k > crate::events::BRACKET_K0, "{k}");
+    assert_eq!(
+        crate::events::bracket_fraction(Some(other), Some(aff)),
+        crate::events::BRACKET_K0
+    );
+}
