@@ -100,7 +100,7 @@ fn demo_with_reports(out: &Path) {
 /// A simulated cohort large enough for group statistics, with stats and train outputs.
 fn cohort_with_everything(tmp: &Path) -> PathBuf {
     let c = tmp.join("cohort");
-    simulate_cohort(&c, 6, 6, 20, 5);
+    simulate_cohort(&c, 6, 6, 30, 5);
     let res = tmp.join("res");
     ldh_ok(&[
         "analyze",

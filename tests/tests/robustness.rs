@@ -25,12 +25,12 @@ fn tree(dir: &Path) -> BTreeMap<String, Vec<u8>> {
 
 /// analyze (with reports and traces), stats and train write the same bytes with 1, 2 and 3
 /// worker threads and batches of 1, 7 and 64 subjects (20 subjects: batches end at different
-/// subjects).
+/// subjects; 30 s walks, long enough for SV to be checked and trained on).
 #[test]
 fn every_output_is_byte_identical_whatever_the_jobs() {
     let d = tempfile::tempdir().unwrap();
     let c = d.path().join("cohort");
-    simulate_cohort(&c, 10, 10, 20, 21);
+    simulate_cohort(&c, 10, 10, 30, 21);
     let mut trees = Vec::new();
     for (jobs, batch) in [("1", "1"), ("2", "7"), ("3", "64")] {
         let out = d.path().join(format!("out{jobs}"));

@@ -323,12 +323,13 @@ fn stride_length_variability_unchecked_is_withheld_with_its_reason() {
     check_length_variability(Some(&mut l), Some(&mut r));
     withheld(&l, "no stride of one leg pairs up");
     withheld(&r, "no stride of one leg pairs up");
-    // a few pairs (a short walk): reported unchecked
+    // a few pairs (a short walk): too few to check the noise, withheld on both legs
     let (mut l, mut r) = (l0.clone(), r0.clone());
     l.strides.truncate(5);
     r.strides.truncate(5);
     check_length_variability(Some(&mut l), Some(&mut r));
-    assert!(code(&l).is_none() && l.parameters.stride_length_cv.is_finite());
+    withheld(&l, "strides pair up (5 needed in each direction");
+    withheld(&r, "strides pair up (5 needed in each direction");
 }
 
 /// Heel-strike and toe-off errors (s) of the steady strides of a family B cohort of normal

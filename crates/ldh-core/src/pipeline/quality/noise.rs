@@ -16,8 +16,9 @@
 //! (SV − √(SV² − σ²)), both legs' SV is withheld — a clinician reading it would read the
 //! sensor, not the gait (one leg's alone cannot be told apart on a short walk: the estimate's
 //! own error is ≈ 30 % at 10 pairs). A leg whose SV no other leg can check (the other leg not
-//! analysed, or without an SV) has it withheld (`sv_unchecked`): on the real walks that could
-//! be checked the noise dominated every SV. docs/quality.md `sv_noise`; docs/accuracy.md "Stride
+//! analysed, or without an SV) has it withheld (`sv_unchecked`), and so do both legs of a walk
+//! too short for the check ([`SV_MIN_PAIRS`]): on the real walks that could be checked the
+//! noise dominated every SV. docs/quality.md `sv_noise`; docs/accuracy.md "Stride
 //! length variability against its noise" has the numbers (families A and B against the truth,
 //! and HuGaDB).
 
@@ -32,8 +33,9 @@ pub const SV_MAX_INFLATION: f64 = 0.01;
 /// Fewest paired strides in each direction (5) for the check to run: a residual variance from
 /// n pairs has a relative standard error of √(2/(n − 1)), 71 % at 5, so the check then still
 /// catches a gross noise (HuGaDB's 3–5 % a stride) but decides near its threshold by chance.
-/// With fewer (a walk under ≈ 25 s) SV is reported unchecked. A resolution, not fitted (8 until
-/// 2026-11-26, which left every 25 s demo walk unchecked).
+/// With fewer (a walk under ≈ 25 s) SV is withheld (`sv_unchecked`; reported unchecked until
+/// 2026-11-26). A resolution, not fitted (8 until 2026-11-26, which left every 25 s demo walk
+/// unchecked).
 pub const SV_MIN_PAIRS: usize = 5;
 
 /// A leg's reported strides: (start, end) on the left leg's clock and the length, m.
@@ -126,7 +128,7 @@ pub fn variability_warning(sv: [f64; 2], sigma2: f64, n: usize) -> Option<Warnin
 /// Withhold both legs' SV when the walk's measurement noise inflates it (the warning goes to
 /// each leg), and a leg's SV that no other leg can check ([`unchecked_warning`]): the other leg
 /// not analysed (`None`) or without an SV. With fewer than [`SV_MIN_PAIRS`] strides paired in
-/// a direction (a short walk) SV is reported unchecked.
+/// a direction (a short walk) both legs' SV is withheld as unchecked.
 pub fn check_length_variability(l: Option<&mut LegResult>, r: Option<&mut LegResult>) {
     let (l, r) = match (l, r) {
         (Some(l), Some(r)) => (l, r),
@@ -158,8 +160,14 @@ pub fn check_length_variability(l: Option<&mut LegResult>, r: Option<&mut LegRes
         return;
     }
     if nl.min(nr) < SV_MIN_PAIRS {
-        // a short walk: too few pairs to estimate the noise, and SV stays reported unchecked
-        // (withholding it would take SV from every walk under ≈ 25 s; docs/quality.md)
+        // a short walk: too few pairs to estimate the noise
+        let why = format!(
+            "only {} strides pair up ({SV_MIN_PAIRS} needed in each direction; a walk under ≈ 25 s)",
+            nl.min(nr)
+        );
+        for leg in [l, r] {
+            withhold_unchecked(leg, &why);
+        }
         return;
     }
     if let Some(w) = variability_warning(sv, walk_noise([vl, vr]), nl + nr) {
