@@ -178,9 +178,9 @@ fn train_refuses_what_it_cannot_do() {
         "3",
         "--ldh",
         "3",
-        // 30 s: at 15 s some legs have too few strides, and their partners' stride length
-        // variability, which nothing can then check, is withheld (`sv_unchecked`): the
-        // refusal would be about missing features, not the folds
+        // 30 s: at 15 s some legs have too few strides, and on such short walks stride
+        // length variability cannot be checked against its noise and is withheld
+        // (`sv_unchecked`): the refusal would be about missing features, not the folds
         "--seconds",
         "30",
         "--seed",
@@ -226,8 +226,8 @@ fn train_refuses_what_it_cannot_do() {
     ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(text(&o).contains("height_cm") && text(&o).contains("unknown feature"));
-    // 15 s walks: some legs have too few strides, every parameter withheld, and their
-    // partners' stride length variability is unchecked; the refusal names what was not
+    // 15 s walks: some legs have too few strides, every parameter withheld, and stride
+    // length variability is unchecked (too short a walk); the refusal names what was not
     // measured and how to choose features
     let short = d.path().join("short");
     assert!(ldh(&[

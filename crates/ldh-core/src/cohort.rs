@@ -85,6 +85,23 @@ pub fn person_row(rows: &[&RecordingRow], side: Side) -> Option<RecordingRow> {
             })
             .collect(),
     );
+    // A parameter some trial measured is the person's; one none measured keeps every trial's
+    // reason (the first trial's list alone would say "not measured" of a value stats then use).
+    let mut withheld = std::collections::BTreeMap::<String, String>::new();
+    for r in &ok {
+        for (col, why) in &r.withheld.0 {
+            let measured = Parameter::from_column(col).is_ok_and(|p| out.value(p).is_some())
+                || (col == "sta_per_stride" && out.sta_per_stride.is_some());
+            if !measured {
+                let why = format!("{}: {why}", r.trial_id);
+                withheld
+                    .entry(col.clone())
+                    .and_modify(|w| *w = format!("{w}; {why}"))
+                    .or_insert(why);
+            }
+        }
+    }
+    out.withheld = crate::pipeline::WithheldList(withheld);
     out.trial_id = format!(
         "mean of {} trials ({})",
         ok.len(),

@@ -368,17 +368,21 @@ impl ModelFile {
                 }
                 _ if !r.is_ok() => p.note = r.error.clone(),
                 _ => {
-                    let missing: Vec<&str> = features
+                    // Each missing feature with the reason it was withheld, when it was.
+                    let missing: Vec<String> = features
                         .iter()
                         .filter(|&&f| r.value(f).is_none())
-                        .map(|f| f.column())
+                        .map(|f| match r.withheld.reason(f.column()) {
+                            Some(why) => format!("{} ({why})", f.column()),
+                            None => f.column().to_string(),
+                        })
                         .collect();
                     let sta = if r.sta_status.is_empty() {
                         String::new()
                     } else {
                         format!(" (STA: {})", r.sta_status)
                     };
-                    p.note = format!("missing {missing:?}{sta}");
+                    p.note = format!("missing {}{sta}", missing.join(", "));
                 }
             }
             out.push(p);

@@ -328,8 +328,14 @@ fn stride_length_variability_unchecked_is_withheld_with_its_reason() {
     l.strides.truncate(5);
     r.strides.truncate(5);
     check_length_variability(Some(&mut l), Some(&mut r));
-    withheld(&l, "strides pair up (5 needed in each direction");
-    withheld(&r, "strides pair up (5 needed in each direction");
+    for leg in [&l, &r] {
+        withheld(
+            leg,
+            "of one leg pair up with the other leg's (5 needed each way)",
+        );
+        let why = leg.parameters.withheld["stride_length_cv"].as_str();
+        assert!(why.contains("too few strides"), "{why}");
+    }
 }
 
 /// Heel-strike and toe-off errors (s) of the steady strides of a family B cohort of normal

@@ -328,3 +328,40 @@ fn treadmill_setting_flags_no_stride_as_turning() {
     assert_eq!(params.for_treadmill().strides.turn_deg, 180.0);
     params.for_treadmill().check().unwrap();
 }
+
+/// A person with two trials whose first trial's SV is withheld and whose second's is measured
+/// has the second's SV and nothing withheld for it; a parameter neither trial measured keeps
+/// both trials' reasons.
+#[test]
+fn a_persons_withheld_values_are_those_no_trial_measured() {
+    let rows = cohort_rows(1, 2);
+    let mut legs: Vec<RecordingRow> = rows
+        .into_iter()
+        .filter(|r| r.subject_id == "healthy0" && r.side == crate::Side::Left)
+        .collect();
+    assert_eq!(legs.len(), 2);
+    let sv2 = legs[1].stride_length_cv.unwrap();
+    legs[0].stride_length_cv = None;
+    legs[0]
+        .withheld
+        .0
+        .insert("stride_length_cv".into(), "sv unchecked (short)".into());
+    for (t, leg) in legs.iter_mut().enumerate() {
+        leg.sta_per_s = None;
+        leg.withheld
+            .0
+            .insert("sta_per_s".into(), format!("sta not computed {t}"));
+    }
+    let refs: Vec<&RecordingRow> = legs.iter().collect();
+    let p = crate::cohort::person_row(&refs, crate::Side::Left).unwrap();
+    assert_eq!(p.stride_length_cv, Some(sv2));
+    assert!(
+        !p.withheld.0.contains_key("stride_length_cv"),
+        "{}",
+        p.withheld
+    );
+    assert_eq!(
+        p.withheld.0["sta_per_s"],
+        "t0: sta not computed 0; t1: sta not computed 1"
+    );
+}

@@ -90,13 +90,19 @@ pub struct Reference {
 }
 
 /// Whether a leg passes every quality check: no warning or fault, nothing withheld
-/// (docs/quality.md). Only such legs make a healthy reference.
+/// (docs/quality.md). Only such legs make a healthy reference. A warning about stride length
+/// variability alone (`sv_noise`, `sv_unchecked`: a noisy or unchecked spread of the lengths, on
+/// every walk under ≈ 25 s) says nothing of the leg's other parameters and leaves it in: its SV,
+/// withheld, gives the SV range no value.
 pub(crate) fn passes_every_check(x: &RecordingRow) -> bool {
-    x.withheld.is_empty()
-        && x.warnings
-            .at_least(crate::pipeline::Severity::Warning)
-            .next()
-            .is_none()
+    use crate::pipeline::Severity;
+    const SV: &str = "stride_length_cv";
+    let sv_only = |w: &crate::pipeline::Warning| {
+        w.severity == Severity::Warning
+            && !w.affects.is_empty()
+            && w.affects.iter().all(|a| a == SV)
+    };
+    x.withheld.0.keys().all(|k| k == SV) && x.warnings.at_least(Severity::Warning).all(sv_only)
 }
 
 /// Published ranges: (column, low, high, citation). Approximate ranges for healthy adults

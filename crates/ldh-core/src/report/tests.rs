@@ -304,6 +304,45 @@ fn the_reference_uses_only_legs_that_pass_every_check() {
     );
 }
 
+/// A healthy leg whose only finding is about its stride length variability (a short walk's
+/// `sv_unchecked`) stays in the reference for its other parameters; its SV, withheld, is not
+/// counted in the SV range.
+#[test]
+fn a_finding_about_sv_alone_keeps_the_leg_in_the_reference() {
+    let p = ReportParams::default()
+        .min_healthy_subjects(4)
+        .check()
+        .unwrap();
+    let mut rows = Vec::new();
+    for (i, v) in [1.0, 1.1, 1.2, 1.3].iter().enumerate() {
+        for side in ["left", "right"] {
+            let mut r = row(&format!("H{i}"), "healthy", side, *v);
+            r.stride_length_cv = Some(0.02 + 0.005 * i as f64);
+            if i == 3 {
+                let w = crate::pipeline::quality::unchecked_warning(0.03, "too few strides");
+                r.stride_length_cv = None;
+                r.withheld = crate::pipeline::WithheldList(
+                    [("stride_length_cv".to_string(), w.reason())].into(),
+                );
+                r.warnings = crate::pipeline::WarningList(vec![w]);
+            }
+            rows.push(r);
+        }
+    }
+    let r = Reference::from_rows(&rows, &p);
+    let range = |c: &str| r.ranges.iter().find(|x| x.column == c).unwrap().clone();
+    assert_eq!(
+        range("speed_mps").source,
+        ReferenceSource::Cohort { n_subjects: 4 }
+    );
+    assert_eq!(range("stride_length_cv").n_reference, 3);
+    assert!(r.description.contains("8 of 8"), "{}", r.description);
+    // Any other warning still keeps the leg out.
+    rows[7].warnings.0[0].affects.push("speed_mps".into());
+    let r = Reference::from_rows(&rows, &p);
+    assert!(r.description.contains("7 of 8"), "{}", r.description);
+}
+
 /// The summary speaks in clinical units, judges each value against its range in plain words,
 /// and a parameter without enough healthy subjects says "no reference (n = …)".
 #[test]

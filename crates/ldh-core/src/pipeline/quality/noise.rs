@@ -33,7 +33,7 @@ pub const SV_MAX_INFLATION: f64 = 0.01;
 /// Fewest paired strides in each direction (5) for the check to run: a residual variance from
 /// n pairs has a relative standard error of √(2/(n − 1)), 71 % at 5, so the check then still
 /// catches a gross noise (HuGaDB's 3–5 % a stride) but decides near its threshold by chance.
-/// With fewer (a walk under ≈ 25 s) SV is withheld (`sv_unchecked`; reported unchecked until
+/// With fewer (a walk under ≈ 25 s, or one with many strides left out) SV is withheld (`sv_unchecked`; reported unchecked until
 /// 2026-11-26). A resolution, not fitted (8 until 2026-11-26, which left every 25 s demo walk
 /// unchecked).
 pub const SV_MIN_PAIRS: usize = 5;
@@ -159,14 +159,20 @@ pub fn check_length_variability(l: Option<&mut LegResult>, r: Option<&mut LegRes
         }
         return;
     }
-    if nl.min(nr) < SV_MIN_PAIRS {
+    let pairs = nl.min(nr);
+    if pairs < SV_MIN_PAIRS {
         // a short walk: too few pairs to estimate the noise
+        let s = if pairs == 1 { "" } else { "s" };
         let why = format!(
-            "only {} strides pair up ({SV_MIN_PAIRS} needed in each direction; a walk under ≈ 25 s)",
-            nl.min(nr)
+            "only {pairs} stride{s} of one leg pair up with the other leg's ({SV_MIN_PAIRS} needed each way): the walk is too short (record ≥ 30 s of walking), or too many of its strides were left out"
         );
         for leg in [l, r] {
-            withhold_unchecked(leg, &why);
+            let sv = leg.parameters.stride_length_cv;
+            if sv.is_finite() {
+                let w = unchecked(sv, "too few strides to check it against its noise", &why);
+                super::withhold(&mut leg.parameters, std::slice::from_ref(&w));
+                leg.warnings.push(w);
+            }
         }
         return;
     }
@@ -183,11 +189,21 @@ pub fn check_length_variability(l: Option<&mut LegResult>, r: Option<&mut LegRes
 /// measurement's noise, and on real walks it found that noise to dominate (HuGaDB: every
 /// checked leg), so an unchecked SV is not reported.
 pub fn unchecked_warning(sv: f64, why: &str) -> Warning {
+    unchecked(
+        sv,
+        "not checked against its noise",
+        &format!("its noise is checked against the other leg's strides and {why}"),
+    )
+}
+
+/// The `sv_unchecked` warning: `cause` first (a report's reason for the empty cell), then
+/// `why` in full.
+fn unchecked(sv: f64, cause: &str, why: &str) -> Warning {
     Warning::new(
         codes::SV_UNCHECKED,
         Severity::Warning,
         format!(
-            "not checked against its noise: stride length variability ({:.1} %) not measured, as its noise is checked against the other leg's strides and {why}",
+            "{cause}: stride length variability ({:.1} %) not measured, as {why}",
             100.0 * sv
         ),
     )

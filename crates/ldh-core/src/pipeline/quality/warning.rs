@@ -129,7 +129,8 @@ pub mod codes {
     pub const LENGTH_MISMATCH: &str = "length_mismatch";
     /// Stride length variability mostly the measurement's own noise (from the two legs).
     pub const SV_NOISE: &str = "sv_noise";
-    /// Stride length variability whose noise cannot be checked (no other leg to compare with).
+    /// Stride length variability whose noise cannot be checked (no other leg to compare with,
+    /// or too few strides pairing up with the other leg's: a short walk).
     pub const SV_UNCHECKED: &str = "sv_unchecked";
     /// The heel strikes were placed at the walk's own delay from the gyroscope's landmark to
     /// the impact (a note: which rule placed them, and the delay).
