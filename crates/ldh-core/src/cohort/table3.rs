@@ -200,6 +200,26 @@ pub(crate) fn fmt_ms(s: &Summary) -> String {
     }
 }
 
+/// [`fmt_ms`] with the number of subjects when fewer than the group's `group_n` have the value
+/// (the others' withheld: recordings.csv `withheld` says why).
+pub(crate) fn fmt_ms_n(s: &Summary, group_n: usize) -> String {
+    if s.n < group_n {
+        format!("{} (n = {})", fmt_ms(s), s.n)
+    } else {
+        fmt_ms(s)
+    }
+}
+
+/// Whether some cell of `rows` has fewer subjects than its group ([`fmt_ms_n`]).
+pub(crate) fn any_partial(rows: &[ParameterStats], c: &Cohort) -> bool {
+    let (l, h) = (c.ldh.len(), c.healthy.len());
+    rows.iter()
+        .any(|r| r.ldhh.n < l || r.ldhe.n < l || r.h.n < h)
+}
+
+/// The sentence under a table with partial cells.
+pub(crate) const PARTIAL_NOTE: &str = "A cell with its own n has fewer subjects than its group: the others' values were not measured (recordings.csv `withheld` says why; e.g. the ACC-only model reports no stride length, and stride length variability is withheld on walks under ≈ 25 s).";
+
 /// Table 3 as Markdown, laid out like the paper's (HE is the paired test; Holm in brackets).
 pub fn table3_markdown(rows: &[ParameterStats], c: &Cohort) -> String {
     let mut s = format!(
@@ -211,15 +231,16 @@ pub fn table3_markdown(rows: &[ParameterStats], c: &Cohort) -> String {
     );
     s.push_str("| Feature | unit | LDHH | LDHE | H | HE (paired) | HE (indep.) | H-H | E-H | LR | ANOVA | Kruskal |\n");
     s.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    let (nl, nh) = (c.ldh.len(), c.healthy.len());
     for r in rows {
         let t = |x: &TestResult| format!("{} ({})", fmt_p(x.p), fmt_p(x.p_holm));
         s.push_str(&format!(
             "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
             r.code,
             r.unit,
-            fmt_ms(&r.ldhh),
-            fmt_ms(&r.ldhe),
-            fmt_ms(&r.h),
+            fmt_ms_n(&r.ldhh, nl),
+            fmt_ms_n(&r.ldhe, nl),
+            fmt_ms_n(&r.h, nh),
             t(&r.he_paired),
             t(&r.he_independent),
             t(&r.hh),
@@ -228,6 +249,9 @@ pub fn table3_markdown(rows: &[ParameterStats], c: &Cohort) -> String {
             t(&r.anova),
             t(&r.kruskal)
         ));
+    }
+    if any_partial(rows, c) {
+        s.push_str(&format!("\n{PARTIAL_NOTE}\n"));
     }
     if !c.excluded.is_empty() {
         s.push_str(&format!("\nLeft out: {}.\n", c.excluded.join("; ")));

@@ -365,3 +365,25 @@ fn a_persons_withheld_values_are_those_no_trial_measured() {
         "t0: sta not computed 0; t1: sta not computed 1"
     );
 }
+
+/// Table 3 gives a cell's own n when some subjects of its group have the value withheld, and
+/// says why under the table; with every value present it is as before.
+#[test]
+fn table3_says_when_a_cell_has_fewer_subjects_than_its_group() {
+    use crate::cohort::{table3, table3_markdown, Cohort};
+    let mut rows = cohort_rows(6, 1);
+    let full = Cohort::from_rows(&rows).unwrap();
+    let md = table3_markdown(&table3(&full), &full);
+    assert!(!md.contains("(n = ") && !md.contains("withheld"), "{md}");
+    for r in rows
+        .iter_mut()
+        .filter(|r| r.subject_id == "ldh0" || r.subject_id == "ldh1")
+    {
+        r.stride_length_cv = None;
+    }
+    let c = Cohort::from_rows(&rows).unwrap();
+    let md = table3_markdown(&table3(&c), &c);
+    let line = md.lines().find(|l| l.starts_with("| SV ")).unwrap();
+    assert_eq!(line.matches("(n = 4)").count(), 2, "{line}");
+    assert!(md.contains("the others' values were not measured"), "{md}");
+}

@@ -213,6 +213,8 @@ fn group_sections(c: &CohortReport) -> Result<Markup> {
 }
 
 fn table3(co: &Cohort) -> Markup {
+    let rows = cohort::table3(co);
+    let (nl, nh) = (co.ldh.len(), co.healthy.len());
     let t =
         |x: &cohort::TestResult| format!("{} ({})", cohort::fmt_p(x.p), cohort::fmt_p(x.p_holm));
     html! {
@@ -223,16 +225,19 @@ fn table3(co: &Cohort) -> Markup {
         "\n"
         table {
             tr { th { "feature" } th { "unit" } th { "LDHH" } th { "LDHE" } th { "H" } th { "HE (paired)" } th { "HE (indep.)" } th { "H-H" } th { "E-H" } th { "LR" } th { "ANOVA" } } "\n"
-            @for r in &cohort::table3(co) {
+            @for r in &rows {
                 tr {
                     td { (r.code) } td { (r.unit) }
-                    td.num { (cohort::fmt_ms(&r.ldhh)) } td.num { (cohort::fmt_ms(&r.ldhe)) } td.num { (cohort::fmt_ms(&r.h)) }
+                    td.num { (cohort::fmt_ms_n(&r.ldhh, nl)) } td.num { (cohort::fmt_ms_n(&r.ldhe, nl)) } td.num { (cohort::fmt_ms_n(&r.h, nh)) }
                     @for x in [&r.he_paired, &r.he_independent, &r.hh, &r.eh, &r.lr, &r.anova] { td.num { (t(x)) } }
                 }
                 "\n"
             }
         }
         "\n"
+        @if cohort::any_partial(&rows, co) {
+            p.meta { (cohort::PARTIAL_NOTE) } "\n"
+        }
         @if !co.excluded.is_empty() {
             p.meta { "Left out: " (co.excluded.join("; ")) "." } "\n"
         }
