@@ -228,6 +228,17 @@ fn pair_legs(
     } else {
         (None, None)
     };
+    // The leg's own findings again (the strides may have been re-segmented for turns since the
+    // leg checks ran), then the pair's; then the stride lengths the other leg contradicts.
+    for (leg, _) in [l.as_mut(), r.as_mut()].into_iter().flatten() {
+        quality::apply_to_strides(&mut leg.strides, &leg.warnings);
+        quality::apply_to_strides(&mut leg.strides, &warnings);
+        withhold_unvouched_lengths(&mut leg.strides);
+    }
+    if let (Ok((ll, _)), Ok((rl, _)), true) = (l.as_mut(), r.as_mut(), overlapping) {
+        let shift_s = rl.t0_s - ll.t0_s;
+        quality::withhold_disagreeing_lengths(&mut ll.strides, &mut rl.strides, shift_s);
+    }
     // The parameters again with the other leg's heel strikes, then what the checks withhold
     // (the leg's own findings and the pair's).
     let finish = |x: std::result::Result<(LegResult, Vec<f64>), String>,
@@ -238,10 +249,7 @@ fn pair_legs(
                 leg.parameters.sta_per_stride,
                 leg.parameters.sta_status.clone(),
             );
-            // The leg's own findings again (the strides may have been re-segmented for turns
-            // since the leg checks ran), then the pair's.
-            quality::apply_to_strides(&mut leg.strides, &leg.warnings);
-            quality::apply_to_strides(&mut leg.strides, &warnings);
+            // Fewer survivors after the pair's check may leave the leg's lengths unvouched.
             withhold_unvouched_lengths(&mut leg.strides);
             leg.parameters = side_parameters(&leg.strides, other.as_deref());
             (

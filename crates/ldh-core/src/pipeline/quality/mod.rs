@@ -16,6 +16,7 @@ use crate::gait::{SideParameters, Stride};
 
 use super::LegResult;
 
+mod agreement;
 mod attitude;
 mod height;
 mod noise;
@@ -33,6 +34,7 @@ mod tests_hugadb_feet;
 mod tests_stride_length;
 mod warning;
 
+pub use agreement::{withhold_disagreeing_lengths, MAX_LEG_DISAGREEMENT};
 pub use attitude::{
     attitude_checks, MAX_BDK_DEG, MAX_PITCH_DEG, MIN_PITCH_EXCURSION_DEG, OUT_OF_BOUNDS_SHARE,
     STANCE_PITCH_MAX_DEG, STANCE_PITCH_SPREAD_DEG,
