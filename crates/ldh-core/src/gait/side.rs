@@ -166,6 +166,7 @@ fn withhold_side_length(out: &mut SideParameters, valid: &[&Stride], with_length
             ("floor", "ankle off the floor level"),
             ("pendulum", "disagrees with the shank-pendulum estimate"),
             ("median", "far from its bout's median"),
+            ("other leg", "contradicted by the other leg's strides"),
         ]
         .iter()
         .find(|(k, _)| r.contains(k))

@@ -191,4 +191,21 @@ mod tests {
         assert_eq!(withhold_disagreeing_lengths(&mut l, &mut r, 0.0)[0], 0);
         assert!(l[1].stride_length_m.is_finite());
     }
+
+    #[test]
+    fn a_pause_and_a_turn_do_not_shift_the_sweep() {
+        let mut l = strides(0.0, &[1.2, 1.2, 1.2, 1.2, 1.5, 1.2]);
+        l[2].valid = false; // turning
+                            // the other leg on a clock 100 s behind, with a 2 s pause (an invalid stride) after
+                            // its first stride
+        let mut r = strides(-99.5, &[1.2; 6]);
+        r[1].next_hs_time_s += 1.0;
+        r[1].valid = false;
+        for s in r.iter_mut().skip(2) {
+            s.hs_time_s += 1.0;
+            s.next_hs_time_s += 1.0;
+        }
+        assert_eq!(withhold_disagreeing_lengths(&mut l, &mut r, 100.0), [1, 0]);
+        assert!(l[4].stride_length_m.is_nan(), "{}", l[4].reason);
+    }
 }
