@@ -142,7 +142,7 @@ pub fn anatomical_roll_deg(roll_zyx_deg: f64, side: Side) -> f64 {
 }
 
 /// Append `r` to a stride's reasons ("; " between reasons).
-fn append_reason(s: &mut Stride, r: String) {
+pub(crate) fn append_reason(s: &mut Stride, r: String) {
     s.reason = if s.reason.is_empty() {
         r
     } else {

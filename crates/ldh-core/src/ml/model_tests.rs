@@ -268,18 +268,7 @@ fn feature_names_become_parameters_once_with_a_typed_error() {
 #[test]
 fn a_missing_feature_is_named_with_the_reason_it_was_withheld() {
     let (m, _, _) = trained("rf");
-    let mut r: crate::output::RecordingRow = serde_json::from_value(json!({
-        "subject_id": "S1", "side": "left", "model": "fusion", "group": "", "affected_side": "",
-        "side_role": "", "source": "", "status": "ok", "error": "", "fs_hz": 100.0,
-        "duration_s": 20.0, "strides_total": 8, "strides_valid": 8, "stride_time_s": null,
-        "step_time_s": null, "step_frequency_steps_per_s": null, "stance_ratio": null,
-        "swing_ratio": null, "stride_length_m": null, "speed_mps": null,
-        "stride_length_cv": null, "stride_time_cv": null, "sta_per_s": null,
-        "sta_per_stride": null, "sta_status": "", "wqk_deg": null, "pbi_deg": null,
-        "bdk_deg": null, "mirrored": false, "axial_rotation_deg": 0.0, "outliers_replaced": 0,
-        "clipped_samples": 0, "trial_id": ""
-    }))
-    .unwrap();
+    let mut r = crate::report::tests::row("S1", "", "left", 1.0);
     for name in &m.feature_names {
         let p = crate::output::Parameter::from_column(name).unwrap();
         r.set_value(p, Some(1.0));

@@ -237,9 +237,11 @@ fn pair_legs(
     }
     // Not when the pair's checks doubt they are one walk (what withholds the step time).
     let one_walk = overlapping
-        && !warnings
-            .iter()
-            .any(|w| w.affects.iter().any(|a| a == "step_time_s"));
+        && !warnings.iter().any(|w| {
+            w.affects
+                .iter()
+                .any(|a| a == crate::output::Parameter::StepTime.column())
+        });
     if let (Ok((ll, _)), Ok((rl, _)), true) = (l.as_mut(), r.as_mut(), one_walk) {
         let shift_s = rl.t0_s - ll.t0_s;
         quality::withhold_disagreeing_lengths(&mut ll.strides, &mut rl.strides, shift_s);

@@ -158,4 +158,4 @@ pub struct CohortReport {
 }
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

@@ -3,7 +3,8 @@
 use super::*;
 use crate::output::RecordingRow;
 
-fn row(id: &str, group: &str, side: &str, speed: f64) -> RecordingRow {
+/// A recording row of `id` with only its speed (m/s) measured (also the ML tests' row).
+pub(crate) fn row(id: &str, group: &str, side: &str, speed: f64) -> RecordingRow {
     let mut r: RecordingRow = serde_json::from_value(serde_json::json!({
         "subject_id": id, "side": side, "model": "fusion", "group": group, "affected_side": "",
         "side_role": "", "source": "", "status": "ok", "error": "", "fs_hz": 100.0,

@@ -110,11 +110,7 @@ fn withhold(
                 s.stride_length_m,
                 d * 100.0
             );
-            s.reason = if s.reason.is_empty() {
-                r
-            } else {
-                format!("{}; {r}", s.reason)
-            };
+            crate::gait::append_reason(s, r);
             s.stride_length_m = f64::NAN;
             s.speed_mps = f64::NAN;
             n += 1;

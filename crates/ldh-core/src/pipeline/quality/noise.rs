@@ -33,9 +33,9 @@ pub const SV_MAX_INFLATION: f64 = 0.01;
 /// Fewest paired strides in each direction (5) for the check to run: a residual variance from
 /// n pairs has a relative standard error of √(2/(n − 1)), 71 % at 5, so the check then still
 /// catches a gross noise (HuGaDB's 3–5 % a stride) but decides near its threshold by chance.
-/// With fewer (a walk under ≈ 25 s, or one with many strides left out) SV is withheld (`sv_unchecked`; reported unchecked until
-/// 2026-11-26). A resolution, not fitted (8 until 2026-11-26, which left every 25 s demo walk
-/// unchecked).
+/// With fewer (a walk under ≈ 25 s, or one with many strides left out) SV is withheld
+/// (`sv_unchecked`; reported unchecked until 2026-11-26). A resolution, not fitted (8 until
+/// 2026-11-26, which left every 25 s demo walk unchecked).
 pub const SV_MIN_PAIRS: usize = 5;
 
 /// A leg's reported strides: (start, end) on the left leg's clock and the length, m.
