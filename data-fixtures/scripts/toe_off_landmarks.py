@@ -20,7 +20,8 @@ stiffer leg by its swing arc too") is scored only through --ldh-new.
 Prints: where the true toe off lies in the bracket [t_s, t_p] per group; the TO error of each
 rule (t_s, t_s after the other leg's HS, t_p, a fixed fraction of the bracket, the fraction with
 the other leg's landmark geometry as reference, a 2-coefficient scale-free model, the shipped
-model) per cohort and group with the per-leg bias spread; the two withholding checks tried.
+model) per cohort and group with the per-leg bias spread; the withholding checks tried (the
+third, by bracket width, scores the --ldh-new default).
 
 Cohorts (made here, in --work): A seed 100 and 200: 10 healthy + 10 LDH + 10 slow LDH, 30 s;
 B seeds 7, 100, 2026: 15 normal + 15 slow hemiparetic, default length.
@@ -179,6 +180,42 @@ def withhold_checks(data, k=0.43):
         print("; ".join(cells))
 
 
+def bracket_width_check(data, f, grid=(250, 220, 200, 180, 170, 160, 150, 140)):
+    """A third withholding check, on the default detector's errors (docs/accuracy.md "Toe off
+    withheld by its bracket width"): a leg's toe offs withheld when its median bracket t_p − t_s is
+    wider than X ms (the error of a fraction rule grows with the bracket). X is chosen on A100 alone:
+    the widest X at which A100's p95 is ≤ 20 ms; the other cohorts are scored at it."""
+    def legs(rs):
+        out = {}
+        for r in rs:
+            out.setdefault((r["sid"], r["side"]), []).append(r)
+        return [(float(np.median([(r["tp"] - r["ts"]) * 1e3 for r in v])), v[0]["group"],
+                 [(f(r) - r["to"]) * 1e3 for r in v if f(r) is not None]) for v in out.values()]
+
+    def score(ls, x):
+        kept = [abs(e) for w, _, es in ls if w <= x for e in es]
+        if not kept:
+            return None, "—"
+        held = {g: (sum(1 for w, gg, _ in ls if gg == g and w > x), sum(1 for _, gg, _ in ls if gg == g))
+                for g in ("normal", "LDH", "slow")}
+        p95 = float(np.percentile(kept, 95))
+        cells = ", ".join(f"{g} {h}/{t}" for g, (h, t) in held.items() if t)
+        return p95, f"{np.mean(kept):.1f} / {p95:.1f} (legs withheld: {cells})"
+
+    per = {n: legs(rs) for n, rs in data.items()}
+    print("\n## Withholding by bracket width (default detector's errors; MAE / p95 of the kept)\n")
+    print("| X (ms) | " + " | ".join(per) + " |")
+    print("|---|" + "---|" * len(per))
+    chosen = None
+    for x in grid:
+        row = [score(ls, x) for ls in per.values()]
+        print(f"| {x} | " + " | ".join(c for _, c in row) + " |")
+        p95 = row[list(per).index("A100")][0]
+        if chosen is None and p95 is not None and p95 <= 20:
+            chosen = x
+    print(f"\nX chosen on A100 (widest with p95 ≤ 20 ms): {chosen}")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--ldh", default="target/release/ldh")
@@ -256,6 +293,8 @@ def main():
             cells.append(per_leg_spread(rs, f) + (f", {miss} missed" if miss else ""))
             print(f"| {n} | " + " | ".join(cells) + " |")
     withhold_checks(data)
+    if a.ldh_new:
+        bracket_width_check(data, lambda r: r.get("new"))
 
 
 if __name__ == "__main__":
