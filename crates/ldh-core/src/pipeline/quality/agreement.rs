@@ -11,7 +11,10 @@
 //! measurement error on one of the legs; its length (and speed) is withheld with the reason, and
 //! the stride stays valid for its timing and angles. Each leg is judged against the other's
 //! lengths as measured, both directions before either is changed, so of two disagreeing legs
-//! the one whose stride stands out from the other's neighbours loses it. The leg-level check
+//! the one whose stride stands out from the other's neighbours loses it (how far, as |ln| of
+//! the ratio: alike both ways, so two strides that contradict only each other both lose it;
+//! found at 0.2 m/s, where the ratio a/b − 1 had kept a 22 % short stride and withheld the
+//! right one beside it). The leg-level check
 //! (`pair.rs`, [`super::LR_STRIDE_LENGTH_TOL`]) catches a whole leg that disagrees; this one a
 //! stride. Found on family B's all-treadmill walks (seed 31: a slow hemiparetic leg's stride
 //! 17 % long, its neighbours on the other leg right; docs/accuracy.md).
@@ -75,10 +78,11 @@ fn deviations(a: &[Stride], spans: &[(Option<f64>, Vec<usize>)]) -> Vec<f64> {
 }
 
 /// Withhold the length of every stride of either leg that differs from the other leg's length
-/// over its time by more than [`MAX_LEG_DISAGREEMENT`] and by more than each stride of the
-/// other leg it overlaps differs in turn (so a gross error on one leg does not take the good
-/// strides beside it on the other); `shift_s`: the right leg's clock minus the left's. Returns
-/// how many were withheld on each leg.
+/// over its time by more than [`MAX_LEG_DISAGREEMENT`] and by at least as much (as |ln| of the
+/// ratio, the same both ways) as each stride of the other leg it overlaps differs in turn (so a
+/// gross error on one leg does not take the good strides beside it on the other, and two
+/// strides that contradict only each other both lose their lengths); `shift_s`: the right
+/// leg's clock minus the left's. Returns how many were withheld on each leg.
 pub fn withhold_disagreeing_lengths(
     left: &mut [Stride],
     right: &mut [Stride],
@@ -100,10 +104,17 @@ fn withhold(
     dev: &[f64],
     other_dev: &[f64],
 ) -> usize {
+    // How far a length stands out, symmetric in the two legs: |ln(a/b)|, so that of a long and
+    // a short stride that contradict only each other neither counts as the smaller outlier (as
+    // a/b − 1 would make the short one: +21 % one way is −17 % the other) and both lose their
+    // lengths; a rounding-level difference is a tie.
+    let apart = |d: f64| (1.0 + d).ln().abs();
     let mut n = 0;
     for ((s, (m, over)), &d) in strides.iter_mut().zip(spans).zip(dev) {
         let Some(m) = *m else { continue };
-        let stands_out = over.iter().all(|&j| !(other_dev[j].abs() > d.abs()));
+        let stands_out = over
+            .iter()
+            .all(|&j| !(apart(other_dev[j]) > apart(d) + 1e-9));
         if d.abs() > MAX_LEG_DISAGREEMENT && stands_out {
             let r = format!(
                 "stride length withheld: {:.2} m is {:+.0} % from the other leg's {m:.2} m over the same time (both ankles cover the same distance)",
@@ -171,6 +182,25 @@ mod tests {
         let mut l = strides(0.0, &[1.2, 1.2, 1.368, 1.2]);
         let mut r = strides(0.5, &[1.2, 1.2, 1.2, 1.2]);
         assert_eq!(withhold_disagreeing_lengths(&mut l, &mut r, 0.0), [0, 0]);
+    }
+
+    /// Found on family B at 0.2 m/s (seed 4401, BH03): a left stride 22 % short (0.347 m) and
+    /// the one right stride beside it that was reported (0.42 m, right) contradict only each
+    /// other. As a/b − 1 the right one was +21 % and the left −17 %, so the right, correct one
+    /// lost its length and the wrong one was reported; measured both ways alike, neither can be
+    /// told from the other and both are withheld.
+    #[test]
+    fn two_strides_that_contradict_only_each_other_both_lose_their_lengths() {
+        // each leg's other strides not reported (bout edges, failed checks)
+        let mut l = strides(0.0, &[1.2, 0.347, 1.2]);
+        let mut r = strides(1.5, &[0.42, 1.2]);
+        l[0].valid = false;
+        l[2].valid = false;
+        r[1].valid = false;
+        assert_eq!(withhold_disagreeing_lengths(&mut l, &mut r, 0.0), [1, 1]);
+        assert!(l[1].stride_length_m.is_nan() && r[0].stride_length_m.is_nan());
+        assert!(l[1].reason.contains("-17 %"), "{}", l[1].reason);
+        assert!(r[0].reason.contains("+21 %"), "{}", r[0].reason);
     }
 
     #[test]
