@@ -10,11 +10,13 @@
 //! [`MAX_LEG_DISAGREEMENT`] is a
 //! measurement error on one of the legs; its length (and speed) is withheld with the reason, and
 //! the stride stays valid for its timing and angles. Each leg is judged against the other's
-//! lengths as measured, both directions before either is changed, so of two disagreeing legs
-//! the one whose stride stands out from the other's neighbours loses it (how far, as |ln| of
-//! the ratio: alike both ways, so two strides that contradict only each other both lose it;
-//! found at 0.2 m/s, where the ratio a/b − 1 had kept a 22 % short stride and withheld the
-//! right one beside it). The leg-level check
+//! lengths as measured, both directions before either is changed. A stride of the other leg
+//! beside it that agrees does not defend it (a gross error on one leg must not take the good
+//! strides next to it on the other); when strides of both legs disagree with each other, the
+//! one out of line with its own leg's neighbours is the error (stride lengths of a steady walk
+//! differ by a few %), and both lose their lengths when that does not tell them apart. Found at
+//! 0.2 m/s (family B seed 4401): reading only the other leg, a 22 % short stride was kept and
+//! the right one beside it withheld. The leg-level check
 //! (`pair.rs`, [`super::LR_STRIDE_LENGTH_TOL`]) catches a whole leg that disagrees; this one a
 //! stride. Found on family B's all-treadmill walks (seed 31: a slow hemiparetic leg's stride
 //! 17 % long, its neighbours on the other leg right; docs/accuracy.md).
@@ -78,11 +80,12 @@ fn deviations(a: &[Stride], spans: &[(Option<f64>, Vec<usize>)]) -> Vec<f64> {
 }
 
 /// Withhold the length of every stride of either leg that differs from the other leg's length
-/// over its time by more than [`MAX_LEG_DISAGREEMENT`] and by at least as much (as |ln| of the
-/// ratio, the same both ways) as each stride of the other leg it overlaps differs in turn (so a
-/// gross error on one leg does not take the good strides beside it on the other, and two
-/// strides that contradict only each other both lose their lengths); `shift_s`: the right
-/// leg's clock minus the left's. Returns how many were withheld on each leg.
+/// over its time by more than [`MAX_LEG_DISAGREEMENT`], unless each stride of the other leg it
+/// overlaps that disagrees in turn is the more out of line with its own leg's neighbours (so a
+/// gross error on one leg does not take the good strides beside it on the other, and of two
+/// strides that contradict each other the one its own leg also contradicts loses its length;
+/// both, when that does not tell them apart); `shift_s`: the right leg's clock minus the
+/// left's. Returns how many were withheld on each leg.
 pub fn withhold_disagreeing_lengths(
     left: &mut [Stride],
     right: &mut [Stride],
@@ -90,42 +93,80 @@ pub fn withhold_disagreeing_lengths(
 ) -> [usize; 2] {
     let (sl, sr) = (spans(left, right, shift_s), spans(right, left, -shift_s));
     let (dl, dr) = (deviations(left, &sl), deviations(right, &sr));
+    let (il, ir) = (out_of_line(left), out_of_line(right));
     [
-        withhold(left, &sl, &dl, &dr),
-        withhold(right, &sr, &dr, &dl),
+        withhold(left, &sl, &dl, &il, &dr, &ir),
+        withhold(right, &sr, &dr, &ir, &dl, &il),
     ]
 }
 
-/// Withhold the lengths of `strides` (spans `spans`, deviations `dev`) that disagree and stand
-/// out more than the other leg's strides they overlap (deviations `other_dev`); how many.
+/// How far each reported stride's length departs from its own leg's neighbours, |ln(length /
+/// mean of the reported strides just before and after it in its bout)|; `None` without one.
+/// Strides of a steady walk differ by a few % (stride length CV 2–5 %), so a measurement error
+/// stands out from its neighbours as it does from the other leg.
+fn out_of_line(strides: &[Stride]) -> Vec<Option<f64>> {
+    let reported = |s: &Stride| s.valid && s.stride_length_m.is_finite();
+    (0..strides.len())
+        .map(|i| {
+            let s = &strides[i];
+            if !reported(s) {
+                return None;
+            }
+            let near: Vec<f64> = [i.checked_sub(1), Some(i + 1)]
+                .into_iter()
+                .flatten()
+                .filter_map(|j| strides.get(j))
+                .filter(|n| reported(n) && n.bout == s.bout)
+                .map(|n| n.stride_length_m)
+                .collect();
+            (!near.is_empty()).then(|| {
+                (s.stride_length_m * near.len() as f64 / near.iter().sum::<f64>())
+                    .ln()
+                    .abs()
+            })
+        })
+        .collect()
+}
+
+/// Withhold the lengths of `strides` (spans `spans`, deviations `dev`, departures from their
+/// own neighbours `own`) that disagree with the other leg (deviations `other_dev`, departures
+/// `other_own`) and are not defended: a disagreeing stride is kept only when every stride of
+/// the other leg it overlaps that disagrees too departs more from its own neighbours (an
+/// unknown departure defends nothing); how many.
 fn withhold(
     strides: &mut [Stride],
     spans: &[(Option<f64>, Vec<usize>)],
     dev: &[f64],
+    own: &[Option<f64>],
     other_dev: &[f64],
+    other_own: &[Option<f64>],
 ) -> usize {
-    // How far a length stands out, symmetric in the two legs: |ln(a/b)|, so that of a long and
-    // a short stride that contradict only each other neither counts as the smaller outlier (as
-    // a/b − 1 would make the short one: +21 % one way is −17 % the other) and both lose their
-    // lengths; a rounding-level difference is a tie.
-    let apart = |d: f64| (1.0 + d).ln().abs();
+    let disagrees = |d: f64| d.abs() > MAX_LEG_DISAGREEMENT;
     let mut n = 0;
-    for ((s, (m, over)), &d) in strides.iter_mut().zip(spans).zip(dev) {
+    for (i, ((s, (m, over)), &d)) in strides.iter_mut().zip(spans).zip(dev).enumerate() {
         let Some(m) = *m else { continue };
-        let stands_out = over
-            .iter()
-            .all(|&j| !(apart(other_dev[j]) > apart(d) + 1e-9));
-        if d.abs() > MAX_LEG_DISAGREEMENT && stands_out {
-            let r = format!(
-                "stride length withheld: {:.2} m is {:+.0} % from the other leg's {m:.2} m over the same time (both ankles cover the same distance)",
-                s.stride_length_m,
-                d * 100.0
-            );
-            crate::gait::append_reason(s, r);
-            s.stride_length_m = f64::NAN;
-            s.speed_mps = f64::NAN;
-            n += 1;
+        if !disagrees(d) {
+            continue;
         }
+        // The other leg's disagreeing strides beside it: one of each such pair is wrong, and
+        // the one out of line with its own leg is taken for it (a rounding-level difference
+        // is a tie: both lose their lengths).
+        let mut mutual = over.iter().filter(|&&j| disagrees(other_dev[j])).peekable();
+        let defended = mutual.peek().is_some()
+            && mutual
+                .all(|&j| matches!((own[i], other_own[j]), (Some(a), Some(b)) if a + 1e-9 < b));
+        if defended {
+            continue;
+        }
+        let r = format!(
+            "stride length withheld: {:.2} m is {:+.0} % from the other leg's {m:.2} m over the same time (both ankles cover the same distance)",
+            s.stride_length_m,
+            d * 100.0
+        );
+        crate::gait::append_reason(s, r);
+        s.stride_length_m = f64::NAN;
+        s.speed_mps = f64::NAN;
+        n += 1;
     }
     n
 }
@@ -184,11 +225,26 @@ mod tests {
         assert_eq!(withhold_disagreeing_lengths(&mut l, &mut r, 0.0), [0, 0]);
     }
 
-    /// Found on family B at 0.2 m/s (seed 4401, BH03): a left stride 22 % short (0.347 m) and
-    /// the one right stride beside it that was reported (0.42 m, right) contradict only each
-    /// other. As a/b − 1 the right one was +21 % and the left −17 %, so the right, correct one
-    /// lost its length and the wrong one was reported; measured both ways alike, neither can be
-    /// told from the other and both are withheld.
+    /// Found on family B at 0.2 m/s (seed 4401, BH03): a left stride 22 % short and the right
+    /// stride beside it (right) contradict each other, the right one's only other neighbour on
+    /// the left being the end of a bout. Read against the other leg alone the right one stood out
+    /// more (here +26 % against the short one alone, the short one −21 % against two strides),
+    /// so the right one lost its length and the wrong one was reported. Its own leg says which
+    /// is wrong: the short stride departs from its neighbour by 23 %, the right one by 0.
+    #[test]
+    fn of_two_contradicting_strides_the_one_its_own_leg_contradicts_loses_its_length() {
+        let mut l = strides(0.0, &[1.2, 1.2, 0.95, 1.2]);
+        l[3].valid = false; // the end of a bout
+        let mut r = strides(1.5, &[1.2, 1.2, 1.2]);
+        r[2].valid = false;
+        assert_eq!(withhold_disagreeing_lengths(&mut l, &mut r, 0.0), [1, 0]);
+        assert!(l[2].stride_length_m.is_nan(), "{}", l[2].reason);
+        assert!(l[2].reason.contains("-21 %"), "{}", l[2].reason);
+        assert!(r.iter().take(2).all(|s| s.stride_length_m.is_finite()));
+    }
+
+    /// Two strides that contradict only each other, neither with a neighbour on its own leg:
+    /// nothing tells them apart, and both lose their lengths.
     #[test]
     fn two_strides_that_contradict_only_each_other_both_lose_their_lengths() {
         // each leg's other strides not reported (bout edges, failed checks)
