@@ -10,13 +10,15 @@
 //! [`MAX_LEG_DISAGREEMENT`] is a
 //! measurement error on one of the legs; its length (and speed) is withheld with the reason, and
 //! the stride stays valid for its timing and angles. Each leg is judged against the other's
-//! lengths as measured, both directions before either is changed. A stride of the other leg
-//! beside it that agrees does not defend it (a gross error on one leg must not take the good
-//! strides next to it on the other); when strides of both legs disagree with each other, the
-//! one out of line with its own leg's neighbours is the error (stride lengths of a steady walk
-//! differ by a few %), and both lose their lengths when that does not tell them apart. Found at
-//! 0.2 m/s (family B seed 4401): reading only the other leg, a 22 % short stride was kept and
-//! the right one beside it withheld. The leg-level check
+//! lengths as measured, both directions before either is changed, and a stride is kept when a
+//! stride of the other leg beside it is the likelier error (a gross error on one leg must not
+//! take the good strides next to it on the other). Which of two is the likelier error, its own
+//! leg says first: the one more than 15 % out of line with the median of its own bout, when the
+//! other is not (stride lengths of a steady walk differ by a few %); else the one farther from
+//! the other leg, measured alike both ways (|ln| of the ratio), and both lose their lengths on a
+//! tie. Found at 0.2 m/s (family B seeds 4401, 4411): reading only the other leg as a/b − 1
+//! (+21 % one way is −17 % the other), a 22 % short stride was kept and the right one beside it
+//! withheld. The leg-level check
 //! (`pair.rs`, [`super::LR_STRIDE_LENGTH_TOL`]) catches a whole leg that disagrees; this one a
 //! stride. Found on family B's all-treadmill walks (seed 31: a slow hemiparetic leg's stride
 //! 17 % long, its neighbours on the other leg right; docs/accuracy.md).
@@ -80,11 +82,9 @@ fn deviations(a: &[Stride], spans: &[(Option<f64>, Vec<usize>)]) -> Vec<f64> {
 }
 
 /// Withhold the length of every stride of either leg that differs from the other leg's length
-/// over its time by more than [`MAX_LEG_DISAGREEMENT`], unless each stride of the other leg it
-/// overlaps that disagrees in turn is the more out of line with its own leg's neighbours (so a
-/// gross error on one leg does not take the good strides beside it on the other, and of two
-/// strides that contradict each other the one its own leg also contradicts loses its length;
-/// both, when that does not tell them apart); `shift_s`: the right leg's clock minus the
+/// over its time by more than [`MAX_LEG_DISAGREEMENT`], unless a stride of the other leg it
+/// overlaps is the likelier error ([`likelier_error`]: so a gross error on one leg does not
+/// take the good strides beside it on the other); `shift_s`: the right leg's clock minus the
 /// left's. Returns how many were withheld on each leg.
 pub fn withhold_disagreeing_lengths(
     left: &mut [Stride],
@@ -100,39 +100,64 @@ pub fn withhold_disagreeing_lengths(
     ]
 }
 
-/// How far each reported stride's length departs from its own leg's neighbours, |ln(length /
-/// mean of the reported strides just before and after it in its bout)|; `None` without one.
-/// Strides of a steady walk differ by a few % (stride length CV 2–5 %), so a measurement error
-/// stands out from its neighbours as it does from the other leg.
+/// Whether a stride `b` of the other leg (deviation from this leg `db`, departure from its own
+/// bout `ob`, [`out_of_line`]) is the likelier error than the disagreeing stride `a` it
+/// overlaps (`da`, `oa`). Its own leg decides first: a stride more than
+/// [`MAX_LEG_DISAGREEMENT`] out of line with its bout when the other is not is the error. When the legs do not tell (both or neither out of line, or a departure
+/// unknown), the one farther from the other leg is, measured alike both ways (|ln(1 + d)|:
+/// +21 % one way is −17 % the other); a rounding-level difference is a tie, and a tie defends
+/// neither (both lose their lengths).
+fn likelier_error(da: f64, oa: Option<f64>, db: f64, ob: Option<f64>) -> bool {
+    let bound = (1.0 + MAX_LEG_DISAGREEMENT).ln();
+    let out = |o: Option<f64>| o.is_some_and(|x| x > bound);
+    match (out(oa), out(ob)) {
+        (false, true) => true,
+        (true, false) => false,
+        _ => {
+            let apart = |d: f64| (1.0 + d).ln().abs();
+            apart(db) > apart(da) + 1e-9
+        }
+    }
+}
+
+/// How far each reported stride's length departs from its own bout, |ln(length / median of
+/// the bout's other reported strides)|; `None` when it has none. Strides of a steady walk differ
+/// by a few % (stride length CV 2–5 %), so a measurement error stands out on its own leg as it
+/// does against the other, and the median holds against a run of errors shorter than half
+/// the bout.
 fn out_of_line(strides: &[Stride]) -> Vec<Option<f64>> {
     let reported = |s: &Stride| s.valid && s.stride_length_m.is_finite();
-    (0..strides.len())
-        .map(|i| {
-            let s = &strides[i];
+    let mut bouts: std::collections::BTreeMap<usize, Vec<f64>> = Default::default();
+    for s in strides.iter().filter(|s| reported(s)) {
+        bouts.entry(s.bout).or_default().push(s.stride_length_m);
+    }
+    for v in bouts.values_mut() {
+        v.sort_by(f64::total_cmp);
+    }
+    strides
+        .iter()
+        .map(|s| {
             if !reported(s) {
                 return None;
             }
-            let near: Vec<f64> = [i.checked_sub(1), Some(i + 1)]
-                .into_iter()
-                .flatten()
-                .filter_map(|j| strides.get(j))
-                .filter(|n| reported(n) && n.bout == s.bout)
-                .map(|n| n.stride_length_m)
-                .collect();
-            (!near.is_empty()).then(|| {
-                (s.stride_length_m * near.len() as f64 / near.iter().sum::<f64>())
-                    .ln()
-                    .abs()
-            })
+            let v = &bouts[&s.bout];
+            // The median of the others: the sorted lengths without one copy of this one.
+            let p = v.partition_point(|&x| x < s.stride_length_m);
+            let k = v.len() - 1;
+            let at = |q: usize| v[if q >= p { q + 1 } else { q }];
+            let med = match k {
+                0 => return None,
+                _ if k % 2 == 1 => at(k / 2),
+                _ => 0.5 * (at(k / 2 - 1) + at(k / 2)),
+            };
+            Some((s.stride_length_m / med).ln().abs())
         })
         .collect()
 }
 
 /// Withhold the lengths of `strides` (spans `spans`, deviations `dev`, departures from their
-/// own neighbours `own`) that disagree with the other leg (deviations `other_dev`, departures
-/// `other_own`) and are not defended: a disagreeing stride is kept only when every stride of
-/// the other leg it overlaps that disagrees too departs more from its own neighbours (an
-/// unknown departure defends nothing); how many.
+/// own bouts `own`) that disagree with the other leg (deviations `other_dev`, departures
+/// `other_own`) unless a stride of the other leg they overlap is the likelier error; how many.
 fn withhold(
     strides: &mut [Stride],
     spans: &[(Option<f64>, Vec<usize>)],
@@ -141,21 +166,14 @@ fn withhold(
     other_dev: &[f64],
     other_own: &[Option<f64>],
 ) -> usize {
-    let disagrees = |d: f64| d.abs() > MAX_LEG_DISAGREEMENT;
     let mut n = 0;
     for (i, ((s, (m, over)), &d)) in strides.iter_mut().zip(spans).zip(dev).enumerate() {
         let Some(m) = *m else { continue };
-        if !disagrees(d) {
-            continue;
-        }
-        // The other leg's disagreeing strides beside it: one of each such pair is wrong, and
-        // the one out of line with its own leg is taken for it (a rounding-level difference
-        // is a tie: both lose their lengths).
-        let mut mutual = over.iter().filter(|&&j| disagrees(other_dev[j])).peekable();
-        let defended = mutual.peek().is_some()
-            && mutual
-                .all(|&j| matches!((own[i], other_own[j]), (Some(a), Some(b)) if a + 1e-9 < b));
-        if defended {
+        if !(d.abs() > MAX_LEG_DISAGREEMENT)
+            || over
+                .iter()
+                .any(|&j| likelier_error(d, own[i], other_dev[j], other_own[j]))
+        {
             continue;
         }
         let r = format!(
@@ -226,13 +244,13 @@ mod tests {
     }
 
     /// Found on family B at 0.2 m/s (seed 4401, BH03): a left stride 22 % short and the right
-    /// stride beside it (right) contradict each other, the right one's only other neighbour on
-    /// the left being the end of a bout. Read against the other leg alone the right one stood out
+    /// stride beside it (right) contradict each other, the right one's other neighbour on the
+    /// left being the end of a bout. Read against the other leg alone the right one stood out
     /// more (here +26 % against the short one alone, the short one −21 % against two strides),
-    /// so the right one lost its length and the wrong one was reported. Its own leg says which
-    /// is wrong: the short stride departs from its neighbour by 23 %, the right one by 0.
+    /// so the right one lost its length and the wrong one was reported. Its own bout says which
+    /// is wrong: the short stride is 21 % below the rest of its bout, the right one 0.
     #[test]
-    fn of_two_contradicting_strides_the_one_its_own_leg_contradicts_loses_its_length() {
+    fn of_two_contradicting_strides_the_one_its_own_bout_contradicts_loses_its_length() {
         let mut l = strides(0.0, &[1.2, 1.2, 0.95, 1.2]);
         l[3].valid = false; // the end of a bout
         let mut r = strides(1.5, &[1.2, 1.2, 1.2]);
@@ -243,7 +261,48 @@ mod tests {
         assert!(r.iter().take(2).all(|s| s.stride_length_m.is_finite()));
     }
 
-    /// Two strides that contradict only each other, neither with a neighbour on its own leg:
+    /// A run of three strides 22 % long (a stretch where one leg's integration went wrong):
+    /// against each other the two legs are as far apart both ways, and the long strides agree
+    /// with each other, but not with the median of their bout. The run loses its lengths, the
+    /// other leg keeps them (review: with each stride judged against its immediate neighbours
+    /// only, the middle one of the run would have been kept by a coin flip of the noise).
+    #[test]
+    fn a_run_of_wrong_strides_is_told_by_its_bout() {
+        let mut l = strides(0.0, &[1.2, 1.21, 1.19, 1.46, 1.465, 1.47, 1.2, 1.2, 1.21]);
+        let mut r = strides(0.5, &[1.2, 1.2, 1.21, 1.19, 1.21, 1.2, 1.2, 1.19]);
+        let n = withhold_disagreeing_lengths(&mut l, &mut r, 0.0);
+        assert_eq!(
+            n,
+            [3, 0],
+            "{:?}",
+            l.iter().map(|s| &s.reason).collect::<Vec<_>>()
+        );
+        assert!(l[3..6].iter().all(|s| s.stride_length_m.is_nan()));
+        assert!(r.iter().all(|s| s.stride_length_m.is_finite()));
+    }
+
+    /// The bout is the stride's own: strides of another bout (after a turn or a pause) do not
+    /// make it out of line. Here the left leg's second bout walks 25 % longer strides (a faster
+    /// walk after a pause) and one of its strides contradicts the right leg's stride beside it;
+    /// judged against its own bout the left stride is in line and the right one is not.
+    #[test]
+    fn a_stride_is_judged_against_its_own_bout_only() {
+        let mut l = strides(0.0, &[1.2, 1.2, 1.2, 1.5, 1.5, 1.5]);
+        let mut r = strides(0.5, &[1.2, 1.2, 1.2, 1.5, 1.2, 1.5]);
+        for s in l.iter_mut().skip(3) {
+            s.bout = 1;
+        }
+        for s in r.iter_mut().skip(3) {
+            s.bout = 1;
+        }
+        // r[4] (4.5–5.5 s) is 1.2 among its bout's 1.5s; l[4] and l[5] beside it are 1.5
+        let n = withhold_disagreeing_lengths(&mut l, &mut r, 0.0);
+        assert_eq!(n, [0, 1], "{:?}", (&l, &r));
+        assert!(r[4].stride_length_m.is_nan());
+    }
+
+    /// Two strides that contradict only each other, neither with another reported stride in its
+    /// bout:
     /// nothing tells them apart, and both lose their lengths.
     #[test]
     fn two_strides_that_contradict_only_each_other_both_lose_their_lengths() {
