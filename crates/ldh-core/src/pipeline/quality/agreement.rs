@@ -10,15 +10,14 @@
 //! [`MAX_LEG_DISAGREEMENT`] is a
 //! measurement error on one of the legs; its length (and speed) is withheld with the reason, and
 //! the stride stays valid for its timing and angles. Each leg is judged against the other's
-//! lengths as measured, both directions before either is changed, and a stride is kept when a
-//! stride of the other leg beside it is the likelier error (a gross error on one leg must not
-//! take the good strides next to it on the other). Which of two is the likelier error, its own
-//! leg says first: the one more than 15 % out of line with the median of its own bout, when the
-//! other is not (stride lengths of a steady walk differ by a few %); else the one farther from
-//! the other leg, measured alike both ways (|ln| of the ratio), and both lose their lengths on a
-//! tie. Found at 0.2 m/s (family B seeds 4401, 4411): reading only the other leg as a/b − 1
-//! (+21 % one way is −17 % the other), a 22 % short stride was kept and the right one beside it
-//! withheld. The leg-level check
+//! lengths as measured, both directions before either is changed, and a stride is kept only
+//! when a stride of the other leg beside it is the likelier error (a gross error on one leg
+//! must not take the good strides next to it on the other): that stride disagrees too and is
+//! out of line with the median of its own bout by more than the same bound while this one is
+//! not (stride lengths of a steady walk differ by a few %). When the bouts do not tell the two
+//! apart, both lose their lengths. Found at 0.2 m/s (family B seeds 4401, 4411): which of two
+//! had been read from the other leg alone (a/b − 1, the larger losing), and that kept a 22 %
+//! short stride and withheld the right one beside it. The leg-level check
 //! (`pair.rs`, [`super::LR_STRIDE_LENGTH_TOL`]) catches a whole leg that disagrees; this one a
 //! stride. Found on family B's all-treadmill walks (seed 31: a slow hemiparetic leg's stride
 //! 17 % long, its neighbours on the other leg right; docs/accuracy.md).
@@ -102,29 +101,22 @@ pub fn withhold_disagreeing_lengths(
 
 /// Whether a stride `b` of the other leg (deviation from this leg `db`, departure from its own
 /// bout `ob`, [`out_of_line`]) is the likelier error than the disagreeing stride `a` it
-/// overlaps (`da`, `oa`). Its own leg decides first: a stride more than
-/// [`MAX_LEG_DISAGREEMENT`] out of line with its bout when the other is not is the error. When the legs do not tell (both or neither out of line, or a departure
-/// unknown), the one farther from the other leg is, measured alike both ways (|ln(1 + d)|:
-/// +21 % one way is −17 % the other); a rounding-level difference is a tie, and a tie defends
-/// neither (both lose their lengths).
-fn likelier_error(da: f64, oa: Option<f64>, db: f64, ob: Option<f64>) -> bool {
+/// overlaps (departure `oa`): it disagrees with this leg too (by more than
+/// [`MAX_LEG_DISAGREEMENT`]) and it, not `a`, is out of line with its own bout (|ln| beyond
+/// that bound's; stride lengths of a steady walk differ by a few %). When the bouts do not
+/// tell the two apart (both or neither out of line, or a bout with no other stride), neither
+/// defends the other and both lose their lengths: which leg is wrong is then not known.
+fn likelier_error(oa: Option<f64>, db: f64, ob: Option<f64>) -> bool {
     let bound = (1.0 + MAX_LEG_DISAGREEMENT).ln();
     let out = |o: Option<f64>| o.is_some_and(|x| x > bound);
-    match (out(oa), out(ob)) {
-        (false, true) => true,
-        (true, false) => false,
-        _ => {
-            let apart = |d: f64| (1.0 + d).ln().abs();
-            apart(db) > apart(da) + 1e-9
-        }
-    }
+    db.abs() > MAX_LEG_DISAGREEMENT && out(ob) && !out(oa)
 }
 
 /// How far each reported stride's length departs from its own bout, |ln(length / median of
-/// the bout's other reported strides)|; `None` when it has none. Strides of a steady walk differ
-/// by a few % (stride length CV 2–5 %), so a measurement error stands out on its own leg as it
-/// does against the other, and the median holds against a run of errors shorter than half
-/// the bout.
+/// the bout's other reported strides)|; `None` when it has none. The median holds against a
+/// run of errors shorter than half the bout; a longer run makes the good strides the odd ones
+/// out, and the pair is then not told apart (both withheld, [`likelier_error`]) unless the
+/// other leg's bout says otherwise.
 fn out_of_line(strides: &[Stride]) -> Vec<Option<f64>> {
     let reported = |s: &Stride| s.valid && s.stride_length_m.is_finite();
     let mut bouts: std::collections::BTreeMap<usize, Vec<f64>> = Default::default();
@@ -172,7 +164,7 @@ fn withhold(
         if !(d.abs() > MAX_LEG_DISAGREEMENT)
             || over
                 .iter()
-                .any(|&j| likelier_error(d, own[i], other_dev[j], other_own[j]))
+                .any(|&j| likelier_error(own[i], other_dev[j], other_own[j]))
         {
             continue;
         }
@@ -282,23 +274,37 @@ mod tests {
     }
 
     /// The bout is the stride's own: strides of another bout (after a turn or a pause) do not
-    /// make it out of line. Here the left leg's second bout walks 25 % longer strides (a faster
-    /// walk after a pause) and one of its strides contradicts the right leg's stride beside it;
-    /// judged against its own bout the left stride is in line and the right one is not.
+    /// make it out of line. The left leg's second bout walks 25 % longer strides (a faster walk
+    /// after a pause); a right stride of 1.0 m in it contradicts the two left strides beside it
+    /// (+20 % each way, −33 % the other). In their own bouts the left strides are in line and
+    /// the right one is not: it alone loses its length. (Judged against the whole leg, the left
+    /// strides would be out of line too, and all three would be withheld.)
     #[test]
     fn a_stride_is_judged_against_its_own_bout_only() {
         let mut l = strides(0.0, &[1.2, 1.2, 1.2, 1.5, 1.5, 1.5]);
-        let mut r = strides(0.5, &[1.2, 1.2, 1.2, 1.5, 1.2, 1.5]);
-        for s in l.iter_mut().skip(3) {
+        let mut r = strides(0.5, &[1.2, 1.2, 1.2, 1.5, 1.0, 1.5]);
+        for s in l
+            .iter_mut()
+            .chain(r.iter_mut())
+            .filter(|s| s.stride_index >= 3)
+        {
             s.bout = 1;
         }
-        for s in r.iter_mut().skip(3) {
-            s.bout = 1;
-        }
-        // r[4] (4.5–5.5 s) is 1.2 among its bout's 1.5s; l[4] and l[5] beside it are 1.5
         let n = withhold_disagreeing_lengths(&mut l, &mut r, 0.0);
         assert_eq!(n, [0, 1], "{:?}", (&l, &r));
-        assert!(r[4].stride_length_m.is_nan());
+        assert!(r[4].stride_length_m.is_nan() && r[4].reason.contains("-33 %"));
+    }
+
+    /// A disagreeing stride whose partner on the other leg does not disagree itself is not
+    /// defended by that partner being out of line with its own bout (review: a left leg 10 %
+    /// long with one stride 13 % above the rest was kept that way).
+    #[test]
+    fn only_a_disagreeing_stride_of_the_other_leg_defends() {
+        let mut l = strides(0.0, &[1.32, 1.32, 1.49, 1.32, 1.32]);
+        let mut r = strides(0.5, &[1.2, 1.381, 1.2, 1.2]);
+        let n = withhold_disagreeing_lengths(&mut l, &mut r, 0.0);
+        assert_eq!(n, [1, 0], "{:?}", (&l, &r));
+        assert!(l[2].stride_length_m.is_nan());
     }
 
     /// Two strides that contradict only each other, neither with another reported stride in its
