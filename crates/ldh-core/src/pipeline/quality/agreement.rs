@@ -9,24 +9,31 @@
 //! cover at least half the stride. A stride whose length differs from it by more than
 //! [`MAX_LEG_DISAGREEMENT`] is a
 //! measurement error on one of the legs; its length (and speed) is withheld with the reason, and
-//! the stride stays valid for its timing and angles. Each leg is judged against the other's
-//! lengths as measured, both directions before either is changed, and a stride is kept only
-//! when a stride of the other leg beside it is the likelier error (a gross error on one leg
-//! must not take the good strides next to it on the other): that stride disagrees too and is
-//! out of line with the median of its own bout by more than the same bound while this one is
-//! not (stride lengths of a steady walk differ by a few %). When the bouts do not tell the two
-//! apart, both lose their lengths. Found at 0.2 m/s (family B seeds 4401, 4411): which of two
-//! had been read from the other leg alone (a/b − 1, the larger losing), and that kept a 22 %
-//! short stride and withheld the right one beside it. The leg-level check
-//! (`pair.rs`, [`super::LR_STRIDE_LENGTH_TOL`]) catches a whole leg that disagrees; this one a
-//! stride. Found on family B's all-treadmill walks (seed 31: a slow hemiparetic leg's stride
-//! 17 % long, its neighbours on the other leg right; docs/accuracy.md).
+//! the stride stays valid for its timing and angles. The leg-level check (`pair.rs`,
+//! [`super::LR_STRIDE_LENGTH_TOL`]) catches a whole leg that disagrees; this one a stride.
+//! Found on family B's all-treadmill walks (seed 31: a slow hemiparetic leg's stride 17 % long,
+//! its neighbours on the other leg right; docs/accuracy.md).
+//!
+//! Each leg is judged against the other's lengths as measured, both directions before either
+//! is changed, and a stride is kept only when a stride of the other leg beside it is the
+//! likelier error (a gross error on one leg must not take the good strides next to it on the
+//! other): that stride disagrees too and is out of line with the median of its own bout by more
+//! than the same bound while this one is not (stride lengths of a steady walk differ by a
+//! few %). When the bouts do not tell the two apart, both lose their lengths. Until 2026-11-26
+//! which of two lost its length was read from the other leg alone (a/b − 1, the larger
+//! losing); at 0.2 m/s (family B seeds 4401, 4411) that kept a 22 % short stride and withheld
+//! the right one beside it.
 
 use crate::gait::Stride;
 
 /// Largest relative difference between a stride's length and the mean of the two strides of
 /// the other leg it spans (0.15): the issue's own bound of a wrong stride, not fitted.
 pub const MAX_LEG_DISAGREEMENT: f64 = 0.15;
+
+/// Whether a stride's length is reported (valid, and not withheld by an earlier check).
+fn reported(s: &Stride) -> bool {
+    s.valid && s.stride_length_m.is_finite()
+}
 
 /// Least share of a stride's time the other leg's reported strides must cover for it to be
 /// judged (one of the two strides it spans is enough: the other may be the first of a bout).
@@ -36,7 +43,6 @@ const MIN_COVER: f64 = 0.5;
 /// strides of `b` it overlaps, weighted by the overlap (`b`'s times plus `shift_s` are on `a`'s
 /// clock), `None` when they cover less than [`MIN_COVER`] of it; and those strides' indices.
 fn spans(a: &[Stride], b: &[Stride], shift_s: f64) -> Vec<(Option<f64>, Vec<usize>)> {
-    let reported = |s: &Stride| s.valid && s.stride_length_m.is_finite();
     let b: Vec<(usize, f64, f64, f64)> = b
         .iter()
         .enumerate()
@@ -118,7 +124,6 @@ fn likelier_error(oa: Option<f64>, db: f64, ob: Option<f64>) -> bool {
 /// out, and the pair is then not told apart (both withheld, [`likelier_error`]) unless the
 /// other leg's bout says otherwise.
 fn out_of_line(strides: &[Stride]) -> Vec<Option<f64>> {
-    let reported = |s: &Stride| s.valid && s.stride_length_m.is_finite();
     let mut bouts: std::collections::BTreeMap<usize, Vec<f64>> = Default::default();
     for s in strides.iter().filter(|s| reported(s)) {
         bouts.entry(s.bout).or_default().push(s.stride_length_m);
