@@ -21,11 +21,13 @@ use crate::pipeline::{SubjectResult, Warning, WarningList, WithheldList};
 pub mod labels;
 pub mod names;
 mod parameter;
+pub mod run;
 mod sink;
 
 use labels::empty_is_none;
 pub use labels::{AffectedSide, Known, Label, SideRole, Status};
 pub use parameter::{Parameter, UnknownParameter};
+pub use run::{read_marker, OutputRun, RunKind, RunMarker, RunWriter, MARKER};
 pub use sink::{finish_tables, RenderedRows, TableSink};
 
 fn num(x: f64, decimals: i32) -> Option<f64> {

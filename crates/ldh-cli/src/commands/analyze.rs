@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use anyhow::Result;
 use ldh_core::io::ReadParams;
-use ldh_core::output::RecordingRow;
+use ldh_core::output::{OutputRun, RecordingRow, RunKind};
 use ldh_core::pipeline::{
     analyze_to_folder, discover_with, FolderOptions, FolderSummary, InputOptions,
 };
@@ -47,6 +47,8 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
             subjects.len()
         );
     }
+    // Names checked before the folder is touched: an id clash leaves an earlier run whole.
+    ldh_core::pipeline::check_output_names(&subjects)?;
     let pool = thread_pool(a.jobs)?;
     let stale = ldh_core::io::remove_stale_temp_files(&a.out)?;
     if stale > 0 {
@@ -70,22 +72,26 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
             .unwrap_or((pool.current_num_threads() * 32).max(32)),
         traces: a.report.then(|| report_params.trace()),
     };
+    // One run per folder: an earlier run's outputs are removed (its marker first), other files
+    // or a link inside --out refuse the run; the marker is written last (docs/robustness.md).
+    let run = OutputRun::begin(&a.out, RunKind::Analyze)?;
     let sum = pool.install(|| {
         analyze_to_folder(
             &subjects,
             &params,
             format.as_ref(),
             &read,
-            &a.out,
+            &run,
             opts,
             &|| pb.inc(1),
         )
     })?;
     pb.finish_and_clear();
-    ldh_core::io::write_atomic(
-        a.out.join("params.json"),
+    run.write(
+        "params.json",
         serde_json::to_string_pretty(&params)?.as_bytes(),
     )?;
+    run.finish()?;
     if a.report {
         let dir = a.out.join("reports");
         let src = BuildSources {
@@ -93,13 +99,17 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
             ..BuildSources::default()
         };
         let pb = progress(0, "report");
-        let n = pool.install(|| {
+        let built = pool.install(|| {
             ldh_core::report::build(&a.out, &dir, src, &report_params, &|n| {
                 pb.set_length(n as u64);
                 pb.inc(1)
             })
         })?;
         pb.finish_and_clear();
+        for w in &built.warnings {
+            eprintln!("warning: {w}");
+        }
+        let n = built.subjects;
         super::note!(
             "{n} subject reports and the cohort report (index.html) in {}",
             dir.display()

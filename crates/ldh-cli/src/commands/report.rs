@@ -30,13 +30,17 @@ pub fn run(a: ReportArgs) -> Result<ExitCode> {
         train: a.train.as_deref(),
     };
     let pb = progress(0, "report");
-    let n = pool.install(|| {
+    let built = pool.install(|| {
         ldh_core::report::build(&a.results, &out, src, &params, &|n| {
             pb.set_length(n as u64);
             pb.inc(1)
         })
     })?;
     pb.finish_and_clear();
+    for w in &built.warnings {
+        eprintln!("warning: {w}");
+    }
+    let n = built.subjects;
     super::note!(
         "{n} subject reports in {} and the cohort report {}",
         out.join("subjects").display(),

@@ -9,6 +9,23 @@ use super::format::{AccUnit, Decimal, Delimiter, FormatSpec, GyroUnit, TimeUnit}
 use crate::error::{LdhError, Result};
 use crate::recording::{Recording, STANDARD_GRAVITY_MPS2};
 
+/// The temporary name of a file being written: `.<name>.tmp-<pid>-<n>`, `n` counting every
+/// temporary file of the process, so two threads writing the same target never share one.
+fn temp_name(name: &str) -> String {
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    format!(".{name}.tmp-{}-{n}", std::process::id())
+}
+
+/// Create a new file; an existing file or symbolic link of that name is an error, never
+/// followed (`O_CREAT | O_EXCL`).
+fn create_new(path: &Path) -> std::io::Result<std::fs::File> {
+    std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(path)
+}
+
 /// Write `bytes` to `path` atomically: a temporary file beside it, flushed and synced, then
 /// renamed over `path`. Creates missing parent folders.
 pub fn write_atomic(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
@@ -26,9 +43,9 @@ pub fn write_atomic(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
         .file_name()
         .map(|n| n.to_string_lossy().to_string())
         .unwrap_or_default();
-    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
+    let tmp = dir.join(temp_name(&name));
     {
-        let mut f = std::fs::File::create(&tmp).map_err(werr)?;
+        let mut f = create_new(&tmp).map_err(werr)?;
         f.write_all(bytes).map_err(werr)?;
         f.sync_all().map_err(werr)?;
     }
@@ -67,8 +84,8 @@ impl AtomicFile {
             .file_name()
             .map(|n| n.to_string_lossy().to_string())
             .unwrap_or_default();
-        let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
-        let f = std::fs::File::create(&tmp).map_err(werr)?;
+        let tmp = dir.join(temp_name(&name));
+        let f = create_new(&tmp).map_err(werr)?;
         Ok(AtomicFile {
             path,
             tmp,
@@ -108,7 +125,7 @@ impl Drop for AtomicFile {
 }
 
 /// Remove the temporary files that killed runs left in `dir` and its sub-folders
-/// (`.<name>.tmp-<pid>` of [`write_atomic`] and [`AtomicFile`] whose process no longer runs),
+/// (`.<name>.tmp-<pid>-<n>` of [`write_atomic`] and [`AtomicFile`] whose process no longer runs),
 /// so a re-run into the same folder leaves only whole outputs. Files of a process that is still
 /// running (per `/proc`) are kept; where `/proc` does not exist none is removed. Returns how
 /// many were removed.
@@ -130,7 +147,7 @@ pub fn remove_stale_temp_files(dir: &Path) -> Result<usize> {
         let Some(pid) = name
             .strip_prefix('.')
             .and_then(|n| n.rsplit_once(".tmp-"))
-            .and_then(|(_, pid)| pid.parse::<u32>().ok())
+            .and_then(|(_, pid)| pid.split('-').next().unwrap_or("").parse::<u32>().ok())
         else {
             continue;
         };
@@ -177,21 +194,12 @@ impl OutputLock {
                     return Ok(OutputLock { path });
                 }
                 Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
-                    let holder = std::fs::read_to_string(&path).unwrap_or_default();
-                    let pid = holder.trim().parse::<u32>().ok();
-                    let alive = match pid {
-                        Some(p) if Path::new("/proc/self").exists() => {
-                            Path::new("/proc").join(p.to_string()).exists()
-                        }
-                        _ => true,
-                    };
-                    if alive {
+                    if let Some(holder) = live_holder(&path) {
                         return Err(LdhError::Write {
                             path: dir.to_path_buf(),
                             reason: format!(
-                                "another ldh run (process {}) is writing to this folder; wait for it, \
+                                "another ldh run (process {holder}) is writing to this folder; wait for it, \
                                  or remove {} if no such run exists",
-                                holder.trim(),
                                 path.display()
                             ),
                         });
@@ -207,6 +215,21 @@ impl OutputLock {
             reason: "could not take the lock".into(),
         })
     }
+}
+
+/// The process id in the lock file `path` when that process may still run (per `/proc`; where
+/// `/proc` does not exist, or the file holds no id, it is taken to run); `None` for a killed
+/// run's lock.
+pub fn live_holder(path: &Path) -> Option<String> {
+    let holder = std::fs::read_to_string(path).unwrap_or_default();
+    let holder = holder.trim().to_string();
+    let alive = match holder.parse::<u32>().ok() {
+        Some(p) if Path::new("/proc/self").exists() => {
+            Path::new("/proc").join(p.to_string()).exists()
+        }
+        _ => true,
+    };
+    alive.then_some(holder)
 }
 
 impl Drop for OutputLock {

@@ -1,23 +1,24 @@
 //! Output tables written row by row ([`TableSink`]): `<stem>.csv` and, when asked, `<stem>.json`
-//! as one array, each through an [`crate::io::AtomicFile`].
+//! as one array, each through a [`RunWriter`] of the folder's [`OutputRun`] (atomic, never
+//! through a link, listed in the run's marker).
 
 use serde::Serialize;
 use std::io::Write;
 
+use super::run::{OutputRun, RunWriter};
 use crate::error::{LdhError, Result};
-use crate::io::AtomicFile;
 use crate::pipeline::quality::flat;
 
 /// A table written row by row to `<stem>.csv` (and `<stem>.json` as one array when asked), each
-/// through an [`AtomicFile`]: a batch streams its rows out instead of holding them, and an
+/// through a [`RunWriter`]: a batch streams its rows out instead of holding them, and an
 /// interrupted run leaves the previous files whole.
 ///
 /// Rows can be rendered to bytes anywhere ([`TableSink::render`], e.g. on the thread that
 /// analysed them) and only copied in order here ([`TableSink::push_rendered`]), so the one
 /// thread that writes does not serialise a whole batch while the others wait.
-pub struct TableSink {
-    csv: AtomicFile,
-    json: Option<AtomicFile>,
+pub struct TableSink<'a> {
+    csv: RunWriter<'a>,
+    json: Option<RunWriter<'a>>,
     header: Vec<String>,
     rows: usize,
 }
@@ -86,17 +87,18 @@ fn json_err(e: std::io::Error) -> LdhError {
     LdhError::signal("json", e.to_string())
 }
 
-impl TableSink {
-    /// Start `<dir>/<stem>.csv` (and `.json`); `header` is written when no row comes.
+impl<'a> TableSink<'a> {
+    /// Start `<stem>.csv` (and `.json`) in the run's folder; `header` is written when no row
+    /// comes.
     pub fn create(
-        dir: &std::path::Path,
+        run: &'a OutputRun,
         stem: &str,
         header: &[&str],
         json: bool,
-    ) -> Result<TableSink> {
-        let csv = AtomicFile::create(dir.join(format!("{stem}.csv")))?;
+    ) -> Result<TableSink<'a>> {
+        let csv = run.create(&format!("{stem}.csv"))?;
         let json = if json {
-            let mut j = AtomicFile::create(dir.join(format!("{stem}.json")))?;
+            let mut j = run.create(&format!("{stem}.json"))?;
             j.write_all(b"[").map_err(json_err)?;
             Some(j)
         } else {
@@ -166,13 +168,13 @@ impl TableSink {
 }
 
 /// Finish several tables at once (their fsyncs overlap instead of queueing one after another).
-pub fn finish_tables(tables: Vec<TableSink>) -> Result<()> {
+pub fn finish_tables(tables: Vec<TableSink<'_>>) -> Result<()> {
     each_on_a_thread(tables, TableSink::finish)
 }
 
 /// Flush, fsync and rename `files`.
-fn finish_all(files: Vec<AtomicFile>) -> Result<()> {
-    each_on_a_thread(files, AtomicFile::finish)
+fn finish_all(files: Vec<RunWriter<'_>>) -> Result<()> {
+    each_on_a_thread(files, RunWriter::finish)
 }
 
 /// `f` on every item, each on its own scoped thread (for fsync, which waits on the disk, not
@@ -240,8 +242,8 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         for cuts in [vec![], vec![0, 0, 3], vec![1, 2, 2, 6], vec![7]] {
             for n in [0, 1, 7] {
-                let mut sink =
-                    TableSink::create(dir.path(), "t", &["id", "x", "note"], true).unwrap();
+                let run = OutputRun::begin(dir.path(), super::super::RunKind::Analyze).unwrap();
+                let mut sink = TableSink::create(&run, "t", &["id", "x", "note"], true).unwrap();
                 let mut at = 0;
                 for c in cuts.iter().map(|&c| c.min(n)).chain([n]) {
                     let piece = RenderedRows::of(&rows[at..c.max(at)], sink.has_json()).unwrap();
@@ -250,10 +252,12 @@ mod tests {
                 }
                 assert_eq!(sink.rows(), n);
                 finish_tables(vec![sink]).unwrap();
+                let listed = run.finish().unwrap();
                 let (csv, json) = one_go(&rows[..n], &["id", "x", "note"]);
                 assert_eq!(std::fs::read(dir.path().join("t.csv")).unwrap(), csv);
                 let got = std::fs::read_to_string(dir.path().join("t.json")).unwrap();
                 assert_eq!(got, json, "cuts {cuts:?}, {n} rows");
+                assert!(listed.lists("t.json", json.as_bytes()) && listed.lists("t.csv", &csv));
             }
         }
     }

@@ -238,6 +238,14 @@ pub(crate) fn parse_manifest(
         }
         out.push(s);
     }
+    if out.is_empty() {
+        // Nothing to analyse is a mistake (a wrong file, an export that lost its rows), not an
+        // empty result (issue 37).
+        return Err(LdhError::signal(
+            path.display().to_string(),
+            "the manifest has no subjects: a header row but no subject rows",
+        ));
+    }
     // A person's trials together (first-appearance order of persons kept): the tables then
     // hold each person's rows in one run.
     let mut order: Vec<&str> = Vec::new();

@@ -5,8 +5,6 @@
 //! to the output tables, so memory stays flat however many subjects there are; chunks keep the
 //! input order, so the files are the same whatever the thread count.
 
-use std::path::Path;
-
 use rayon::prelude::*;
 
 use super::{
@@ -14,8 +12,8 @@ use super::{
 };
 use crate::error::Result;
 use crate::io::{FormatSpec, ValidReadParams};
-use crate::output::{self, RecordingRow, RenderedRows, TableSink};
-use crate::report::{file_stem, SubjectTraces, ValidTraceParams};
+use crate::output::{self, OutputRun, RecordingRow, RenderedRows, TableSink};
+use crate::report::{SubjectTraces, ValidTraceParams};
 use crate::timings::{Stage, StageTimings};
 
 /// Analyse every subject (in parallel, results in input order).
@@ -72,32 +70,34 @@ pub struct FolderSummary {
     pub timings: StageTimings,
 }
 
-/// Analyse `subjects` and write `strides.csv/.json`, `events.csv` and `recordings.csv/.json` to
-/// `out` (and traces, see [`FolderOptions`]); `done` is called once per subject (progress).
-/// A recording that fails is a row with its error; only a write failure stops the run.
+/// Refuse, before any work, subjects whose outputs would share a file: one report per subject
+/// id, one trace per (subject, trial) (issues 19 and 37; see [`output::names`]).
+pub fn check_output_names(subjects: &[SubjectInput]) -> Result<()> {
+    output::names::check_unique_keys(
+        subjects
+            .iter()
+            .map(|s| (s.subject_id.as_str(), s.trial_id.as_deref())),
+    )
+}
+
+/// Analyse `subjects` and write `strides.csv/.json`, `events.csv` and `recordings.csv/.json`
+/// into the folder of `run` (and traces, see [`FolderOptions`]); `done` is called once per
+/// subject (progress). A recording that fails is a row with its error; only a write failure
+/// stops the run. The caller begins the run ([`OutputRun::begin`], which clears an earlier
+/// run's outputs) after [`check_output_names`], and finishes it (the marker) after its own files.
 pub fn analyze_to_folder(
     subjects: &[SubjectInput],
     params: &AnalysisParams,
     format: Option<&FormatSpec>,
     read: &ValidReadParams,
-    out: &Path,
+    run: &OutputRun,
     opts: FolderOptions<'_>,
     done: &(dyn Fn() + Sync),
 ) -> Result<FolderSummary> {
-    // One report/trace file per subject id, checked before any work (issue 19).
-    // A person's several trials (rows sharing the id, each with a trial id) share one report.
-    let mut trials = std::collections::HashSet::new();
-    output::names::check_unique(
-        subjects
-            .iter()
-            .filter(|s| s.trial_id.is_none() || trials.insert(s.subject_id.as_str()))
-            .map(|s| s.subject_id.as_str()),
-    )?;
-    // A second run into the same folder is refused instead of interleaving (issue 19).
-    let _lock = crate::io::OutputLock::acquire(out)?;
-    let mut strides = TableSink::create(out, "strides", &output::STRIDE_COLUMNS, true)?;
-    let mut events = TableSink::create(out, "events", &output::EVENT_COLUMNS, false)?;
-    let mut recordings = TableSink::create(out, "recordings", &[], true)?;
+    check_output_names(subjects)?;
+    let mut strides = TableSink::create(run, "strides", &output::STRIDE_COLUMNS, true)?;
+    let mut events = TableSink::create(run, "events", &output::EVENT_COLUMNS, false)?;
+    let mut recordings = TableSink::create(run, "recordings", &[], true)?;
     let mut sum = FolderSummary::default();
     let checked = params.check().ok();
     let json = [strides.has_json(), events.has_json(), recordings.has_json()];
@@ -114,7 +114,7 @@ pub fn analyze_to_folder(
                 let mut spent = r.timings;
                 let rendered = spent.time(Stage::Write, || -> Result<Rendered> {
                     if let Some(tp) = opts.traces {
-                        write_traces(out, &r, tp)?;
+                        write_traces(run, &r, tp)?;
                     }
                     Rendered::of(output::Tables::of(std::slice::from_ref(&r)), json)
                 })?;
@@ -181,14 +181,11 @@ impl FolderSummary {
     }
 }
 
-fn write_traces(out: &Path, r: &SubjectResult, p: &ValidTraceParams) -> Result<()> {
+fn write_traces(run: &OutputRun, r: &SubjectResult, p: &ValidTraceParams) -> Result<()> {
     let t = SubjectTraces::of(r, p);
     let json = serde_json::to_string(&t)?;
-    crate::io::write_atomic(
-        out.join("traces")
-            .join(format!("{}.json", file_stem(&r.output_key()))),
-        json.as_bytes(),
-    )
+    let stem = output::names::key_stem(&r.subject_id, r.trial_id.as_deref());
+    run.write(&format!("traces/{stem}.json"), json.as_bytes())
 }
 
 /// Worker threads for a requested count: at most the machine's cores (more threads than cores

@@ -30,8 +30,8 @@ pub use leg::{
 };
 pub use manifest::{is_manifest_text, GroupLabel, MANIFEST_COLUMNS};
 pub use many::{
-    analyze_many, analyze_to_folder, bounded_jobs, recording_rows_many, FolderOptions,
-    FolderSummary,
+    analyze_many, analyze_to_folder, bounded_jobs, check_output_names, recording_rows_many,
+    FolderOptions, FolderSummary,
 };
 pub use quality::{
     all_leg_warnings, codes, leg_checks, leg_warnings, pair_warnings, params as quality_params,

@@ -54,15 +54,6 @@ pub struct SubjectResult {
 }
 
 impl SubjectResult {
-    /// The name of this result's own output files (traces): the subject id, and for one of a
-    /// person's several trials `<subject_id>__trial_<trial_id>`.
-    pub fn output_key(&self) -> String {
-        match &self.trial_id {
-            Some(t) => format!("{}__trial_{t}", self.subject_id),
-            None => self.subject_id.clone(),
-        }
-    }
-
     /// Both legs' results or errors, left first.
     pub fn legs(&self) -> [(Side, &std::result::Result<LegResult, String>); 2] {
         [(Side::Left, &self.left), (Side::Right, &self.right)]

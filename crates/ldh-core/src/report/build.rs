@@ -3,7 +3,7 @@
 //! when given) and the cohort page.
 
 use std::collections::{HashMap, HashSet};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use rayon::prelude::*;
 
@@ -14,9 +14,9 @@ use super::{
     ValidReportParams,
 };
 use crate::error::{LdhError, Result};
-use crate::io::write_atomic;
 use crate::ml::{ModelFile, Prediction};
-use crate::output::{self, RecordingRow};
+use crate::output::names::key_stem;
+use crate::output::{self, read_marker, OutputRun, RecordingRow, RunKind, RunMarker};
 
 /// What goes into the reports besides the analysis folder.
 #[derive(Debug, Clone, Copy, Default)]
@@ -48,26 +48,102 @@ pub fn read_recordings(results: &Path) -> Result<Vec<RecordingRow>> {
     read_json(&results.join("recordings.json"), "an ldh recordings table")
 }
 
+/// What [`build`] did.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct BuildSummary {
+    /// Subject reports written.
+    pub subjects: usize,
+    /// What the reports could not use and why (a folder without a run marker, a trace that is
+    /// not its run's), one sentence each.
+    pub warnings: Vec<String>,
+}
+
+/// The run marker of an `ldh analyze` folder, checked: a folder whose run did not finish, or
+/// that another command wrote, is refused; a folder without a marker (an older ldh, or made
+/// by hand) is read with a warning and its traces are not used.
+fn results_run(results: &Path, warnings: &mut Vec<String>) -> Result<Option<RunMarker>> {
+    let where_ = results.display().to_string();
+    match read_marker(results)? {
+        None => {
+            warnings.push(format!(
+                "{where_}: no {} (an older ldh, or files put together by hand): nothing shows that its files come from one run, so no signal traces are drawn; re-run `ldh analyze --report` to have them",
+                output::MARKER
+            ));
+            Ok(None)
+        }
+        Some(m) if !m.complete => Err(LdhError::signal(
+            where_,
+            format!(
+                "the ldh analyze run writing this folder did not finish ({} says complete: false: it was interrupted, or is still running); re-run ldh analyze",
+                output::MARKER
+            ),
+        )),
+        Some(m) if m.command != RunKind::Analyze => Err(LdhError::signal(
+            where_,
+            "not an ldh analyze folder (its run marker was written by ldh report)",
+        )),
+        Some(m) => Ok(Some(m)),
+    }
+}
+
+/// The tables of `results` its marker lists (same content): `recordings.json` read and
+/// checked, `strides.csv` checked by size (it is streamed later).
+fn checked_rows(results: &Path, marker: Option<&RunMarker>) -> Result<Vec<RecordingRow>> {
+    let Some(m) = marker else {
+        return read_recordings(results);
+    };
+    let path = results.join("recordings.json");
+    let text = read_text(&path)?;
+    let strides = std::fs::metadata(results.join("strides.csv"))
+        .map(|x| x.len())
+        .ok();
+    let strides_ok = m.file("strides.csv").map(|f| f.bytes) == strides;
+    if !m.lists("recordings.json", text.as_bytes()) || !strides_ok {
+        return Err(LdhError::signal(
+            results.display().to_string(),
+            format!(
+                "{} is not the file its run wrote (changed after the run: the tables would not match the traces); re-run ldh analyze",
+                if strides_ok { "recordings.json" } else { "strides.csv" }
+            ),
+        ));
+    }
+    serde_json::from_str(&text).map_err(|e| LdhError::Format {
+        name: path.display().to_string(),
+        reason: format!("not an ldh recordings table: {e}"),
+    })
+}
+
 /// Write `<out>/subjects/<subject>.html` for every subject of the `ldh analyze` folder `results`
-/// and the cohort report `<out>/index.html`; returns the number of subject reports. Pages are
-/// rendered in parallel on the current rayon pool, a chunk of subjects at a time (memory stays
-/// flat); `done(total)` is called once per subject page with the number of pages (progress).
+/// and the cohort report `<out>/index.html`. `out` is one run's folder ([`OutputRun`]): an
+/// earlier report there is replaced whole, other files refuse the run, links are never
+/// followed. Only files `results`' run marker lists are used (a trace from another run is
+/// never drawn beside these tables). Pages are rendered in parallel on the current rayon pool,
+/// a chunk of subjects at a time (memory stays flat); `done(total)` is called once per subject
+/// page with the number of pages (progress).
 pub fn build(
     results: &Path,
     out: &Path,
     src: BuildSources<'_>,
     params: &ValidReportParams,
     done: &(dyn Fn(usize) + Sync),
-) -> Result<usize> {
-    let rows = read_recordings(results)?;
+) -> Result<BuildSummary> {
+    let mut warnings = Vec::new();
+    let marker = results_run(results, &mut warnings)?;
+    let rows = checked_rows(results, marker.as_ref())?;
+    let ctx = Ctx {
+        results,
+        marker: marker.as_ref(),
+        warnings: std::sync::Mutex::new(warnings),
+    };
     let mut reference = Reference::from_rows(&rows, params);
-    reference.cycle = cycle_reference(results, &rows, params)?;
+    reference.cycle = cycle_reference(&ctx, &rows, params)?;
     let mut preds_by = predictions_by_subject(src.model, &rows)?;
     let model_desc = src.model.map(|m| m.describe()).unwrap_or_default();
     let subjects = output::rows_by_subject(&rows);
     let ids: Vec<String> = subjects.iter().map(|(id, _)| id.to_string()).collect();
     output::names::check_unique(ids.iter().map(String::as_str))?;
-    let _lock = crate::io::OutputLock::acquire(out)?;
+    let mut run = OutputRun::begin(out, RunKind::Report)?;
+    run.set_results_run(marker.as_ref().map(|m| m.run_id.clone()));
     let mut groups = output::stride_groups(&results.join("strides.csv"))?.peekable();
     let chunk = (rayon::current_num_threads() * 32).max(32);
     for part in subjects.chunks(chunk) {
@@ -100,7 +176,7 @@ pub fn build(
         let written: Vec<Result<()>> = jobs
             .into_par_iter()
             .map(|job| {
-                write_subject(results, out, job, &reference, params)?;
+                write_subject(&ctx, &run, job, &reference, params)?;
                 done(ids.len());
                 Ok(())
             })
@@ -123,8 +199,26 @@ pub fn build(
         recordings: rows,
         reference: Some(reference),
     };
-    write_atomic(out.join("index.html"), cohort_html(&cohort)?.as_bytes())?;
-    Ok(ids.len())
+    run.write("index.html", cohort_html(&cohort)?.as_bytes())?;
+    run.finish()?;
+    Ok(BuildSummary {
+        subjects: ids.len(),
+        warnings: {
+            // Traces are looked at twice (the healthy cycle band, then the page): once each.
+            let mut seen = HashSet::new();
+            let mut w = ctx.warnings.into_inner().expect("no panic holds it");
+            w.retain(|x| seen.insert(x.clone()));
+            w
+        },
+    })
+}
+
+/// The `ldh analyze` folder being reported and what its traces raised.
+struct Ctx<'a> {
+    results: &'a Path,
+    /// Its complete run marker (`None`: no marker, traces are not used).
+    marker: Option<&'a RunMarker>,
+    warnings: std::sync::Mutex<Vec<String>>,
 }
 
 fn predictions_by_subject(
@@ -140,38 +234,77 @@ fn predictions_by_subject(
     Ok(by)
 }
 
-/// The trace file of a subject (of its first trial when it has several), and that trial.
-fn trace_file(
-    results: &Path,
+/// The traces of a subject (of its first trial when it has several) and that trial when it has
+/// several. A trace is used only when the results' run marker lists it with this content and
+/// it names this subject and trial; otherwise it is left out with a warning.
+fn load_trace(
+    ctx: &Ctx<'_>,
     subject_id: &str,
     recs: &[RecordingRow],
-) -> (PathBuf, Option<String>) {
-    let first_trial = recs.first().map(|r| r.trial_id.clone());
-    match first_trial.filter(|t| !t.is_empty()) {
-        Some(t) => {
-            let key = format!("{subject_id}__trial_{t}");
-            let tf = results
-                .join("traces")
-                .join(format!("{}.json", file_stem(&key)));
-            let several = recs.iter().any(|r| r.trial_id != t);
-            (tf, several.then_some(t))
+) -> Result<(Option<SubjectTraces>, Option<String>)> {
+    let first = recs
+        .first()
+        .map(|r| r.trial_id.clone())
+        .filter(|t| !t.is_empty());
+    let several = first
+        .as_ref()
+        .is_some_and(|t| recs.iter().any(|r| &r.trial_id != t));
+    let trial = first.clone().filter(|_| several);
+    let rel = format!("traces/{}.json", key_stem(subject_id, first.as_deref()));
+    let path = ctx.results.join(&rel);
+    let Some(marker) = ctx.marker else {
+        return Ok((None, trial));
+    };
+    let warn = |why: String| {
+        ctx.warnings
+            .lock()
+            .expect("no panic holds it")
+            .push(format!(
+                "{}: {why}: its signals are not drawn",
+                path.display()
+            ));
+    };
+    match std::fs::symlink_metadata(&path) {
+        Err(_) => return Ok((None, trial)),
+        Ok(m) if !m.is_file() => {
+            warn("not a regular file (a link?)".into());
+            return Ok((None, trial));
         }
-        None => (
-            results
-                .join("traces")
-                .join(format!("{}.json", file_stem(subject_id))),
-            None,
-        ),
+        Ok(_) => {}
     }
+    let bytes = std::fs::read(&path).map_err(|source| LdhError::Io {
+        path: path.clone(),
+        source,
+    })?;
+    if !marker.lists(&rel, &bytes) {
+        warn(format!(
+            "not the trace the run of these tables wrote (not listed with this content in {})",
+            output::MARKER
+        ));
+        return Ok((None, trial));
+    }
+    let t = SubjectTraces::from_json(
+        &String::from_utf8_lossy(&bytes),
+        &path.display().to_string(),
+    )?;
+    if t.subject_id != subject_id || t.trial_id != first {
+        warn(format!(
+            "holds subject {:?} trial {:?}, not subject {subject_id:?} trial {first:?}",
+            t.subject_id, t.trial_id
+        ));
+        return Ok((None, trial));
+    }
+    Ok((Some(t), trial))
 }
 
 /// The healthy reference band of the shank-pitch cycle: the mean curve of every healthy leg
 /// that passes every quality check and has a trace (from `ldh analyze --report`).
 fn cycle_reference(
-    results: &Path,
+    ctx: &Ctx<'_>,
     rows: &[RecordingRow],
     params: &ValidReportParams,
 ) -> Result<CycleReference> {
+    let results = ctx.results;
     let legs: HashSet<(&str, &str)> = rows
         .iter()
         .filter(|r| {
@@ -183,7 +316,7 @@ fn cycle_reference(
         .collect();
     let subjects: HashSet<&str> = legs.iter().map(|l| l.0).collect();
     let mut curves = Vec::new();
-    if subjects.is_empty() || !results.join("traces").is_dir() {
+    if subjects.is_empty() || ctx.marker.is_none() || !results.join("traces").is_dir() {
         return Ok(CycleReference::default());
     }
     let mut strides: HashMap<String, Vec<crate::output::StrideRow>> = HashMap::new();
@@ -198,11 +331,9 @@ fn cycle_reference(
             continue;
         }
         let recs: Vec<RecordingRow> = recs.into_iter().cloned().collect();
-        let (tf, trial) = trace_file(results, id, &recs);
-        if !tf.exists() {
+        let (Some(t), trial) = load_trace(ctx, id, &recs)? else {
             continue;
-        }
-        let t = SubjectTraces::from_json(&read_text(&tf)?, &tf.display().to_string())?;
+        };
         let st: Vec<crate::output::StrideRow> = strides
             .remove(id)
             .unwrap_or_default()
@@ -222,8 +353,8 @@ fn cycle_reference(
 }
 
 fn write_subject(
-    results: &Path,
-    out: &Path,
+    ctx: &Ctx<'_>,
+    run: &OutputRun,
     mut job: SubjectReport,
     reference: &Reference,
     params: &ValidReportParams,
@@ -231,19 +362,11 @@ fn write_subject(
     let stem = file_stem(&job.subject_id);
     // A person's several trials: the plots show the first trial (its traces and strides); the
     // parameter table averages them all.
-    let (tf, trial) = trace_file(results, &job.subject_id, &job.recordings);
+    let (traces, trial) = load_trace(ctx, &job.subject_id, &job.recordings)?;
     if let Some(t) = trial {
         job.strides.retain(|r| r.trial_id == t);
     }
-    if tf.exists() {
-        job.traces = Some(SubjectTraces::from_json(
-            &read_text(&tf)?,
-            &tf.display().to_string(),
-        )?);
-    }
+    job.traces = traces;
     let html = subject_html(&job, reference, params)?;
-    write_atomic(
-        out.join("subjects").join(format!("{stem}.html")),
-        html.as_bytes(),
-    )
+    run.write(&format!("subjects/{stem}.html"), html.as_bytes())
 }

@@ -39,7 +39,7 @@ use crate::cohort::ModelOffsets;
 use crate::error::{LdhError, Result};
 use crate::ml::{CvReport, Prediction};
 use crate::output::{RecordingRow, StrideRow};
-pub use build::{build, read_recordings, BuildSources};
+pub use build::{build, read_recordings, BuildSources, BuildSummary};
 pub use cohort::cohort_html;
 pub use reference::{Reference, ReferenceRange, ReferenceSource};
 pub use subject::subject_html;

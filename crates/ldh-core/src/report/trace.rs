@@ -1,8 +1,9 @@
 //! The signal excerpt a per-subject report plots (paper Figs. 3–4): a window of the
 //! preprocessed, aligned acceleration and angular velocity and the attitude angles of one leg,
 //! with its events and what the reader and the alignment found. `ldh analyze --report` writes
-//! one per subject (`traces/<subject>.json`) so `ldh report` can redraw the report later
-//! without the recordings.
+//! one per subject and trial (`traces/<subject>.json`, `traces/<subject>~trial-<trial>.json`;
+//! [`crate::output::names`]) so `ldh report` can redraw the report later without the
+//! recordings.
 
 use serde::{Deserialize, Serialize};
 
@@ -189,6 +190,11 @@ pub struct SubjectTraces {
     pub schema: String,
     /// Subject.
     pub subject_id: String,
+    /// The trial (manifest `trial_id`) for one of a person's several trials; absent otherwise.
+    /// With the subject id it names the recording, which `ldh report` checks against the file
+    /// it expected.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub trial_id: Option<String>,
     /// One per leg that was analysed.
     pub legs: Vec<LegTrace>,
 }
@@ -199,6 +205,7 @@ impl SubjectTraces {
         SubjectTraces {
             schema: TRACE_SCHEMA.into(),
             subject_id: r.subject_id.clone(),
+            trial_id: r.trial_id.clone(),
             legs: r
                 .legs()
                 .into_iter()
