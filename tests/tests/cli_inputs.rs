@@ -329,8 +329,8 @@ fn manifest_with_trials_labels_and_unknown_sides() {
     );
     assert!(rows[0]["warnings"].contains("affected side unknown"));
     // Each trial's traces in its own file.
-    assert!(out.join("traces/P1__trial_a.json").is_file());
-    assert!(out.join("traces/P1__trial_b.json").is_file());
+    assert!(out.join("traces/P1~trial-a.json").is_file());
+    assert!(out.join("traces/P1~trial-b.json").is_file());
     let strides = read_csv(&out.join("strides.csv"));
     assert!(strides.iter().any(|s| s["trial_id"] == "b"));
     // One report per person, its values the mean of the trials, its plots from the first.
@@ -341,7 +341,7 @@ fn manifest_with_trials_labels_and_unknown_sides() {
         &page[..page.len().min(3000)]
     );
     assert!(!page.contains("Signal plots are not available"));
-    assert!(!out.join("reports/subjects/P1__trial_a.html").exists());
+    assert!(!out.join("reports/subjects/P1~trial-a.html").exists());
     // A typo in the header is refused, naming it.
     std::fs::write(&manifest, "subject_id,left,rigth\nP1,a,b\n").unwrap();
     let o = ldh(&[

@@ -49,6 +49,12 @@ pub enum Command {
     /// events.csv (both legs' HS and TO in one time-ordered sequence) to
     /// --out; a recording that fails is listed with its reason, the others are still written,
     /// and the exit code is 1.
+    ///
+    /// --out holds one run: a re-run replaces the whole earlier result set (reports and traces
+    /// included), and ldh-run.json, written last, lists every file of the run (a folder without a
+    /// complete ldh-run.json holds no finished run). Files no ldh run wrote, or a symbolic link
+    /// inside --out, make the run refuse (exit 2), naming them; nothing is deleted or written
+    /// through a link.
     Analyze(AnalyzeArgs),
     /// Score the pipeline against simulator ground truth: `ldh simulate` output (with
     /// truth.json per subject) is analysed with both attitude models and the event and
@@ -75,7 +81,10 @@ pub enum Command {
     ///
     /// Reads the output folder of `ldh analyze` (recordings.json, strides.csv and, when
     /// `analyze --report` kept them, the signal traces in traces/) and writes
-    /// <OUT>/index.html (the cohort) and <OUT>/subjects/<subject>.html. With --model the
+    /// <OUT>/index.html (the cohort) and <OUT>/subjects/<subject>.html (and <OUT>/ldh-run.json,
+    /// last). Only files the analysis' ldh-run.json lists are used: a folder whose run did not
+    /// finish is refused, and a trace that is not its run's is left out with a warning. <OUT>
+    /// holds one report, as --out of `analyze` holds one run. With --model the
     /// classifier's output is added to each subject's report as decision support; --stats and
     /// --train add Table 4 and the classifier results to the cohort report.
     Report(ReportArgs),
@@ -112,7 +121,7 @@ pub enum Command {
 pub struct AnalyzeArgs {
     /// Inputs (see above); none: the embedded demo cohort.
     pub inputs: Vec<PathBuf>,
-    /// Output folder.
+    /// Output folder: new, empty, or holding an earlier ldh run (replaced whole; see above).
     #[arg(short, long, default_value = "ldh-out")]
     pub out: PathBuf,
     /// Attitude model: fusion (adaptive Kalman; default) or acc (accelerometer tilt only).

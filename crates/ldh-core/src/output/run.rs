@@ -180,6 +180,26 @@ pub fn read_marker(dir: &Path) -> Result<Option<RunMarker>> {
     Ok(Some(m))
 }
 
+/// Refuse a symbolic link on the way from `root` down to `path` (components below `root`
+/// only; `root` itself may be a link the user chose): a folder ldh writes into inside another
+/// run's folder, such as the default `<results>/reports` of `ldh report`.
+pub fn refuse_links_below(root: &Path, path: &Path) -> Result<()> {
+    let Ok(rel) = path.strip_prefix(root) else {
+        return Ok(());
+    };
+    let mut p = root.to_path_buf();
+    for c in rel.components() {
+        p.push(c);
+        if std::fs::symlink_metadata(&p).is_ok_and(|m| m.file_type().is_symlink()) {
+            return Err(LdhError::Write {
+                path: p,
+                reason: "is a symbolic link: ldh never writes through a link inside an output folder; remove it".into(),
+            });
+        }
+    }
+    Ok(())
+}
+
 /// An output folder while one run writes it; see the module documentation.
 #[derive(Debug)]
 pub struct OutputRun {

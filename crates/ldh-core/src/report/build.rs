@@ -142,6 +142,7 @@ pub fn build(
     let subjects = output::rows_by_subject(&rows);
     let ids: Vec<String> = subjects.iter().map(|(id, _)| id.to_string()).collect();
     output::names::check_unique(ids.iter().map(String::as_str))?;
+    output::run::refuse_links_below(results, out)?;
     let mut run = OutputRun::begin(out, RunKind::Report)?;
     run.set_results_run(marker.as_ref().map(|m| m.run_id.clone()));
     let mut groups = output::stride_groups(&results.join("strides.csv"))?.peekable();
