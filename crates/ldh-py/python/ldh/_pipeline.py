@@ -128,6 +128,9 @@ def analyze(
         An input path does not exist (also a ``FileNotFoundError``), before any work.
     LdhParamError
         An invalid option (also a ``ValueError``).
+    LdhDataError
+        A manifest that cannot be used, e.g. one with a header and no subject row ("the manifest
+        has no subjects"; also a ``ValueError``), before any work.
     """
     raw = _ldh.analyze(
         _paths(inputs), model, detector, format, compute_sta, opt_float(sensor_height_m),
