@@ -66,7 +66,10 @@ fn a_rerun_replaces_the_whole_result_set() {
     simulate_cohort(&c, 3, 0, 20, 5);
     let out = d.path().join("out");
     let (a, b) = (d.path().join("a.csv"), d.path().join("b.csv"));
-    manifest(&a, &[("H01", "", &c.join("H01")), ("H02", "", &c.join("H02"))]);
+    manifest(
+        &a,
+        &[("H01", "", &c.join("H01")), ("H02", "", &c.join("H02"))],
+    );
     // H01 is now another recording (H03's), and H02 is gone.
     manifest(&b, &[("H01", "", &c.join("H03"))]);
     ldh_ok(&["analyze", s(&a), "-o", s(&out), "--report"]);
@@ -91,7 +94,11 @@ fn a_rerun_replaces_the_whole_result_set() {
     let o = ldh_ok(&["report", s(&out)]);
     let page = std::fs::read_to_string(out.join("reports/subjects/H01.html")).unwrap();
     assert!(page.contains("H03/left.csv"), "the new recording");
-    assert!(page.contains("Signal plots are not available"), "{}", text(&o));
+    assert!(
+        page.contains("Signal plots are not available"),
+        "{}",
+        text(&o)
+    );
     assert!(!out.join("reports/subjects/H02.html").exists());
     // And with --report: the new run's own trace.
     ldh_ok(&["analyze", s(&a), "-o", s(&out), "--report"]);
@@ -137,7 +144,15 @@ fn a_killed_rerun_never_leaves_a_complete_looking_mix() {
     let c = d.path().join("c");
     simulate_cohort(&c, 6, 6, 30, 9);
     let out = d.path().join("out");
-    ldh_ok(&["analyze", s(&c), "-o", s(&out), "--report", "--model", "acc"]);
+    ldh_ok(&[
+        "analyze",
+        s(&c),
+        "-o",
+        s(&out),
+        "--report",
+        "--model",
+        "acc",
+    ]);
     let before: Vec<(String, Vec<u8>)> = files(&out)
         .into_iter()
         .map(|f| (f.clone(), std::fs::read(out.join(&f)).unwrap()))
@@ -172,12 +187,23 @@ fn a_killed_rerun_never_leaves_a_complete_looking_mix() {
             }
         }
         // The re-run over whatever was left completes.
-        ldh_ok(&["analyze", s(&c), "-o", s(&out), "--report", "--model", "acc"]);
+        ldh_ok(&[
+            "analyze",
+            s(&c),
+            "-o",
+            s(&out),
+            "--report",
+            "--model",
+            "acc",
+        ]);
         let again: Vec<(String, Vec<u8>)> = files(&out)
             .into_iter()
             .map(|f| (f.clone(), std::fs::read(out.join(&f)).unwrap()))
             .collect();
-        assert!(again == before, "the re-run is exactly the uninterrupted run");
+        assert!(
+            again == before,
+            "the re-run is exactly the uninterrupted run"
+        );
     }
     eprintln!("{refused} of 6 kills left an unfinished folder");
 }
@@ -205,7 +231,11 @@ fn links_inside_the_output_folder_are_refused() {
             "{}",
             text(&o)
         );
-        assert!(files(&elsewhere).is_empty(), "{link}: {:?}", files(&elsewhere));
+        assert!(
+            files(&elsewhere).is_empty(),
+            "{link}: {:?}",
+            files(&elsewhere)
+        );
         assert!(out.join(link).symlink_metadata().is_ok(), "the link stays");
         std::fs::remove_file(out.join(link)).unwrap();
     }
@@ -227,7 +257,10 @@ fn a_subject_named_like_a_trial_key_keeps_its_own_trace() {
     let m = d.path().join("m.csv");
     manifest(
         &m,
-        &[("P1__trial_2", "", &c.join("H01")), ("P1", "2", &c.join("H02"))],
+        &[
+            ("P1__trial_2", "", &c.join("H01")),
+            ("P1", "2", &c.join("H02")),
+        ],
     );
     let traces = |out: &PathBuf, stem: &str| -> serde_json::Value {
         common::json(&out.join("traces").join(format!("{stem}.json")))
@@ -239,11 +272,14 @@ fn a_subject_named_like_a_trial_key_keeps_its_own_trace() {
         let (a, b) = (traces(&out, "P1__trial_2"), traces(&out, "P1~trial-2"));
         assert_eq!(a["subject_id"], "P1__trial_2");
         assert!(a.get("trial_id").is_none());
-        assert_eq!((b["subject_id"].as_str(), b["trial_id"].as_str()), (Some("P1"), Some("2")));
+        assert_eq!(
+            (b["subject_id"].as_str(), b["trial_id"].as_str()),
+            (Some("P1"), Some("2"))
+        );
         assert_ne!(a["legs"], b["legs"], "two recordings, two traces");
         for (stem, src) in [("P1__trial_2", "H01"), ("P1", "H02")] {
-            let page = std::fs::read_to_string(out.join(format!("reports/subjects/{stem}.html")))
-                .unwrap();
+            let page =
+                std::fs::read_to_string(out.join(format!("reports/subjects/{stem}.html"))).unwrap();
             assert!(page.contains(&format!("{src}/left.csv")), "{stem}");
             assert!(!page.contains("Signal plots are not available"), "{stem}");
         }
@@ -271,7 +307,11 @@ fn a_trace_that_is_not_the_runs_is_not_drawn() {
     // A folder whose run did not finish is refused.
     let marker = out.join("ldh-run.json");
     let m = std::fs::read_to_string(&marker).unwrap();
-    std::fs::write(&marker, m.replace("\"complete\": true", "\"complete\": false")).unwrap();
+    std::fs::write(
+        &marker,
+        m.replace("\"complete\": true", "\"complete\": false"),
+    )
+    .unwrap();
     let o = ldh(&["report", s(&out)]);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("did not finish"), "{}", text(&o));
