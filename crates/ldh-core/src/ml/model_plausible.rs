@@ -229,7 +229,9 @@ fn check_summary(m: &ModelFile, origin: &str) -> Result<(), ModelError> {
     for j in 0..nf {
         let (lo, hi, mu, sd) = (t.min[j], t.max[j], t.mean[j], t.sd[j]);
         let f = &m.feature_names[j];
-        if !(lo <= mu && mu <= hi && sd >= 0.0 && sd <= 0.5 * (hi - lo) * (1.0 + 1e-9) + 1e-300) {
+        if !((lo..=hi).contains(&mu)
+            && (0.0..=0.5 * (hi - lo) * (1.0 + 1e-9) + 1e-300).contains(&sd))
+        {
             return Err(bad(
                 origin,
                 format!("training summary of {f}: min {lo}, mean {mu}, max {hi}, SD {sd} do not fit together"),
@@ -269,7 +271,7 @@ fn check_summary(m: &ModelFile, origin: &str) -> Result<(), ModelError> {
         let mut weighted = 0.0;
         for p in &t.probes {
             let v = p.x.get(j).copied().unwrap_or(f64::NAN);
-            if p.x.len() != nf || !(t.min[j] <= v && v <= t.max[j]) {
+            if p.x.len() != nf || !(t.min[j]..=t.max[j]).contains(&v) {
                 return Err(bad(
                     origin,
                     format!(
