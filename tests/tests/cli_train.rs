@@ -121,7 +121,7 @@ fn predict_labels_every_recording(c: &Path, out: &Path, pred: &Path) {
 fn predict_refuses_models_that_do_not_fit(d: &Path, c: &Path, out: &Path, pred: &Path) {
     let m = std::fs::read_to_string(out.join("model_rf.json")).unwrap();
     let old = d.join("old.json");
-    std::fs::write(&old, m.replace("ldh-model/2", "ldh-model/0")).unwrap();
+    std::fs::write(&old, m.replace("ldh-model/3", "ldh-model/0")).unwrap();
     let o = ldh(&[
         "predict",
         "--model",

@@ -87,20 +87,25 @@ pub(crate) fn train(
 
 type Predicted<'py> = (Vec<usize>, Option<Bound<'py, PyArray2<f64>>>);
 
-/// Predict with a model file's text: (labels, probabilities or None).
+/// Predict with a model file's text, or with the file at `model_path` (read as `ldh predict`
+/// reads it, named in every error): (labels, probabilities or None).
 #[pyfunction]
-#[pyo3(signature = (model_json, x, feature_names=None))]
+#[pyo3(signature = (model_json, x, feature_names=None, model_path=None))]
 pub(crate) fn predict<'py>(
     py: Python<'py>,
     model_json: &str,
     x: PyReadonlyArray2<'py, f64>,
     feature_names: Option<Vec<String>>,
+    model_path: Option<std::path::PathBuf>,
 ) -> PyResult<Predicted<'py>> {
     let x = x.as_array().to_owned();
     let text = model_json.to_string();
     let (labels, proba) = py
         .detach(move || -> Result<_, LdhError> {
-            let m = ModelFile::from_json(&text, "<model>")?;
+            let m = match model_path {
+                Some(p) => ldh_core::ml::read_model(&p)?,
+                None => ModelFile::from_json(&text, "<model>")?,
+            };
             if let Some(names) = feature_names {
                 m.check_features(&names)?;
             }

@@ -44,7 +44,7 @@ def test_train_predict_and_model_refusals(tmp_path):
     with pytest.raises(ValueError, match="missing"):
         ldh.predict(model, X[:, :-1], names[:-1])
     with pytest.raises(ldh.LdhDataError, match="schema"):
-        ldh.predict(model.replace("ldh-model/2", "ldh-model/9"), X)
+        ldh.predict(model.replace("ldh-model/3", "ldh-model/9"), X)
     svm = ldh.train(X, y, names, classifier="svm", task="binary")
     _, p = ldh.predict(svm, X)
     assert p is None
@@ -57,3 +57,35 @@ def test_train_predict_and_model_refusals(tmp_path):
         ldh.cross_validate(X, np.ones_like(y), groups, task="binary")
     with pytest.raises(ldh.LdhParamError, match="two-dimensional"):
         ldh.cross_validate(X[:, 0], y)
+
+
+def test_predict_from_a_path_names_the_file_in_typed_errors(tmp_path):
+    """Issue 37: a model read from its path is read as `ldh predict` reads it; an edit re-sealed
+    with a recomputed checksum, a FIFO and an oversized file raise typed errors naming it."""
+    import os
+    import sys
+
+    sys.path.insert(0, str(ROOT / "data-fixtures" / "bad"))
+    import edit_model
+
+    X, y, _, names, _ = _load("three_class")
+    for clf in ["rf", "svm", "mlp"]:
+        path = tmp_path / f"{clf}.json"
+        path.write_text(ldh.train(X, y, names, classifier=clf, seed=3))
+        labels, _ = ldh.predict(str(path), X, names)
+        assert len(labels) == len(y)
+    mlp = tmp_path / "mlp.json"
+    edit_model.main(["", str(mlp), "mlp-weight-1e200"])
+    with pytest.raises(ldh.LdhDataError, match=r"mlp\.json: implausible model: MLP layer 0"):
+        ldh.predict(str(mlp), X)
+    with pytest.raises(ldh.LdhDataError, match=r"rf\.json: the input's features do not match"):
+        ldh.predict(tmp_path / "rf.json", X[:, :-1], names[:-1])
+    fifo = tmp_path / "fifo.json"
+    os.mkfifo(fifo)
+    with pytest.raises(ldh.LdhOSError, match="not a regular file"):
+        ldh.predict(str(fifo), X)
+    big = tmp_path / "big.json"
+    with open(big, "wb") as fh:
+        fh.truncate(20_000_000)
+    with pytest.raises(ldh.LdhDataError, match=r"big\.json: not a model file: 20\.0 MB"):
+        ldh.predict(str(big), X)

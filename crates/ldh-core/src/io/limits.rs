@@ -13,7 +13,7 @@ use crate::error::{LdhError, Result};
 /// file, before it is read. The read itself is bounded too (one byte past the limit), for files
 /// whose stated size is not their content (`/proc`): [`super::text::Lines`] refuses the content
 /// once it passes the limit.
-pub(super) fn open_limited(
+pub(crate) fn open_limited(
     path: &Path,
     max_mb: f64,
 ) -> Result<std::io::BufReader<std::io::Take<std::fs::File>>> {

@@ -8,7 +8,7 @@ mod columns;
 pub mod format;
 mod header;
 mod inspect;
-mod limits;
+pub(crate) mod limits;
 mod number;
 pub mod reader;
 mod rows;

@@ -24,6 +24,8 @@ pub mod forest;
 pub mod mlp;
 pub mod model;
 pub mod model_check;
+pub mod model_plausible;
+mod model_plausible_fit;
 mod predict;
 pub mod svm;
 mod train;
@@ -35,6 +37,10 @@ pub use model::{Classifier, FittedModel, ModelError, ModelFile, Prediction};
 pub use predict::{predict, read_model, PredictOutcome};
 pub use train::{train, ClassifierKind, TrainOutcome, TrainParams};
 
+#[cfg(test)]
+mod model_plausible_tests;
+#[cfg(test)]
+mod model_roundtrip_tests;
 #[cfg(test)]
 mod model_tests;
 #[cfg(test)]

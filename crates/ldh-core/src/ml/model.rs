@@ -13,13 +13,17 @@ use super::dataset::{Dataset, MinMax, Task};
 use super::forest::{Forest, ForestParams};
 use super::mlp::{Mlp, MlpParams};
 pub use super::model_check::ModelError;
+use super::model_plausible::{probe_output, TrainingSummary, MODEL_MAX_MB};
 use super::svm::{SvmModel, SvmParams};
 use crate::error::{LdhError, Result};
 use crate::output::Parameter;
 use serde_json::Value;
 
-/// Version tag of the model file (2: with a checksum, validated on load).
-pub const MODEL_SCHEMA: &str = "ldh-model/2";
+/// Version tag of the model file (2: with a checksum, validated on load; 3: with the training
+/// summary and probes of [`super::model_plausible`], an exact checksum). Files of an older schema
+/// are refused with a request to retrain: without a training summary their content cannot be
+/// checked for plausibility.
+pub const MODEL_SCHEMA: &str = "ldh-model/3";
 
 /// A classifier and its parameters.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -159,6 +163,12 @@ pub struct ModelFile {
     pub trained_rows_per_class: Vec<usize>,
     /// Attitude model of the features (`fusion` or `acc`).
     pub attitude_model: String,
+    /// What the training rows looked like, and the model's output at every class mean
+    /// (checked on load, [`super::model_plausible`]).
+    pub training: TrainingSummary,
+    /// Where the model was read from (named in every error; not saved). Empty: `<model>`.
+    #[serde(skip)]
+    pub origin: String,
 }
 
 impl ModelFile {
@@ -167,7 +177,7 @@ impl ModelFile {
         ds.validate()?;
         let scaling = MinMax::fit(&ds.x);
         let model = classifier.fit(&scaling.transform(&ds.x), &ds.y, ds.class_names.len())?;
-        Ok(ModelFile {
+        let mut m = ModelFile {
             schema: MODEL_SCHEMA.into(),
             ldh_version: env!("CARGO_PKG_VERSION").into(),
             task: ds.task,
@@ -178,10 +188,32 @@ impl ModelFile {
             model,
             trained_rows_per_class: ds.class_counts(),
             attitude_model: attitude_model.into(),
-        })
+            training: TrainingSummary::of(&ds.x, &ds.y, ds.class_names.len()),
+            origin: String::new(),
+        };
+        let outputs: Vec<Vec<f64>> = m
+            .training
+            .probes
+            .iter()
+            .map(|p| probe_output(&m, &p.x).unwrap_or_default())
+            .collect();
+        for (p, o) in m.training.probes.iter_mut().zip(outputs) {
+            p.output = o;
+        }
+        Ok(m)
     }
 
-    /// The model file's JSON text, with its checksum.
+    /// Where the model came from, for messages (`<model>` when it was not read from a file).
+    pub fn origin(&self) -> &str {
+        if self.origin.is_empty() {
+            "<model>"
+        } else {
+            &self.origin
+        }
+    }
+
+    /// The model file's JSON text, with its checksum. A model larger than the
+    /// [`MODEL_MAX_MB`] that `ldh predict` reads is an error (train fewer trees or on fewer rows).
     pub fn to_json(&self) -> Result<String> {
         let mut v =
             serde_json::to_value(self).map_err(|e| LdhError::signal("model", e.to_string()))?;
@@ -189,7 +221,18 @@ impl ModelFile {
         if let Value::Object(m) = &mut v {
             m.insert("checksum".into(), Value::String(sum));
         }
-        serde_json::to_string(&v).map_err(|e| LdhError::signal("model", e.to_string()))
+        let text =
+            serde_json::to_string(&v).map_err(|e| LdhError::signal("model", e.to_string()))?;
+        if text.len() as f64 > MODEL_MAX_MB * 1e6 {
+            return Err(LdhError::signal(
+                "model",
+                format!(
+                    "the model file would be {:.1} MB, more than the {MODEL_MAX_MB} MB a model file may have: train fewer trees or on fewer rows",
+                    text.len() as f64 / 1e6
+                ),
+            ));
+        }
+        Ok(text)
     }
 
     /// Parse a model file: the schema version, the checksum, then every array's size against
@@ -226,11 +269,13 @@ impl ModelFile {
                 computed,
             });
         }
-        let m: ModelFile = serde_json::from_value(v).map_err(|e| ModelError::Damaged {
+        let mut m: ModelFile = serde_json::from_value(v).map_err(|e| ModelError::Damaged {
             origin: origin.into(),
             reason: e.to_string(),
         })?;
         super::model_check::validate(&m, origin)?;
+        super::model_plausible::check(&m, origin)?;
+        m.origin = origin.into();
         Ok(m)
     }
 
@@ -265,6 +310,7 @@ impl ModelFile {
                 format!("missing {missing:?}, unexpected {extra:?}")
             };
         Err(ModelError::Features {
+            origin: self.origin().into(),
             detail,
             expected: self.feature_names.clone(),
         })
@@ -276,7 +322,8 @@ impl ModelFile {
             return Err(LdhError::signal(
                 "model",
                 format!(
-                    "{} features given, the model needs {}",
+                    "{}: {} features given, the model needs {}",
+                    self.origin(),
                     x.ncols(),
                     self.feature_names.len()
                 ),
@@ -333,8 +380,8 @@ impl ModelFile {
                 "model",
                 &r.model,
                 format!(
-                    "the model was trained on features of the '{}' attitude model but the input has '{}' (subject {}): analyse with --model {}",
-                    self.attitude_model, r.model, r.subject_id, self.attitude_model
+                    "{}: the model was trained on features of the '{}' attitude model but the input has '{}' (subject {}): analyse with --model {}",
+                    self.origin(), self.attitude_model, r.model, r.subject_id, self.attitude_model
                 ),
             ));
         }
@@ -344,7 +391,12 @@ impl ModelFile {
             .feature_names
             .iter()
             .map(|f| Parameter::from_column(f))
-            .collect::<std::result::Result<_, _>>()?;
+            .collect::<std::result::Result<_, _>>()
+            .map_err(|e| ModelError::UnknownFeature {
+                origin: self.origin().into(),
+                feature: e.0,
+                known: Parameter::columns().join(", "),
+            })?;
         let mut out = Vec::with_capacity(rows.len());
         for r in rows {
             let vals: Option<Vec<f64>> = features.iter().map(|&f| r.value(f)).collect();

@@ -4,10 +4,15 @@
 //! silently wrong classes.
 //!
 //! **Checksum.** `checksum = "crc32:xxxxxxxx"`: CRC-32 (IEEE) of a canonical text of every other
-//! field: object keys sorted, numbers as integers or as floats with 12 significant digits (so
-//! the checksum survives the last-bit differences of JSON float parsing). It detects damage and
-//! hand edits (a shuffled feature list, a changed weight); it is not a signature against
-//! someone who recomputes it, which the structural checks below are for.
+//! field: object keys sorted, numbers as integers (`i12`) or as the 16 hex digits of the
+//! float's IEEE-754 bits (`f3ff0000000000000`). The JSON is written with the shortest digits
+//! that read back to the same float and read with serde_json's `float_roundtrip`, so every float
+//! reads back bit-identical and the writer's and the reader's canonical texts agree (before issue
+//! 37 floats were rounded to 12 digits, and a float the parser read one ulp off that sat on a
+//! rounding boundary broke the checksum of a freshly trained model). It detects damage and hand
+//! edits (a shuffled feature list, a changed weight); it is not a signature against someone who
+//! recomputes it, which the structural checks below and the plausibility rules of
+//! [`super::model_plausible`] are for.
 //!
 //! **Structure.** Feature names: non-empty, distinct, as many as the scaler's columns (finite
 //! minimum, finite positive range). Class names: those of the task, in label order, as many as
@@ -32,6 +37,16 @@ pub enum ModelError {
         origin: String,
         /// The parser's message (with line and column).
         reason: String,
+    },
+    /// A file larger than a model file may be ([`super::model_plausible::MODEL_MAX_MB`]).
+    #[error("{origin}: not a model file: {size_mb:.1} MB, more than the {limit_mb} MB a model file may have")]
+    TooLarge {
+        /// The file.
+        origin: String,
+        /// Its size, MB (at least this much when it was not known in advance).
+        size_mb: f64,
+        /// The limit, MB.
+        limit_mb: f64,
     },
     /// JSON without a `schema` field.
     #[error("{origin}: not an ldh model file (no schema field)")]
@@ -73,9 +88,31 @@ pub enum ModelError {
         /// Which array or value, and what was expected.
         what: String,
     },
+    /// Content that `ldh train` cannot have written, though the file is sealed and consistent
+    /// (an edit re-sealed with a recomputed checksum; [`super::model_plausible`]).
+    #[error("{origin}: implausible model: {what}; retrain with ldh train")]
+    Implausible {
+        /// The file.
+        origin: String,
+        /// Which value, and what `ldh train` writes.
+        what: String,
+    },
+    /// A feature of the model is not a column of the per-recording table (a model trained on
+    /// arrays from Python under names of its own cannot classify recordings).
+    #[error("{origin}: unknown feature '{feature}' in the model: not a column of the per-recording table (known: {known}); use a model trained by ldh train on recordings")]
+    UnknownFeature {
+        /// The file.
+        origin: String,
+        /// The feature.
+        feature: String,
+        /// The known columns.
+        known: String,
+    },
     /// The input's features differ from the model's by name or order.
-    #[error("the input's features do not match the model's: {detail} (the model was trained on {expected:?})")]
+    #[error("{origin}: the input's features do not match the model's: {detail} (the model was trained on {expected:?})")]
     Features {
+        /// The model file.
+        origin: String,
         /// What differs.
         detail: String,
         /// The model's features, in order.
@@ -87,43 +124,54 @@ pub enum ModelError {
 /// excluded.
 pub fn checksum(v: &Value) -> String {
     let mut h = crc32fast::Hasher::new();
-    canon(v, &mut h, true);
+    canon(v, &mut h, true, &mut String::new());
     format!("crc32:{:08x}", h.finalize())
 }
 
-fn canon(v: &Value, h: &mut crc32fast::Hasher, top: bool) {
+/// Feed the canonical text of `v` to `h` (`buf`: scratch space, so that the numbers of a large
+/// file are not each a new allocation).
+fn canon(v: &Value, h: &mut crc32fast::Hasher, top: bool, buf: &mut String) {
+    use std::fmt::Write;
+    buf.clear();
     match v {
         Value::Null => h.update(b"n"),
         Value::Bool(b) => h.update(if *b { b"t" } else { b"f" }),
         Value::Number(n) => {
-            let s = if let Some(i) = n.as_i64() {
-                format!("i{i}")
+            let _ = if let Some(i) = n.as_i64() {
+                write!(buf, "i{i}")
             } else if let Some(u) = n.as_u64() {
-                format!("i{u}")
+                write!(buf, "i{u}")
             } else {
-                format!("f{:.11e}", n.as_f64().unwrap_or(f64::NAN))
+                // The exact bits: serde_json's `float_roundtrip` reads back the float written,
+                // so the writer's and the reader's canonical texts are the same.
+                write!(buf, "f{:016x}", n.as_f64().unwrap_or(f64::NAN).to_bits())
             };
-            h.update(s.as_bytes());
+            h.update(buf.as_bytes());
         }
         Value::String(s) => {
-            h.update(format!("s{}:", s.len()).as_bytes());
+            let _ = write!(buf, "s{}:", s.len());
+            h.update(buf.as_bytes());
             h.update(s.as_bytes());
         }
         Value::Array(a) => {
-            h.update(format!("[{}", a.len()).as_bytes());
+            let _ = write!(buf, "[{}", a.len());
+            h.update(buf.as_bytes());
             for x in a {
-                canon(x, h, false);
+                canon(x, h, false, buf);
             }
             h.update(b"]");
         }
         Value::Object(m) => {
             let mut keys: Vec<&String> = m.keys().filter(|k| !(top && *k == "checksum")).collect();
             keys.sort();
-            h.update(format!("{{{}", keys.len()).as_bytes());
+            let _ = write!(buf, "{{{}", keys.len());
+            h.update(buf.as_bytes());
             for k in keys {
-                h.update(format!("{}:", k.len()).as_bytes());
+                buf.clear();
+                let _ = write!(buf, "{}:", k.len());
+                h.update(buf.as_bytes());
                 h.update(k.as_bytes());
-                canon(&m[k], h, false);
+                canon(&m[k], h, false, buf);
             }
             h.update(b"}");
         }

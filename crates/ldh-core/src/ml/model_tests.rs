@@ -9,7 +9,7 @@ use super::model_check::{checksum, ModelError};
 
 const THREE: &str = include_str!("../../../../data-fixtures/ml/three_class_dataset.csv");
 
-fn trained(kind: &str) -> (ModelFile, Value, Dataset) {
+pub(super) fn trained(kind: &str) -> (ModelFile, Value, Dataset) {
     let ds = Dataset::from_csv(THREE, Task::ThreeClass, "t").unwrap();
     let m = ModelFile::train(&ds, &Classifier::from_name(kind, 3).unwrap(), "fusion").unwrap();
     let v: Value = serde_json::from_str(&m.to_json().unwrap()).unwrap();
@@ -18,7 +18,7 @@ fn trained(kind: &str) -> (ModelFile, Value, Dataset) {
 
 /// Re-seal an edited file with a matching checksum (what a careful tamperer would do), so the
 /// structural checks are tested on their own.
-fn sealed(mut v: Value) -> String {
+pub(super) fn sealed(mut v: Value) -> String {
     let sum = checksum(&v);
     v["checksum"] = Value::String(sum);
     serde_json::to_string(&v).unwrap()
@@ -75,7 +75,7 @@ fn truncated_or_unsealed_files_are_refused() {
     edited["scaling"]["min"][0] = json!(123.0);
     let e = refused(&serde_json::to_string(&edited).unwrap(), "edited");
     assert!(matches!(e, ModelError::Checksum { .. }), "{e}");
-    let e = refused(&text.replace("ldh-model/2", "ldh-model/1"), "old schema");
+    let e = refused(&text.replace("ldh-model/3", "ldh-model/2"), "old schema");
     assert!(e.to_string().contains("retrain"), "{e}");
     assert!(matches!(
         refused("{}", "empty object"),
@@ -246,7 +246,9 @@ fn class_and_scaler_tampering_is_refused() {
     let mut t = v.clone();
     t["scaling"]["range"][0] = json!(1e308);
     t["scaling"]["min"][0] = json!(-1e308);
-    assert!(ModelFile::from_json(&sealed(t), "big.json").is_ok());
+    // Consistent in shape, but not the training range (issue 37: model_plausible_tests.rs).
+    let e = ModelFile::from_json(&sealed(t), "big.json").unwrap_err();
+    assert!(matches!(e, ModelError::Implausible { .. }), "{e}");
     // Non-finite values in memory (a file cannot hold them) are caught by validation too.
     let (mut m, _, _) = trained("rf");
     m.scaling.min[0] = f64::NAN;
@@ -260,7 +262,7 @@ fn feature_names_become_parameters_once_with_a_typed_error() {
     m.feature_names[3] = "height_cm".into();
     let e = m.predict_rows(&[]).unwrap_err().to_string();
     assert!(
-        e.contains("height_cm") && e.contains("unknown feature"),
+        e.contains("height_cm") && e.contains("unknown feature") && e.starts_with("<model>: "),
         "{e}"
     );
 }

@@ -1,8 +1,10 @@
 //! `ldh predict` as one call: classify per-recording rows with a saved model and render the
 //! predictions table.
 
+use super::model_plausible::MODEL_MAX_MB;
+use super::ModelError;
 use super::{ModelFile, Prediction};
-use crate::error::Result;
+use crate::error::{LdhError, Result};
 use crate::output::RecordingRow;
 
 /// Predictions of a model for per-recording rows, and their CSV.
@@ -54,11 +56,34 @@ pub fn predict(model: &ModelFile, rows: &[RecordingRow]) -> Result<PredictOutcom
     })
 }
 
-/// Read a model file written by `ldh train` (see [`ModelFile::from_json`]).
+/// Read a model file written by `ldh train` (see [`ModelFile::from_json`]): a regular file of
+/// at most [`MODEL_MAX_MB`] (a folder, FIFO or device, or a larger file, is refused before
+/// anything is parsed).
 pub fn read_model(path: &std::path::Path) -> Result<ModelFile> {
-    let text = std::fs::read_to_string(path).map_err(|source| crate::error::LdhError::Io {
-        path: path.to_path_buf(),
-        source,
+    use std::io::Read;
+    let origin = path.display().to_string();
+    let too_large = |size_mb: f64| ModelError::TooLarge {
+        origin: origin.clone(),
+        size_mb,
+        limit_mb: MODEL_MAX_MB,
+    };
+    // The one opening of a model file (issue 37: a size-limited open).
+    let mut file = match crate::io::limits::open_limited(path, MODEL_MAX_MB) {
+        Err(LdhError::FileTooLarge { size_mb, .. }) => return Err(too_large(size_mb).into()),
+        r => r?,
+    };
+    let mut bytes = Vec::new();
+    file.read_to_end(&mut bytes)
+        .map_err(|source| LdhError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+    if bytes.len() as f64 > MODEL_MAX_MB * 1e6 {
+        return Err(too_large(bytes.len() as f64 / 1e6).into());
+    }
+    let text = String::from_utf8(bytes).map_err(|e| ModelError::NotJson {
+        origin: origin.clone(),
+        reason: format!("not UTF-8 text: {e}"),
     })?;
-    Ok(ModelFile::from_json(&text, &path.display().to_string())?)
+    Ok(ModelFile::from_json(&text, &origin)?)
 }

@@ -74,10 +74,12 @@ def train(
 def predict(model: str, X: Any, feature_names: Optional[Sequence[str]] = None) -> Tuple[np.ndarray, Optional[np.ndarray]]:
     """Predict with a model file's JSON text (or a path to it). Returns (labels, probabilities
     or None for models without them). With ``feature_names`` the model refuses mismatched
-    features, naming them."""
-    if isinstance(model, (os.PathLike,)) or (isinstance(model, str) and not model.lstrip().startswith("{")):
-        with open(model, encoding="utf-8") as fh:
-            model = fh.read()
+    features, naming them. A path is read as ``ldh predict --model`` reads it (a regular file of
+    at most 16 MB, checked for damage and plausibility); every error is an ``LdhError`` naming
+    the file."""
     names = None if feature_names is None else [str(n) for n in feature_names]
-    labels, proba = _ldh.predict(model, _matrix(X), names)
+    if isinstance(model, (os.PathLike,)) or (isinstance(model, str) and not model.lstrip().startswith("{")):
+        labels, proba = _ldh.predict("", _matrix(X), names, os.fspath(model))
+    else:
+        labels, proba = _ldh.predict(model, _matrix(X), names)
     return np.asarray(labels, dtype=np.int64), proba
