@@ -56,9 +56,6 @@ pub fn predict(model: &ModelFile, rows: &[RecordingRow]) -> Result<PredictOutcom
 
 /// Read a model file written by `ldh train` (see [`ModelFile::from_json`]).
 pub fn read_model(path: &std::path::Path) -> Result<ModelFile> {
-    let text = std::fs::read_to_string(path).map_err(|source| crate::error::LdhError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = crate::io::read_text_limited(path, crate::io::MAX_MODEL_MB, "a model file")?;
     Ok(ModelFile::from_json(&text, &path.display().to_string())?)
 }
