@@ -168,9 +168,10 @@ pub enum LdhError {
         /// The limit, MB.
         limit_mb: f64,
     },
-    /// A line of a recording is longer than [`crate::io::MAX_LINE_BYTES`]; refused while it
-    /// streams, before more than the limit is held.
-    #[error("{loc}: the line is longer than {limit_bytes} bytes, the most a recording's line may hold (a row of a sensor export has a few hundred): a file without line ends, or not a sensor export?")]
+    /// A line of a recording (or of a cohort manifest) is longer than
+    /// [`crate::io::MAX_LINE_BYTES`]; a recording's is refused while it streams, before more than
+    /// the limit is held.
+    #[error("{loc}: the line is longer than {limit_bytes} bytes, the most a line of a recording or manifest may hold (a row of either has a few hundred): a file without line ends, or a runaway cell?")]
     LineTooLong {
         /// The file and the line.
         loc: Location,
