@@ -131,8 +131,8 @@ pub struct AnalyzeArgs {
     /// pitch-peaks (the paper's).
     #[arg(long, value_enum)]
     pub detector: Option<EventDetector>,
-    /// Input sensor format: a built-in name or a TOML column map; default: detect.
-    /// (`--format` is accepted as an alias for one release.)
+    /// Input sensor format: a built-in name or a TOML column map (a regular file of at most
+    /// 1 MB); default: detect. (`--format` is accepted as an alias for one release.)
     #[arg(long = "input-format", alias = "format", value_name = "FORMAT")]
     pub format: Option<String>,
     /// Sensor height above the ankle joint, m, for subjects whose manifest row has none. Not
@@ -147,8 +147,8 @@ pub struct AnalyzeArgs {
     /// (default; turns are detected) or treadmill (no turns).
     #[arg(long, value_enum)]
     pub setting: Option<ldh_core::Setting>,
-    /// All analysis parameters as a TOML file (docs/parameters.md); the flags above, when given,
-    /// override it.
+    /// All analysis parameters as a TOML file (docs/parameters.md; a regular file of at most
+    /// 1 MB); the flags above, when given, override it.
     #[arg(long)]
     pub params: Option<PathBuf>,
     /// Skip the Lyapunov exponent (STA).
@@ -158,7 +158,8 @@ pub struct AnalyzeArgs {
     /// they plot to <OUT>/traces.
     #[arg(long)]
     pub report: bool,
-    /// With --report: a model saved by `ldh train` whose output the subject reports show.
+    /// With --report: a model saved by `ldh train` whose output the subject reports show (a
+    /// regular file of at most 256 MB).
     #[arg(long, requires = "report")]
     pub classifier: Option<PathBuf>,
     /// Subjects analysed between two writes of the output (default 32 per worker thread).
@@ -171,7 +172,8 @@ pub struct AnalyzeArgs {
     /// Print the end-of-run summary on stdout as JSON (for scripts) instead of a sentence.
     #[arg(long)]
     pub json: bool,
-    /// Largest sensor file read, MB (default 256); larger files are refused before reading.
+    /// Largest sensor file read, MB (default 256); larger files are refused before reading, and
+    /// so is a line longer than 64 KiB.
     #[arg(long, value_name = "MB")]
     pub max_file_size_mb: Option<f64>,
     /// Most samples (data rows) in one sensor file (default 2500000: 6.9 h at 100 Hz); the
@@ -192,7 +194,8 @@ pub struct ReportArgs {
     /// Where to write the reports (default: <RESULTS>/reports).
     #[arg(short, long)]
     pub out: Option<PathBuf>,
-    /// A model saved by `ldh train`: its output goes into each subject's report.
+    /// A model saved by `ldh train`: its output goes into each subject's report (a regular file
+    /// of at most 256 MB).
     #[arg(long)]
     pub model: Option<PathBuf>,
     /// Output folder of `ldh stats` (table4.json) for the cohort report.
@@ -201,7 +204,7 @@ pub struct ReportArgs {
     /// Output folder of `ldh train` (cv_results.json) for the cohort report.
     #[arg(long)]
     pub train: Option<PathBuf>,
-    /// Report parameters as TOML (docs/reports.md).
+    /// Report parameters as TOML (docs/reports.md; a regular file of at most 1 MB).
     #[arg(long)]
     pub params: Option<PathBuf>,
     /// Worker threads (default: all cores).
@@ -265,7 +268,7 @@ pub struct TrainArgs {
 
 #[derive(Debug, Args)]
 pub struct PredictArgs {
-    /// A model file written by `ldh train`.
+    /// A model file written by `ldh train` (a regular file of at most 256 MB).
     #[arg(long)]
     pub model: PathBuf,
     /// Inputs as for `analyze`; or --results.
@@ -361,8 +364,9 @@ pub struct InspectArgs {
     /// Sensor CSV files.
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
-    /// Input sensor format: a built-in name or a TOML column map; default: detect a built-in
-    /// format. (`--format` is accepted as an alias for one release.)
+    /// Input sensor format: a built-in name or a TOML column map (a regular file of at most
+    /// 1 MB); default: detect a built-in format. (`--format` is accepted as an alias for one
+    /// release.)
     #[arg(long = "input-format", alias = "format", value_name = "FORMAT")]
     pub format: Option<String>,
     /// Longest gap in the timestamps bridged by interpolation, s.
@@ -371,7 +375,8 @@ pub struct InspectArgs {
     /// Refuse recordings with longer gaps instead of keeping the longest segment.
     #[arg(long)]
     pub reject_gaps: bool,
-    /// Largest sensor file read, MB (default 256); larger files are refused before reading.
+    /// Largest sensor file read, MB (default 256); larger files are refused before reading, and
+    /// so is a line longer than 64 KiB.
     #[arg(long, value_name = "MB")]
     pub max_file_size_mb: Option<f64>,
     /// Most samples (data rows) in one sensor file (default 2500000: 6.9 h at 100 Hz); the

@@ -4,12 +4,66 @@
 //! column (1-based, counted in the file as a text editor shows it), and the offending value.
 //! The CLI prints these messages as they are; the Python binding maps them onto `ValueError`,
 //! `FileNotFoundError`/`OSError` and the `ldh.LdhError` family by [`LdhError::kind`].
+//!
+//! A value echoed from the input (a cell, a column name, an id, a parameter's value) is cut to
+//! [`ECHO_CHARS`] characters by [`clip`] when the message is printed, and a free-text reason
+//! that may quote the input (a TOML or JSON parser's message) to [`REASON_CHARS`]: a 50 MB cell
+//! makes a one-line message, not 50 MB of output.
 
 use std::num::{NonZeroU32, NonZeroU64};
 use std::path::{Path, PathBuf};
 
 /// Result alias used throughout ldh-core.
 pub type Result<T, E = LdhError> = std::result::Result<T, E>;
+
+/// The most characters of a value echoed in a message (a cell, a column name, an id): 60.
+pub const ECHO_CHARS: usize = 60;
+/// The most characters of the first row of a file without a header row echoed in its message:
+/// 200 (enough to see what the file holds).
+const FIRST_ROW_CHARS: usize = 200;
+/// The most characters of a free-text reason that may quote the input (a parser's message): 600.
+pub const REASON_CHARS: usize = 600;
+
+/// `s` as a message echoes it: itself when it has at most `max_chars` characters, else its
+/// first `max_chars` characters, `…` and its length (`1234567… (52428800 characters)`). Every
+/// message that echoes input uses it (with [`ECHO_CHARS`] for a value, [`REASON_CHARS`] for a
+/// reason); what a message says must stay short whatever the input holds.
+pub fn clip_to(s: &str, max_chars: usize) -> std::borrow::Cow<'_, str> {
+    match s.char_indices().nth(max_chars) {
+        None => std::borrow::Cow::Borrowed(s),
+        Some((cut, _)) => {
+            std::borrow::Cow::Owned(format!("{}… ({} characters)", &s[..cut], s.chars().count()))
+        }
+    }
+}
+
+/// A value as a message echoes it: [`clip_to`] with [`ECHO_CHARS`].
+pub fn clip(s: &str) -> std::borrow::Cow<'_, str> {
+    clip_to(s, ECHO_CHARS)
+}
+
+/// Names as a message lists them (`["a", "b"]`), each cut by [`clip`], at most 12 of them (then
+/// `… (N in all)`).
+fn clip_names(names: &[String]) -> String {
+    let mut v: Vec<String> = names
+        .iter()
+        .take(12)
+        .map(|n| format!("{:?}", clip(n)))
+        .collect();
+    if names.len() > 12 {
+        v.push(format!("… ({} in all)", names.len()));
+    }
+    format!("[{}]", v.join(", "))
+}
+
+/// Positions as a message lists them, at most 12 (then `… (N in all)`).
+fn clip_positions(p: &[usize]) -> String {
+    let mut v: Vec<String> = p.iter().take(12).map(|n| n.to_string()).collect();
+    if p.len() > 12 {
+        v.push(format!("… ({} in all)", p.len()));
+    }
+    format!("[{}]", v.join(", "))
+}
 
 /// Where in an input file something was found.
 ///
@@ -101,6 +155,29 @@ pub enum LdhError {
         /// The limit, samples.
         limit: usize,
     },
+    /// A file read whole (a parameter file, column map, manifest, model, or a table read back) is
+    /// larger than its kind's limit (docs/robustness.md, "Size limits").
+    #[error("{}: {what} of {size_mb:.1} MB, above the limit of {limit_mb} MB for {what} (docs/robustness.md, \"Size limits\")", path.display())]
+    TextTooLarge {
+        /// The file.
+        path: PathBuf,
+        /// Its role (`a model file`).
+        what: &'static str,
+        /// Its size, MB (at least this much when the size was not known in advance).
+        size_mb: f64,
+        /// The limit, MB.
+        limit_mb: f64,
+    },
+    /// A line of a recording (or of a cohort manifest) is longer than
+    /// [`crate::io::MAX_LINE_BYTES`]; a recording's is refused while it streams, before more than
+    /// the limit is held.
+    #[error("{loc}: the line is longer than {limit_bytes} bytes, the most a line of a recording or manifest may hold (a row of either has a few hundred): a file without line ends, or a runaway cell?")]
+    LineTooLong {
+        /// The file and the line.
+        loc: Location,
+        /// The limit, bytes (line ending included).
+        limit_bytes: usize,
+    },
     /// The memory to read a file could not be had (its buffers are reserved fallibly, so one
     /// huge recording fails alone instead of aborting the batch).
     #[error("{}: not enough memory to read it ({needed_mb:.0} MB more were needed); analyse it alone, on a machine with more memory, or split it", path.display())]
@@ -111,7 +188,7 @@ pub enum LdhError {
         needed_mb: f64,
     },
     /// Opening or reading a file failed.
-    #[error("{}: cannot read: {source}", path.display())]
+    #[error("{}: cannot read: {}", path.display(), clip_to(&source.to_string(), REASON_CHARS))]
     Io {
         /// The file.
         path: PathBuf,
@@ -153,7 +230,7 @@ pub enum LdhError {
         big_endian: bool,
     },
     /// No header row with the expected columns was found.
-    #[error("{}: no header row with the expected columns; missing {missing:?} (format '{format}'){hint}. First row seen: {first_row:?}", path.display())]
+    #[error("{}: no header row with the expected columns; missing {} (format '{}'){}. First row seen: {:?}", path.display(), clip_names(missing), clip_to(format, REASON_CHARS), clip_to(hint, REASON_CHARS), clip_to(first_row, FIRST_ROW_CHARS))]
     NoHeader {
         /// The file.
         path: PathBuf,
@@ -167,7 +244,11 @@ pub enum LdhError {
         first_row: String,
     },
     /// Required columns are missing from the header.
-    #[error("{loc}: missing column(s) {missing:?} required by {by}")]
+    #[error(
+        "{loc}: missing column(s) {} required by {}",
+        clip_names(missing),
+        clip_to(by, REASON_CHARS)
+    )]
     MissingColumn {
         /// Where (the header line).
         loc: Location,
@@ -178,7 +259,12 @@ pub enum LdhError {
         by: String,
     },
     /// A header names a column that is not accepted there (a typo would otherwise be ignored).
-    #[error("{loc}: unknown column '{column}' in {what}; accepted: {accepted}")]
+    #[error(
+        "{loc}: unknown column '{}' in {}; accepted: {}",
+        clip(column),
+        clip_to(what, REASON_CHARS),
+        clip_to(accepted, REASON_CHARS)
+    )]
     UnknownColumn {
         /// Where (the header line and column).
         loc: Location,
@@ -190,7 +276,7 @@ pub enum LdhError {
         accepted: String,
     },
     /// A column the format reads occurs more than once in the header: neither may silently win.
-    #[error("{loc}: column '{column}' occurs {} times in the header (columns {positions:?}); rename the copies or, for one block of columns per sensor, set [sensor] block in the format", positions.len())]
+    #[error("{loc}: column '{}' occurs {} times in the header (columns {}); rename the copies or, for one block of columns per sensor, set [sensor] block in the format", clip(column), positions.len(), clip_positions(positions))]
     DuplicateColumn {
         /// Where (the header line).
         loc: Location,
@@ -200,7 +286,10 @@ pub enum LdhError {
         positions: Vec<usize>,
     },
     /// A row has fewer or more fields than the header.
-    #[error("{loc}: row has {found} fields, the header has {expected}{hint}")]
+    #[error(
+        "{loc}: row has {found} fields, the header has {expected}{}",
+        clip_to(hint, REASON_CHARS)
+    )]
     FieldCount {
         /// Where.
         loc: Location,
@@ -212,7 +301,12 @@ pub enum LdhError {
         hint: String,
     },
     /// A cell that must hold a number does not.
-    #[error("{loc}: column '{column}': '{value}' is not a number{hint}")]
+    #[error(
+        "{loc}: column '{}': '{}' is not a number{}",
+        clip(column),
+        clip(value),
+        clip_to(hint, REASON_CHARS)
+    )]
     NotANumber {
         /// Where.
         loc: Location,
@@ -224,7 +318,12 @@ pub enum LdhError {
         hint: String,
     },
     /// A cell holds a value that is not one of the accepted ones.
-    #[error("{loc}: column '{column}': '{value}' is not valid; expected {expected}")]
+    #[error(
+        "{loc}: column '{}': '{}' is not valid; expected {}",
+        clip(column),
+        clip(value),
+        clip_to(expected, REASON_CHARS)
+    )]
     InvalidValue {
         /// Where.
         loc: Location,
@@ -236,7 +335,7 @@ pub enum LdhError {
         expected: String,
     },
     /// A cell holds NaN or an infinity.
-    #[error("{loc}: column '{column}': non-finite value '{value}'")]
+    #[error("{loc}: column '{}': non-finite value '{}'", clip(column), clip(value))]
     NonFinite {
         /// Where.
         loc: Location,
@@ -247,7 +346,7 @@ pub enum LdhError {
     },
     /// A finite value far beyond any sensor's range (above [`crate::io::MAX_ABS_SIGNAL`] in
     /// magnitude, e.g. `1e308`): a corrupted cell; it would overflow the arithmetic.
-    #[error("{loc}: column '{column}': value '{value}' is beyond any sensor's range (magnitude above 1e12): a corrupted cell?")]
+    #[error("{loc}: column '{}': value '{}' is beyond any sensor's range (magnitude above 1e12): a corrupted cell?", clip(column), clip(value))]
     OutOfRange {
         /// Where.
         loc: Location,
@@ -291,7 +390,7 @@ pub enum LdhError {
         min_s: f64,
     },
     /// The sampling rate cannot be determined or is implausible.
-    #[error("{}: sampling rate problem: {reason}", path.display())]
+    #[error("{}: sampling rate problem: {}", path.display(), clip_to(reason, REASON_CHARS))]
     SamplingRate {
         /// The file.
         path: PathBuf,
@@ -299,7 +398,7 @@ pub enum LdhError {
         reason: String,
     },
     /// A value in the data is physically implausible (e.g. a unit mix-up).
-    #[error("{}: implausible data: {reason}", path.display())]
+    #[error("{}: implausible data: {}", path.display(), clip_to(reason, REASON_CHARS))]
     Implausible {
         /// The file.
         path: PathBuf,
@@ -307,7 +406,11 @@ pub enum LdhError {
         reason: String,
     },
     /// A format (column map) description is invalid.
-    #[error("format '{name}': {reason}")]
+    #[error(
+        "format '{}': {}",
+        clip_to(name, REASON_CHARS),
+        clip_to(reason, REASON_CHARS)
+    )]
     Format {
         /// The format's name or file.
         name: String,
@@ -315,7 +418,11 @@ pub enum LdhError {
         reason: String,
     },
     /// A parameter is outside its valid range.
-    #[error("invalid parameter {name} = {value}: {reason}")]
+    #[error(
+        "invalid parameter {name} = {}: {}",
+        clip(value),
+        clip_to(reason, REASON_CHARS)
+    )]
     Param {
         /// Parameter name (with unit).
         name: &'static str,
@@ -325,7 +432,11 @@ pub enum LdhError {
         reason: String,
     },
     /// A signal is unusable for an algorithm (too short, wrong length…).
-    #[error("{context}: {reason}")]
+    #[error(
+        "{}: {}",
+        clip_to(context, REASON_CHARS),
+        clip_to(reason, REASON_CHARS)
+    )]
     Signal {
         /// Which step and signal.
         context: String,
@@ -342,16 +453,16 @@ pub enum LdhError {
     #[error(transparent)]
     Nonlinear(#[from] crate::nonlinear::NonlinearError),
     /// A table could not be read or written as CSV.
-    #[error("csv: {0}")]
+    #[error("csv: {}", clip_to(&.0.to_string(), REASON_CHARS))]
     Csv(#[from] csv::Error),
     /// A value could not be read or written as JSON.
-    #[error("json: {0}")]
+    #[error("json: {}", clip_to(&.0.to_string(), REASON_CHARS))]
     Json(#[from] serde_json::Error),
     /// The MLP classifier refused its parameters or data.
     #[error("mlp: {0}")]
     Mlp(#[from] crate::ml::mlp::MlpError),
     /// Writing output failed.
-    #[error("{}: cannot write: {reason}", path.display())]
+    #[error("{}: cannot write: {}", path.display(), clip_to(reason, REASON_CHARS))]
     Write {
         /// The file.
         path: PathBuf,
@@ -428,5 +539,34 @@ mod tests {
         let e: LdhError = serde_json::from_str::<u32>("x").unwrap_err().into();
         assert!(e.to_string().starts_with("json: "), "{e}");
         assert_eq!(e.kind(), ErrorKind::Data);
+    }
+
+    #[test]
+    fn echoed_values_are_cut_with_their_length() {
+        assert_eq!(clip("short"), "short");
+        let v = "é".repeat(ECHO_CHARS);
+        assert_eq!(clip(&v), v.as_str());
+        let long = format!("{v}x");
+        assert_eq!(clip(&long), format!("{v}… ({} characters)", ECHO_CHARS + 1));
+        let e = LdhError::NotANumber {
+            loc: Location::cell("a.csv", 3, 2),
+            column: "c".repeat(10_000),
+            value: "v".repeat(50_000_000),
+            hint: String::new(),
+        };
+        let m = e.to_string();
+        assert!(m.len() < 300, "{}", m.len());
+        assert!(
+            m.contains("… (50000000 characters)' is not a number"),
+            "{m}"
+        );
+        let e = LdhError::DuplicateColumn {
+            loc: Location::line("a.csv", 1),
+            column: "a".into(),
+            positions: (1..100_000).collect(),
+        };
+        assert!(e.to_string().contains("… (99999 in all)"), "{e}");
+        let e = LdhError::param("x", "1".repeat(1_000_000), "r".repeat(1_000_000));
+        assert!(e.to_string().len() < 1000);
     }
 }

@@ -446,8 +446,9 @@ pub const EVENT_COLUMNS: [&str; 6] = ["subject_id", "time_s", "side", "event", "
 pub fn stride_groups(
     path: &std::path::Path,
 ) -> Result<impl Iterator<Item = Result<(String, Vec<StrideRow>)>>> {
-    let rdr = csv::Reader::from_path(path)
-        .map_err(|e| LdhError::signal(path.display().to_string(), e.to_string()))?;
+    // Streamed (no size limit), but opened as every input is: a FIFO or device is refused.
+    let (file, _) = crate::io::open_regular(path, "a stride table")?;
+    let rdr = csv::Reader::from_reader(std::io::BufReader::new(file));
     let origin = path.display().to_string();
     let mut it = rdr.into_deserialize::<StrideRow>().peekable();
     Ok(std::iter::from_fn(move || {

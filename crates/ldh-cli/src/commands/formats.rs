@@ -17,7 +17,10 @@ pub fn run(name: Option<String>) -> anyhow::Result<ExitCode> {
             Some(text) => print!("{text}"),
             None => {
                 super::resolve_format(&n)?;
-                print!("{}", std::fs::read_to_string(&n)?)
+                let path = std::path::Path::new(&n);
+                let what = "a column map (format TOML)";
+                let max = ldh_core::io::MAX_FORMAT_MB;
+                print!("{}", ldh_core::io::read_text_limited(path, max, what)?)
             }
         },
     }

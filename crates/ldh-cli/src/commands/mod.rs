@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use ldh_core::attitude::AttitudeModel;
@@ -94,10 +94,16 @@ pub fn thread_pool(jobs: Option<usize>) -> Result<rayon::ThreadPool> {
     Ok(b.build()?)
 }
 
-/// Read a TOML parameter file into `T`.
+/// Read a TOML parameter file into `T`: a regular file of at most
+/// [`ldh_core::io::MAX_PARAMS_MB`] MB (a FIFO or device is refused without blocking); the
+/// parser's message, which quotes the file, cut to a few lines.
 pub fn read_toml<T: serde::de::DeserializeOwned>(f: &Path, what: &str) -> Result<T> {
-    let text = std::fs::read_to_string(f).with_context(|| format!("reading {}", f.display()))?;
-    toml::from_str::<T>(&text).with_context(|| format!("{what} in {}", f.display()))
+    let text = ldh_core::io::read_text_limited(f, ldh_core::io::MAX_PARAMS_MB, "a parameter file")?;
+    toml::from_str::<T>(&text).map_err(|e| {
+        let reason = e.to_string();
+        let reason = ldh_core::error::clip_to(&reason, ldh_core::error::REASON_CHARS);
+        anyhow::anyhow!("{what} in {}: {reason}", f.display())
+    })
 }
 
 /// Analysis parameters: the `--params` file (or the defaults) with the flags on top.

@@ -140,13 +140,12 @@ impl FormatSpec {
         Ok(spec)
     }
 
-    /// Read a format from a TOML file.
+    /// Read a format from a TOML file (a regular file of at most
+    /// [`super::MAX_FORMAT_MB`] MB: [`super::read_text_limited`]).
     pub fn from_toml_file(path: impl AsRef<Path>) -> Result<Self> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| LdhError::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text =
+            super::read_text_limited(path, super::MAX_FORMAT_MB, "a column map (format TOML)")?;
         FormatSpec::from_toml_str(&text, &path.display().to_string())
     }
 

@@ -90,7 +90,7 @@ pub(super) fn find_header<R: BufRead>(
             continue;
         }
         if first_row.is_empty() {
-            first_row = trimmed.chars().take(200).collect();
+            first_row = trimmed.to_string();
         }
         for f in &candidates {
             let row = (lineno, line);

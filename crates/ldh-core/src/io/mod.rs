@@ -18,6 +18,10 @@ pub mod writer;
 
 pub use format::{ColumnRef, FormatSpec, SensorSelect, BUILTIN_FORMATS, DETECTED_FORMATS};
 pub use inspect::{inspect, Inspection, PreprocessSummary};
+pub use limits::{
+    open_regular, read_text_limited, MAX_FORMAT_MB, MAX_MANIFEST_MB, MAX_MODEL_MB, MAX_PARAMS_MB,
+    MAX_TABLE_MB,
+};
 pub use reader::{
     flat_channel_warnings, read_recording, read_recording_bytes, read_recording_from, GapPolicy,
     ReadParams, ReadReport, ValidReadParams, DEFAULT_MAX_SAMPLES,
@@ -32,6 +36,13 @@ pub use writer::{
 /// is a corrupted cell, refused with its line and column (it would overflow the filters'
 /// arithmetic and silently void the recording).
 pub const MAX_ABS_SIGNAL: f64 = 1e12;
+
+/// The longest line a recording may hold, bytes, line ending included: 65 536 (64 KiB). A row
+/// of a sensor export holds a few hundred bytes, a header row of a wide multi-sensor export a
+/// few kB. A longer line (a file without line ends, a runaway cell) is refused with its file
+/// and line ([`crate::LdhError::LineTooLong`]) while it streams: no more than this is ever
+/// held of it.
+pub const MAX_LINE_BYTES: usize = 1 << 16;
 
 #[cfg(test)]
 mod tests;

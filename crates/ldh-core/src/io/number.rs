@@ -180,7 +180,7 @@ fn parse_number_in_full(cell: &str, decimal: Decimal, delim: u8, at: &CellAt) ->
             Err(LdhError::NotANumber {
                 loc: Location::cell(at.path, at.line, at.col + 1),
                 column: at.name.to_string(),
-                value: cell.chars().take(60).collect(),
+                value: cell.to_string(),
                 hint,
             })
         }

@@ -275,7 +275,7 @@ fn parse_signal_cell(cell: &str, lineno: u64, c: usize, layout: &Layout) -> Resu
         return Err(LdhError::OutOfRange {
             loc: Location::cell(layout.path, lineno, c + 1),
             column: layout.header_fields[c].clone(),
-            value: cell.chars().take(60).collect(),
+            value: cell.to_string(),
         });
     }
     Ok(v)

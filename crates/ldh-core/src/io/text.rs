@@ -3,14 +3,16 @@
 //! is refused here with the file and the line and byte offset; a NUL byte anywhere with its
 //! line; a cell that is not a number with its line and column.
 //!
-//! Streaming: only the current line is held, so reading takes memory for the columns kept, not
-//! for the file. The first 64 KiB are checked as a whole before any line is parsed (binary
+//! Streaming: only the current line is held (at most [`MAX_LINE_BYTES`]: a longer line is
+//! refused with its file and line, before more of it is read), so reading takes memory for the
+//! columns kept, not for the file. The first 64 KiB are checked as a whole before any line is parsed (binary
 //! bytes, UTF-16, UTF-8): in a small file a text-level fault is reported before any other, as
 //! when the whole file was decoded first; further on, the first fault in file order is.
 
 use std::io::{BufRead, Read};
 use std::path::Path;
 
+use super::MAX_LINE_BYTES;
 use crate::error::{LdhError, Location, Result};
 
 /// Bytes checked as a whole before parsing: binary bytes, UTF-16 and UTF-8 validity.
@@ -18,7 +20,8 @@ const HEAD_BYTES: usize = 1 << 16;
 
 /// The lines of a byte stream, numbered from 1, read one at a time: a trailing `\n`, `\r\n`
 /// and one more `\r` removed, a NUL byte and invalid UTF-8 refused with the line, a UTF-8
-/// byte-order mark skipped, and the bytes counted against the file-size limit.
+/// byte-order mark skipped, a line longer than [`MAX_LINE_BYTES`] refused, and the bytes
+/// counted against the file-size limit.
 pub(super) struct Lines<'p, R> {
     src: std::io::Chain<std::io::Cursor<Vec<u8>>, R>,
     buf: Vec<u8>,
@@ -65,16 +68,24 @@ impl<'p, R: BufRead> Lines<'p, R> {
         })
     }
 
-    /// The raw bytes of the next line, newline included (empty at the end); counted.
+    /// The raw bytes of the next line, newline included (empty at the end); counted. A line
+    /// longer than [`MAX_LINE_BYTES`] is refused once that much of it is read
+    /// ([`LdhError::LineTooLong`]): no more is ever held.
     fn next_raw(&mut self) -> Result<u64> {
         self.buf.clear();
-        let n = self
-            .src
+        let n = (&mut self.src)
+            .take(MAX_LINE_BYTES as u64 + 1)
             .read_until(b'\n', &mut self.buf)
             .map_err(|source| LdhError::Io {
                 path: self.path.to_path_buf(),
                 source,
             })?;
+        if n > MAX_LINE_BYTES {
+            return Err(LdhError::LineTooLong {
+                loc: Location::line(self.path, self.lineno + 1),
+                limit_bytes: MAX_LINE_BYTES,
+            });
+        }
         let start = self.offset;
         self.offset += n as u64;
         if let Some((limit, limit_mb)) = self.limit {

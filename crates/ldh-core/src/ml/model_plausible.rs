@@ -43,10 +43,8 @@ use super::model::{FittedModel, ModelFile};
 use super::model_check::ModelError;
 use crate::output::Parameter;
 
-/// Largest model file read, MB: parsing takes about 23 times the file's size in memory (a 31 MB
-/// forest peaked at 0.72 GB), so a model stays well under 1 GB. A default 100-tree forest takes
-/// ≈ 0.6 kB per training row (28 kB for 48 rows): about 25 000 rows fit.
-pub const MODEL_MAX_MB: f64 = 16.0;
+/// Largest model file read, MB: [`crate::io::MAX_MODEL_MB`] (its measurement is there).
+pub const MODEL_MAX_MB: f64 = crate::io::MAX_MODEL_MB;
 /// Most features of a model.
 pub const MAX_FEATURES: usize = 256;
 /// Most training rows of a model.

@@ -60,30 +60,18 @@ pub fn predict(model: &ModelFile, rows: &[RecordingRow]) -> Result<PredictOutcom
 /// at most [`MODEL_MAX_MB`] (a folder, FIFO or device, or a larger file, is refused before
 /// anything is parsed).
 pub fn read_model(path: &std::path::Path) -> Result<ModelFile> {
-    use std::io::Read;
     let origin = path.display().to_string();
-    let too_large = |size_mb: f64| ModelError::TooLarge {
-        origin: origin.clone(),
-        size_mb,
-        limit_mb: MODEL_MAX_MB,
-    };
-    // The one opening of a model file (issue 37: a size-limited open).
-    let mut file = match crate::io::limits::open_limited(path, MODEL_MAX_MB) {
-        Err(LdhError::FileTooLarge { size_mb, .. }) => return Err(too_large(size_mb).into()),
+    // The one opening of a model file (issue 37): a regular file, read up to the limit.
+    let text = match crate::io::read_text_limited(path, MODEL_MAX_MB, "a model file") {
+        Err(LdhError::TextTooLarge { size_mb, .. }) => {
+            return Err(ModelError::TooLarge {
+                origin,
+                size_mb,
+                limit_mb: MODEL_MAX_MB,
+            }
+            .into())
+        }
         r => r?,
     };
-    let mut bytes = Vec::new();
-    file.read_to_end(&mut bytes)
-        .map_err(|source| LdhError::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
-    if bytes.len() as f64 > MODEL_MAX_MB * 1e6 {
-        return Err(too_large(bytes.len() as f64 / 1e6).into());
-    }
-    let text = String::from_utf8(bytes).map_err(|e| ModelError::NotJson {
-        origin: origin.clone(),
-        reason: format!("not UTF-8 text: {e}"),
-    })?;
     Ok(ModelFile::from_json(&text, &origin)?)
 }

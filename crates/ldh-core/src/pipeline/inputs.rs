@@ -89,10 +89,7 @@ pub struct InputOptions {
 /// Parse a cohort manifest (SPEC §2; columns in [`super::manifest`]); paths and column maps
 /// relative to the manifest's folder.
 pub fn read_manifest(path: &Path) -> Result<Vec<SubjectInput>> {
-    let text = std::fs::read_to_string(path).map_err(|source| LdhError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = crate::io::read_text_limited(path, crate::io::MAX_MANIFEST_MB, "a cohort manifest")?;
     let dir = path.parent().unwrap_or(Path::new("."));
     parse_manifest(&text, path, &|rel| Source::Path(dir.join(rel)), &|f| {
         resolve_format_in(dir, f)

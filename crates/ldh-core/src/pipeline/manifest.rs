@@ -155,6 +155,17 @@ pub(crate) fn parse_manifest(
     format: &dyn Fn(&str) -> Result<FormatSpec>,
 ) -> Result<Vec<SubjectInput>> {
     let text = text.trim_start_matches('\u{feff}');
+    // A line longer than a recording's may be (a runaway label) is refused with its line: its
+    // value would be copied into every output table of the subject.
+    if let Some(i) = text
+        .split('\n')
+        .position(|l| l.len() + 1 > crate::io::MAX_LINE_BYTES)
+    {
+        return Err(LdhError::LineTooLong {
+            loc: Location::line(path, i as u64 + 1),
+            limit_bytes: crate::io::MAX_LINE_BYTES,
+        });
+    }
     let mut rdr = csv::ReaderBuilder::new()
         .has_headers(true)
         .trim(csv::Trim::All)

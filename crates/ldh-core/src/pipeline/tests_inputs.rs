@@ -387,3 +387,18 @@ fn table3_says_when_a_cell_has_fewer_subjects_than_its_group() {
     assert_eq!(line.matches("(n = 4)").count(), 2, "{line}");
     assert!(md.contains("the others' values were not measured"), "{md}");
 }
+
+#[test]
+fn a_manifest_line_longer_than_the_line_bound_is_refused_with_its_line() {
+    let d = tempfile::tempdir().unwrap();
+    let p = d.path().join("manifest.csv");
+    let label = "x".repeat(crate::io::MAX_LINE_BYTES);
+    let text = format!("subject_id,group,left,right\nA,{label},a.csv,b.csv\n");
+    std::fs::write(&p, text).unwrap();
+    let e = read_manifest(&p).unwrap_err().to_string();
+    assert!(
+        e.contains("manifest.csv:2: the line is longer than 65536 bytes"),
+        "{e}"
+    );
+    assert!(e.len() < 400, "{e}");
+}

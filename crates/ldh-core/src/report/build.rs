@@ -29,11 +29,9 @@ pub struct BuildSources<'a> {
     pub train: Option<&'a Path>,
 }
 
+/// A table of an output folder, read back whole (at most [`crate::io::MAX_TABLE_MB`] MB).
 fn read_text(path: &Path) -> Result<String> {
-    std::fs::read_to_string(path).map_err(|source| LdhError::Io {
-        path: path.to_path_buf(),
-        source,
-    })
+    crate::io::read_text_limited(path, crate::io::MAX_TABLE_MB, "an output table")
 }
 
 fn read_json<T: serde::de::DeserializeOwned>(path: &Path, what: &str) -> Result<T> {

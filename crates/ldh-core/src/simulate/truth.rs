@@ -181,10 +181,7 @@ impl SimSubject {
 /// Read a `truth.json`.
 pub fn read_truth(path: impl AsRef<Path>) -> Result<SubjectTruth> {
     let path = path.as_ref();
-    let text = std::fs::read_to_string(path).map_err(|source| LdhError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = crate::io::read_text_limited(path, crate::io::MAX_TABLE_MB, "a ground-truth file")?;
     serde_json::from_str(&text).map_err(|e| LdhError::Format {
         name: path.display().to_string(),
         reason: format!("not a ground-truth file: {e}"),
