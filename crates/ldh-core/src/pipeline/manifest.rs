@@ -382,6 +382,7 @@ fn parse_row(
         left_format,
         right_format,
         trial_id: None,
+        ..SubjectInput::default()
     })
 }
 
