@@ -3,7 +3,10 @@ case gives the outcome its expected.toml documents — the typed exception, or a
 warnings — and never a crash. The Rust twin is tests/tests/bad_inputs.rs."""
 import os
 import pathlib
+import resource
 import shutil
+import subprocess
+import sys
 import warnings
 
 import numpy as np
@@ -93,9 +96,61 @@ def test_the_corpus_is_complete():
         assert f"`{name}`" in readme, name
 
 
+# Runs a `python` case's code and prints how it ended, for run_python_case.
+_RUNNER = """
+import os, sys, traceback
+code = sys.stdin.read()
+try:
+    exec(compile(code, "case", "exec"), {"__name__": "__main__"})
+except BaseException as e:
+    print("RAISED", type(e).__name__, flush=True)
+    print(str(e)[:100000], flush=True)
+    sys.exit(3)
+print("SUCCEEDED", flush=True)
+"""
+
+ONE_GB_KIB = 1_000_000_000 // 1024
+
+
+def _shell(lines, case, tmp):
+    for line in lines:
+        line = line.replace("{case}", str(case)).replace("{tmp}", str(tmp))
+        subprocess.run(["bash", "-euo", "pipefail", "-c", line], cwd=tmp, check=True)
+
+
+def run_python_case(name, exp, tmp_path):
+    """A `command = "python"` case: its code in a subprocess (a time limit, peak RSS <= 1 GB),
+    the exception it must raise (by class name) and the fragments of its message."""
+    case = (CORPUS / name).resolve()
+    _shell(exp.get("setup", []), case, tmp_path)
+    env = dict(os.environ, LDH_CASE=str(case))
+    before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    p = subprocess.run([sys.executable, "-c", _RUNNER], input=exp["code"], cwd=tmp_path, env=env,
+                       capture_output=True, text=True, timeout=exp.get("timeout_s", 120))
+    rss = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    # ru_maxrss of children is the largest of any child so far: a rise means this one set it.
+    assert rss <= ONE_GB_KIB or rss == before, f"peak RSS {rss} KiB > 1 GB"
+    out = p.stdout
+    assert "Traceback" not in p.stderr or "RAISED" in out, p.stderr
+    if "raises" in exp:
+        assert out.startswith("RAISED "), f"expected {exp['raises']}, got: {out}{p.stderr}"
+        got = out.split()[1]
+        assert got == exp["raises"], f"raised {got}, expected {exp['raises']}: {out}"
+        assert issubclass(getattr(ldh, got), ldh.LdhError), got
+    else:
+        assert "SUCCEEDED" in out, f"{out}{p.stderr}"
+    for m in exp.get("contains", []):
+        assert m in out, (m, out)
+
+
 @pytest.mark.parametrize("name", CASES)
 def test_bad_input(name, tmp_path):
     exp = _load(CORPUS / name / "expected.toml")
+    if exp["command"] == "cli":
+        pytest.skip("a sequence of ldh runs: tests/tests/bad_inputs.rs runs it")
+    if exp["command"] == "python":
+        run_python_case(name, exp, tmp_path)
+        return
     if exp.get("generated"):
         d = tmp_path / name
         d.mkdir()
