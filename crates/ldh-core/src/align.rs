@@ -82,9 +82,21 @@ impl AlignParams {
             60.0,
             "s (at least align.still_window_s)",
         )?;
-        within("align.still_gyro_dps", self.still_gyro_dps, 0.0, 60.0, "deg/s")?;
+        within(
+            "align.still_gyro_dps",
+            self.still_gyro_dps,
+            0.0,
+            60.0,
+            "deg/s",
+        )?;
         within("align.still_acc_sd_g", self.still_acc_sd_g, 0.0, 0.2, "g")?;
-        within("align.walking_gyro_dps", self.walking_gyro_dps, 10.0, 300.0, "deg/s")?;
+        within(
+            "align.walking_gyro_dps",
+            self.walking_gyro_dps,
+            10.0,
+            300.0,
+            "deg/s",
+        )?;
         Ok(ValidAlignParams(self.clone()))
     }
 }

@@ -339,7 +339,11 @@ fn loose_files_input(files: &[&PathBuf], opts: &InputOptions) -> Result<SubjectI
     let says: Vec<Option<Side>> = files
         .iter()
         .map(|f| {
-            match side_of_name(&f.file_name().map(|n| n.to_string_lossy()).unwrap_or_default()) {
+            match side_of_name(
+                &f.file_name()
+                    .map(|n| n.to_string_lossy())
+                    .unwrap_or_default(),
+            ) {
                 NameSide::Leg(s) => Some(s),
                 _ => None,
             }

@@ -52,7 +52,9 @@ pub fn side_of_name(name: &str) -> NameSide {
     match ends.as_slice() {
         [s] | [s, _] if ends.iter().all(|x| x == s) => return NameSide::Leg(*s),
         [_, _] => {
-            return NameSide::Unclear("its name starts with one side word and ends with the other".into())
+            return NameSide::Unclear(
+                "its name starts with one side word and ends with the other".into(),
+            )
         }
         _ => {}
     }
@@ -114,7 +116,9 @@ pub fn pair_folder(d: &Path) -> FolderPairing {
         let data = Path::new(&name)
             .extension()
             .is_some_and(|e| DATA_EXTENSIONS.iter().any(|x| e.eq_ignore_ascii_case(x)));
-        let is_link = p.symlink_metadata().is_ok_and(|m| m.file_type().is_symlink());
+        let is_link = p
+            .symlink_metadata()
+            .is_ok_and(|m| m.file_type().is_symlink());
         if p.is_dir() || !data {
             continue;
         }
@@ -193,7 +197,9 @@ mod tests {
             assert_eq!(side_of_name(n), Leg(want.unwrap()), "{n}");
         }
         assert!(matches!(side_of_name("Albright.csv"), Unclear(w) if w.contains("'albright'")));
-        assert!(matches!(side_of_name("P07_left_v2.csv"), Unclear(w) if w.contains("neither the first")));
+        assert!(
+            matches!(side_of_name("P07_left_v2.csv"), Unclear(w) if w.contains("neither the first"))
+        );
         assert!(matches!(side_of_name("left_to_right.csv"), Unclear(_)));
         assert_eq!(side_of_name("a.csv"), Silent);
         assert_eq!(side_of_name("HuGaDB_v1_walking_01_00.txt"), Silent);
@@ -215,10 +221,19 @@ mod tests {
         std::fs::write(only.path().join("copyright.txt"), "x").unwrap();
         assert!(!pair_folder(only.path()).is_subject());
         let all = f.unpaired.join("\n");
-        assert!(all.contains("two files look like the left leg: a_left.csv, b_left.csv"), "{all}");
-        assert!(all.contains("Albright.csv: ignored, 'right' is part of the word 'albright'"), "{all}");
+        assert!(
+            all.contains("two files look like the left leg: a_left.csv, b_left.csv"),
+            "{all}"
+        );
+        assert!(
+            all.contains("Albright.csv: ignored, 'right' is part of the word 'albright'"),
+            "{all}"
+        );
         #[cfg(unix)]
-        assert!(all.contains("right.csv: a dangling symlink (its target ../gone/right.csv"), "{all}");
+        assert!(
+            all.contains("right.csv: a dangling symlink (its target ../gone/right.csv"),
+            "{all}"
+        );
         assert!(!all.contains("notes.md"));
         // left.csv wins over another left name; a name with the side word at its end is a leg
         w("left.csv");
@@ -228,7 +243,10 @@ mod tests {
         assert_eq!(f.left, Some(d.path().join("left.csv")));
         assert_eq!(f.right, Some(d.path().join("Albright_right.csv")));
         let all = f.unpaired.join("\n");
-        assert!(all.contains("a_left.csv: ignored, left.csv is the left leg"), "{all}");
+        assert!(
+            all.contains("a_left.csv: ignored, left.csv is the left leg"),
+            "{all}"
+        );
         // a folder of subject folders is no subject
         let c = tempfile::tempdir().unwrap();
         std::fs::create_dir(c.path().join("left")).unwrap();

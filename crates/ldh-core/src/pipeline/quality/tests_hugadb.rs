@@ -386,7 +386,9 @@ fn hugadb_format_maps_and_raw_reading_agree_on_the_attitude() {
                 if !(p.wqk_deg.is_nan()
                     && p.pbi_deg.is_nan()
                     && p.withheld.contains_key("wqk_deg")
-                    && l.warnings.iter().any(|w| w.code == codes::NO_QUIET_STANDING))
+                    && l.warnings
+                        .iter()
+                        .any(|w| w.code == codes::NO_QUIET_STANDING))
                 {
                     failures.push(format!("{f} {side}: WQK {:.1} not withheld", p.wqk_deg));
                 }
@@ -397,10 +399,17 @@ fn hugadb_format_maps_and_raw_reading_agree_on_the_attitude() {
                 let n = att.pitch_deg.len();
                 let idx = |t: f64| ((t * att.fs_hz).round().max(0.0) as usize).min(n - 1);
                 let strides = l.strides.iter().filter(|s| s.valid);
-                let w = |s: &crate::gait::Stride| &att.pitch_deg[idx(s.hs_time_s)..=idx(s.next_hs_time_s).max(idx(s.hs_time_s))];
+                let w = |s: &crate::gait::Stride| {
+                    &att.pitch_deg[idx(s.hs_time_s)..=idx(s.next_hs_time_s).max(idx(s.hs_time_s))]
+                };
                 (
-                    med(strides.clone().map(|s| w(s).iter().cloned().fold(f64::MIN, f64::max)).collect()),
-                    med(strides.map(|s| -w(s).iter().cloned().fold(f64::MAX, f64::min)).collect()),
+                    med(strides
+                        .clone()
+                        .map(|s| w(s).iter().cloned().fold(f64::MIN, f64::max))
+                        .collect()),
+                    med(strides
+                        .map(|s| -w(s).iter().cloned().fold(f64::MAX, f64::min))
+                        .collect()),
                 )
             };
             let ((wa, pba), (wb, pbb)) = (peak(a), peak(b));
