@@ -55,7 +55,13 @@ impl Default for AlignParams {
 }
 
 impl AlignParams {
-    /// Validate.
+    /// Validate against physical bounds (docs/parameters.md "Bounds"): a still window of
+    /// 0.1–5 s (a window is a run of samples judged still together: below 0.1 s a mid-stance
+    /// pause looks still, beyond 5 s no standing of a walking recording fills it), a shortest
+    /// quiet standing of one window to 60 s, a still angular velocity up to 60 deg/s and
+    /// acceleration SD up to 0.2 g (a walking shank exceeds both within every stride), and a
+    /// walking threshold of 10–300 deg/s (below the swing peaks of 300–500 deg/s). A value
+    /// outside these finds no standing or no walking and silently moves every angle (issue 37).
     pub fn check(&self) -> Result<ValidAlignParams> {
         for (n, v) in [
             ("still_gyro_dps", self.still_gyro_dps),
@@ -68,7 +74,44 @@ impl AlignParams {
                 return Err(LdhError::param(n, v, "must be > 0"));
             }
         }
+        within("align.still_window_s", self.still_window_s, 0.1, 5.0, "s")?;
+        within(
+            "align.min_still_s",
+            self.min_still_s,
+            self.still_window_s,
+            60.0,
+            "s (at least align.still_window_s)",
+        )?;
+        within(
+            "align.still_gyro_dps",
+            self.still_gyro_dps,
+            0.0,
+            60.0,
+            "deg/s",
+        )?;
+        within("align.still_acc_sd_g", self.still_acc_sd_g, 0.0, 0.2, "g")?;
+        within(
+            "align.walking_gyro_dps",
+            self.walking_gyro_dps,
+            10.0,
+            300.0,
+            "deg/s",
+        )?;
         Ok(ValidAlignParams(self.clone()))
+    }
+}
+
+/// `v` must lie in [lo, hi] (`unit` and any rule after it in the message); the error names the
+/// parameter, its value and the range.
+pub(crate) fn within(name: &'static str, v: f64, lo: f64, hi: f64, unit: &str) -> Result<()> {
+    if v.is_finite() && (lo..=hi).contains(&v) {
+        Ok(())
+    } else {
+        Err(LdhError::param(
+            name,
+            v,
+            format!("outside its physical range [{lo}, {hi}] {unit}"),
+        ))
     }
 }
 
@@ -99,6 +142,21 @@ pub struct Alignment {
     pub sagittal_variance_share: f64,
     /// Assumptions and findings, one sentence each.
     pub notes: Vec<String>,
+}
+
+impl Alignment {
+    /// The alignment's note when it found no quiet standing (so no gyroscope bias was removed
+    /// and the shank axis came from the mean acceleration of the whole recording); `None`
+    /// when it found one.
+    pub fn no_standing_note(&self) -> Option<&str> {
+        if self.quiet_standing_s.is_some() {
+            return None;
+        }
+        self.notes
+            .iter()
+            .find(|n| n.starts_with("no quiet standing"))
+            .map(String::as_str)
+    }
 }
 
 #[cfg(test)]
@@ -265,8 +323,18 @@ fn quiet_standing(
         ]
     };
     if long.is_empty() {
+        // A window longer than the recording cannot find standing: say which (issue 37).
+        let dur = pre.acc_norm_g.len() as f64 / fs;
+        let long_window = [
+            ("align.min_still_s", p.min_still_s),
+            ("align.still_window_s", p.still_window_s),
+        ]
+        .into_iter()
+        .find(|&(_, v)| v > dur)
+        .map(|(n, v)| format!(" ({n} = {v} s is longer than the {dur:.1} s recording)"))
+        .unwrap_or_default();
         notes.push(format!(
-            "no quiet standing of {} s found: gyroscope bias not removed, shank axis from the mean acceleration of the whole recording",
+            "no quiet standing of {} s found{long_window}: gyroscope bias not removed, shank axis from the mean acceleration of the whole recording",
             p.min_still_s
         ));
         return QuietStanding {

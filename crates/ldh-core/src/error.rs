@@ -480,6 +480,7 @@ impl LdhError {
             }
             LdhError::Io { .. } | LdhError::Write { .. } => ErrorKind::Io,
             LdhError::Param { .. }
+            | LdhError::Nonlinear(crate::nonlinear::NonlinearError::InvalidParameter { .. })
             | LdhError::Stats(crate::stats::StatsError::InvalidArgument { .. }) => ErrorKind::Param,
             _ => ErrorKind::Data,
         }

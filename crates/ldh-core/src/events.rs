@@ -193,6 +193,15 @@ impl EventParams {
                 "must be > 0",
             ));
         }
+        // At most 600 deg/s: a walking shank's mid-swing peaks at 300-500 deg/s, so a higher
+        // threshold finds no stride.
+        crate::align::within(
+            "events.min_midswing_dps",
+            self.min_midswing_dps,
+            0.0,
+            600.0,
+            "deg/s",
+        )?;
         crate::gait::check_stride_range(self.min_stride_s, self.max_stride_s)?;
         for (n, v) in [
             ("hs_offset_stride", self.hs_offset_stride),

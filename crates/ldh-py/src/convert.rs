@@ -187,3 +187,33 @@ pub(crate) fn columns<'py, T: Serialize>(
     }
     Ok(d)
 }
+
+/// A Python int given for an unsigned argument (taken as `i64`, so a negative value is not
+/// pyo3's `OverflowError`) as the core's unsigned type: a negative value, or one beyond the
+/// type, is an `LdhParamError` naming the argument.
+pub(crate) fn uint<T: TryFrom<i64>>(name: &'static str, v: i64) -> Result<T, LdhError> {
+    T::try_from(v).map_err(|_| {
+        LdhError::param(
+            name,
+            v,
+            if v < 0 {
+                "must be a non-negative integer"
+            } else {
+                "is too large"
+            },
+        )
+    })
+}
+
+/// [`uint`] of an optional argument.
+pub(crate) fn opt_uint<T: TryFrom<i64>>(
+    name: &'static str,
+    v: Option<i64>,
+) -> Result<Option<T>, LdhError> {
+    v.map(|v| uint(name, v)).transpose()
+}
+
+/// [`uint`] of every element of a list argument (class labels, fold indices).
+pub(crate) fn uints<T: TryFrom<i64>>(name: &'static str, v: Vec<i64>) -> Result<Vec<T>, LdhError> {
+    v.into_iter().map(|x| uint(name, x)).collect()
+}

@@ -12,7 +12,7 @@ use ldh_core::io::{read_recording as core_read, FormatSpec, ReadParams};
 use ldh_core::preprocess::{preprocess as core_preprocess, PreprocessParams};
 use ldh_core::{LdhError, Recording};
 
-use crate::convert::{choice, to_py, value_of, vec1, vecs, Opts};
+use crate::convert::{choice, opt_uint, to_py, value_of, vec1, vecs, Opts};
 use crate::errors::OrRaise;
 
 const CHANNELS: [&str; 6] = [
@@ -74,8 +74,9 @@ pub(crate) fn read_recording<'py>(
     min_duration_s: Option<f64>,
     check_units: Option<bool>,
     max_file_size_mb: Option<f64>,
-    max_samples: Option<usize>,
+    max_samples: Option<i64>,
 ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
+    let max_samples = opt_uint("max_samples", max_samples).or_raise(py)?;
     let (rec, report) = py
         .detach(move || -> Result<_, LdhError> {
             let d = ReadParams::default();
@@ -109,8 +110,9 @@ pub(crate) fn butter_filtfilt<'py>(
     x: PyReadonlyArray1<'py, f64>,
     cutoff_hz: f64,
     fs_hz: f64,
-    order: Option<usize>,
+    order: Option<i64>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let order = opt_uint("order", order).or_raise(py)?;
     let v = x.as_slice()?.to_vec();
     let order = order.unwrap_or(PreprocessParams::default().filter_order);
     let y = py
@@ -129,11 +131,12 @@ pub(crate) fn preprocess<'py>(
     gyro_dps: [PyReadonlyArray1<'py, f64>; 3],
     fs_hz: f64,
     cutoff_hz: Option<f64>,
-    filter_order: Option<usize>,
+    filter_order: Option<i64>,
     outlier_sd: Option<f64>,
     replace_outliers: Option<bool>,
     outlier_channels: Option<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let filter_order = opt_uint("filter_order", filter_order).or_raise(py)?;
     let (acc, gyro) = (vecs(&acc_g)?, vecs(&gyro_dps)?);
     let out = py
         .detach(move || {
@@ -176,15 +179,24 @@ pub(crate) fn write_demo(py: Python<'_>, out: PathBuf) -> PyResult<usize> {
 pub(crate) fn simulate_cohort(
     py: Python<'_>,
     out: PathBuf,
-    healthy: Option<usize>,
-    ldh: Option<usize>,
+    healthy: Option<i64>,
+    ldh: Option<i64>,
     seconds: Option<f64>,
-    seed: Option<u64>,
+    seed: Option<i64>,
     rate_hz: Option<f64>,
     turn: Option<bool>,
-    slow_ldh: Option<usize>,
+    slow_ldh: Option<i64>,
     acc_range_g: Option<f64>,
 ) -> PyResult<String> {
+    let counts = || -> Result<_, LdhError> {
+        Ok((
+            opt_uint::<usize>("healthy", healthy)?,
+            opt_uint::<usize>("ldh", ldh)?,
+            opt_uint::<u64>("seed", seed)?,
+            opt_uint::<usize>("slow_ldh", slow_ldh)?,
+        ))
+    };
+    let (healthy, ldh, seed, slow_ldh) = counts().or_raise(py)?;
     let d = ldh_core::simulate::CohortParams::default();
     let sensor = match acc_range_g {
         Some(g) => d.sensor.clone().acc_range_g(g),

@@ -7,7 +7,7 @@ use pyo3::prelude::*;
 use ldh_core::ml::{Classifier, CvParams, Dataset, ModelFile};
 use ldh_core::LdhError;
 
-use crate::convert::{choice, to_py, value_of, Opts};
+use crate::convert::{choice, opt_uint, to_py, uints, value_of, Opts};
 use crate::errors::OrRaise;
 
 /// Repeated k-fold cross-validation of one classifier; the report as a dict.
@@ -17,17 +17,31 @@ use crate::errors::OrRaise;
 pub(crate) fn cross_validate<'py>(
     py: Python<'py>,
     x: PyReadonlyArray2<'py, f64>,
-    y: Vec<usize>,
+    y: Vec<i64>,
     groups: Option<Vec<String>>,
     classifier: &str,
     task: &str,
-    k: Option<usize>,
-    repeats: Option<usize>,
-    seed: Option<u64>,
+    k: Option<i64>,
+    repeats: Option<i64>,
+    seed: Option<i64>,
     kind: Option<String>,
-    folds: Option<Vec<Vec<usize>>>,
-    top_k: Option<usize>,
+    folds: Option<Vec<Vec<i64>>>,
+    top_k: Option<i64>,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let counts = || -> Result<_, LdhError> {
+        Ok((
+            uints::<usize>("y", y)?,
+            opt_uint::<usize>("k", k)?,
+            opt_uint::<usize>("repeats", repeats)?,
+            opt_uint::<u64>("seed", seed)?,
+            folds
+                .map(|f| f.into_iter().map(|v| uints::<usize>("folds", v)).collect())
+                .transpose()?,
+            opt_uint::<usize>("top_k", top_k)?,
+        ))
+    };
+    let (y, k, repeats, seed, folds, top_k): (Vec<usize>, _, _, _, Option<Vec<Vec<usize>>>, _) =
+        counts().or_raise(py)?;
     let x = x.as_array().to_owned();
     let (clf, task) = (classifier.to_string(), task.to_string());
     let report = py
@@ -63,13 +77,15 @@ pub(crate) fn cross_validate<'py>(
 pub(crate) fn train(
     py: Python<'_>,
     x: PyReadonlyArray2<'_, f64>,
-    y: Vec<usize>,
+    y: Vec<i64>,
     feature_names: Vec<String>,
     classifier: &str,
     task: &str,
-    seed: Option<u64>,
+    seed: Option<i64>,
     attitude_model: &str,
 ) -> PyResult<String> {
+    let y: Vec<usize> = uints("y", y).or_raise(py)?;
+    let seed: Option<u64> = opt_uint("seed", seed).or_raise(py)?;
     let x = x.as_array().to_owned();
     let (clf, task, am) = (
         classifier.to_string(),

@@ -8,7 +8,7 @@ use pyo3::types::PyDict;
 use ldh_core::nonlinear::{EckmannParams, RosensteinParams};
 use ldh_core::LdhError;
 
-use crate::convert::{choice, value_of, vec1};
+use crate::convert::{choice, opt_uint, value_of, vec1};
 use crate::errors::OrRaise;
 
 type LyapR<'py> = (
@@ -26,15 +26,27 @@ type LyapR<'py> = (
 pub(crate) fn lyap_r<'py>(
     py: Python<'py>,
     data: PyReadonlyArray1<'py, f64>,
-    emb_dim: Option<usize>,
-    lag: Option<usize>,
-    min_tsep: Option<usize>,
+    emb_dim: Option<i64>,
+    lag: Option<i64>,
+    min_tsep: Option<i64>,
     tau: Option<f64>,
-    min_neighbors: Option<usize>,
-    trajectory_len: Option<usize>,
+    min_neighbors: Option<i64>,
+    trajectory_len: Option<i64>,
     fit: Option<String>,
-    fit_offset: Option<usize>,
+    fit_offset: Option<i64>,
 ) -> PyResult<LyapR<'py>> {
+    let counts = || -> Result<_, LdhError> {
+        Ok((
+            opt_uint::<usize>("emb_dim", emb_dim)?,
+            opt_uint::<usize>("lag", lag)?,
+            opt_uint::<usize>("min_tsep", min_tsep)?,
+            opt_uint::<usize>("min_neighbors", min_neighbors)?,
+            opt_uint::<usize>("trajectory_len", trajectory_len)?,
+            opt_uint::<usize>("fit_offset", fit_offset)?,
+        ))
+    };
+    let (emb_dim, lag, min_tsep, min_neighbors, trajectory_len, fit_offset) =
+        counts().or_raise(py)?;
     let x = data.as_slice()?.to_vec();
     let r = py
         .detach(move || -> Result<_, LdhError> {
@@ -71,12 +83,21 @@ pub(crate) fn lyap_r<'py>(
 pub(crate) fn lyap_e<'py>(
     py: Python<'py>,
     data: PyReadonlyArray1<'py, f64>,
-    emb_dim: Option<usize>,
-    matrix_dim: Option<usize>,
-    min_nb: Option<usize>,
-    min_tsep: Option<usize>,
+    emb_dim: Option<i64>,
+    matrix_dim: Option<i64>,
+    min_nb: Option<i64>,
+    min_tsep: Option<i64>,
     tau: Option<f64>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let counts = || -> Result<_, LdhError> {
+        Ok((
+            opt_uint::<usize>("emb_dim", emb_dim)?,
+            opt_uint::<usize>("matrix_dim", matrix_dim)?,
+            opt_uint::<usize>("min_nb", min_nb)?,
+            opt_uint::<usize>("min_tsep", min_tsep)?,
+        ))
+    };
+    let (emb_dim, matrix_dim, min_nb, min_tsep) = counts().or_raise(py)?;
     let x = data.as_slice()?.to_vec();
     let r = py
         .detach(move || -> Result<_, LdhError> {

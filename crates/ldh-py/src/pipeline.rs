@@ -109,13 +109,15 @@ pub(crate) fn analyze<'py>(
     format: Option<String>,
     compute_sta: Option<bool>,
     sensor_height_m: Option<f64>,
-    n_jobs: usize,
+    n_jobs: i64,
     params: Option<&Bound<'py, PyAny>>,
     subject_id: Option<String>,
     setting: Option<String>,
     max_file_size_mb: Option<f64>,
-    max_samples: Option<usize>,
+    max_samples: Option<i64>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let n_jobs: usize = crate::convert::uint("n_jobs", n_jobs).or_raise(py)?;
+    let max_samples = crate::convert::opt_uint("max_samples", max_samples).or_raise(py)?;
     let o = options(model, detector, sensor_height_m, compute_sta, params)?;
     // `n_jobs=10**6` must not spawn a million threads: bounded by the cores, as `-j` is.
     let (jobs, jobs_warning) = match n_jobs {

@@ -215,6 +215,25 @@ impl AttitudeParams {
                 return Err(LdhError::param(n, v, "must be > 0"));
             }
         }
+        // Physical bounds of the windows and the cut-off (docs/parameters.md "Bounds"): a
+        // reacquisition after up to 10 s of rejected updates (longer is gyroscope integration
+        // across several strides), gravity windows of 0.02–1 s (foot flat lasts 0.1–0.4 s of a
+        // stride: a longer window finds none), a tilt low-pass of 0.1–10 Hz.
+        crate::align::within("attitude.reacquire_s", self.reacquire_s, 0.0, 10.0, "s")?;
+        crate::align::within(
+            "attitude.anchor_window_s",
+            self.anchor_window_s,
+            0.02,
+            1.0,
+            "s",
+        )?;
+        crate::align::within(
+            "attitude.acc_only_cutoff_hz",
+            self.acc_only_cutoff_hz,
+            0.1,
+            10.0,
+            "Hz",
+        )?;
         let [lo, hi] = self.acc_tilt_noise_bounds_deg;
         if !(lo > 0.0 && hi > lo) {
             return Err(LdhError::param(

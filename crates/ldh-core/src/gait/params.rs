@@ -88,15 +88,17 @@ impl StrideParams {
     }
 }
 
-/// Check a physiological stride-time range: 0 < min < max < ∞ (shared by events and strides).
+/// Check a physiological stride-time range: 0.2 ≤ min < max ≤ 10 s (shared by events and
+/// strides): no human stride is shorter than 0.2 s (sprinting: ≈ 0.45 s), and a 10 s stride is
+/// standing, not walking (the slowest pathological gait: ≈ 2.5–3 s).
 pub fn check_stride_range(min_stride_s: f64, max_stride_s: f64) -> Result<()> {
-    if min_stride_s > 0.0 && max_stride_s > min_stride_s && max_stride_s.is_finite() {
+    if min_stride_s >= 0.2 && max_stride_s > min_stride_s && max_stride_s <= 10.0 {
         Ok(())
     } else {
         Err(LdhError::param(
             "min_stride_s/max_stride_s",
             format!("{min_stride_s}/{max_stride_s}"),
-            "need 0 < min < max",
+            "need 0.2 <= min < max <= 10 s",
         ))
     }
 }

@@ -44,8 +44,8 @@ pub use embed::{delay_embed, lag_acf, lag_ami, state_embed};
 pub use fnn::{emb_dim_fnn, FnnParams, FnnResult, FnnRows};
 pub use gait::{gait_sta, GaitSta, GaitStaParams, LagRule, TimeNormalisation};
 pub use rosenstein::{
-    lyap_r, lyap_r_len, lyap_r_orbit, Fit, RosensteinParams, RosensteinResult,
-    ValidRosensteinParams,
+    check_orbit_size, lyap_r, lyap_r_len, lyap_r_orbit, Fit, RosensteinParams, RosensteinResult,
+    ValidRosensteinParams, MAX_ORBIT_VALUES,
 };
 
 /// Errors of the nonlinear (Lyapunov exponent) module. Every variant carries the

@@ -261,7 +261,31 @@ pub fn lyap_r(
     x: &[f64],
     params: &ValidRosensteinParams,
 ) -> Result<RosensteinResult, NonlinearError> {
+    check_orbit_size(x.len(), params.emb_dim)?;
     lyap_r_with(x, params, None)
+}
+
+/// Most values of the delay embedding [`lyap_r`] builds, samples × `emb_dim`: 10⁷ (10⁶ samples
+/// at nolds' default `emb_dim` = 10). Memory and time grow with it: 10⁷ samples at
+/// `emb_dim` 10 took 3.4 GB and more than 60 s (issue 37); at the limit the peak stays under
+/// 1 GB. A gait series is far smaller (150 strides at 100 Hz: 15 000 samples); a longer series
+/// is refused with the sizes rather than exhausting the machine.
+pub const MAX_ORBIT_VALUES: usize = 10_000_000;
+
+/// Refuse a series whose delay embedding would exceed [`MAX_ORBIT_VALUES`].
+pub fn check_orbit_size(n: usize, emb_dim: usize) -> Result<(), NonlinearError> {
+    let values = n.saturating_mul(emb_dim);
+    if values > MAX_ORBIT_VALUES {
+        return Err(invalid(
+            "data",
+            format!("{n} samples"),
+            format!(
+                "{n} samples x emb_dim {emb_dim} = {values} embedded values exceed the limit of {MAX_ORBIT_VALUES} (at most {} samples at this emb_dim; memory and time grow with the size)",
+                MAX_ORBIT_VALUES / emb_dim.max(1)
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// [`lyap_r`], searching the neighbours in `delay`, when given: false nearest neighbours' last

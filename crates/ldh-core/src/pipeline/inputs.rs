@@ -75,6 +75,11 @@ pub struct SubjectInput {
     /// Trial of the person (manifest `trial_id` or `trial`); `None` for a single recording pair.
     #[serde(default)]
     pub trial_id: Option<String>,
+    /// Files of a subject folder not taken for a leg, each named with why (ignored, ambiguous,
+    /// a dangling symlink; [`super::pairing`]): a missing leg's error names them, and a leg
+    /// that was found lists them among its reader's notes.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub unpaired: Vec<String>,
 }
 
 /// Options for inputs given directly on a command line or in an API call.
@@ -261,18 +266,18 @@ fn discover_inputs(inputs: &[PathBuf], opts: &InputOptions) -> Result<Vec<Subjec
     Ok(out)
 }
 
-/// A subject folder: one holding `left.csv` and/or `right.csv`, named after the folder.
+/// A subject folder: one whose file names say a side (`left.csv` / `right.csv`, or a side
+/// word at the start or end of the name; [`super::pairing`]), named after the folder.
 fn subject_dir(d: &Path) -> Option<SubjectInput> {
-    let (l, r) = (d.join("left.csv"), d.join("right.csv"));
-    (l.exists() || r.exists()).then(|| SubjectInput {
+    let f = super::pairing::pair_folder(d);
+    f.is_subject().then(|| SubjectInput {
         subject_id: d
             .file_name()
             .map(|n| n.to_string_lossy().to_string())
             .unwrap_or_else(|| "subject".into()),
-        group: None,
-        affected_side: None,
-        left: l.exists().then_some(Source::Path(l)),
-        right: r.exists().then_some(Source::Path(r)),
+        left: f.left.map(Source::Path),
+        right: f.right.map(Source::Path),
+        unpaired: f.unpaired,
         ..SubjectInput::default()
     })
 }
@@ -297,17 +302,28 @@ fn folder_inputs(p: &Path) -> Result<Vec<SubjectInput>> {
     subs.sort();
     let found: Vec<SubjectInput> = subs.iter().filter_map(|d| subject_dir(d)).collect();
     if found.is_empty() {
+        let ignored = super::pairing::pair_folder(p).unpaired;
         return Err(LdhError::signal(
             p.display().to_string(),
-            "no manifest.csv, no left.csv/right.csv and no subject folders with them",
+            format!(
+                "no manifest.csv, no left.csv/right.csv (or files named by their side) and no subject folders with them{}",
+                if ignored.is_empty() {
+                    String::new()
+                } else {
+                    format!("; {}", ignored.join("; "))
+                }
+            ),
         ));
     }
     Ok(found)
 }
 
-/// One subject from one or two files given directly: the file named `right` (or the second
-/// one not named `left`) is the right leg.
+/// One subject from one or two files given directly: a file whose name says its side
+/// ([`super::pairing::side_of_name`]: `P07_left.csv`, `right-P07.csv`; not `Albright.csv`) is
+/// that leg, the other file the other leg; names that say nothing pair in order (left, right).
+/// Two names of one side are refused, naming both.
 fn loose_files_input(files: &[&PathBuf], opts: &InputOptions) -> Result<SubjectInput> {
+    use super::pairing::{side_of_name, NameSide};
     if files.len() > 2 {
         return Err(LdhError::signal(
             "inputs",
@@ -317,20 +333,36 @@ fn loose_files_input(files: &[&PathBuf], opts: &InputOptions) -> Result<SubjectI
             ),
         ));
     }
-    let name = |p: &Path| {
-        p.file_name()
-            .map(|n| n.to_string_lossy().to_ascii_lowercase())
-            .unwrap_or_default()
-    };
-    let (mut left, mut right) = (None, None);
-    for (i, f) in files.iter().enumerate() {
-        let n = name(f);
-        if n.contains("right") || (i == 1 && !n.contains("left")) {
-            right = Some(Source::Path((*f).clone()));
-        } else {
-            left = Some(Source::Path((*f).clone()));
+    let says: Vec<Option<Side>> = files
+        .iter()
+        .map(|f| {
+            match side_of_name(
+                &f.file_name()
+                    .map(|n| n.to_string_lossy())
+                    .unwrap_or_default(),
+            ) {
+                NameSide::Leg(s) => Some(s),
+                _ => None,
+            }
+        })
+        .collect();
+    let src = |i: usize| Some(Source::Path(files[i].clone()));
+    let (left, right) = match says.as_slice() {
+        [Some(a), Some(b)] if a == b => {
+            return Err(LdhError::signal(
+                "inputs",
+                format!(
+                    "two files look like the {a} leg: {}, {} (name one of them by the other side, or give a manifest)",
+                    files[0].display(),
+                    files[1].display()
+                ),
+            ))
         }
-    }
+        [Some(Side::Right)] => (None, src(0)),
+        [_] => (src(0), None),
+        [Some(Side::Right), _] | [None, Some(Side::Left)] => (src(1), src(0)),
+        _ => (src(0), src(1)),
+    };
     Ok(SubjectInput {
         subject_id: opts
             .subject_id

@@ -401,6 +401,7 @@ fn parse_row(
         left_format,
         right_format,
         trial_id: None,
+        ..SubjectInput::default()
     })
 }
 

@@ -11,6 +11,7 @@ mod inputs;
 mod leg;
 mod manifest;
 mod many;
+pub mod pairing;
 pub mod quality;
 mod subject;
 #[cfg(test)]
@@ -139,6 +140,16 @@ impl AnalysisParams {
     /// [`analyze_subject_checked`] take, so no stage re-checks per leg. Preprocessing needs the
     /// recording's rate, so it is checked with it at the call ([`PreprocessParams::check`]).
     pub fn check(&self) -> Result<ValidAnalysisParams> {
+        // The pipeline's low-pass keeps the gait: walking's shank signals carry their events in
+        // harmonics up to ~6 Hz, so below 2 Hz the mid-swing peak and the heel strike smear
+        // (the upper bound, Nyquist, is checked with each recording's rate).
+        if !(self.preprocess.cutoff_hz >= 2.0) {
+            return Err(crate::error::LdhError::param(
+                "preprocess.cutoff_hz",
+                self.preprocess.cutoff_hz,
+                "outside its physical range [2, fs/2) Hz",
+            ));
+        }
         if self.compute_sta {
             self.sta.check()?;
         }

@@ -96,10 +96,18 @@ fn load_and_pair(
                 own: Option<&FormatSpec>,
                 side: Side|
      -> std::result::Result<(Recording, ReadReport, String), String> {
-        let src = src
-            .as_ref()
-            .ok_or_else(|| format!("no {side} recording given"))?;
-        let (rec, report) = src.read(own.or(format), read).map_err(|e| e.to_string())?;
+        // Files of a subject folder not taken for a leg are named (issue 37): in a missing
+        // leg's error, else among the leg's reader notes.
+        let unpaired = input.unpaired.join("; ");
+        let src = src.as_ref().ok_or_else(|| {
+            if unpaired.is_empty() {
+                format!("no {side} recording given")
+            } else {
+                format!("no {side} recording given ({unpaired})")
+            }
+        })?;
+        let (rec, mut report) = src.read(own.or(format), read).map_err(|e| e.to_string())?;
+        report.notes.extend(input.unpaired.iter().cloned());
         Ok((rec, report, src.label()))
     };
     let mut read_time = StageTimings::default();

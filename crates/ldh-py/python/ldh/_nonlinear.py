@@ -34,6 +34,13 @@ def lyap_r(
     1e-6. ``lag`` and ``min_tsep`` follow nolds' rules when None. A k-d tree replaces nolds'
     full distance matrix, so long series are fine.
 
+    Size limit: the delay embedding (``len(data) * emb_dim`` values) may hold at most 10**7
+    values (``ldh._ldh`` / ``MAX_ORBIT_VALUES`` in the core), i.e. 10**6 samples at the default
+    ``emb_dim=10``: memory and time grow with it (10**7 samples took 3.4 GB and more than a
+    minute), so a longer series raises :class:`ldh.LdhParamError` at once, naming its size and
+    the limit. A negative count (``emb_dim``, ``lag``, ``min_tsep``, ``min_neighbors``,
+    ``trajectory_len``, ``fit_offset``) raises :class:`ldh.LdhParamError` naming it.
+
     Returns the exponent, or with ``debug_data=True`` ``(exponent, (ks, divergence, poly))``
     as nolds does: the steps ``ks``, the mean log divergence at each step and the fitted line
     ``poly = [slope, intercept]``. ``debug_plot=True`` draws that curve and line with

@@ -196,3 +196,24 @@ proptest! {
         let _ = emb_dim_fnn(&x, lag, &FnnParams { max_dim: emb_dim, ..FnnParams::default() });
     }
 }
+
+/// Issue 37: `lyap_r` on 10⁷ samples took 3.4 GB and more than a minute; a series whose delay
+/// embedding exceeds `MAX_ORBIT_VALUES` is refused at once, naming the size and the limit, as
+/// a parameter error (Python: `LdhParamError`).
+#[test]
+fn lyap_r_refuses_a_series_beyond_its_size_limit() {
+    let n = crate::nonlinear::MAX_ORBIT_VALUES / 10 + 1;
+    let x: Vec<f64> = (0..n).map(|i| (i as f64 * 0.1).sin()).collect();
+    let p = crate::nonlinear::RosensteinParams::nolds().check().unwrap();
+    let t = std::time::Instant::now();
+    let e = crate::nonlinear::lyap_r(&x, &p).unwrap_err();
+    assert!(t.elapsed().as_secs_f64() < 1.0);
+    let s = e.to_string();
+    assert!(
+        s.contains(&format!("{n} samples")) && s.contains("limit of 10000000"),
+        "{s}"
+    );
+    let e: crate::LdhError = e.into();
+    assert_eq!(e.kind(), crate::ErrorKind::Param);
+    assert!(crate::nonlinear::check_orbit_size(n - 1, 10).is_ok());
+}

@@ -164,3 +164,125 @@ fn blanked_stride_cells_carry_the_findings_reason() {
         .iter()
         .all(|s| !s.valid && s.reason == "gyro scale fault"));
 }
+
+/// The samples `a..b` of a recording (a walk with its standing cut off).
+fn samples(rec: &crate::recording::Recording, a: usize, b: usize) -> crate::recording::Recording {
+    let cut = |v: &[Vec<f64>; 3]| -> [Vec<f64>; 3] {
+        [
+            v[0][a..b].to_vec(),
+            v[1][a..b].to_vec(),
+            v[2][a..b].to_vec(),
+        ]
+    };
+    crate::recording::Recording::new(rec.fs_hz, cut(&rec.acc_g), cut(&rec.gyro_dps), vec![])
+        .unwrap()
+}
+
+/// Issue 37: the same simulated walk without its quiet standing moved WQK and PBI by 9-12°
+/// with no warning. Now the leg says so (`no_quiet_standing`) and withholds both; BDK and the
+/// stride parameters stay. A standing window longer than the recording is named.
+#[test]
+fn a_walk_without_quiet_standing_withholds_its_inclinations() {
+    let c = crate::simulate::CohortParams {
+        healthy: 1,
+        ldh: 0,
+        duration_s: 30.0,
+        seed: 11,
+        ..crate::simulate::CohortParams::default()
+    };
+    let rec = c.simulate(0).unwrap().left.recording;
+    let params = without_sta();
+    let side = crate::recording::Side::Left;
+    let full = crate::pipeline::analyze_leg(&rec, side, &params, Some(0.1))
+        .unwrap()
+        .0;
+    assert!(full.parameters.wqk_deg.is_finite() && full.parameters.pbi_deg.is_finite());
+    assert!(full
+        .warnings
+        .iter()
+        .all(|w| w.code != codes::NO_QUIET_STANDING));
+    // 3 s of standing at each end (family A): keep 3.5 s .. end - 3.5 s
+    let fs = rec.fs_hz as usize;
+    let n = rec.acc_g[0].len();
+    let walk = samples(&rec, 7 * fs / 2, n - 7 * fs / 2);
+    let cut = crate::pipeline::analyze_leg(&walk, side, &params, Some(0.1))
+        .unwrap()
+        .0;
+    let w = cut
+        .warnings
+        .iter()
+        .find(|w| w.code == codes::NO_QUIET_STANDING)
+        .expect("no_quiet_standing");
+    assert_eq!(w.severity, Severity::Warning);
+    assert_eq!(w.affects, vec!["wqk_deg", "pbi_deg"]);
+    let p = &cut.parameters;
+    assert!(p.wqk_deg.is_nan() && p.pbi_deg.is_nan());
+    assert!(
+        p.withheld["wqk_deg"].starts_with("no quiet standing"),
+        "{:?}",
+        p.withheld
+    );
+    assert!(p.bdk_deg.is_finite() && p.stride_time_s.is_finite());
+    assert!(cut.strides.iter().all(|s| s.wqk_deg.is_nan()));
+    // A standing window longer than the recording finds none, and says which parameter.
+    let mut long = params.clone();
+    long.align.min_still_s = 30.0;
+    let l = crate::pipeline::analyze_leg(&walk, side, &long, Some(0.1))
+        .unwrap()
+        .0;
+    let w = l
+        .warnings
+        .iter()
+        .find(|w| w.code == codes::NO_QUIET_STANDING)
+        .expect("no_quiet_standing");
+    assert!(
+        w.message
+            .contains("align.min_still_s = 30 s is longer than the"),
+        "{}",
+        w.message
+    );
+}
+
+/// Issue 37: absurd analysis parameters are refused with the name, value and range.
+#[test]
+fn absurd_windows_and_cutoffs_are_refused_with_their_range() {
+    let refused = |f: &dyn Fn(&mut crate::pipeline::AnalysisParams), name: &str| {
+        let mut p = crate::pipeline::AnalysisParams::default();
+        f(&mut p);
+        let e = p.check().unwrap_err().to_string();
+        assert!(e.contains(name) && e.contains("range"), "{name}: {e}");
+    };
+    refused(&|p| p.align.min_still_s = 320.0, "align.min_still_s = 320");
+    refused(
+        &|p| p.align.still_window_s = 320.0,
+        "align.still_window_s = 320",
+    );
+    refused(&|p| p.align.still_window_s = 0.01, "align.still_window_s");
+    refused(&|p| p.align.still_gyro_dps = 500.0, "align.still_gyro_dps");
+    refused(
+        &|p| p.align.walking_gyro_dps = 5000.0,
+        "align.walking_gyro_dps",
+    );
+    refused(
+        &|p| p.attitude.anchor_window_s = 30.0,
+        "attitude.anchor_window_s",
+    );
+    refused(&|p| p.attitude.reacquire_s = 600.0, "attitude.reacquire_s");
+    refused(
+        &|p| p.attitude.acc_only_cutoff_hz = 0.001,
+        "attitude.acc_only_cutoff_hz",
+    );
+    refused(
+        &|p| p.preprocess.cutoff_hz = 0.1,
+        "preprocess.cutoff_hz = 0.1",
+    );
+    refused(
+        &|p| p.events.min_midswing_dps = 5000.0,
+        "events.min_midswing_dps",
+    );
+    let e = crate::gait::check_stride_range(0.7, 300.0)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("max_stride_s") && e.contains("<= 10 s"), "{e}");
+    assert!(crate::pipeline::AnalysisParams::default().check().is_ok());
+}

@@ -132,6 +132,9 @@ pub mod codes {
     /// Stride length variability whose noise cannot be checked (no other leg to compare with,
     /// or too few strides pairing up with the other leg's: a short walk).
     pub const SV_UNCHECKED: &str = "sv_unchecked";
+    /// No quiet standing: the shank axis came from the mean acceleration of the walk and no
+    /// gyroscope bias was removed at rest; WQK and PBI are withheld (off by ≈ 10°).
+    pub const NO_QUIET_STANDING: &str = "no_quiet_standing";
     /// The heel strikes were placed at the walk's own delay from the gyroscope's landmark to
     /// the impact (a note: which rule placed them, and the delay).
     pub const HS_AT_IMPACT: &str = "hs_at_impact";
@@ -158,6 +161,8 @@ pub mod params {
     ];
     /// The shank angles (from the attitude).
     pub const ANGLES: [&str; 3] = ["wqk_deg", "pbi_deg", "bdk_deg"];
+    /// The shank angles measured from the vertical (an error of the shank axis moves them).
+    pub const INCLINATIONS: [&str; 2] = ["wqk_deg", "pbi_deg"];
     /// Stride length and what is derived from it (double integration of the acceleration).
     pub const LENGTH: [&str; 3] = ["stride_length_m", "speed_mps", "stride_length_cv"];
     /// The parameters that pair the legs.
