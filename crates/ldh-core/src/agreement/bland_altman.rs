@@ -21,6 +21,10 @@ use super::dist::{t_isf, t_pvalue_two_sided};
 use super::AgreementError;
 use crate::stats::{mean, std_dev};
 
+/// Spread, relative to the largest |value|, below which values count as equal: rounding, not
+/// data (scipy tests exact equality and returns meaningless numbers for 1e-16 spreads).
+pub(crate) const ROUNDING: f64 = 1e-12;
+
 /// Limits of agreement of paired differences, with confidence intervals.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct LimitsOfAgreement {
@@ -60,7 +64,7 @@ pub struct LinearFit {
 /// Limits of agreement of the differences `diff` (finite, n ≥ 2) at `z`·SD, with intervals at
 /// `confidence_level` (pingouin `plot_blandaltman(agreement=z, confidence=...)`).
 ///
-/// Errors: n < 2; all differences equal (SD 0: the limits collapse onto the bias and their
+/// Errors: n < 2; all differences equal up to rounding (SD ≤ 1e-12·max |difference|: the limits collapse onto the bias and their
 /// intervals are empty).
 pub fn limits_of_agreement(
     diff: &[f64],
@@ -80,10 +84,11 @@ pub fn limits_of_agreement(
     }
     let bias = mean(diff)?;
     let sd = std_dev(diff)?;
-    if sd == 0.0 {
+    let scale = diff.iter().fold(0.0f64, |m, d| m.max(d.abs()));
+    if sd <= ROUNDING * scale {
         return Err(AgreementError::ConstantData {
             what: W,
-            detail: format!("all {n} differences equal {:?}", diff[0]),
+            detail: format!("all {n} differences equal {:?} (up to rounding)", diff[0]),
         });
     }
     let nf = n as f64;
@@ -107,7 +112,7 @@ pub fn limits_of_agreement(
 /// `scipy.stats.linregress(x, y)` (two-sided), for n ≥ 3 finite pairs.
 ///
 /// Errors: n < 3 (scipy gives a p-value of 0 or 1 and zero standard errors for n = 2); all x
-/// equal (scipy raises).
+/// equal (scipy raises), or equal up to rounding (SD ≤ 1e-12·max |x|).
 pub fn linregress(x: &[f64], y: &[f64]) -> Result<LinearFit, AgreementError> {
     const W: &str = "proportional bias (linregress)";
     let n = x.len();
@@ -138,10 +143,11 @@ pub fn linregress(x: &[f64], y: &[f64]) -> Result<LinearFit, AgreementError> {
         .map(|(a, b)| (a - xm) * (b - ym))
         .sum::<f64>()
         / nf;
-    if ssxm == 0.0 {
+    let scale = x.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+    if ssxm.sqrt() <= ROUNDING * scale {
         return Err(AgreementError::ConstantData {
             what: W,
-            detail: format!("all {n} means equal {:?}: no slope", x[0]),
+            detail: format!("all {n} means equal {:?} (up to rounding): no slope", x[0]),
         });
     }
     let r = if ssym == 0.0 {

@@ -68,8 +68,8 @@ pub struct IccResult {
 /// (trial) j. Every value must be finite (the callers drop incomplete rows first).
 /// `confidence_level` in (0, 1) (checked by the callers' parameters).
 ///
-/// Errors: n < 2 or k < 2 ([`AgreementError::TooFewPairs`]); a zero error mean square, or a
-/// zero between-subject mean square for ICC(1,1), where the F statistic is infinite or 0/0
+/// Errors: n < 2 or k < 2 ([`AgreementError::TooFewPairs`]); an error mean square of zero up
+/// to rounding (√MSE ≤ 1e-12·max |value|), where the F statistic is infinite
 /// ([`AgreementError::ConstantData`]).
 pub fn icc(values: &[f64], k: usize, confidence_level: f64) -> Result<IccResult, AgreementError> {
     const W: &str = "ICC";
@@ -85,7 +85,8 @@ pub fn icc(values: &[f64], k: usize, confidence_level: f64) -> Result<IccResult,
     }
     debug_assert_eq!(values.len(), n * k);
     let ms = MeanSquares::of(values, n, k);
-    if !(ms.mse > 0.0 && ms.msw > 0.0) {
+    let scale = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if ms.mse.sqrt() <= super::bland_altman::ROUNDING * scale {
         return Err(AgreementError::ConstantData {
             what: W,
             detail: format!(
