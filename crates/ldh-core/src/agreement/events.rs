@@ -2,8 +2,10 @@
 //! side, one trial), and the detection rates and timing errors of the matches.
 //!
 //! The rule is the one of gaitmap's `gaitmap.evaluation_utils.match_stride_lists` (nearest
-//! neighbours both ways, kept when mutual and within the tolerance), Küderle et al. (2024),
-//! "Gaitmap — an open ecosystem for IMU-based human gait analysis", *JOSS*:
+//! neighbours both ways, kept when mutual and within the tolerance; Küderle et al. (2024),
+//! "Gaitmap — an open ecosystem for IMU-based human gait analysis and algorithm
+//! benchmarking", *IEEE Open Journal of Engineering in Medicine and Biology*), with the tie and
+//! tolerance rules made explicit:
 //!
 //! 1. for every ldh event a, its nearest reference event b(a); for every reference event b, its
 //!    nearest ldh event a(b) (distance |a − b|; on a tie the earlier event, i.e. the lower index);
