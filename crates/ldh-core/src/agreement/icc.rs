@@ -68,7 +68,8 @@ pub struct IccResult {
 /// (trial) j. Every value must be finite (the callers drop incomplete rows first).
 /// `confidence_level` in (0, 1) (checked by the callers' parameters).
 ///
-/// Errors: n < 2 or k < 2 ([`AgreementError::TooFewPairs`]); an error mean square of zero up
+/// Errors: `values.len()` not a multiple of k ([`AgreementError::InvalidParam`]); n < 2 or
+/// k < 2 ([`AgreementError::TooFewPairs`]); an error mean square of zero up
 /// to rounding (√MSE ≤ 1e-12·max |value|), where the F statistic is infinite
 /// ([`AgreementError::ConstantData`]).
 pub fn icc(values: &[f64], k: usize, confidence_level: f64) -> Result<IccResult, AgreementError> {
@@ -83,7 +84,13 @@ pub fn icc(values: &[f64], k: usize, confidence_level: f64) -> Result<IccResult,
             unit: if k < 2 { "raters (trials)" } else { "subjects" },
         });
     }
-    debug_assert_eq!(values.len(), n * k);
+    if values.len() != n * k {
+        return Err(AgreementError::InvalidParam {
+            name: "k",
+            value: format!("{k} (with {} values)", values.len()),
+            reason: "the number of values must be a multiple of k",
+        });
+    }
     let ms = MeanSquares::of(values, n, k);
     let scale = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     if ms.mse.sqrt() <= super::bland_altman::ROUNDING * scale {
