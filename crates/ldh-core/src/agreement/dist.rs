@@ -28,7 +28,7 @@ fn inv_beta(a: f64, b: f64, p: f64) -> f64 {
         }
         let dens = ((a - 1.0) * x.ln() + (b - 1.0) * (-x).ln_1p() - lb).exp();
         let mut next = x - g / dens;
-        if !(next > lo && next < hi) || !next.is_finite() {
+        if !(next > lo && next < hi && next.is_finite()) {
             next = 0.5 * (lo + hi);
         }
         if (next - x).abs() <= 4.0 * f64::EPSILON * x.abs() {

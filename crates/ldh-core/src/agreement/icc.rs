@@ -74,7 +74,7 @@ pub struct IccResult {
 /// ([`AgreementError::ConstantData`]).
 pub fn icc(values: &[f64], k: usize, confidence_level: f64) -> Result<IccResult, AgreementError> {
     const W: &str = "ICC";
-    let n = if k == 0 { 0 } else { values.len() / k };
+    let n = values.len().checked_div(k).unwrap_or(0);
     if k < 2 || n < 2 {
         return Err(AgreementError::TooFewPairs {
             what: W,
