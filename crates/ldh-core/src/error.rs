@@ -449,6 +449,10 @@ pub enum LdhError {
     /// A statistical test is undefined for its input (see [`crate::stats`]).
     #[error(transparent)]
     Stats(#[from] crate::stats::StatsError),
+    /// An agreement or reliability statistic, or an event matching, is undefined for its input
+    /// (see [`crate::agreement`]).
+    #[error(transparent)]
+    Agreement(#[from] crate::agreement::AgreementError),
     /// A nonlinear-dynamics computation is undefined for its input (see [`crate::nonlinear`]).
     #[error(transparent)]
     Nonlinear(#[from] crate::nonlinear::NonlinearError),
@@ -481,7 +485,10 @@ impl LdhError {
             LdhError::Io { .. } | LdhError::Write { .. } => ErrorKind::Io,
             LdhError::Param { .. }
             | LdhError::Nonlinear(crate::nonlinear::NonlinearError::InvalidParameter { .. })
-            | LdhError::Stats(crate::stats::StatsError::InvalidArgument { .. }) => ErrorKind::Param,
+            | LdhError::Stats(crate::stats::StatsError::InvalidArgument { .. })
+            | LdhError::Agreement(crate::agreement::AgreementError::InvalidParam { .. }) => {
+                ErrorKind::Param
+            }
             _ => ErrorKind::Data,
         }
     }

@@ -14,6 +14,7 @@
 //! Every algorithm takes a parameter type with serde, `Default` and setters, validated once
 //! into the type the algorithm accepts (`params.check(...)`). All errors are [`LdhError`].
 
+pub mod agreement;
 pub mod align;
 pub mod attitude;
 pub mod cohort;
