@@ -188,10 +188,15 @@ pub(crate) fn columns<'py, T: Serialize>(
     Ok(d)
 }
 
-/// A Python int given for an unsigned argument (taken as `i64`, so a negative value is not
-/// pyo3's `OverflowError`) as the core's unsigned type: a negative value, or one beyond the
-/// type, is an `LdhParamError` naming the argument.
-pub(crate) fn uint<T: TryFrom<i64>>(name: &'static str, v: i64) -> Result<T, LdhError> {
+/// A Python int given for an unsigned argument (taken as a signed integer, so a negative value
+/// is not pyo3's `OverflowError`; `i128` where the whole `u64` range must pass, e.g. a seed)
+/// as the core's unsigned type: a negative value, or one beyond the type, is an
+/// `LdhParamError` naming the argument.
+pub(crate) fn uint<T: TryFrom<i128>>(
+    name: &'static str,
+    v: impl Into<i128>,
+) -> Result<T, LdhError> {
+    let v: i128 = v.into();
     T::try_from(v).map_err(|_| {
         LdhError::param(
             name,
@@ -206,14 +211,14 @@ pub(crate) fn uint<T: TryFrom<i64>>(name: &'static str, v: i64) -> Result<T, Ldh
 }
 
 /// [`uint`] of an optional argument.
-pub(crate) fn opt_uint<T: TryFrom<i64>>(
+pub(crate) fn opt_uint<T: TryFrom<i128>>(
     name: &'static str,
-    v: Option<i64>,
+    v: Option<impl Into<i128>>,
 ) -> Result<Option<T>, LdhError> {
     v.map(|v| uint(name, v)).transpose()
 }
 
 /// [`uint`] of every element of a list argument (class labels, fold indices).
-pub(crate) fn uints<T: TryFrom<i64>>(name: &'static str, v: Vec<i64>) -> Result<Vec<T>, LdhError> {
+pub(crate) fn uints<T: TryFrom<i128>>(name: &'static str, v: Vec<i64>) -> Result<Vec<T>, LdhError> {
     v.into_iter().map(|x| uint(name, x)).collect()
 }

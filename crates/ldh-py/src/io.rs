@@ -179,13 +179,13 @@ pub(crate) fn write_demo(py: Python<'_>, out: PathBuf) -> PyResult<usize> {
 pub(crate) fn simulate_cohort(
     py: Python<'_>,
     out: PathBuf,
-    healthy: Option<i64>,
-    ldh: Option<i64>,
+    healthy: Option<i128>,
+    ldh: Option<i128>,
     seconds: Option<f64>,
-    seed: Option<i64>,
+    seed: Option<i128>,
     rate_hz: Option<f64>,
     turn: Option<bool>,
-    slow_ldh: Option<i64>,
+    slow_ldh: Option<i128>,
     acc_range_g: Option<f64>,
 ) -> PyResult<String> {
     let counts = || -> Result<_, LdhError> {

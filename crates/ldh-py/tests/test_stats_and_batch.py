@@ -237,6 +237,7 @@ def test_impossible_simulation_sizes_raise_value_error(tmp_path):
         (dict(seconds=1e308), "at most 1000000 samples"),
         (dict(healthy=10**6, ldh=0), "at most 100000 subjects"),
         (dict(healthy=2**64 - 1, ldh=1), "at most 100000 subjects"),
+        (dict(healthy=10**6, seed=2**64 - 1), "at most 100000 subjects"),
         (dict(healthy=10**30), "far more subjects"),
         (dict(healthy=-1), "non-negative int"),
         (dict(seed=-5), "non-negative int"),
