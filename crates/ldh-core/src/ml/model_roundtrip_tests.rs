@@ -15,7 +15,7 @@ use super::svm::SvmParams;
 
 /// Models of each kind in [`random_models_round_trip_bit_identically`]: 10^5 in all by default
 /// (about 10 s of CPU); `LDH_MODEL_ROUNDTRIPS_PER_KIND=100000` runs 10^5 of each (about 80 s of
-/// CPU, passed when this was written).
+/// CPU, 32 s on 2 cores), which `.ci/run` sets.
 fn models_per_kind() -> u64 {
     std::env::var("LDH_MODEL_ROUNDTRIPS_PER_KIND")
         .ok()
