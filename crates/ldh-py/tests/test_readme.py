@@ -70,3 +70,15 @@ def test_dask_block_runs_as_printed_and_equals_ldh_analyze(tmp_path):
         ours = [len(v) for v in whole[col]]
         theirs = [0 if pd.isna(v) or v == "" else len(str(v).split(" | ")) for v in ref[col]]
         assert ours == theirs, col
+
+
+def test_readme_blocks_pass_mypy_strict(tmp_path):
+    """The README's code type-checks against the wheel's stubs (issue 39): `mypy --strict` on the
+    first block; on the Dask recipe too, with `--allow-untyped-calls` because dask itself ships
+    no type hints (pandas' come from pandas-stubs)."""
+    api = pytest.importorskip("mypy.api")
+    for i, (block, extra) in enumerate(zip(BLOCKS, ([], ["--allow-untyped-calls"]))):
+        script = tmp_path / f"readme_block_{i}.py"
+        script.write_text(block, encoding="utf-8")
+        out, err, status = api.run(["--strict", "--no-incremental", *extra, str(script)])
+        assert status == 0, f"block {i}:\n{out}{err}"

@@ -4,8 +4,6 @@ All computation happens in the Rust core (``ldh._ldh``) with the GIL released; t
 converts inputs to float64 numpy arrays, results to pandas DataFrames (when pandas is
 importable) and scipy/nolds-shaped objects, and documents the API (docs/python.md).
 """
-from __future__ import annotations
-
 from . import _ldh
 from ._errors import (
     LdhDataError,

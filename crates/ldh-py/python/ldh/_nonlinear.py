@@ -1,12 +1,61 @@
 """The nolds look-alikes: Lyapunov exponents by Rosenstein et al. and Eckmann et al."""
 from __future__ import annotations
 
-from typing import Any, Optional, Tuple, Union
+from typing import Any, Literal, Optional, Tuple, Union, overload
 
 import numpy as np
 
 from . import _ldh
 from ._util import vec as _vec
+
+
+# The return type follows ``debug_data`` (as nolds'): a float, or the float and the curve.
+@overload
+def lyap_r(
+    data: Any,
+    emb_dim: int = 10,
+    lag: Optional[int] = None,
+    min_tsep: Optional[int] = None,
+    tau: float = 1,
+    min_neighbors: int = 20,
+    trajectory_len: int = 20,
+    fit: str = "RANSAC",
+    debug_plot: bool = False,
+    debug_data: Literal[False] = False,
+    plot_file: Optional[str] = None,
+    fit_offset: int = 0,
+) -> float: ...
+@overload
+def lyap_r(
+    data: Any,
+    emb_dim: int = 10,
+    lag: Optional[int] = None,
+    min_tsep: Optional[int] = None,
+    tau: float = 1,
+    min_neighbors: int = 20,
+    trajectory_len: int = 20,
+    fit: str = "RANSAC",
+    debug_plot: bool = False,
+    *,
+    debug_data: Literal[True],
+    plot_file: Optional[str] = None,
+    fit_offset: int = 0,
+) -> Tuple[float, Tuple[np.ndarray, np.ndarray, np.ndarray]]: ...
+@overload
+def lyap_r(
+    data: Any,
+    emb_dim: int = 10,
+    lag: Optional[int] = None,
+    min_tsep: Optional[int] = None,
+    tau: float = 1,
+    min_neighbors: int = 20,
+    trajectory_len: int = 20,
+    fit: str = "RANSAC",
+    debug_plot: bool = False,
+    debug_data: bool = False,
+    plot_file: Optional[str] = None,
+    fit_offset: int = 0,
+) -> Union[float, Tuple[float, Tuple[np.ndarray, np.ndarray, np.ndarray]]]: ...
 
 
 def lyap_r(

@@ -33,6 +33,11 @@ class TestResult:
 
     __test__ = False  # not a pytest class
 
+    # Set in __init__ (a float, or an array of the ``axis`` shape); declared for type checkers.
+    statistic: Any
+    pvalue: Any
+    df: Any
+
     def __init__(self, fields: List[Dict[str, Any]], shape: tuple, kind: Optional[str]):
         self._fields, self._shape, self._kind = fields, shape, kind
         keys = [k for k in fields[0] if isinstance(fields[0][k], (int, float, bool))] if fields else []
