@@ -68,7 +68,7 @@ pub enum EventDetector {
     /// HS from the ω_s zero crossing (plus the walk's delay to the impact where it shows
     /// impacts), TO at a fraction of the bracket between the late-stance
     /// peak of ω_s and the pitch peak, raised on the leg whose landmark geometry and swing arc
-    /// are both stiffer than the subject's other leg's (default; [`place_bilateral`]).
+    /// are both stiffer than the subject's other leg's (default).
     #[default]
     GyroBracket,
 }

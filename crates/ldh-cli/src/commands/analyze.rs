@@ -41,15 +41,16 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
         },
     )?;
     anyhow::ensure!(!subjects.is_empty(), "no subjects found in the inputs");
+    // Before anything is said or done: a bad --jobs is a usage error.
+    let pool = thread_pool(a.jobs)?;
     if a.inputs.is_empty() {
         super::note!(
-            "no input given: analysing the embedded demo cohort ({} subjects)",
-            subjects.len()
+            "no input given: analysing the embedded demo cohort ({})",
+            super::count(subjects.len(), "subject")
         );
     }
     // Names checked before the folder is touched: an id clash leaves an earlier run whole.
     ldh_core::pipeline::check_output_names(&subjects)?;
-    let pool = thread_pool(a.jobs)?;
     let stale = ldh_core::io::remove_stale_temp_files(&a.out)?;
     if stale > 0 {
         super::note!(
@@ -178,11 +179,12 @@ fn summary(
         println!("{}", serde_json::to_string_pretty(&j)?);
     } else if !v.quiet {
         let line = format!(
-            "{} recordings ({subjects} subjects, model {model}): {} ok, {} failed; {} strides, {} valid; outputs in {}",
-            sum.recordings,
+            "{} ({}, model {model}): {} ok, {} failed; {}, {} valid; outputs in {}",
+            super::count(sum.recordings, "recording"),
+            super::count(subjects, "subject"),
             sum.recordings - sum.failed,
             sum.failed,
-            sum.strides,
+            super::count(sum.strides, "stride"),
             sum.valid_strides,
             a.out.display()
         );

@@ -80,6 +80,15 @@ pub fn progress(len: u64, what: &str) -> ProgressBar {
     pb
 }
 
+/// `n` and the word, plural unless `n` is 1: "1 subject", "2 subjects", "0 strides".
+pub fn count(n: usize, word: &str) -> String {
+    if n == 1 {
+        format!("1 {word}")
+    } else {
+        format!("{n} {word}s")
+    }
+}
+
 /// The worker pool of `--jobs` (default: all cores).
 pub fn thread_pool(jobs: Option<usize>) -> Result<rayon::ThreadPool> {
     let mut b = rayon::ThreadPoolBuilder::new();

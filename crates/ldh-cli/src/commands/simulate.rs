@@ -99,8 +99,8 @@ fn write<C: Cohort>(
     let rows = pool.install(|| write_cohort(params, &a.out, format, &|| pb.inc(1)))?;
     pb.finish_and_clear();
     super::note!(
-        "wrote {} subjects ({} {healthy}, {} {ldh}) to {}",
-        rows.len(),
+        "wrote {} ({} {healthy}, {} {ldh}) to {}",
+        super::count(rows.len(), "subject"),
         a.healthy,
         a.ldh + a.slow_ldh,
         a.out.display()
