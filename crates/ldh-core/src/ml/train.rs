@@ -315,9 +315,9 @@ fn markdown(
     );
     if p.features.is_none() {
         md.push_str(&format!(
-            "Features: those of the 13 parameters measured in at least {:.0} % of the rows with anything measured ({}).\n\n",
+            "Features: the {} of the 13 parameters measured in at least {:.0} % of the rows with anything measured.\n\n",
+            ds.feature_names.len(),
             p.min_feature_coverage * 100.0,
-            ds.feature_names.len()
         ));
     }
     if !notes.is_empty() {
