@@ -189,7 +189,7 @@ fn train_refuses_what_it_cannot_do() {
     .status
     .success());
     let out = d.path().join("t");
-    // Fewer subjects than folds.
+    // Fewer subjects than folds: k is lowered to the smallest class, with a note.
     let o = ldh(&[
         "train",
         c.to_str().unwrap(),
@@ -200,8 +200,12 @@ fn train_refuses_what_it_cannot_do() {
         "--repeats",
         "1",
     ]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(text(&o).contains("than folds (10)"), "{}", text(&o));
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(
+        text(&o).contains("note: k lowered from 10 to"),
+        "{}",
+        text(&o)
+    );
     let o = ldh(&[
         "train",
         c.to_str().unwrap(),
@@ -226,9 +230,9 @@ fn train_refuses_what_it_cannot_do() {
     ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(text(&o).contains("height_cm") && text(&o).contains("unknown feature"));
-    // 15 s walks: some legs have too few strides, every parameter withheld, and stride
-    // length variability is unchecked (too short a walk); the refusal names what was not
-    // measured and how to choose features
+    // 15 s walks: five sides have no valid stride (every parameter withheld), and stride
+    // length variability is unchecked (too short a walk) everywhere; what is left has one row
+    // in a class: one refusal naming the class, the rows per class and what was left out
     let short = d.path().join("short");
     assert!(ldh(&[
         "simulate",
@@ -253,10 +257,127 @@ fn train_refuses_what_it_cannot_do() {
     ]);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     for want in [
-        "left out for a feature not measured",
-        "stride_length_cv on",
-        "--features",
+        "nothing to train on",
+        "the smallest class (LDHH) has 1 row",
+        "rows per class: 1 LDHH, 1 LDHE, 2 H",
+        "5 row(s) left out with nothing measured (no valid stride)",
+        "stride_length_cv (measured in 0 of 4 rows)",
     ] {
         assert!(text(&o).contains(want), "{want}: {}", text(&o));
+    }
+    assert_eq!(text(&o).trim().lines().count(), 1, "{}", text(&o));
+    // Features named by the user are used as named: rows lacking one are dropped, and the
+    // refusal says which and how to choose others.
+    let o = ldh(&[
+        "train",
+        short.to_str().unwrap(),
+        "--out",
+        d.path().join("t15f").to_str().unwrap(),
+        "--features",
+        "stride_time_s,stride_length_cv",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    for want in ["stride_length_cv on", "--features"] {
+        assert!(text(&o).contains(want), "{want}: {}", text(&o));
+    }
+}
+
+/// Issue 39's done-when: `ldh train` on a short-walk cohort (`ldh simulate --healthy 6 --ldh 6
+/// --seconds 20`) trains on what was measured and says what it left out; sides without a valid
+/// stride say so in `status`; an analysis folder given as input points to `--results`.
+#[test]
+fn train_on_short_walks_uses_what_was_measured_with_notes() {
+    let d = tempfile::tempdir().unwrap();
+    let p = |n: &str| d.path().join(n).to_str().unwrap().to_string();
+    let sim = [
+        "simulate",
+        "--out",
+        &p("s"),
+        "--healthy",
+        "6",
+        "--ldh",
+        "6",
+        "--seconds",
+        "20",
+    ];
+    ldh_ok(&sim);
+    let o = ldh(&["train", &p("s"), "--out", &p("t")]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("note: 2 feature(s) left out, measured in fewer than 90 % of the rows: stride_length_cv (measured in 0 of 18 rows)"),
+        "{err}"
+    );
+    assert!(
+        err.contains("note: k lowered from 10 to 6: the smallest class (LDHH) has 6 rows"),
+        "{err}"
+    );
+    let report = std::fs::read_to_string(d.path().join("t/report.md")).unwrap();
+    assert!(
+        report.contains("Notes:") && report.contains("- k lowered from 10 to 6"),
+        "{report}"
+    );
+    assert!(d.path().join("t/model_rf.json").is_file());
+    // Seed 3: five sides without a valid stride; their rows say so and training sets them aside.
+    let (s3, a3) = (p("s3"), p("a3"));
+    ldh_ok(&[
+        "simulate",
+        "--out",
+        &s3,
+        "--healthy",
+        "6",
+        "--ldh",
+        "6",
+        "--seconds",
+        "20",
+        "--seed",
+        "3",
+    ]);
+    ldh_ok(&["analyze", &s3, "-o", &a3, "-q"]);
+    let rows = json(&d.path().join("a3/recordings.json"));
+    let rows = rows.as_array().unwrap();
+    for r in rows {
+        let want = if r["strides_valid"] == 0 {
+            "no_valid_strides"
+        } else {
+            "ok"
+        };
+        assert_eq!(r["status"], want, "{r}");
+    }
+    assert_eq!(
+        rows.iter()
+            .filter(|r| r["status"] == "no_valid_strides")
+            .count(),
+        5
+    );
+    let o = ldh(&["train", "--results", &a3, "--out", &p("t3")]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(
+        text(&o).contains("note: 5 row(s) left out with nothing measured (no valid stride)"),
+        "{}",
+        text(&o)
+    );
+    // The analysis folder given where recordings go: the way to pass it.
+    let model = p("t3/model_rf.json");
+    for cmd in [
+        &["stats", &a3, "--out", &p("x")][..],
+        &["train", &a3, "--out", &p("x")],
+        &["predict", "--model", &model, &a3, "--out", &p("x")],
+        &[
+            "predict",
+            "--model",
+            &model,
+            &format!("{a3}/recordings.csv"),
+            "--out",
+            &p("x"),
+        ],
+    ] {
+        let o = ldh(cmd);
+        assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+        assert!(
+            text(&o).contains(&format!("--results {a3}")),
+            "{cmd:?}: {}",
+            text(&o)
+        );
     }
 }

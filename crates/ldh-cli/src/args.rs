@@ -243,7 +243,7 @@ pub struct TrainArgs {
     /// Classifiers, comma-separated: rf, svm, mlp.
     #[arg(long, value_enum, value_delimiter = ',', default_value = "rf,svm,mlp")]
     pub classifiers: Vec<ClassifierKind>,
-    /// Folds.
+    /// Folds (lowered, with a note, to the rows of the smallest class when it has fewer).
     #[arg(long, default_value_t = 10)]
     pub k: usize,
     /// Repeats of the k-fold split.
@@ -255,9 +255,13 @@ pub struct TrainArgs {
     /// Keep the k features with the largest |Pearson r| inside each training fold.
     #[arg(long)]
     pub top_k: Option<usize>,
-    /// Features (comma-separated columns of recordings.csv); default: the 13 parameters.
+    /// Features (comma-separated columns of recordings.csv); default: those of the 13
+    /// parameters measured in enough rows (--min-feature-coverage), with a note naming the rest.
     #[arg(long, value_delimiter = ',')]
     pub features: Option<Vec<String>>,
+    /// Share of the rows a default feature must be measured in to be kept, in (0, 1].
+    #[arg(long, default_value_t = 0.9, conflicts_with = "features")]
+    pub min_feature_coverage: f64,
     /// Output folder.
     #[arg(short, long, default_value = "ldh-train")]
     pub out: PathBuf,

@@ -111,7 +111,8 @@ pub struct RecordingRow {
     pub side_role: Option<Label<SideRole>>,
     /// The file.
     pub source: String,
-    /// `ok` or `error`.
+    /// `ok`, `no_valid_strides` (analysed, but no stride passed the checks: every parameter
+    /// withheld) or `error`.
     pub status: Label<Status>,
     /// The error, when status is `error`.
     pub error: String,
@@ -182,9 +183,12 @@ pub struct RecordingRow {
 }
 
 impl RecordingRow {
-    /// The recording was analysed (`status` is `ok`).
+    /// The recording was analysed (`status` is `ok` or `no_valid_strides`, not `error`).
     pub fn is_ok(&self) -> bool {
-        self.status == Status::Ok
+        matches!(
+            self.status.known(),
+            Some(Status::Ok | Status::NoValidStrides)
+        )
     }
 }
 
@@ -295,6 +299,9 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
                     row.duration_s = num(l.read.duration_s, 3);
                     row.strides_total = Some(p.strides_total);
                     row.strides_valid = Some(p.strides_valid);
+                    if p.strides_valid == 0 {
+                        row.status = Status::NoValidStrides.into();
+                    }
                     row.stride_time_s = num(p.stride_time_s, 4);
                     row.step_time_s = num(p.step_time_s, 4);
                     row.step_frequency_steps_per_s = num(p.step_frequency_hz, 4);

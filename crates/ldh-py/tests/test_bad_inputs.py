@@ -201,7 +201,9 @@ def test_bad_input(name, tmp_path):
             assert m in errors, (m, errors)
         return
     for i in idx:
-        assert r["status"][i] == "ok", r["error"][i]
+        # analysed: "ok", or "no_valid_strides" exactly when no stride passed the checks
+        want = "no_valid_strides" if r["strides_valid"][i] == 0 else "ok"
+        assert r["status"][i] == want, (r["status"][i], r["error"][i])
         # Structured warnings (docs/quality.md): a list of {code, severity, message, affects};
         # notes never make a case "not ok".
         ws = r["warnings"][i]

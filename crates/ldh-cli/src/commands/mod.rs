@@ -11,7 +11,7 @@ use ldh_core::attitude::AttitudeModel;
 use ldh_core::events::EventDetector;
 use ldh_core::io::{FormatSpec, ReadParams};
 use ldh_core::output::RecordingRow;
-use ldh_core::pipeline::{discover, recording_rows_many, AnalysisParams};
+use ldh_core::pipeline::{discover, recording_rows_many_with, AnalysisParams};
 
 use crate::args::Verbosity;
 
@@ -144,7 +144,13 @@ pub fn rows_for(
     let params = analysis_params(None, Some(model), None, None, false)?;
     let read = ReadParams::default().check()?;
     let subjects = discover(inputs)?;
-    Ok(pool.install(|| recording_rows_many(&subjects, &params, &read)))
+    let pb = progress(
+        subjects.len() as u64,
+        &format!("analyze ({})", model.as_str()),
+    );
+    let rows = pool.install(|| recording_rows_many_with(&subjects, &params, &read, &|| pb.inc(1)));
+    pb.finish_and_clear();
+    Ok(rows)
 }
 
 /// Per-recording rows from `--results` (an `ldh analyze` folder) or else from the inputs.

@@ -6,7 +6,7 @@ use anyhow::Result;
 use ldh_core::attitude::AttitudeModel;
 use ldh_core::ml::TrainParams;
 
-use super::{rows_from, thread_pool, write_files};
+use super::{progress, rows_from, thread_pool, write_files};
 use crate::args::TrainArgs;
 
 /// Run `ldh train`.
@@ -29,8 +29,20 @@ pub fn run(a: TrainArgs) -> Result<ExitCode> {
         features: a
             .features
             .map(|f| f.iter().map(|s| s.trim().to_string()).collect()),
+        min_feature_coverage: a.min_feature_coverage,
     };
-    let outcome = pool.install(|| ldh_core::ml::train(&rows, &params))?;
+    let pb = progress(0, "train");
+    let outcome = pool.install(|| {
+        ldh_core::ml::train_with_progress(&rows, &params, &|n| {
+            pb.set_length(n as u64);
+            pb.inc(1)
+        })
+    });
+    pb.finish_and_clear();
+    let outcome = outcome?;
+    for n in &outcome.notes {
+        super::note!("note: {n}");
+    }
     write_files(&a.out, &outcome.files)?;
     println!("{}", outcome.markdown);
     super::note!("report, models and figures in {}", a.out.display());

@@ -6,7 +6,8 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
-use crate::cohort::{Cohort, Parameter};
+use super::measured::Candidate;
+use crate::cohort::Parameter;
 use crate::error::{LdhError, Result};
 use crate::output::RecordingRow;
 
@@ -81,9 +82,15 @@ pub fn default_features() -> Vec<String> {
     Parameter::columns().into_iter().map(String::from).collect()
 }
 
+/// The default features as parameters.
+pub fn default_parameters() -> Vec<Parameter> {
+    Parameter::ALL.to_vec()
+}
+
 impl Dataset {
     /// Build from a per-recording table (one model). Rows with a missing feature are dropped and
-    /// listed; groups with fewer than 3 complete subjects are refused (see [`Cohort`]).
+    /// listed; groups with fewer than 3 complete subjects are refused (see
+    /// [`crate::cohort::Cohort`]).
     pub fn from_recordings(
         rows: &[RecordingRow],
         task: Task,
@@ -94,69 +101,44 @@ impl Dataset {
             .iter()
             .map(|f| Parameter::from_column(f))
             .collect::<std::result::Result<_, _>>()?;
-        let cohort = Cohort::from_rows(rows)?;
-        let mut x: Vec<Vec<f64>> = Vec::new();
+        let cands = super::measured::candidates(rows, task, &features)?;
+        Dataset::from_candidates(task, &features, &cands)
+    }
+
+    /// Build from the task's rows ([`super::measured::candidates`]): rows with a missing
+    /// feature are dropped and listed in `dropped`; a refusal after dropping rows says which
+    /// features were not measured.
+    pub fn from_candidates(
+        task: Task,
+        features: &[Parameter],
+        cands: &[Candidate],
+    ) -> Result<Dataset> {
+        let mut x: Vec<f64> = Vec::new();
         let (mut y, mut groups, mut ids, mut dropped) = (vec![], vec![], vec![], vec![]);
         // how many dropped rows lack each feature, for the refusal's message
         let mut missing_count = vec![0usize; features.len()];
-        let mut push =
-            |vals: Option<Vec<f64>>, label: usize, subject: &str, what: &str, miss: Vec<usize>| {
-                match vals {
-                    Some(v) => {
-                        x.push(v);
-                        y.push(label);
-                        groups.push(subject.to_string());
-                        ids.push(format!("{subject}/{what}"));
-                    }
-                    None => {
-                        let names: Vec<&str> = miss.iter().map(|&f| features[f].column()).collect();
-                        for f in miss {
-                            missing_count[f] += 1;
-                        }
-                        dropped.push(format!(
-                            "{subject}/{what}: not measured: {}",
-                            names.join(", ")
-                        ));
-                    }
+        for c in cands {
+            match c.values.iter().copied().collect::<Option<Vec<f64>>>() {
+                Some(v) => {
+                    x.extend(v);
+                    y.push(c.label);
+                    groups.push(c.subject.clone());
+                    ids.push(c.id());
                 }
-            };
-        let get = |r: &RecordingRow| -> Option<Vec<f64>> {
-            features.iter().map(|&p| r.value(p)).collect()
-        };
-        let miss = |rows: &[&RecordingRow]| -> Vec<usize> {
-            (0..features.len())
-                .filter(|&f| rows.iter().any(|r| r.value(features[f]).is_none()))
-                .collect()
-        };
-        for s in &cohort.ldh {
-            if task == Task::ThreeClass {
-                push(get(&s.a), 0, &s.subject_id, "unaffected", miss(&[&s.a]));
+                None => {
+                    let miss: Vec<usize> = (0..features.len())
+                        .filter(|&f| c.values[f].is_none())
+                        .collect();
+                    let names: Vec<&str> = miss.iter().map(|&f| features[f].column()).collect();
+                    for f in miss {
+                        missing_count[f] += 1;
+                    }
+                    dropped.push(format!("{}: not measured: {}", c.id(), names.join(", ")));
+                }
             }
-            push(
-                get(&s.b),
-                1, // affected: 1 in both tasks
-                &s.subject_id,
-                "affected",
-                miss(&[&s.b]),
-            );
         }
-        for s in &cohort.healthy {
-            let mean = match (get(&s.a), get(&s.b)) {
-                (Some(a), Some(b)) => Some(a.iter().zip(&b).map(|(p, q)| (p + q) / 2.0).collect()),
-                _ => None,
-            };
-            push(
-                mean,
-                if task == Task::ThreeClass { 2 } else { 0 },
-                &s.subject_id,
-                "healthy",
-                miss(&[&s.a, &s.b]),
-            );
-        }
-        let n = x.len();
-        let p = features.len();
-        let flat: Vec<f64> = x.into_iter().flatten().collect();
-        let x = Array2::from_shape_vec((n, p), flat)
+        let (n, p) = (y.len(), features.len());
+        let x = Array2::from_shape_vec((n, p), x)
             .map_err(|e| LdhError::signal("dataset", e.to_string()))?;
         let ds = Dataset {
             task,
@@ -168,31 +150,39 @@ impl Dataset {
             row_ids: ids,
             dropped,
         };
-        ds.validate().map_err(|e| {
-            // a refusal after dropping rows says which features were not measured
-            let mut lacking: Vec<(usize, &str)> = missing_count
-                .iter()
-                .zip(&features)
-                .filter(|(&c, _)| c > 0)
-                .map(|(&c, p)| (c, p.column()))
-                .collect();
-            if lacking.is_empty() {
-                return e;
-            }
-            lacking.sort_by_key(|l| std::cmp::Reverse(l.0));
-            let list: Vec<String> = lacking.iter().map(|(c, f)| format!("{f} on {c}")).collect();
-            let e = e.to_string();
-            let e = e.strip_prefix("dataset: ").unwrap_or(&e);
-            LdhError::signal(
-                "dataset",
-                format!(
-                    "{e}; {} rows were left out for a feature not measured ({}): choose features that are measured (`ldh train --features`, Python `features=`)",
-                    ds.dropped.len(),
-                    list.join(", ")
-                ),
-            )
-        })?;
+        ds.validate()
+            .map_err(|e| ds.refusal_after_drops(e, features, &missing_count))?;
         Ok(ds)
+    }
+
+    /// A refusal after dropping rows says which features were not measured.
+    fn refusal_after_drops(
+        &self,
+        e: LdhError,
+        features: &[Parameter],
+        missing_count: &[usize],
+    ) -> LdhError {
+        let mut lacking: Vec<(usize, &str)> = missing_count
+            .iter()
+            .zip(features)
+            .filter(|(&c, _)| c > 0)
+            .map(|(&c, p)| (c, p.column()))
+            .collect();
+        if lacking.is_empty() {
+            return e;
+        }
+        lacking.sort_by_key(|l| std::cmp::Reverse(l.0));
+        let list: Vec<String> = lacking.iter().map(|(c, f)| format!("{f} on {c}")).collect();
+        let e = e.to_string();
+        let e = e.strip_prefix("dataset: ").unwrap_or(&e);
+        LdhError::signal(
+            "dataset",
+            format!(
+                "{e}; {} rows were left out for a feature not measured ({}): choose features that are measured (`ldh train --features`, Python `features=`)",
+                self.dropped.len(),
+                list.join(", ")
+            ),
+        )
     }
 
     /// Refuse datasets a classifier cannot learn from, saying why.

@@ -21,6 +21,7 @@ mod arrays;
 pub mod cv;
 pub mod dataset;
 pub mod forest;
+pub mod measured;
 pub mod mlp;
 pub mod model;
 pub mod model_check;
@@ -33,9 +34,10 @@ pub mod tree;
 
 pub use cv::{cross_validate, cross_validate_with_folds, CvKind, CvParams, CvReport};
 pub use dataset::{Dataset, Task};
+pub use measured::TrainNote;
 pub use model::{Classifier, FittedModel, ModelError, ModelFile, Prediction};
 pub use predict::{predict, read_model, PredictOutcome};
-pub use train::{train, ClassifierKind, TrainOutcome, TrainParams};
+pub use train::{train, train_with_progress, ClassifierKind, TrainOutcome, TrainParams};
 
 #[cfg(test)]
 mod model_plausible_tests;

@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::measured::{self, TrainNote};
 use super::{cv, dataset, Classifier, CvKind, CvParams, CvReport, Dataset, ModelFile, Task};
 use crate::error::{LdhError, Result};
 use crate::output::RecordingRow;
@@ -64,8 +65,45 @@ pub struct TrainParams {
     pub seed: u64,
     /// Keep the k features with the largest |Pearson r| inside each training fold. Default none.
     pub top_k: Option<usize>,
-    /// Features (columns of recordings.csv); `None`: the 13 parameters.
+    /// Features (columns of recordings.csv); `None`: the 13 parameters, those measured in at
+    /// least `min_feature_coverage` of the rows ([`super::measured::select_measured`]).
     pub features: Option<Vec<String>>,
+    /// The share of rows (those with anything measured) a default feature must be measured in
+    /// to be kept, in (0, 1]. Default 0.9. Not used with `features`.
+    #[serde(default = "default_coverage")]
+    pub min_feature_coverage: f64,
+}
+
+fn default_coverage() -> f64 {
+    0.9
+}
+
+impl TrainParams {
+    /// Refuse parameters no training can use (checked once, at the start of [`train`]).
+    pub fn check(&self) -> Result<()> {
+        let c = self.min_feature_coverage;
+        if !(c > 0.0 && c <= 1.0) {
+            return Err(LdhError::param(
+                "min_feature_coverage",
+                c,
+                "a share of the rows in (0, 1]",
+            ));
+        }
+        if self.k < 2 {
+            return Err(LdhError::param("k", self.k, "at least 2 folds"));
+        }
+        if self.repeats == 0 {
+            return Err(LdhError::param("repeats", 0, "at least 1"));
+        }
+        if self.classifiers.is_empty() {
+            return Err(LdhError::param(
+                "classifiers",
+                "none",
+                "at least one classifier",
+            ));
+        }
+        Ok(())
+    }
 }
 
 impl Default for TrainParams {
@@ -78,6 +116,7 @@ impl Default for TrainParams {
             seed: 1,
             top_k: None,
             features: None,
+            min_feature_coverage: default_coverage(),
         }
     }
 }
@@ -91,18 +130,38 @@ pub struct TrainOutcome {
     pub reports: Vec<CvReport>,
     /// `(file name, content)` of every output file, in writing order.
     pub files: Vec<(String, String)>,
+    /// What was changed from what was asked (features or rows left out, fewer folds), in order;
+    /// also at the top of the report.
+    pub notes: Vec<TrainNote>,
+    /// The folds used (`k`, or fewer: see `notes`).
+    pub k: usize,
 }
 
 /// Cross-validate and train on the per-recording rows (one attitude model). Runs in parallel on
 /// the current rayon pool; the result does not depend on the thread count.
 pub fn train(rows: &[RecordingRow], p: &TrainParams) -> Result<TrainOutcome> {
-    let features = p.features.clone().unwrap_or_else(dataset::default_features);
-    let ds = Dataset::from_recordings(rows, p.task, &features)?;
+    train_with_progress(rows, p, &|_| {})
+}
+
+/// [`train`], calling `done(steps)` after each step (a classifier's cross-validation of one fold
+/// kind, or a saved model) with the number of steps.
+pub fn train_with_progress(
+    rows: &[RecordingRow],
+    p: &TrainParams,
+    done: &(dyn Fn(usize) + Sync),
+) -> Result<TrainOutcome> {
+    p.check()?;
+    let (ds, mut notes) = dataset_of(rows, p)?;
+    let (k, lowered) = measured::folds_for(&ds.class_counts(), &ds.class_names, p.k)
+        .map_err(|e| refusal(e, &notes))?;
+    notes.extend(lowered);
+    let p = &TrainParams { k, ..p.clone() };
     let attitude_model = rows
         .first()
         .map(|r| r.model.to_string())
         .unwrap_or_default();
     let clfs: Vec<Classifier> = p.classifiers.iter().map(|c| c.classifier(p.seed)).collect();
+    let steps = clfs.len() * 3;
     let mut reports = Vec::new();
     for kind in [CvKind::Grouped, CvKind::Stratified] {
         let cp = CvParams {
@@ -112,13 +171,14 @@ pub fn train(rows: &[RecordingRow], p: &TrainParams) -> Result<TrainOutcome> {
         };
         for c in &clfs {
             reports.push(super::cross_validate(&ds, c, &cp)?);
+            done(steps);
         }
     }
     let mut files = vec![
         ("dataset.csv".to_string(), ds.to_csv()),
         ("folds.csv".to_string(), folds_csv(&ds, p)?),
     ];
-    let markdown = markdown(&ds, p, &attitude_model, &clfs, &reports);
+    let markdown = markdown(&ds, p, &attitude_model, &clfs, &reports, &notes);
     for r in &reports {
         let kind = r.kind.as_str();
         let svg = crate::plots::confusion_svg(
@@ -138,6 +198,7 @@ pub fn train(rows: &[RecordingRow], p: &TrainParams) -> Result<TrainOutcome> {
         let m = ModelFile::train(&final_ds, c, &attitude_model)?;
         let json = m.to_json()?;
         files.push((format!("model_{}.json", c.name()), json));
+        done(steps);
     }
     let cv_json = serde_json::to_string_pretty(&reports)?;
     files.push(("cv_results.json".into(), cv_json));
@@ -146,7 +207,45 @@ pub fn train(rows: &[RecordingRow], p: &TrainParams) -> Result<TrainOutcome> {
         markdown,
         reports,
         files,
+        notes,
+        k,
     })
+}
+
+/// The dataset and the notes on what it left out: the features asked for (rows lacking one
+/// dropped, as always), or else the default features the cohort measured.
+fn dataset_of(rows: &[RecordingRow], p: &TrainParams) -> Result<(Dataset, Vec<TrainNote>)> {
+    let (ds, mut notes) = match &p.features {
+        Some(f) => (Dataset::from_recordings(rows, p.task, f)?, Vec::new()),
+        None => {
+            let all = dataset::default_parameters();
+            let cands = measured::candidates(rows, p.task, &all)?;
+            let (kept, cands, notes) =
+                measured::select_measured(cands, &all, p.min_feature_coverage)?;
+            let ds =
+                Dataset::from_candidates(p.task, &kept, &cands).map_err(|e| refusal(e, &notes))?;
+            (ds, notes)
+        }
+    };
+    if !ds.dropped.is_empty() {
+        notes.push(TrainNote::RowsLeftOut {
+            rows: ds.dropped.clone(),
+        });
+    }
+    Ok((ds, notes))
+}
+
+/// A refusal once rows or features were left out: one error saying why and what was left out.
+fn refusal(e: LdhError, notes: &[TrainNote]) -> LdhError {
+    if notes.is_empty() {
+        return e;
+    }
+    let why = match &e {
+        LdhError::Signal { reason, .. } => reason.clone(),
+        LdhError::Param { reason, .. } => reason.clone(),
+        other => other.to_string(),
+    };
+    measured::nothing_to_train(why, notes)
 }
 
 fn cv_params(p: &TrainParams) -> CvParams {
@@ -199,6 +298,7 @@ fn markdown(
     attitude_model: &str,
     clfs: &[Classifier],
     reports: &[CvReport],
+    notes: &[TrainNote],
 ) -> String {
     let counts: Vec<String> = ds
         .class_names
@@ -213,11 +313,19 @@ fn markdown(
         counts.join(", "),
         if p.top_k.is_some() { " and the top-k feature selection" } else { "" }
     );
-    if !ds.dropped.is_empty() {
+    if p.features.is_none() {
         md.push_str(&format!(
-            "Rows left out (a feature missing): {}.\n\n",
-            ds.dropped.join("; ")
+            "Features: the {} of the 13 parameters measured in at least {:.0} % of the rows with anything measured.\n\n",
+            ds.feature_names.len(),
+            p.min_feature_coverage * 100.0,
         ));
+    }
+    if !notes.is_empty() {
+        md.push_str("Notes:\n\n");
+        for n in notes {
+            md.push_str(&format!("- {n}.\n"));
+        }
+        md.push('\n');
     }
     md.push_str("## Cross-validation\n\n**Subject-grouped folds are the primary result**: both sides of a subject always fall on the same side of a split. The paper's stratified folds, beside them, let one side of a subject train the model that tests the other side.\n\n");
     md.push_str(&cv::markdown(reports));

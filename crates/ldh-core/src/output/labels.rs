@@ -112,20 +112,26 @@ impl Known for Setting {
     }
 }
 
-/// Whether a recording was analysed (`ok`) or failed (`error`, the row's `error` says why).
+/// Whether a recording was analysed (`ok`), analysed without a single valid stride
+/// (`no_valid_strides`: every parameter is withheld, `withheld` says why), or failed (`error`,
+/// the row's `error` says why).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Status {
-    /// `ok`: analysed.
+    /// `ok`: analysed, at least one valid stride.
     Ok,
+    /// `no_valid_strides`: analysed, but no stride passed the checks, so no parameter was
+    /// measured (a walk too short, or every stride left out).
+    NoValidStrides,
     /// `error`: failed.
     Error,
 }
 
 impl Known for Status {
-    const ALL: &'static [Status] = &[Status::Ok, Status::Error];
+    const ALL: &'static [Status] = &[Status::Ok, Status::NoValidStrides, Status::Error];
     fn cell(self) -> &'static str {
         match self {
             Status::Ok => "ok",
+            Status::NoValidStrides => "no_valid_strides",
             Status::Error => "error",
         }
     }

@@ -233,6 +233,10 @@ fn discover_inputs(inputs: &[PathBuf], opts: &InputOptions) -> Result<Vec<Subjec
             source: std::io::Error::new(std::io::ErrorKind::NotFound, "no such file or folder"),
         });
     }
+    // An ldh output folder (or a table in one) is refused with the way to pass it.
+    if let Some(e) = inputs.iter().find_map(|p| super::output_hint::refusal(p)) {
+        return Err(e);
+    }
     let files: Vec<&PathBuf> = inputs
         .iter()
         .filter(|p| !p.is_dir() && !is_manifest(p))

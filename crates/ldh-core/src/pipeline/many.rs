@@ -39,7 +39,29 @@ pub fn recording_rows_many(
     params: &AnalysisParams,
     read: &ValidReadParams,
 ) -> Vec<RecordingRow> {
-    output::recording_rows(&analyze_many(subjects, params, None, read))
+    recording_rows_many_with(subjects, params, read, &|| {})
+}
+
+/// [`recording_rows_many`], calling `done()` after each subject (progress).
+pub fn recording_rows_many_with(
+    subjects: &[SubjectInput],
+    params: &AnalysisParams,
+    read: &ValidReadParams,
+    done: &(dyn Fn() + Sync),
+) -> Vec<RecordingRow> {
+    let checked = params.check().ok();
+    let results: Vec<SubjectResult> = subjects
+        .par_iter()
+        .map(|s| {
+            let r = match &checked {
+                Some(v) => analyze_subject_checked(s, v, None, read),
+                None => analyze_subject(s, params, None, read),
+            };
+            done();
+            r
+        })
+        .collect();
+    output::recording_rows(&results)
 }
 
 /// Options of [`analyze_to_folder`].

@@ -11,6 +11,7 @@ mod inputs;
 mod leg;
 mod manifest;
 mod many;
+pub mod output_hint;
 pub mod pairing;
 pub mod quality;
 mod subject;
@@ -32,7 +33,7 @@ pub use leg::{
 pub use manifest::{is_manifest_text, GroupLabel, MANIFEST_COLUMNS};
 pub use many::{
     analyze_many, analyze_to_folder, bounded_jobs, check_output_names, recording_rows_many,
-    FolderOptions, FolderSummary,
+    recording_rows_many_with, FolderOptions, FolderSummary,
 };
 pub use quality::{
     all_leg_warnings, codes, leg_checks, leg_warnings, pair_warnings, params as quality_params,

@@ -120,7 +120,8 @@ def analyze(
         ``.strides``, ``.recordings``, ``.events`` (DataFrames), ``.warnings``, ``.errors``,
         ``.timings``; see :class:`ldh.Result` and docs/python.md. A recording that failed has
         ``status == "error"`` and its ``error`` (and a row in ``.errors``); the others are
-        analysed. Problems that did not stop a recording are in ``.warnings``.
+        analysed (``"ok"``, or ``"no_valid_strides"`` when no stride passed the checks and
+        every parameter is withheld). Problems that did not stop a recording are in ``.warnings``.
 
     Raises
     ------
