@@ -231,7 +231,7 @@ mod tests {
     #[test]
     fn ramp_strides_are_excluded() {
         let t = ramp_walk(60);
-        let w = steady_window(&t, &vec![true; 60], &p());
+        let w = steady_window(&t, &[true; 60], &p());
         assert!(w.excluded_start >= 5 && w.excluded_start <= 8, "{w:?}");
         assert_eq!(w.excluded_end, 0);
         assert!(w.enough);
@@ -243,7 +243,7 @@ mod tests {
         let t: Vec<f64> = (0..40)
             .map(|i| 1.05 + 0.02 * ((i as f64) * 1.7).sin())
             .collect();
-        let w = steady_window(&t, &vec![true; 40], &p());
+        let w = steady_window(&t, &[true; 40], &p());
         assert_eq!(
             (w.first, w.end, w.excluded_start, w.excluded_end),
             (0, 40, 0, 0)
@@ -256,7 +256,7 @@ mod tests {
             .map(|i| 1.0 + 0.01 * ((i as f64) * 1.3).sin())
             .collect();
         t.extend([1.15, 1.25, 1.4]);
-        let w = steady_window(&t, &vec![true; 33], &p());
+        let w = steady_window(&t, &[true; 33], &p());
         assert_eq!(w.excluded_end, 3);
         assert_eq!(w.end, 30);
     }
@@ -289,7 +289,7 @@ mod tests {
         }
         .check()
         .unwrap();
-        let w = steady_window(&t, &vec![true; 30], &q);
+        let w = steady_window(&t, &[true; 30], &q);
         assert_eq!((w.first, w.end, w.excluded_start), (0, 30, 0));
         assert!(SteadyParams {
             band_mads: 0.0,
