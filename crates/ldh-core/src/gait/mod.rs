@@ -31,6 +31,7 @@ mod length;
 mod params;
 mod segment;
 mod side;
+mod steady;
 mod times;
 
 use serde::{Deserialize, Serialize};
@@ -51,6 +52,9 @@ pub use segment::{
     TurnTest, ACC_ONLY_LENGTH,
 };
 pub use side::{side_parameters, withhold_unvouched_lengths, MIN_LENGTH_SHARE, MIN_LENGTH_STRIDES};
+pub use steady::{
+    steady_window, SteadyParams, SteadyWindow, ValidSteadyParams, STEADY_REASON, TOO_LITTLE_STEADY,
+};
 
 /// One stride of one leg: a row of the per-stride table (SPEC §6).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

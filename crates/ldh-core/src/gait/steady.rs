@@ -1,0 +1,313 @@
+//! Steady-state walking: the window of a walk left after the acceleration and deceleration
+//! strides at its start and end (treadmill belt start-up, gait initiation and termination).
+//!
+//! The rule is run-based and not fitted to any data: the walk's robust centre is the median
+//! stride time of the valid strides, its robust spread 1.4826 × MAD (the normal-consistent
+//! scale). A stride is *in band* when its time lies within `band_mads` robust SDs of the
+//! median, never narrower than `min_band_share` of the median. Steady walking starts at the
+//! first run of `run_strides` consecutive in-band valid strides (searched from the start) and
+//! ends at the last such run (searched from the end); the strides before and after are
+//! excluded with the reason [`STEADY_REASON`], as turn strides are excluded with theirs.
+//!
+//! Thresholds, from the literature rather than from the tests:
+//! - `band_mads` 3: three SDs of the walk's own stride-to-stride variation, so a patient's larger
+//!   variability widens the band instead of being cut (Hausdorff 2005, J NeuroEng Rehabil
+//!   2:19: healthy stride-time CV ≈ 1–3 %, higher in neurological gait).
+//! - `min_band_share` 0.05: ≈ 2.5 × a healthy adult's stride-time CV of ≈ 2 % (Hausdorff 2005),
+//!   so a very regular walk does not make every ordinary stride look transient.
+//! - `run_strides` 3: steady walking speed is reached within the first 2–3 strides of gait
+//!   initiation in adults (Lindemann et al. 2008, Gait Posture 27:91–96, who report a few
+//!   metres more in frail elderly people); three consecutive steady strides confirm it.
+//! - `min_steady_strides` 10: fewer steady strides leave the CV too uncertain (its relative
+//!   standard error ≈ 1/√(2n) is > 20 % below 10 strides; Hausdorff 2005 asks for many strides),
+//!   so the variability is withheld with [`TOO_LITTLE_STEADY`] rather than guessed.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{LdhError, Result};
+
+/// The reason given on a stride outside the steady window.
+pub const STEADY_REASON: &str = "not steady walking (acceleration or deceleration)";
+
+/// The reason a side's variability is withheld when too few steady strides remain.
+pub const TOO_LITTLE_STEADY: &str = "too little steady walking";
+
+/// Parameters of the steady-state rule (module docs give the sources of the defaults).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SteadyParams {
+    /// Apply the rule. Default true.
+    pub enabled: bool,
+    /// Band half-width in robust SDs (1.4826 × MAD) of stride time. Default 3.
+    pub band_mads: f64,
+    /// Smallest band half-width as a share of the median stride time. Default 0.05.
+    pub min_band_share: f64,
+    /// Consecutive in-band strides that start (and, from the end, close) steady walking.
+    /// Default 3.
+    pub run_strides: usize,
+    /// Fewest steady strides for the side's variability (CV). Default 10.
+    pub min_steady_strides: usize,
+}
+
+impl Default for SteadyParams {
+    fn default() -> Self {
+        SteadyParams {
+            enabled: true,
+            band_mads: 3.0,
+            min_band_share: 0.05,
+            run_strides: 3,
+            min_steady_strides: 10,
+        }
+    }
+}
+
+/// [`SteadyParams`] after [`SteadyParams::check`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ValidSteadyParams(pub(crate) SteadyParams);
+
+impl SteadyParams {
+    /// Validate.
+    pub fn check(&self) -> Result<ValidSteadyParams> {
+        if !(self.band_mads.is_finite() && self.band_mads > 0.0) {
+            return Err(LdhError::param("band_mads", self.band_mads, "must be > 0"));
+        }
+        if !(self.min_band_share.is_finite() && (0.0..1.0).contains(&self.min_band_share)) {
+            return Err(LdhError::param(
+                "min_band_share",
+                self.min_band_share,
+                "must lie in [0, 1)",
+            ));
+        }
+        if self.run_strides == 0 {
+            return Err(LdhError::param(
+                "run_strides",
+                self.run_strides,
+                "must be ≥ 1",
+            ));
+        }
+        Ok(ValidSteadyParams(*self))
+    }
+}
+
+/// The steady window of one leg's strides.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SteadyWindow {
+    /// Index of the first steady stride.
+    pub first: usize,
+    /// Index one past the last steady stride (`first == end`: no steady walking).
+    pub end: usize,
+    /// Valid strides excluded before the window.
+    pub excluded_start: usize,
+    /// Valid strides excluded after the window.
+    pub excluded_end: usize,
+    /// Valid strides inside the window.
+    pub steady: usize,
+    /// Whether enough steady strides remain (`steady ≥ min_steady_strides`).
+    pub enough: bool,
+}
+
+/// The steady window of `stride_time_s` (one leg, in time order), counting only strides whose
+/// `valid` is true (invalid ones neither start nor break a run). With the rule disabled or
+/// fewer than 3 valid strides, the window is everything.
+pub fn steady_window(stride_time_s: &[f64], valid: &[bool], p: &ValidSteadyParams) -> SteadyWindow {
+    let p = p.0;
+    let n = stride_time_s.len().min(valid.len());
+    let ok: Vec<usize> = (0..n)
+        .filter(|&i| valid[i] && stride_time_s[i].is_finite())
+        .collect();
+    let whole = |steady: usize| SteadyWindow {
+        first: 0,
+        end: n,
+        excluded_start: 0,
+        excluded_end: 0,
+        steady,
+        enough: steady >= p.min_steady_strides,
+    };
+    let Some((centre, half)) = band(
+        &ok.iter().map(|&i| stride_time_s[i]).collect::<Vec<_>>(),
+        &p,
+    ) else {
+        return whole(ok.len());
+    };
+    if !p.enabled {
+        return whole(ok.len());
+    }
+    let inb = |i: usize| (stride_time_s[i] - centre).abs() <= half;
+    let start = first_run(ok.iter().copied(), &inb, p.run_strides);
+    let last = first_run(ok.iter().rev().copied(), &inb, p.run_strides);
+    match (start, last) {
+        (Some(a), Some(b)) if a <= b => {
+            let steady = ok.iter().filter(|&&i| i >= a && i <= b).count();
+            SteadyWindow {
+                first: a,
+                end: b + 1,
+                excluded_start: ok.iter().filter(|&&i| i < a).count(),
+                excluded_end: ok.iter().filter(|&&i| i > b).count(),
+                steady,
+                enough: steady >= p.min_steady_strides,
+            }
+        }
+        _ => SteadyWindow {
+            first: 0,
+            end: 0,
+            excluded_start: ok.len(),
+            excluded_end: 0,
+            steady: 0,
+            enough: false,
+        },
+    }
+}
+
+/// Median and band half-width of the stride times (`None` for fewer than 3).
+fn band(t: &[f64], p: &SteadyParams) -> Option<(f64, f64)> {
+    let med = median(t.to_vec())?;
+    let mad = median(t.iter().map(|x| (x - med).abs()).collect())?;
+    Some((
+        med,
+        (p.band_mads * 1.4826 * mad).max(p.min_band_share * med),
+    ))
+}
+
+/// Median of at least 3 values (`None` otherwise).
+fn median(mut v: Vec<f64>) -> Option<f64> {
+    if v.len() < 3 {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    let m = v.len() / 2;
+    Some(if v.len() % 2 == 1 {
+        v[m]
+    } else {
+        0.5 * (v[m - 1] + v[m])
+    })
+}
+
+/// The first index of `order` that begins `run` consecutive in-band entries.
+fn first_run(
+    order: impl Iterator<Item = usize>,
+    inb: &dyn Fn(usize) -> bool,
+    run: usize,
+) -> Option<usize> {
+    let mut count = 0;
+    let mut begin = 0;
+    for i in order {
+        if inb(i) {
+            if count == 0 {
+                begin = i;
+            }
+            count += 1;
+            if count == run {
+                return Some(begin);
+            }
+        } else {
+            count = 0;
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p() -> ValidSteadyParams {
+        SteadyParams::default().check().unwrap()
+    }
+
+    /// A belt ramp: stride time falls from 1.2 s to 1.0 s over the first 8 strides.
+    fn ramp_walk(n: usize) -> Vec<f64> {
+        (0..n)
+            .map(|i| {
+                let jitter = 0.015 * ((i as f64) * 2.3).sin();
+                if i < 8 {
+                    1.2 - 0.2 * (i as f64) / 8.0 + jitter
+                } else {
+                    1.0 + jitter
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn ramp_strides_are_excluded() {
+        let t = ramp_walk(60);
+        let w = steady_window(&t, &[true; 60], &p());
+        assert!(w.excluded_start >= 5 && w.excluded_start <= 8, "{w:?}");
+        assert_eq!(w.excluded_end, 0);
+        assert!(w.enough);
+        assert_eq!(w.end, 60);
+    }
+
+    #[test]
+    fn steady_walk_keeps_everything() {
+        let t: Vec<f64> = (0..40)
+            .map(|i| 1.05 + 0.02 * ((i as f64) * 1.7).sin())
+            .collect();
+        let w = steady_window(&t, &[true; 40], &p());
+        assert_eq!(
+            (w.first, w.end, w.excluded_start, w.excluded_end),
+            (0, 40, 0, 0)
+        );
+    }
+
+    #[test]
+    fn termination_is_excluded_from_the_end() {
+        let mut t: Vec<f64> = (0..30)
+            .map(|i| 1.0 + 0.01 * ((i as f64) * 1.3).sin())
+            .collect();
+        t.extend([1.15, 1.25, 1.4]);
+        let w = steady_window(&t, &[true; 33], &p());
+        assert_eq!(w.excluded_end, 3);
+        assert_eq!(w.end, 30);
+    }
+
+    #[test]
+    fn invalid_strides_neither_start_nor_break_a_run() {
+        let mut t = vec![1.3, 1.0, 1.0, 9.0, 1.0];
+        t.extend(vec![1.0; 10]);
+        let mut valid = vec![true; t.len()];
+        valid[3] = false;
+        let w = steady_window(&t, &valid, &p());
+        assert_eq!(w.first, 1);
+        assert_eq!(w.excluded_start, 1);
+    }
+
+    #[test]
+    fn too_little_steady_walking_is_said() {
+        let t = vec![1.0; 6];
+        let w = steady_window(&t, &[true; 6], &p());
+        assert!(!w.enough);
+        assert_eq!(w.steady, 6);
+    }
+
+    #[test]
+    fn disabled_rule_keeps_everything_and_bad_params_fail() {
+        let t = ramp_walk(30);
+        let q = SteadyParams {
+            enabled: false,
+            ..Default::default()
+        }
+        .check()
+        .unwrap();
+        let w = steady_window(&t, &[true; 30], &q);
+        assert_eq!((w.first, w.end, w.excluded_start), (0, 30, 0));
+        assert!(SteadyParams {
+            band_mads: 0.0,
+            ..Default::default()
+        }
+        .check()
+        .is_err());
+        assert!(SteadyParams {
+            min_band_share: 1.0,
+            ..Default::default()
+        }
+        .check()
+        .is_err());
+        assert!(SteadyParams {
+            run_strides: 0,
+            ..Default::default()
+        }
+        .check()
+        .is_err());
+    }
+}
