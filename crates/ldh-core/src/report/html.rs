@@ -36,8 +36,8 @@ figcaption { font-size: 12px; color: #333; margin-top: 3px; }
 ol.refs { font-size: 11.5px; }
 table.triage td.bad { background: #fde2e2; font-weight: bold; }
 .print-only { display: none; }
-@page { size: A4; margin: 10mm; }
-@media print { body { margin: 0; max-width: none; font-size: 8.5pt; } div.headline p, div.headline ul { margin: 1px 0; } div.headline li { margin: 0; } .missing { padding: 2px 8px; margin: 3px 0; } .missing ul { margin: 1px 0; } .screen-only { display: none; } .print-only { display: block; } figure.plot { width: 50%; margin: 2px auto; } figure.plot[data-axis-labels^="z-score"] { width: 36%; } figcaption { font-size: 8pt; } table { font-size: 8pt; } th, td { padding: 1px 4px; } h1 { font-size: 15pt; } h2 { font-size: 12pt; margin-top: 10px; page-break-after: avoid; break-after: avoid; } .note, .missing, .support, figure, tr { page-break-inside: avoid; break-inside: avoid; } .out, .flag, th, td.bad { -webkit-print-color-adjust: exact; print-color-adjust: exact; } }
+@page { size: A4; margin: 7mm; }
+@media print { body { margin: 0; max-width: none; font-size: 8.5pt; } div.headline p, div.headline ul { margin: 1px 0; } div.headline li { margin: 0; } .missing { padding: 2px 8px; margin: 3px 0; } .missing ul { margin: 1px 0; } .screen-only { display: none; } .print-only { display: block; } figure.plot { width: 50%; margin: 2px auto; } figure.plot[data-axis-labels^="z-score"] { width: 36%; } figcaption { font-size: 8pt; } table { font-size: 8pt; } th, td { padding: 1px 4px; } h1 { font-size: 15pt; } h2 { font-size: 11pt; margin-top: 6px; margin-bottom: 3px; page-break-after: avoid; break-after: avoid; } .note, .missing, .support, figure, tr { page-break-inside: avoid; break-inside: avoid; } .out, .flag, th, td.bad { -webkit-print-color-adjust: exact; print-color-adjust: exact; } }
 "#;
 
 /// The whole page around `body`: doctype, head (charset, viewport, generator, title, CSS).
