@@ -197,6 +197,7 @@ pub fn build(
             .collect(),
         recordings: rows,
         reference: Some(reference),
+        asymmetry_flag_pct: Some(params.0.asymmetry_flag_pct),
     };
     run.write("index.html", cohort_html(&cohort)?.as_bytes())?;
     run.finish()?;

@@ -29,15 +29,15 @@ th { background: #eee; } td.num { text-align: right; font-variant-numeric: tabul
 td.nm, td.withheld { color: #555; font-style: italic; }
 table.summary { font-size: 13.5px; } table.summary td.num { white-space: nowrap; }
 span.flagword { font-weight: normal; font-size: 11.5px; color: #333; }
-p.headline { font-size: 14.5px; margin: 6px 0; }
+p.headline, div.headline { font-size: 14.5px; margin: 6px 0; }
 figure { margin: 10px 0; page-break-inside: avoid; break-inside: avoid; }
 figure svg { width: 100%; height: auto; display: block; }
 figcaption { font-size: 12px; color: #333; margin-top: 3px; }
 ol.refs { font-size: 11.5px; }
 table.triage td.bad { background: #fde2e2; font-weight: bold; }
 .print-only { display: none; }
-@page { size: A4; margin: 10mm; }
-@media print { body { margin: 0; max-width: none; font-size: 8.5pt; } .screen-only { display: none; } .print-only { display: block; } figure.plot { width: 50%; margin: 2px auto; } figure.plot[data-axis-labels^="z-score"] { width: 36%; } figcaption { font-size: 8pt; } table { font-size: 8pt; } th, td { padding: 1px 4px; } h1 { font-size: 15pt; } h2 { font-size: 12pt; margin-top: 10px; page-break-after: avoid; break-after: avoid; } .note, .missing, .support, figure, tr { page-break-inside: avoid; break-inside: avoid; } .out, .flag, th, td.bad { -webkit-print-color-adjust: exact; print-color-adjust: exact; } }
+@page { size: A4; margin: 7mm; }
+@media print { body { margin: 0; max-width: none; font-size: 8.5pt; } div.headline p, div.headline ul { margin: 1px 0; } div.headline li { margin: 0; } .missing { padding: 2px 8px; margin: 3px 0; } .missing ul { margin: 1px 0; } .screen-only { display: none; } .print-only { display: block; } figure.plot { width: 50%; margin: 2px auto; } figure.plot[data-axis-labels^="z-score"] { width: 36%; } figcaption { font-size: 8pt; } table { font-size: 8pt; } th, td { padding: 1px 4px; } h1 { font-size: 15pt; } h2 { font-size: 11pt; margin-top: 6px; margin-bottom: 3px; page-break-after: avoid; break-after: avoid; } .note, .missing, .support, figure, tr { page-break-inside: avoid; break-inside: avoid; } .out, .flag, th, td.bad { -webkit-print-color-adjust: exact; print-color-adjust: exact; } }
 "#;
 
 /// The whole page around `body`: doctype, head (charset, viewport, generator, title, CSS).
@@ -109,14 +109,6 @@ pub(crate) fn fmt(v: Option<f64>, dec: usize) -> String {
 /// An optional count, an en dash when missing.
 pub(crate) fn count(v: Option<usize>) -> String {
     v.map(|v| v.to_string()).unwrap_or("–".into())
-}
-
-/// Decimals shown for a parameter of this unit.
-pub(crate) fn decimals(unit: &str) -> usize {
-    match unit {
-        "deg" => 1,
-        _ => 3,
-    }
 }
 
 /// `left` or `right`, with the manifest's role when there is one (`right (affected)`).

@@ -27,11 +27,13 @@
 mod build;
 mod cohort;
 pub mod cycle;
+mod headline;
 mod html;
 pub mod reference;
 mod subject;
 mod summary;
 pub mod trace;
+mod verdict;
 
 use serde::{Deserialize, Serialize};
 
@@ -155,7 +157,12 @@ pub struct CohortReport {
     /// The reference the subject pages were judged against (the triage table counts values
     /// outside it); `None`: made from `recordings` with the default parameters.
     pub reference: Option<Reference>,
+    /// The asymmetry threshold the subject pages used (%); `None`: the default
+    /// ([`ReportParams::asymmetry_flag_pct`]).
+    pub asymmetry_flag_pct: Option<f64>,
 }
 
 #[cfg(test)]
 pub(crate) mod tests;
+#[cfg(test)]
+mod tests_headline;

@@ -7,8 +7,10 @@
 use maud::{html, Markup};
 
 use super::cycle::cycle_section;
+use super::headline::{headline, make as make_headline};
 use super::html::{count, fmt, page, red_box, side_label, VERSION};
 use super::summary::clinical_summary;
+use super::verdict::verdicts;
 use super::{LegTrace, ValidReportParams};
 use super::{Reference, ReferenceRange, ReferenceSource, SubjectReport};
 use crate::cohort::PARAMETERS;
@@ -27,32 +29,41 @@ pub fn subject_html(
     reference: &Reference,
     p: &ValidReportParams,
 ) -> Result<String> {
-    // One row per side; a person's several trials averaged (docs/input.md "Trials").
-    let all: Vec<&RecordingRow> = s.recordings.iter().collect();
-    let own: Vec<RecordingRow> = [crate::Side::Left, crate::Side::Right]
-        .into_iter()
-        .filter_map(|side| crate::cohort::person_row(&all, side))
-        .collect();
+    let own = person_sides(&s.recordings);
     let sides: Vec<&RecordingRow> = own.iter().collect();
     let citations = Citations::of(reference);
+    // Every verdict of the page, made once: the headline, the summary and section 2 render it.
+    let v = verdicts(&sides, reference, p.0.asymmetry_flag_pct);
     let body = html! {
         (header(s, &sides))
+        h2 #summary { "Clinical summary" } "\n"
+        (headline(&make_headline(&v, &sides, reference)))
         (warning_box(&sides))
         (red_box("Missing from this report.", &missing(s)))
-        (clinical_summary(&sides, reference, &citations, p))
+        (clinical_summary(&v, reference, &citations, p))
         (recordings_table(&sides))
         (reading_notes(s))
         (excluded_strides(&s.strides))
-        (parameter_table(&sides, reference, &citations, p))
+        (parameter_table(&v, &sides, reference, &citations, p))
         (subject_radar(s, &sides, reference)?)
         (cycle_section(s, &sides, reference, p)?)
-        p.print-only.meta { "Printed report: the signal figures (section 3) and the stride-by-stride plots (section 4) are in the on-screen report." } "\n"
+        p.print-only.meta { "Printed report: the signal figures (section 3), the stride-by-stride plots (section 4) and the technical appendix (every quality finding with its code) are in the on-screen report." } "\n"
         div.screen-only { (signals(s)?) (stride_by_stride(&s.strides)?) } "\n"
 
         (classifier(s))
         (methods(&citations))
+        div.screen-only { (appendix(&sides)) } "\n"
     };
     Ok(page(&format!("Gait report — {}", s.subject_id), body))
+}
+
+/// One row per side; a person's several trials averaged (docs/input.md "Trials").
+pub(crate) fn person_sides(recordings: &[RecordingRow]) -> Vec<RecordingRow> {
+    let all: Vec<&RecordingRow> = recordings.iter().collect();
+    [crate::Side::Left, crate::Side::Right]
+        .into_iter()
+        .filter_map(|side| crate::cohort::person_row(&all, side))
+        .collect()
 }
 
 /// The published sources cited by the parameter table, numbered in table order.
@@ -111,27 +122,71 @@ fn header(s: &SubjectReport, sides: &[&RecordingRow]) -> Markup {
     }
 }
 
-/// The quality findings, one bullet each: a finding of both legs (the pair's) once, notes last.
-fn warning_box(sides: &[&RecordingRow]) -> Markup {
-    let mut items: Vec<(crate::pipeline::Severity, String, Vec<&str>)> = Vec::new();
+/// Findings whose only effect is a value withheld (said in the headline's "could not be
+/// measured") or that change no number: they stay out of "Check before reading".
+const NOT_FOR_THE_BOX: [&str; 3] = [
+    crate::pipeline::codes::SENSOR_HEIGHT_UNKNOWN,
+    crate::pipeline::codes::SV_NOISE,
+    crate::pipeline::codes::SV_UNCHECKED,
+];
+
+/// The findings of both legs, each once: (severity, code, text, the legs that have it).
+fn findings<'a>(
+    sides: &[&'a RecordingRow],
+) -> Vec<(crate::pipeline::Severity, &'a str, String, Vec<&'a str>)> {
+    let mut items: Vec<(crate::pipeline::Severity, &str, String, Vec<&str>)> = Vec::new();
     for r in sides {
         for w in r.warnings.iter() {
             let text = w.to_string();
-            match items.iter_mut().find(|x| x.1 == text) {
-                Some(x) => x.2.push(r.side.as_str()),
-                None => items.push((w.severity, text, vec![r.side.as_str()])),
+            match items.iter_mut().find(|x| x.2 == text) {
+                Some(x) => x.3.push(r.side.as_str()),
+                None => items.push((w.severity, w.code.as_str(), text, vec![r.side.as_str()])),
             }
         }
     }
     items.sort_by_key(|x| std::cmp::Reverse(x.0));
-    let items: Vec<String> = items
-        .into_iter()
-        .map(|(_, text, s)| {
-            let who = if s.len() > 1 { "both legs" } else { s[0] };
-            format!("{who}: {text}")
-        })
-        .collect();
+    items
+}
+
+/// "Check before reading the numbers": the quality problems that change the numbers (sensor
+/// faults, drift, gyroscope bias not removed…), in their own words, each once; notes and
+/// findings that only withhold a value are in the technical appendix.
+fn warning_box(sides: &[&RecordingRow]) -> Markup {
+    let mut items: Vec<String> = Vec::new();
+    for r in sides {
+        for w in r
+            .warnings
+            .at_least(crate::pipeline::Severity::Warning)
+            .filter(|w| !NOT_FOR_THE_BOX.contains(&w.code.as_str()))
+        {
+            let text = format!("{}: {}", r.side, w.message);
+            if !items.contains(&text) {
+                items.push(text);
+            }
+        }
+    }
     red_box("Check before reading the numbers.", &items)
+}
+
+/// The technical appendix: every quality finding with its code and severity, each said once
+/// with the legs (and how many) that have it.
+fn appendix(sides: &[&RecordingRow]) -> Markup {
+    let items = findings(sides);
+    html! {
+        h2 #appendix { "Technical appendix: quality findings" } "\n"
+        @if items.is_empty() {
+            p { "No quality check found anything." } "\n"
+        } @else {
+            p.meta { "Codes as in recordings.csv (docs/quality.md); each finding once, with the legs that have it." } "\n"
+            ul.meta {
+                @for (_, _, text, legs) in &items {
+                    @let who = if legs.len() > 1 { "both legs" } else { legs[0] };
+                    li { (who) ": " (text) } "\n"
+                }
+            }
+            "\n"
+        }
+    }
 }
 
 /// What the page cannot show, and why.
@@ -191,7 +246,7 @@ fn facts(r: &RecordingRow) -> [String; 10] {
             "none".into()
         } else {
             let codes: Vec<&str> = r.warnings.iter().map(|w| w.code.as_str()).collect();
-            format!("{} (see above)", codes.join(", "))
+            format!("{} (technical appendix)", codes.join(", "))
         },
         fmt(r.duration_s, 1),
         fmt(r.fs_hz, 2),

@@ -1,9 +1,10 @@
-//! The first screen of a subject's page: a clinical summary in a clinician's words and units
-//! (cadence in steps/min, speed m/s, stride length m, stance % of the gait cycle, variability as
-//! CV %, left-right asymmetry %), each value beside the normal range it was judged against and
-//! that range's source, a plain-language flag ("below normal", "within normal", …) and ▲/▼ for
-//! values outside it, and "not measured: <reason>" — never a number, never a mark — for what a
-//! quality check withheld or could not be computed.
+//! The first screen of a subject's page: the clinical headline ([`super::headline`]) and a
+//! clinical summary in a clinician's words and units (cadence in steps/min, speed m/s, stride
+//! length m, stance % of the gait cycle, variability as CV %, left-right asymmetry %), each
+//! value beside the normal range it was judged against and that range's source, a
+//! plain-language flag ("below normal", "within normal", …) and ▲/▼ for values outside it,
+//! and "not measured: <reason>" — never a number, never a mark — for what a quality check
+//! withheld or could not be computed. Every verdict comes from [`super::verdict`], made once.
 //!
 //! The asymmetry is the symmetry index of Robinson et al. (J Manipulative Physiol Ther
 //! 1987;10(4):172–176), flagged above [`super::ReportParams::asymmetry_flag_pct`].
@@ -13,75 +14,9 @@ use maud::{html, Markup};
 use super::html::fmt;
 use super::reference::no_published_reason;
 use super::subject::Citations;
-use super::{symmetry_index_pct, Reference, ReferenceRange, ReferenceSource, ValidReportParams};
+use super::verdict::{Asymmetry, Cell, Quantity, Row, Scope, Verdicts};
+use super::{ReferenceRange, ReferenceSource, ValidReportParams};
 use crate::output::{Parameter, RecordingRow};
-
-/// One line of the summary: a parameter column shown in clinical units.
-pub(crate) struct Measure {
-    /// What a clinician calls it.
-    pub label: &'static str,
-    /// The clinical unit.
-    pub unit: &'static str,
-    /// The parameter.
-    pub parameter: Parameter,
-    /// Factor from the table's unit to the clinical unit.
-    pub scale: f64,
-    /// Decimals shown.
-    pub decimals: usize,
-}
-
-const fn m(
-    label: &'static str,
-    unit: &'static str,
-    parameter: Parameter,
-    scale: f64,
-    decimals: usize,
-) -> Measure {
-    Measure {
-        label,
-        unit,
-        parameter,
-        scale,
-        decimals,
-    }
-}
-
-/// The summary's measures, in clinical units.
-pub(crate) const MEASURES: [Measure; 7] = [
-    m("Cadence", "steps/min", Parameter::StepFrequency, 60.0, 0),
-    m("Walking speed", "m/s", Parameter::Speed, 1.0, 2),
-    m("Stride length", "m", Parameter::StrideLength, 1.0, 2),
-    m("Stride time", "s", Parameter::StrideTime, 1.0, 2),
-    m(
-        "Stance",
-        "% of gait cycle",
-        Parameter::StanceRatio,
-        100.0,
-        1,
-    ),
-    m(
-        "Stride time variability",
-        "CV %",
-        Parameter::StrideTimeCv,
-        100.0,
-        1,
-    ),
-    m(
-        "Stride length variability",
-        "CV %",
-        Parameter::StrideLengthCv,
-        100.0,
-        1,
-    ),
-];
-
-/// Left-right asymmetry lines: (label, parameter).
-const ASYMMETRY: [(&str, Parameter); 4] = [
-    ("Step time asymmetry", Parameter::StepTime),
-    ("Stance asymmetry", Parameter::StanceRatio),
-    ("Stride length asymmetry", Parameter::StrideLength),
-    ("Shank swing asymmetry (WQK)", Parameter::Wqk),
-];
 
 /// Why a side has no value of `p` (the quality check's reason first), or `None` when it has
 /// one.
@@ -104,21 +39,10 @@ pub(crate) fn not_measured(r: &RecordingRow, p: Parameter) -> Option<String> {
     })
 }
 
-/// The mark and plain words of a value judged against a range: `(▲, "above normal")`,
-/// `(▼, "below normal")`, no mark "within normal", or "no reference".
-pub(crate) fn judged(v: f64, rr: Option<&ReferenceRange>) -> (Option<&'static str>, &'static str) {
-    match rr.map(|r| (r.low, r.high)) {
-        Some((Some(l), _)) if v < l => (Some("▼"), "below normal"),
-        Some((_, Some(h))) if v > h => (Some("▲"), "above normal"),
-        Some((Some(_), Some(_))) => (None, "within normal"),
-        _ => (None, "no reference"),
-    }
-}
-
 /// The range in clinical units and where it comes from.
 fn range_cells(
     rr: Option<&ReferenceRange>,
-    m: &Measure,
+    m: &Quantity,
     citations: &Citations,
 ) -> (String, String) {
     match rr {
@@ -160,117 +84,79 @@ fn range_cells(
     }
 }
 
-/// One side's cell: the value with its mark and flag, or "not measured: reason".
-fn side_cell(r: Option<&&RecordingRow>, m: &Measure, rr: Option<&ReferenceRange>) -> Markup {
-    let Some(r) = r else {
-        return html! { td.nm { "not measured: no recording" } };
-    };
-    if let Some(why) = not_measured(r, m.parameter) {
-        return html! { td.nm { "not measured: " (why) } };
-    }
-    let v = r.value(m.parameter).unwrap_or(f64::NAN);
-    let (mark, words) = judged(v, rr);
-    html! {
-        td.num.out[mark.is_some()] {
-            (fmt(Some(v * m.scale), m.decimals)) @if let Some(k) = mark { " " (k) }
-            " " span.flagword { (words) }
+/// One value's cell: the value with its mark and plain words, or "not measured: reason".
+pub(crate) fn value_cell(c: &Cell, q: &Quantity, colspan: usize) -> Markup {
+    match c {
+        Cell::NotMeasured(why) => {
+            html! { td.nm colspan=[(colspan > 1).then_some(colspan)] { "not measured: " (why) } }
         }
-    }
-}
-
-/// One plain sentence: what lies outside its range and what was not measured.
-fn headline(sides: &[&RecordingRow], reference: &Reference) -> Markup {
-    let mut outside: Vec<String> = Vec::new();
-    // a leg not analysed is one entry, not one per measure
-    let mut missing: Vec<String> = sides
-        .iter()
-        .filter(|r| !r.is_ok())
-        .map(|r| format!("every measure of the {} leg (not analysed)", r.side))
-        .collect();
-    for m in &MEASURES {
-        let rr = reference.range(m.parameter);
-        for r in sides.iter().filter(|r| r.is_ok()) {
-            match not_measured(r, m.parameter) {
-                Some(_) => missing.push(format!("{} ({})", m.label.to_lowercase(), r.side)),
-                None => {
-                    let v = r.value(m.parameter).unwrap_or(f64::NAN);
-                    if let (Some(_), words) = judged(v, rr) {
-                        outside.push(format!("{} {words} ({})", m.label.to_lowercase(), r.side));
-                    }
+        Cell::Value { v, judgement, note } => {
+            let mark = judgement.mark();
+            html! {
+                td.num.out[mark.is_some()] colspan=[(colspan > 1).then_some(colspan)] {
+                    (fmt(Some(*v), q.decimals)) @if let Some(k) = mark { " " (k) }
+                    " " span.flagword { (judgement.words()) @if let Some(n) = note { "; " (n) } }
                 }
             }
         }
     }
-    html! {
-        p.headline {
-            @if outside.is_empty() {
-                "No measured value lies outside its normal range."
-            } @else {
-                b { "Outside the normal range: " } (outside.join("; ")) "."
-            }
-            @if !missing.is_empty() {
-                " " b { "Not measured: " } (missing.join(", ")) " (reasons in the table)."
-            }
-        }
-        "\n"
+}
+
+/// The value cells of a row: one spanning both sides for a whole-walk quantity.
+pub(crate) fn value_cells(row: &Row) -> Markup {
+    match row.q.scope {
+        Scope::Walk => value_cell(&row.cells[0], row.q, 2),
+        Scope::Side => html! { @for c in &row.cells { (value_cell(c, row.q, 1)) } },
     }
 }
 
-/// The clinical summary (first screen of the subject page).
+/// An asymmetry's cell: the SI with ◆ and "asymmetric"/"symmetric" when judged, "not judged"
+/// for a quantity without a reference range.
+pub(crate) fn asymmetry_cell(a: &Asymmetry, colspan: usize) -> Markup {
+    match a {
+        Asymmetry::NotMeasured(why) => {
+            html! { td.nm colspan=[(colspan > 1).then_some(colspan)] { "not measured: " (why) } }
+        }
+        Asymmetry::Value(v, judged) => {
+            let flag = *judged == Some(true);
+            let words = match judged {
+                Some(true) => "asymmetric",
+                Some(false) => "symmetric",
+                None => "not judged: no reference range",
+            };
+            html! {
+                td.num.out[flag] colspan=[(colspan > 1).then_some(colspan)] {
+                    (format!("{v:+.1}")) @if flag { " ◆" } " " span.flagword { (words) }
+                }
+            }
+        }
+    }
+}
+
+/// The clinical summary (first screen of the subject page), rendered from the page's verdicts.
 pub(crate) fn clinical_summary(
-    sides: &[&RecordingRow],
-    reference: &Reference,
+    v: &Verdicts,
+    reference: &super::Reference,
     citations: &Citations,
     p: &ValidReportParams,
 ) -> Markup {
-    let left = sides.iter().find(|r| r.side == crate::Side::Left);
-    let right = sides.iter().find(|r| r.side == crate::Side::Right);
     let limit = p.0.asymmetry_flag_pct;
-    let si = |p: Parameter| -> Result<f64, String> {
-        let (l, r) = (
-            left.ok_or("no left recording")?,
-            right.ok_or("no right recording")?,
-        );
-        if let Some(w) = not_measured(l, p) {
-            return Err(format!("left {w}"));
-        }
-        if let Some(w) = not_measured(r, p) {
-            return Err(format!("right {w}"));
-        }
-        let (a, b) = (
-            l.value(p).unwrap_or(f64::NAN),
-            r.value(p).unwrap_or(f64::NAN),
-        );
-        symmetry_index_pct(a, b).ok_or_else(|| "not defined for these values".into())
-    };
-    let no_pair = match (left, right) {
-        (None, None) => Some("no recording".to_string()),
-        (Some(l), Some(r)) if !l.is_ok() && !r.is_ok() => {
-            Some("neither leg was analysed (see above)".into())
-        }
-        (None, _) => Some("no left recording".to_string()),
-        (_, None) => Some("no right recording".to_string()),
-        (Some(l), _) if !l.is_ok() => Some("the left leg was not analysed (see above)".into()),
-        (_, Some(r)) if !r.is_ok() => Some("the right leg was not analysed (see above)".into()),
-        _ => None,
-    };
+    let rows = || v.rows.iter().filter(|r| r.q.in_summary);
     html! {
-        h2 #summary { "Clinical summary" } "\n"
-        (headline(sides, reference))
         table.summary {
             "\n"
             tr { th { "measure (unit)" } th { "left" } th { "right" } th { "normal range" } th { "judged against" } } "\n"
-            @for m in &MEASURES {
-                @let rr = reference.range(m.parameter);
-                @let (range, src) = range_cells(rr, m, citations);
+            @for row in rows() {
+                @let rr = reference.range(row.q.parameter);
+                @let (range, src) = range_cells(rr, row.q, citations);
                 tr {
-                    td { b { (m.label) } " (" (m.unit) ")" }
-                    (side_cell(left, m, rr)) (side_cell(right, m, rr))
+                    td { b { (row.q.label) } " (" (row.q.unit) ")" @if row.q.scope == Scope::Walk { " — the walk, both legs" } }
+                    (value_cells(row))
                     td.num { (range) } td { (src) }
                 }
                 "\n"
             }
-            @if let Some(why) = &no_pair {
+            @if let Some(why) = &v.no_pair {
                 // no asymmetry can be computed: one row says why, not one per measure
                 tr {
                     td { b { "Left–right asymmetry" } " (SI %)" }
@@ -280,28 +166,22 @@ pub(crate) fn clinical_summary(
                 }
                 "\n"
             }
-            @for (label, parameter) in ASYMMETRY.iter().filter(|_| no_pair.is_none()) {
-                tr {
-                    td { b { (label) } " (SI %, left vs right)" }
-                    @match si(*parameter) {
-                        Ok(v) => {
-                            @let flag = v.abs() > limit;
-                            td.num.out[flag] colspan="2" {
-                                (format!("{v:+.1}")) @if flag { " ◆" } " "
-                                span.flagword { (if flag { "asymmetric" } else { "symmetric" }) }
-                            }
-                        }
-                        Err(why) => { td.nm colspan="2" { "not measured: " (why) } }
+            @for row in rows().filter(|_| v.no_pair.is_none()) {
+                @if let Some(a) = &row.asymmetry {
+                    tr {
+                        td { b { (row.q.label) " asymmetry" } " (SI %, left vs right)" }
+                        (asymmetry_cell(a, 2))
+                        td.num { "|SI| ≤ " (format!("{limit:.0}")) }
+                        td { "asymmetry threshold (Robinson et al. 1987)" }
                     }
-                    td.num { "|SI| ≤ " (format!("{limit:.0}")) }
-                    td { "asymmetry threshold (Robinson et al. 1987)" }
+                    "\n"
                 }
-                "\n"
             }
         }
         "\n"
         p.meta {
-            "▲ above, ▼ below the normal range; ◆ asymmetry beyond the threshold (also shaded). "
+            "▲ above, ▼ below the normal range (bounds included, compared as shown); ◆ asymmetry beyond the threshold (also shaded), judged only for measures that have a normal range. "
+            "Cadence counts the steps of both legs: 60·(1/stride time left + 1/stride time right). "
             "SI = 100·(L − R)/((L + R)/2) %: positive when the left value is larger. "
             "The shank angles (WQK, PBI, BDK) and gait stability (STA) are in section 2 with their own reference."
         }

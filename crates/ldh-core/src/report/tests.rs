@@ -208,19 +208,29 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
     let table = &html[html.find("2. Gait parameters").unwrap()..];
     let table = &table[..table.find("</table>").unwrap()];
     let mut checked = 0;
-    for par in crate::cohort::PARAMETERS.iter() {
+    for q in super::verdict::QUANTITIES.iter() {
         let start = table
-            .find(&format!("<td>{} — ", par.code()))
-            .unwrap_or_else(|| panic!("{} not in the table", par.code()));
+            .find(&format!("<td>{} — {}", q.parameter.code(), q.label))
+            .unwrap_or_else(|| panic!("{} not in the table", q.label));
         let row = &table[start..];
         let row = &row[..row.find("</tr>").unwrap()];
-        // Cells: parameter, unit, left, right, range, SI.
+        // Cells: parameter, unit, left (or the walk's), right, range, SI.
         let cells: Vec<&str> = row.split("<td").collect();
         let left_cell = cells[3];
+        if q.scope == super::verdict::Scope::Walk {
+            // One value per walk: the right leg's alone, and said so.
+            assert!(
+                left_cell.contains("from the right leg only") || left_cell.contains("not measured"),
+                "{}: {left_cell}",
+                q.label
+            );
+            checked += 1;
+            continue;
+        }
         assert!(
             left_cell.contains("not measured: gyro scale fault"),
             "{}: {left_cell}",
-            par.code()
+            q.label
         );
         assert!(
             !left_cell.contains('▲') && !left_cell.contains('▼'),
@@ -235,24 +245,33 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
                 .next()
                 .is_some_and(|ch| ch.is_ascii_digit() || ch == '-'),
             "{}: a number: {left_cell}",
-            par.code()
+            q.label
         );
         // No symmetry index from a withheld value.
-        assert!(cells[6].contains(">–<"), "{}: SI {}", par.code(), cells[6]);
+        assert!(
+            cells[6].contains(">–<") || cells[6].contains("not measured: left"),
+            "{}: SI {}",
+            q.label,
+            cells[6]
+        );
         checked += 1;
     }
-    assert_eq!(checked, crate::cohort::PARAMETERS.len());
+    assert_eq!(checked, super::verdict::QUANTITIES.len());
     // The clinical summary: every left measure says "not measured", with no number or mark.
     let summary = &html[html.find("Clinical summary").unwrap()..];
+    let summary = &summary[summary.find("<table").unwrap()..];
     let summary = &summary[..summary.find("</table>").unwrap()];
-    for m in super::summary::MEASURES.iter() {
-        let row = &summary[summary.find(&format!("<b>{}</b>", m.label)).unwrap()..];
+    for q in super::verdict::QUANTITIES
+        .iter()
+        .filter(|q| q.in_summary && q.scope == super::verdict::Scope::Side)
+    {
+        let row = &summary[summary.find(&format!("<b>{}</b>", q.label)).unwrap()..];
         let row = &row[..row.find("</tr>").unwrap()];
         let cells: Vec<&str> = row.split("<td").collect();
         assert!(
             cells[1].contains("not measured: gyro scale fault"),
             "{}: {}",
-            m.label,
+            q.label,
             cells[1]
         );
         assert!(!cells[1].contains('▲') && !cells[1].contains('▼'));
@@ -354,9 +373,12 @@ fn the_summary_uses_clinical_units_and_plain_flags() {
         .unwrap();
     let mut l = row("S1", "ldh", "left", 0.6);
     l.step_frequency_steps_per_s = Some(1.5);
+    // 2 / (4/3 s) = 1.5 steps/s: 90 steps/min from both legs' stride times.
+    l.stride_time_s = Some(4.0 / 3.0);
     l.stance_ratio = Some(0.62);
     let mut r = row("S1", "ldh", "right", 1.2);
     r.step_frequency_steps_per_s = Some(1.5);
+    r.stride_time_s = Some(4.0 / 3.0);
     r.stance_ratio = Some(0.70);
     let s = SubjectReport {
         subject_id: "S1".into(),
@@ -369,6 +391,7 @@ fn the_summary_uses_clinical_units_and_plain_flags() {
     assert!(at < html.find("1. Recordings").unwrap(), "summary first");
     let summary = &html[at..];
     let summary = &summary[..summary.find("</table>").unwrap()];
+    let summary = summary.replace(" colspan=\"2\"", "");
     for must in [
         "<b>Cadence</b> (steps/min)",
         "<b>Walking speed</b> (m/s)",
@@ -379,23 +402,28 @@ fn the_summary_uses_clinical_units_and_plain_flags() {
         // 1.5 steps/s = 90 steps/min, below the published 96–126.
         ">90 ▼ <span class=\"flagword\">below normal</span>",
         "96–126",
-        "0.60 ▼",
-        "1.20 <span class=\"flagword\">within normal</span>",
+        // One walking speed per walk: the mean of both legs.
+        ">0.90 ▼ <span class=\"flagword\">below normal</span>",
         // Stance has no published range (toe off from shank sensors, docs/accuracy.md):
         // never "above normal" against force-plate values, and the reason is given.
         "62.0 <span class=\"flagword\">no reference</span>",
         "70.0 <span class=\"flagword\">no reference</span>",
         "too few healthy subjects; no published range (section 2)",
-        // but its asymmetry is judged (the method's offset cancels): SI of speed is not in the
-        // summary; stance SI = 100·(0.62 − 0.70)/0.66.
-        "-12.1 ◆",
+        // and without a range its asymmetry is shown but not flagged: stance SI =
+        // 100·(0.62 − 0.70)/0.66.
+        "-12.1 <span class=\"flagword\">not judged: no reference range</span>",
         "published normal values [",
     ] {
         assert!(summary.contains(must), "no '{must}' in {summary}");
     }
     // Stride length is not in the rows: "not measured", never a number.
     assert!(summary.contains("not measured: not computable from these strides"));
-    assert!(html.contains("Outside the normal range: </b>cadence below normal (left)"));
+    assert!(
+        html.contains("Cadence is below normal: 90 steps/min (normal 96–126 steps/min)."),
+        "{html}"
+    );
+    assert!(html.contains("Walking speed is below normal: 0.90 m/s (normal 1.00–1.60 m/s)."));
+    assert!(!summary.contains('◆'));
     // No cohort: the shank angles have no reference and say how many healthy subjects there
     // were, and why no published range stands in.
     assert!(

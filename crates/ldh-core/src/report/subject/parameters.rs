@@ -5,37 +5,26 @@
 use maud::{html, Markup};
 
 use super::Citations;
-use crate::cohort::{Parameter, PARAMETERS};
+use crate::cohort::Parameter;
 use crate::error::Result;
 use crate::output::RecordingRow;
 use crate::plots;
-use crate::report::html::{decimals, figure, fmt, side_label};
+use crate::report::html::{figure, fmt, side_label};
 use crate::report::reference::no_published_reason;
-use crate::report::{symmetry_index_pct, Reference, ReferenceRange, ReferenceSource};
+use crate::report::summary::{asymmetry_cell, value_cells};
+use crate::report::verdict::{Quantity, Verdicts};
+use crate::report::{Reference, ReferenceRange, ReferenceSource};
 use crate::report::{SubjectReport, ValidReportParams};
-
-/// `▲`/`▼` when `v` lies above/below the range.
-fn out_mark(v: Option<f64>, rr: Option<&ReferenceRange>) -> Option<&'static str> {
-    match (v, rr) {
-        (Some(v), Some(rr)) => rr.outside(v).filter(|o| *o).map(|_| {
-            if rr.low.is_some_and(|l| v < l) {
-                "▼"
-            } else {
-                "▲"
-            }
-        }),
-        _ => None,
-    }
-}
 
 /// The reference range as the table shows it, with its source; without one, how many healthy
 /// subjects the cohort had for it (`min_n` needed).
 fn range_text(
     rr: Option<&ReferenceRange>,
-    dec: usize,
+    q: &Quantity,
     citations: &Citations,
     min_n: usize,
 ) -> String {
+    let dec = q.decimals;
     match rr {
         Some(ReferenceRange {
             low: Some(l),
@@ -50,7 +39,11 @@ fn range_text(
                 ReferenceSource::Published(c) => format!("published [{}]", citations.number(c)),
                 ReferenceSource::None => String::new(),
             };
-            format!("{}–{} ({src})", fmt(Some(*l), dec), fmt(Some(*h), dec))
+            format!(
+                "{}–{} ({src})",
+                fmt(Some(l * q.scale), dec),
+                fmt(Some(h * q.scale), dec)
+            )
         }
         Some(r) => format!(
             "no reference (n = {} healthy subjects passing every check; {min_n} needed)",
@@ -60,88 +53,67 @@ fn range_text(
     }
 }
 
-/// A side's value of a parameter (`None` for a failed side).
-fn side_value(r: &RecordingRow, p: Parameter) -> Option<f64> {
-    if r.is_ok() {
-        r.value(p)
-    } else {
-        None
-    }
+/// A side's companion value (the inverse or complement shown beside a quantity), in its own
+/// unit, never judged.
+fn companion(r: &RecordingRow, p: Parameter) -> Option<String> {
+    let v = r
+        .value(p)
+        .filter(|_| r.is_ok() && r.withheld.reason(p.column()).is_none())?;
+    Some(match p {
+        Parameter::StepFrequency => format!("{v:.2} steps/s"),
+        _ => format!("{:.1} %", 100.0 * v),
+    })
 }
 
-/// Section 2: the parameter table, each side against the reference range, and the symmetry
-/// index.
+/// Section 2: every quantity, each side against the reference range, and the symmetry index,
+/// rendered from the page's verdicts (the same as the summary's).
 pub(super) fn parameter_table(
+    v: &Verdicts,
     sides: &[&RecordingRow],
     reference: &Reference,
     citations: &Citations,
     p: &ValidReportParams,
 ) -> Markup {
-    let left = sides
-        .iter()
-        .find(|r| r.side == crate::Side::Left && r.is_ok());
-    let right = sides
-        .iter()
-        .find(|r| r.side == crate::Side::Right && r.is_ok());
-    let mut out_of_range = 0usize;
-    let mut rows: Vec<Markup> = Vec::new();
-    for par in PARAMETERS.iter() {
-        let rr = reference.range(*par);
-        let dec = decimals(par.unit());
-        let cells: Vec<(Option<f64>, Option<&str>, Option<&str>)> = sides
-            .iter()
-            .map(|r| match r.withheld.reason(par.column()) {
-                Some(why) => (None, None, Some(why)),
-                None => {
-                    let v = side_value(r, *par);
-                    (v, out_mark(v, rr), None)
-                }
-            })
-            .collect();
-        out_of_range += cells.iter().filter(|c| c.1.is_some()).count();
-        let si = match (left, right) {
-            (Some(l), Some(r)) => match (
-                l.value(*par)
-                    .filter(|_| l.withheld.reason(par.column()).is_none()),
-                r.value(*par)
-                    .filter(|_| r.withheld.reason(par.column()).is_none()),
-            ) {
-                (Some(a), Some(c)) => symmetry_index_pct(a, c),
-                _ => None,
-            },
-            _ => None,
-        };
-        let flag = si.is_some_and(|v| v.abs() > p.0.asymmetry_flag_pct);
-        rows.push(html! {
-            tr {
-                td { (par.code()) " — " (par.name()) } td { (par.unit()) }
-                @for (v, out, why) in &cells {
-                    @if let Some(why) = why {
-                        td.withheld { "not measured: " (why) }
-                    } @else {
-                        td.num.out[out.is_some()] { (fmt(*v, dec)) @if let Some(m) = out { " " (m) } }
-                    }
-                }
-                td { (range_text(rr, dec, citations, p.0.min_healthy_subjects)) }
-                td.num.flag[flag] { (si.map(|v| format!("{v:+.1}")).unwrap_or("–".into())) }
-            }
-            "\n"
-        });
-    }
+    let find = |s: crate::Side| sides.iter().find(|r| r.side == s);
+    let (left, right) = (find(crate::Side::Left), find(crate::Side::Right));
+    let label = |s: crate::Side| match find(s) {
+        Some(r) => side_label(r),
+        None => s.to_string(),
+    };
     html! {
         h2 { "2. Gait parameters" } "\n"
         p.meta {
-            "Reference: " (reference.description) " Values outside the reference range are marked ▲ (above) or ▼ (below) and shaded. Symmetry index SI = 100·(L − R)/((L + R)/2) %; |SI| > "
-            (format!("{:.0}", p.0.asymmetry_flag_pct)) " % is shaded."
+            "Reference: " (reference.description) " Values outside the reference range are marked ▲ (above) or ▼ (below) and shaded (bounds included, compared as shown). Cadence, walking speed and stride time are one value per walk, from both legs; step frequency (the inverse of step time) and swing (the complement of stance) are shown beside them and judged with them. Symmetry index SI = 100·(L − R)/((L + R)/2) %; |SI| > "
+            (format!("{:.0}", p.0.asymmetry_flag_pct)) " % is shaded when the quantity has a reference range."
         }
         "\n"
         table {
             "\n"
-            tr { th { "parameter" } th { "unit" } @for r in sides { th { (side_label(r)) } } th { "reference range" } th { "SI (%)" } } "\n"
-            @for r in &rows { (r) }
+            tr { th { "parameter" } th { "unit" } th { (label(crate::Side::Left)) } th { (label(crate::Side::Right)) } th { "reference range" } th { "SI (%)" } } "\n"
+            @for row in &v.rows {
+                @let q = row.q;
+                tr {
+                    td {
+                        (q.parameter.code()) " — " (q.label)
+                        @if let Some(c) = q.companion {
+                            " (with " (c.code()) ": "
+                            (left.and_then(|r| companion(r, c)).unwrap_or("–".into())) " / "
+                            (right.and_then(|r| companion(r, c)).unwrap_or("–".into())) ")"
+                        }
+                    }
+                    td { (q.unit) }
+                    (value_cells(row))
+                    td { (range_text(reference.range(q.parameter), q, citations, p.0.min_healthy_subjects)) }
+                    @match &row.asymmetry {
+                        Some(a) => (asymmetry_cell(a, 1)),
+                        None => td.num { "–" },
+                    }
+                }
+                "\n"
+            }
         }
         "\n"
-        p { (out_of_range) " value(s) lie outside the reference range." (no_published_note(reference)) } "\n"
+        p { (v.outside()) " value(s) lie outside the reference range; " (v.asymmetric()) " asymmetry(ies) beyond the threshold." (no_published_note(reference)) } "\n"
     }
 }
 
