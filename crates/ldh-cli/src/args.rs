@@ -140,6 +140,14 @@ pub struct AnalyzeArgs {
     /// withheld (warning sensor_height_unknown; docs/input.md).
     #[arg(long)]
     pub sensor_height_m: Option<f64>,
+    /// The left sensor's height above the ankle joint, m, for subjects whose manifest row gives
+    /// none for the left leg (a leg's own height wins over --sensor-height-m; the two may not
+    /// differ).
+    #[arg(long)]
+    pub left_sensor_height_m: Option<f64>,
+    /// The right sensor's height above the ankle joint, m (as --left-sensor-height-m).
+    #[arg(long)]
+    pub right_sensor_height_m: Option<f64>,
     /// Subject id of two files given directly (default: the common stem of their names).
     #[arg(long)]
     pub subject: Option<String>,

@@ -44,6 +44,21 @@ impl Options {
             self.compute_sta,
         )
     }
+
+    /// The per-side heights (`left_sensor_height_m=`, `right_sensor_height_m=`), checked with
+    /// `sensor_height_m=` (a leg's own height may not contradict it).
+    fn heights(
+        &self,
+        left_m: Option<f64>,
+        right_m: Option<f64>,
+    ) -> Result<core::SensorHeights, LdhError> {
+        core::SensorHeights {
+            both_m: self.sensor_height_m,
+            left_m,
+            right_m,
+        }
+        .check()
+    }
 }
 
 fn options(
@@ -99,7 +114,7 @@ fn tables<'py>(
 /// are `ldh analyze --subject` and `--setting`; `max_file_size_mb` and `max_samples` are
 /// `--max-file-size-mb` and `--max-samples` (a recording over a limit is an error row naming it).
 #[pyfunction]
-#[pyo3(signature = (inputs, model=None, detector=None, format=None, compute_sta=None, sensor_height_m=None, n_jobs=1, params=None, subject_id=None, setting=None, max_file_size_mb=None, max_samples=None))]
+#[pyo3(signature = (inputs, model=None, detector=None, format=None, compute_sta=None, sensor_height_m=None, n_jobs=1, params=None, subject_id=None, setting=None, max_file_size_mb=None, max_samples=None, left_sensor_height_m=None, right_sensor_height_m=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn analyze<'py>(
     py: Python<'py>,
@@ -115,6 +130,8 @@ pub(crate) fn analyze<'py>(
     setting: Option<String>,
     max_file_size_mb: Option<f64>,
     max_samples: Option<i64>,
+    left_sensor_height_m: Option<f64>,
+    right_sensor_height_m: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let n_jobs: usize = crate::convert::uint("n_jobs", n_jobs).or_raise(py)?;
     let max_samples = crate::convert::opt_uint("max_samples", max_samples).or_raise(py)?;
@@ -128,11 +145,14 @@ pub(crate) fn analyze<'py>(
     let results = py
         .detach(move || -> Result<Vec<SubjectResult>, LdhError> {
             let p = o.params()?;
+            let heights = o.heights(left_sensor_height_m, right_sensor_height_m)?;
             let f = format_of(format.as_deref())?;
             let read = read_limits(max_file_size_mb, max_samples).check()?;
             let opts = core::InputOptions {
                 subject_id,
                 setting: setting_of(setting.as_deref())?,
+                left_sensor_height_m: heights.left_m,
+                right_sensor_height_m: heights.right_m,
             };
             let subjects = core::discover_with(&inputs, &opts)?;
             core::analyze_many_on(&subjects, &p, f.as_ref(), &read, jobs)
@@ -146,7 +166,7 @@ pub(crate) fn analyze<'py>(
 /// One subject's two legs given as arrays (six channels each, each leg at its own rate: the
 /// core warns when they differ by more than 0.5 %); the same tables as `analyze`.
 #[pyfunction]
-#[pyo3(signature = (left, right, left_fs_hz, right_fs_hz, subject_id="subject", model=None, detector=None, sensor_height_m=None, compute_sta=None, params=None, setting=None))]
+#[pyo3(signature = (left, right, left_fs_hz, right_fs_hz, subject_id="subject", model=None, detector=None, sensor_height_m=None, compute_sta=None, params=None, setting=None, left_sensor_height_m=None, right_sensor_height_m=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn analyze_pair<'py>(
     py: Python<'py>,
@@ -161,6 +181,8 @@ pub(crate) fn analyze_pair<'py>(
     compute_sta: Option<bool>,
     params: Option<&Bound<'py, PyAny>>,
     setting: Option<String>,
+    left_sensor_height_m: Option<f64>,
+    right_sensor_height_m: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let o = options(model, detector, sensor_height_m, compute_sta, params)?;
     let (l, r) = (vecs(&left)?, vecs(&right)?);
@@ -169,8 +191,11 @@ pub(crate) fn analyze_pair<'py>(
     let result = py
         .detach(move || -> Result<SubjectResult, LdhError> {
             let p = o.params()?;
+            let heights = o.heights(left_sensor_height_m, right_sensor_height_m)?;
             let subject = core::SubjectInput {
                 setting: setting_of(setting.as_deref())?,
+                left_sensor_height_m: heights.left_m,
+                right_sensor_height_m: heights.right_m,
                 ..core::bare_subject(&id)
             };
             let leg = |c: [Vec<f64>; 6], fs: f64, side| {

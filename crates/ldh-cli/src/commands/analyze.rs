@@ -7,7 +7,7 @@ use anyhow::Result;
 use ldh_core::io::ReadParams;
 use ldh_core::output::{OutputRun, RecordingRow, RunKind};
 use ldh_core::pipeline::{
-    analyze_to_folder, discover_with, FolderOptions, FolderSummary, InputOptions,
+    analyze_to_folder, discover_with, FolderOptions, FolderSummary, InputOptions, SensorHeights,
 };
 use ldh_core::report::{BuildSources, ReportParams};
 
@@ -33,11 +33,19 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
         ..defaults
     }
     .check()?;
+    let heights = SensorHeights {
+        both_m: a.sensor_height_m,
+        left_m: a.left_sensor_height_m,
+        right_m: a.right_sensor_height_m,
+    }
+    .check()?;
     let subjects = discover_with(
         &a.inputs,
         &InputOptions {
             subject_id: a.subject.clone(),
             setting: a.setting,
+            left_sensor_height_m: heights.left_m,
+            right_sensor_height_m: heights.right_m,
         },
     )?;
     anyhow::ensure!(!subjects.is_empty(), "no subjects found in the inputs");

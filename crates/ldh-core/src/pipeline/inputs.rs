@@ -4,6 +4,7 @@
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
+use super::heights::SensorHeights;
 use super::manifest::{is_manifest_text, parse_manifest, resolve_format_in, GroupLabel};
 use crate::error::{LdhError, Result};
 use crate::io::{read_recording, read_recording_bytes, FormatSpec, ReadReport, ValidReadParams};
@@ -60,8 +61,16 @@ pub struct SubjectInput {
     pub left: Option<Source>,
     /// Right recording.
     pub right: Option<Source>,
-    /// Sensor height above the ankle, m (manifest column `sensor_height_m`).
+    /// Sensor height above the ankle for both legs, m (manifest column `sensor_height_m`); a
+    /// leg's own height ([`Self::left_sensor_height_m`], [`Self::right_sensor_height_m`]) wins
+    /// for that leg ([`Self::sensor_height_m_of`]).
     pub sensor_height_m: Option<f64>,
+    /// The left sensor's height above the ankle, m (manifest column `left_sensor_height_m`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub left_sensor_height_m: Option<f64>,
+    /// The right sensor's height above the ankle, m (manifest column `right_sensor_height_m`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub right_sensor_height_m: Option<f64>,
     /// Where the walk happened (`None`: not said, treated as overground).
     #[serde(default)]
     pub setting: Option<crate::recording::Setting>,
@@ -82,6 +91,23 @@ pub struct SubjectInput {
     pub unpaired: Vec<String>,
 }
 
+impl SubjectInput {
+    /// The heights this input gives: for both legs and per leg.
+    pub fn sensor_heights(&self) -> SensorHeights {
+        SensorHeights {
+            both_m: self.sensor_height_m,
+            left_m: self.left_sensor_height_m,
+            right_m: self.right_sensor_height_m,
+        }
+    }
+
+    /// The height of `side`'s sensor, m: its own, else the subject's; `None`: the run's
+    /// (`--sensor-height-m`, parameters) or the assumed one.
+    pub fn sensor_height_m_of(&self, side: Side) -> Option<f64> {
+        self.sensor_heights().of(side)
+    }
+}
+
 /// Options for inputs given directly on a command line or in an API call.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct InputOptions {
@@ -89,6 +115,11 @@ pub struct InputOptions {
     pub subject_id: Option<String>,
     /// Setting of every subject whose manifest row does not say.
     pub setting: Option<crate::recording::Setting>,
+    /// The left sensor's height, m, for subjects that give no height for their left leg
+    /// (`--left-sensor-height-m`; checked with [`SensorHeights::check`]).
+    pub left_sensor_height_m: Option<f64>,
+    /// The right sensor's height, m, for subjects that give none for their right leg.
+    pub right_sensor_height_m: Option<f64>,
 }
 
 /// Parse a cohort manifest (SPEC §2; columns in [`super::manifest`]); paths and column maps
@@ -204,13 +235,22 @@ pub fn subject_id_from_files(files: &[&PathBuf]) -> String {
         .unwrap_or_else(|| "subject".into())
 }
 
-/// As [`discover`], with a subject id for files given directly and a setting for subjects
-/// whose manifest row does not say.
+/// As [`discover`], with a subject id for files given directly, a setting for subjects whose
+/// manifest row does not say, and per-side sensor heights for legs whose row gives none.
 pub fn discover_with(inputs: &[PathBuf], opts: &InputOptions) -> Result<Vec<SubjectInput>> {
     let mut out = discover_inputs(inputs, opts)?;
     if let Some(st) = opts.setting {
         for s in &mut out {
             s.setting = s.setting.or(Some(st));
+        }
+    }
+    // A leg the row gives no height for takes the run's height for that leg (the row wins).
+    for s in &mut out {
+        if s.sensor_height_m_of(Side::Left).is_none() {
+            s.left_sensor_height_m = opts.left_sensor_height_m;
+        }
+        if s.sensor_height_m_of(Side::Right).is_none() {
+            s.right_sensor_height_m = opts.right_sensor_height_m;
         }
     }
     Ok(out)

@@ -5,7 +5,9 @@
 //! Columns (case-insensitive, any order; every other name is refused, naming it):
 //! `subject_id` (required), `left`, `right` (paths relative to the manifest), `group` (a free
 //! label; `healthy` is the reference group and `ldh` enables the affected/unaffected analysis),
-//! `affected_side` (`left` | `right` | `none`; empty = unknown, which is said), `sensor_height_m`,
+//! `affected_side` (`left` | `right` | `none`; empty = unknown, which is said), `sensor_height_m`
+//! (both legs) and `left_sensor_height_m` / `right_sensor_height_m` (one leg; a value that
+//! differs from the row's `sensor_height_m` is refused, [`super::heights`]),
 //! `setting` (`overground` | `treadmill`), `format` / `left_format` / `right_format` (a built-in
 //! format name or a TOML column map relative to the manifest; the side's own column wins), and
 //! `trial_id` (or `trial`): several rows of one `subject_id` are that person's trials, analysed
@@ -15,6 +17,7 @@ use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::path::Path;
 
+use super::heights::SensorHeights;
 use super::inputs::{Source, SubjectInput};
 use crate::error::{LdhError, Location, Result};
 use crate::io::FormatSpec;
@@ -22,7 +25,7 @@ use crate::recording::{Setting, Side};
 use crate::simulate::Group;
 
 /// The columns a manifest may have.
-pub const MANIFEST_COLUMNS: [&str; 12] = [
+pub const MANIFEST_COLUMNS: [&str; 14] = [
     "subject_id",
     "trial_id",
     "trial",
@@ -31,6 +34,8 @@ pub const MANIFEST_COLUMNS: [&str; 12] = [
     "left",
     "right",
     "sensor_height_m",
+    "left_sensor_height_m",
+    "right_sensor_height_m",
     "setting",
     "format",
     "left_format",
@@ -349,15 +354,33 @@ fn parse_row(
             ))
         }
     };
-    let h = row.get("sensor_height_m");
-    let sensor_height_m = if h.is_empty() {
-        None
-    } else {
+    let height = |name: &str| -> Result<Option<f64>> {
+        let h = row.get(name);
+        if h.is_empty() {
+            return Ok(None);
+        }
         match h.parse::<f64>() {
-            Ok(v) if v.is_finite() && v > 0.0 => Some(v),
-            _ => return Err(row.invalid("sensor_height_m", h, "a height in metres > 0")),
+            Ok(v) if v.is_finite() && v > 0.0 => Ok(Some(v)),
+            _ => Err(row.invalid(name, h, "a height in metres > 0")),
         }
     };
+    let heights = SensorHeights {
+        both_m: height("sensor_height_m")?,
+        left_m: height("left_sensor_height_m")?,
+        right_m: height("right_sensor_height_m")?,
+    };
+    if let Some(c) = heights.conflict() {
+        let v = row.get(c.column());
+        return Err(row.invalid(
+            c.column(),
+            v,
+            &format!(
+                "the row's sensor_height_m ({}) or an empty sensor_height_m: one sensor cannot \
+                 have two heights (leave sensor_height_m empty when the legs differ)",
+                c.both_m
+            ),
+        ));
+    }
     let st = row.get("setting");
     let setting = if st.is_empty() {
         None
@@ -396,7 +419,9 @@ fn parse_row(
         affected_side_unknown: unknown,
         left: side("left"),
         right: side("right"),
-        sensor_height_m,
+        sensor_height_m: heights.both_m,
+        left_sensor_height_m: heights.left_m,
+        right_sensor_height_m: heights.right_m,
         setting,
         left_format,
         right_format,

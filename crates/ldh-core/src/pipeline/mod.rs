@@ -7,6 +7,7 @@
 
 mod batch;
 mod bilateral;
+mod heights;
 mod inputs;
 mod leg;
 mod manifest;
@@ -22,6 +23,7 @@ mod tests_inputs;
 
 pub use batch::{analyze_many_on, bare_subject, leg_from_arrays};
 pub use bilateral::{bilateral_events, bilateral_events_on_clock, BilateralEvent, EventKind};
+pub use heights::{HeightConflict, SensorHeights, MAX_SENSOR_HEIGHT_M};
 pub use inputs::{
     demo_inputs, discover, discover_with, is_manifest, read_manifest, subject_id_from_files,
     InputOptions, Source, SubjectInput,

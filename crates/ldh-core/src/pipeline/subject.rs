@@ -175,7 +175,10 @@ fn pair_legs(
     checked: Option<&ValidAnalysisParams>,
 ) -> SubjectResult {
     let mut timings = StageTimings::default();
-    let h = input.sensor_height_m;
+    let (hl, hr) = (
+        input.sensor_height_m_of(Side::Left),
+        input.sensor_height_m_of(Side::Right),
+    );
     let (mut l, mut r) = match checked {
         Some(v) => {
             let mut lf = front(left, v, &mut timings);
@@ -184,13 +187,14 @@ fn pair_legs(
             // gyroscope's landmarks are not lent to the other leg.
             crate::events::place_bilateral(sound(&mut lf), sound(&mut rf), v.events());
             (
-                back(lf, Side::Left, v, h, &mut timings),
-                back(rf, Side::Right, v, h, &mut timings),
+                back(lf, Side::Left, v, hl, &mut timings),
+                back(rf, Side::Right, v, hr, &mut timings),
             )
         }
         None => {
             let mut run = |loaded: LoadedLeg, side: Side| -> LegRun {
                 let (rec, report, label) = loaded?;
+                let h = input.sensor_height_m_of(side);
                 let (mut leg, hs) = analyze_leg_timed(&rec, side, params, h, &mut timings)
                     .map_err(|e| format!("{label}: {e}"))?;
                 leg.read = report;
@@ -400,7 +404,7 @@ fn resegment(
     let (Some(al), Some(att)) = (&leg.signals, &leg.attitude) else {
         return;
     };
-    let Ok(sp) = params.strides(input.sensor_height_m) else {
+    let Ok(sp) = params.strides(input.sensor_height_m_of(leg.side)) else {
         return;
     };
     if let Ok(st) = crate::gait::strides_with_turns(leg.side, al, att, &leg.events, &sp, test) {

@@ -3,7 +3,7 @@
 
 use super::*;
 use crate::output::RecordingRow;
-use crate::recording::Setting;
+use crate::recording::{Setting, Side};
 
 fn manifest(text: &str) -> (tempfile::TempDir, std::path::PathBuf) {
     let d = tempfile::tempdir().unwrap();
@@ -401,4 +401,105 @@ fn a_manifest_line_longer_than_the_line_bound_is_refused_with_its_line() {
         "{e}"
     );
     assert!(e.len() < 400, "{e}");
+}
+
+#[test]
+fn per_side_sensor_heights_are_read_filled_and_checked() {
+    let (d, m) = manifest(
+        "subject_id,left,right,sensor_height_m,left_sensor_height_m,Right_Sensor_Height_m\n\
+         S1,a/l.csv,a/r.csv,,0.08,0.14\n\
+         S2,b/l.csv,b/r.csv,0.1,,\n\
+         S3,c/l.csv,c/r.csv,0.1,0.1,\n\
+         S4,d/l.csv,d/r.csv,,0.09,\n",
+    );
+    let v = read_manifest(&m).unwrap();
+    let of = |s: &SubjectInput| {
+        (
+            s.sensor_height_m_of(Side::Left),
+            s.sensor_height_m_of(Side::Right),
+        )
+    };
+    assert_eq!(of(&v[0]), (Some(0.08), Some(0.14)));
+    assert_eq!(
+        of(&v[1]),
+        (Some(0.1), Some(0.1)),
+        "one height for both legs"
+    );
+    assert_eq!(
+        of(&v[2]),
+        (Some(0.1), Some(0.1)),
+        "the same value twice is no conflict"
+    );
+    assert_eq!(of(&v[3]), (Some(0.09), None));
+    // The run's per-side heights fill only the legs a row gives nothing for.
+    let opts = InputOptions {
+        left_sensor_height_m: Some(0.2),
+        right_sensor_height_m: Some(0.3),
+        ..InputOptions::default()
+    };
+    let v = discover_with(std::slice::from_ref(&m), &opts).unwrap();
+    assert_eq!(of(&v[0]), (Some(0.08), Some(0.14)), "the row wins");
+    assert_eq!(
+        of(&v[1]),
+        (Some(0.1), Some(0.1)),
+        "the row's height for both legs wins"
+    );
+    assert_eq!(of(&v[3]), (Some(0.09), Some(0.3)));
+    drop(d);
+    let e = err("subject_id,left,right,sensor_height_m,right_sensor_height_m\nS1,a,b,0.1,0.14\n");
+    assert!(
+        e.contains("manifest.csv:2:5: column 'right_sensor_height_m': '0.14' is not valid")
+            && e.contains("sensor_height_m (0.1)"),
+        "{e}"
+    );
+    let e = err("subject_id,left,right,left_sensor_height_m\nS1,a,b,-1\n");
+    assert!(e.contains("'left_sensor_height_m': '-1'"), "{e}");
+}
+
+/// Each leg's stride length uses its own sensor's height: raising the left sensor's height
+/// changes the left leg's stride lengths and leaves the right leg's bit for bit.
+#[test]
+fn each_leg_uses_its_own_sensor_height() {
+    let subject = demo_inputs().unwrap().swap_remove(0);
+    let p = AnalysisParams {
+        compute_sta: false,
+        ..AnalysisParams::default()
+    };
+    let read = crate::io::ReadParams::default().check().unwrap();
+    let lengths = |s: &SubjectInput| {
+        let r = analyze_subject(s, &p, None, &read);
+        let leg = |l: &std::result::Result<LegResult, String>| -> Vec<f64> {
+            l.as_ref()
+                .unwrap()
+                .strides
+                .iter()
+                .map(|s| s.stride_length_m)
+                .collect()
+        };
+        (leg(&r.left), leg(&r.right))
+    };
+    let same = SubjectInput {
+        sensor_height_m: Some(0.1),
+        ..subject.clone()
+    };
+    let left_higher = SubjectInput {
+        sensor_height_m: None,
+        left_sensor_height_m: Some(0.2),
+        right_sensor_height_m: Some(0.1),
+        ..subject
+    };
+    let (l0, r0) = lengths(&same);
+    let (l1, r1) = lengths(&left_higher);
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&r0), bits(&r1), "the right leg keeps its lengths");
+    assert_eq!(l0.len(), l1.len());
+    let moved = l0
+        .iter()
+        .zip(&l1)
+        .filter(|(a, b)| a.is_finite() && b.is_finite() && (*a - *b).abs() > 1e-6)
+        .count();
+    assert!(
+        moved > 0,
+        "the left leg's lengths move with its height: {l0:?} {l1:?}"
+    );
 }

@@ -64,6 +64,8 @@ def analyze(
     as_frame: Optional[bool] = None,
     max_file_size_mb: float = 256.0,
     max_samples: int = 2_500_000,
+    left_sensor_height_m: Optional[float] = None,
+    right_sensor_height_m: Optional[float] = None,
 ) -> Result:
     """Analyse recordings exactly as ``ldh analyze`` does.
 
@@ -87,6 +89,11 @@ def analyze(
         ``.warnings``: a note when its median stride length moves by at most 15 % over
         0.05-0.35 m, else a warning, and its stride length, speed and their variability are
         withheld (docs/quality.md).
+    left_sensor_height_m, right_sensor_height_m : float, optional
+        One leg's sensor height, m, for subjects whose manifest gives none for that leg
+        (``--left-sensor-height-m``, ``--right-sensor-height-m``): each leg's stride length
+        uses its own sensor's height. A leg's own height wins over ``sensor_height_m``; the two
+        may not differ (:class:`LdhParamError`), docs/input.md "Sensor height".
     n_jobs : int or None, default 1
         Rust threads for the subjects (the GIL is released); ``None`` or ``-1``: all cores.
         More than the machine's cores is lowered to the cores with an :class:`LdhWarning`
@@ -137,6 +144,7 @@ def analyze(
         _paths(inputs), model, detector, format, compute_sta, opt_float(sensor_height_m),
         _jobs(n_jobs), params_dict(params), _subject_id(subject_id), _setting(setting),
         float(max_file_size_mb), sample_limit(max_samples),
+        opt_float(left_sensor_height_m), opt_float(right_sensor_height_m),
     )
     if raw.get("jobs_warning"):
         warnings.warn(raw["jobs_warning"], LdhWarning, stacklevel=_caller_level())
@@ -194,6 +202,8 @@ def analyze_pair(
     params: Optional[Dict[str, Any]] = None,
     setting: Optional[str] = None,
     as_frame: Optional[bool] = None,
+    left_sensor_height_m: Optional[float] = None,
+    right_sensor_height_m: Optional[float] = None,
 ) -> Result:
     """Analyse one subject's two recordings given as arrays, with step time and step frequency
     from both legs — the same tables as :func:`analyze`.
@@ -215,6 +225,9 @@ def analyze_pair(
     setting : {"overground", "treadmill"}, optional
         Where the walk happened (default: not said, analysed as overground); on a treadmill
         no stride is flagged as a turn.
+    left_sensor_height_m, right_sensor_height_m : float, optional
+        One leg's sensor height, m (each wins over ``sensor_height_m`` for its leg; the two may
+        not differ), as in :func:`analyze`.
 
     Returns
     -------
@@ -230,7 +243,7 @@ def analyze_pair(
     raw = _ldh.analyze_pair(
         lv, rv, _rate(left, fs_hz, "left"), _rate(right, fs_hz, "right"), _subject_id(subject_id),
         model, detector, opt_float(sensor_height_m), compute_sta, params_dict(params),
-        _setting(setting),
+        _setting(setting), opt_float(left_sensor_height_m), opt_float(right_sensor_height_m),
     )
     return Result(raw, as_frame)
 
