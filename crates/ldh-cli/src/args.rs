@@ -341,6 +341,10 @@ pub struct SimulateArgs {
     /// Walk straight only (no 180° turn in the middle).
     #[arg(long)]
     pub no_turn: bool,
+    /// Family a: a treadmill walk whose belt starts up over this many seconds (strides 25 %
+    /// longer at the first step, steady at the end; needs --no-turn). Default 0: no start-up.
+    #[arg(long, default_value_t = 0.0)]
+    pub ramp_s: f64,
     /// Noise-free sensors without bias, quantisation or misalignment.
     #[arg(long)]
     pub ideal: bool,

@@ -174,7 +174,7 @@ pub(crate) fn write_demo(py: Python<'_>, out: PathBuf) -> PyResult<usize> {
 
 /// Simulate a cohort into a folder as `ldh simulate` does; returns the manifest CSV text.
 #[pyfunction]
-#[pyo3(signature = (out, healthy=None, ldh=None, seconds=None, seed=None, rate_hz=None, turn=None, slow_ldh=None, acc_range_g=None))]
+#[pyo3(signature = (out, healthy=None, ldh=None, seconds=None, seed=None, rate_hz=None, turn=None, slow_ldh=None, acc_range_g=None, ramp_s=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn simulate_cohort(
     py: Python<'_>,
@@ -187,6 +187,7 @@ pub(crate) fn simulate_cohort(
     turn: Option<bool>,
     slow_ldh: Option<i128>,
     acc_range_g: Option<f64>,
+    ramp_s: Option<f64>,
 ) -> PyResult<String> {
     let counts = || -> Result<_, LdhError> {
         Ok((
@@ -210,6 +211,7 @@ pub(crate) fn simulate_cohort(
         seed: seed.unwrap_or(d.seed),
         turn: turn.unwrap_or(d.turn),
         slow_ldh: slow_ldh.unwrap_or(d.slow_ldh),
+        ramp_s: ramp_s.unwrap_or(d.ramp_s),
         sensor,
         ..d
     };
@@ -258,6 +260,7 @@ pub(crate) fn defaults(py: Python<'_>, d: &Bound<'_, PyDict>) -> PyResult<()> {
     sim.set_item("turn", c.turn)?;
     sim.set_item("slow_ldh", c.slow_ldh)?;
     sim.set_item("acc_range_g", c.sensor.acc_range_g)?;
+    sim.set_item("ramp_s", c.ramp_s)?;
     d.set_item("simulate_cohort", sim)?;
     Ok(())
 }

@@ -29,6 +29,7 @@ pub fn run(a: SimulateArgs) -> Result<ExitCode> {
                 seed: a.seed,
                 turn: !a.no_turn,
                 ldh_severity_min: a.ldh_severity_min,
+                ramp_s: a.ramp_s,
                 sensor: family_a_sensor(&a),
             };
             let ldh = if a.slow_ldh > 0 {
@@ -43,8 +44,9 @@ pub fn run(a: SimulateArgs) -> Result<ExitCode> {
                 !a.no_turn
                     && a.ldh_severity_min == 1.0
                     && a.slow_ldh == 0
+                    && a.ramp_s == 0.0
                     && a.acc_range_g.is_none(),
-                "--no-turn, --ldh-severity-min, --slow-ldh and --acc-range-g apply to --family a (family b: --setting treadmill walks without turns; its ranges are drawn per subject)"
+                "--no-turn, --ldh-severity-min, --slow-ldh, --ramp-s and --acc-range-g apply to --family a (family b: --setting treadmill walks without turns; its ranges are drawn per subject)"
             );
             let params = CohortParamsB {
                 healthy: a.healthy,

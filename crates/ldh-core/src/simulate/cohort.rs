@@ -33,6 +33,11 @@ pub struct CohortParams {
     /// scales every LDH effect from a healthy gait (0) to the full LDH gait (1). Default 1 (all
     /// subjects fully affected; nothing extra is drawn, so seeds keep their output).
     pub ldh_severity_min: f64,
+    /// Treadmill belt start-up per subject, s ([`SubjectParams::ramp_s`]; `ldh simulate
+    /// --ramp-s`). Default 0 (then not written to cohort.json, so earlier cohorts keep their
+    /// bytes).
+    #[serde(skip_serializing_if = "super::params::is_zero_s")]
+    pub ramp_s: f64,
     /// Sensor model.
     pub sensor: SensorModel,
 }
@@ -52,6 +57,7 @@ impl Default for CohortParams {
             seed: 1,
             turn: true,
             ldh_severity_min: 1.0,
+            ramp_s: 0.0,
             sensor: SensorModel::default(),
         }
     }
@@ -104,6 +110,13 @@ impl CohortParams {
             ));
         }
         self.sensor.validate()?;
+        if self.ramp_s != 0.0 && self.turn {
+            return Err(LdhError::param(
+                "ramp_s",
+                self.ramp_s,
+                "a belt start-up is a treadmill walk, which has no turn: simulate it without the turn (--no-turn)",
+            ));
+        }
         // 3 s of standing at each end and four strides of the slowest drawn gait (1.35 s each,
         // plus the ramps in and out).
         if !(self.duration_s >= 14.0) {
@@ -124,6 +137,7 @@ impl CohortParams {
         SubjectParams {
             fs_hz: self.fs_hz,
             duration_s: self.duration_s,
+            ramp_s: self.ramp_s,
             ..SubjectParams::healthy("check")
         }
         .validate()
@@ -145,6 +159,7 @@ impl CohortParams {
             let mut p =
                 SubjectParams::draw_slow(self.subject_id(i), self.fs_hz, self.duration_s, &mut rng);
             p.turn = self.turn;
+            p.ramp_s = self.ramp_s;
             return simulate_subject(&p, &self.sensor, &mut rng);
         }
         let mut rng = self.rng(i);
@@ -173,6 +188,7 @@ impl CohortParams {
             p = p.blend_towards(&h, severity);
         }
         p.turn = self.turn;
+        p.ramp_s = self.ramp_s;
         simulate_subject(&p, &self.sensor, &mut rng)
     }
 }

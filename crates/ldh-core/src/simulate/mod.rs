@@ -31,7 +31,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{LdhError, Result};
 pub use cohort::CohortParams;
 pub use model::simulate_subject;
-pub use params::{LegParams, SubjectParams};
+pub use params::{LegParams, SubjectParams, RAMP_STRIDE_EXTRA};
 pub use sensor::SensorModel;
 pub use truth::{
     read_truth, DenseTruth, LegTruth, SensorTruth, SimLeg, SimSubject, StrideTruth, SubjectTruth,

@@ -51,6 +51,15 @@ impl Default for LegParams {
     }
 }
 
+/// The extra stride time at the first step of a belt start-up ([`SubjectParams::ramp_s`]):
+/// 25 %, the 1.25 s against ≈ 1.0 s of steady walking seen on real treadmill trials while the
+/// belt accelerates (issue 36).
+pub const RAMP_STRIDE_EXTRA: f64 = 0.25;
+
+pub(crate) fn is_zero_s(x: &f64) -> bool {
+    *x == 0.0
+}
+
 /// One subject's gait and recording parameters.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -87,6 +96,12 @@ pub struct SubjectParams {
     pub toe_off_foot_angle_deg: f64,
     /// Walk there and back with a 180° turn in the middle (when there are ≥ 8 strides).
     pub turn: bool,
+    /// Treadmill belt start-up, s from the first step: strides that begin within it are
+    /// longer, by [`RAMP_STRIDE_EXTRA`] at the first step falling linearly to 0 at `ramp_s`
+    /// (the belt accelerating to its speed). Default 0: no ramp (then not serialised, so
+    /// earlier subjects keep their bytes).
+    #[serde(default, skip_serializing_if = "is_zero_s")]
+    pub ramp_s: f64,
     /// Left leg.
     pub left: LegParams,
     /// Right leg.
@@ -113,6 +128,7 @@ impl SubjectParams {
             heel_strike_foot_angle_deg: 15.0,
             toe_off_foot_angle_deg: 55.0,
             turn: true,
+            ramp_s: 0.0,
             left: LegParams::default(),
             right: LegParams::default(),
         }
@@ -315,6 +331,12 @@ impl SubjectParams {
         range("duration_s", self.duration_s, 5.0, 24.0 * 3600.0)?;
         check_samples(self.duration_s, self.fs_hz)?;
         range("standing_s", self.standing_s, 0.0, 60.0)?;
+        range(
+            "ramp_s",
+            self.ramp_s,
+            0.0,
+            (0.5 * (self.duration_s - 2.0 * self.standing_s)).max(0.0),
+        )?;
         range("stride_time_s", self.stride_time_s, 0.7, 2.0)?;
         range("stride_length_m", self.stride_length_m, 0.3, 2.2)?;
         range("stride_time_cv", self.stride_time_cv, 0.0, 0.1)?;

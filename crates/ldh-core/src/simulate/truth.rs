@@ -36,6 +36,10 @@ pub struct StrideTruth {
     pub turning: bool,
     /// First or last stride of a walking bout (gait ramping in or out).
     pub bout_edge: bool,
+    /// Begins during the treadmill belt's start-up ([`super::SubjectParams::ramp_s`]; not
+    /// written when false, so truths without a ramp keep their bytes).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub accelerating: bool,
 }
 
 /// What was drawn for one sensor.

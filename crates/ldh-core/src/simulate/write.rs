@@ -101,7 +101,8 @@ pub struct ManifestRow {
     pub right: String,
     /// Sensor height above the ankle, m (optional column).
     pub sensor_height_m: Option<f64>,
-    /// Overground or treadmill (optional column `setting`; written for family B only).
+    /// Overground or treadmill (optional column `setting`; written for family B, and for family
+    /// A with a belt start-up, `ramp_s` > 0).
     #[serde(default)]
     pub setting: Option<crate::recording::Setting>,
 }
@@ -125,7 +126,10 @@ impl ManifestRow {
                     .round()
                     / 1000.0,
             ),
-            setting: s.family_b.as_ref().map(|p| p.setting),
+            setting: s.family_b.as_ref().map(|p| p.setting).or(
+                // Family A with a belt start-up walks on a treadmill.
+                (s.params.ramp_s > 0.0).then_some(crate::recording::Setting::Treadmill),
+            ),
         }
     }
 }

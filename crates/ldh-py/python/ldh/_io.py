@@ -170,6 +170,7 @@ def simulate_cohort(
     turn: bool = True,
     slow_ldh: int = 0,
     acc_range_g: float = 8.0,
+    ramp_s: float = 0.0,
 ) -> str:
     """Simulate a cohort into ``out`` exactly as ``ldh simulate`` does (subject folders,
     ``manifest.csv`` and ``cohort.json``); returns the manifest CSV text. The same seed gives
@@ -183,6 +184,10 @@ def simulate_cohort(
     ``acc_range_g`` is the accelerometer's range (±g) as ``ldh simulate --acc-range-g``: 2 makes
     the swing and heel-strike accelerations clip as HuGaDB's ±2 g devices do (the stride length
     then reconstructs the clipped samples, docs/accuracy.md); the default 8 never clips.
+
+    ``ramp_s`` makes each walk a treadmill walk whose belt starts up over that many seconds, as
+    ``ldh simulate --ramp-s``: strides 25 % longer at the first step, steady from ``ramp_s`` on
+    (needs ``turn=False``; the truth marks those strides ``accelerating``).
 
     Sizes beyond the core's declared limits (100 000 subjects; 1 000 000 samples per leg,
     i.e. ``seconds * rate_hz``) raise :class:`LdhParamError` (a ``ValueError``) before any
@@ -199,7 +204,7 @@ def simulate_cohort(
         raise LdhParamError(f"seed must be below 2**64, got {seed!r}")
     return _ldh.simulate_cohort(
         os.fspath(out), int(healthy), int(ldh), float(seconds), int(seed), float(rate_hz), bool(turn),
-        int(slow_ldh), float(acc_range_g),
+        int(slow_ldh), float(acc_range_g), float(ramp_s),
     )
 
 

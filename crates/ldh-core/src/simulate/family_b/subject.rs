@@ -393,6 +393,7 @@ fn stride_truth(
                 roll_swing_excursion_deg: rmx - rmn,
                 turning: walk.turn.is_some_and(|(a, b)| next > a && hs < b),
                 bout_edge: k == 0 || k == n - 1,
+                accelerating: false,
             }
         })
         .collect()

@@ -120,7 +120,13 @@ fn simulate_leg(
     rng: &mut ChaCha8Rng,
 ) -> Result<SimLeg> {
     let kin = kinematics::evaluate(leg, sh, &timeline.heading, grid, timeline.n_idx());
-    let strides = strides::stride_truth(leg, &events, &kin.fine, &timeline.heading);
+    let strides = strides::stride_truth(
+        leg,
+        &events,
+        &kin.fine,
+        &timeline.heading,
+        timeline.ramp_end_s,
+    );
     let m = measure(
         sensor,
         &kin.dense.acc_clean_g,

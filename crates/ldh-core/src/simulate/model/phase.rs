@@ -4,7 +4,7 @@
 use rand_chacha::ChaCha8Rng;
 
 use super::super::jet::{smoothstep5, Jet, Quintic};
-use super::super::SubjectParams;
+use super::super::{SubjectParams, RAMP_STRIDE_EXTRA};
 use super::std_normal;
 use crate::error::{LdhError, Result};
 
@@ -105,6 +105,9 @@ pub(super) struct Timeline {
     pub(super) phase: PhaseCurve,
     /// Heading ψ(t).
     pub(super) heading: Heading,
+    /// End of the belt start-up, s (`standing_s + ramp_s`; None without a ramp): strides that
+    /// begin before it are accelerating.
+    pub(super) ramp_end_s: Option<f64>,
 }
 
 impl Timeline {
@@ -116,13 +119,18 @@ impl Timeline {
 
     /// Draw the timeline: `standing_s` of quiet standing, then `n` left heel strikes with stride
     /// times drawn around `stride_time_s` (CV `stride_time_cv`, 10 % longer over the turn,
-    /// clamped to 0.6–1.6 × the mean), then standing again. Draws `n − 1` standard normals from
-    /// `rng`. Errors: fewer than 4 strides fit in `duration_s`, or the drawn phase is not
+    /// clamped to 0.6–1.6 × the mean; a stride beginning `e` s into a belt start-up of `ramp_s`
+    /// is then `1 + RAMP_STRIDE_EXTRA · (1 − e / ramp_s)` times longer), then standing again.
+    /// Draws `n − 1` standard normals from `rng`. Errors: fewer than 4 strides fit in `duration_s`, or the drawn phase is not
     /// monotone.
     pub(super) fn draw(params: &SubjectParams, rng: &mut ChaCha8Rng) -> Result<Timeline> {
         let t0 = params.standing_s;
         let big_t = params.stride_time_s;
-        let walk_s = params.duration_s - 2.0 * params.standing_s - 1.8 * big_t;
+        // A start-up adds RAMP_STRIDE_EXTRA / 2 of its length on average.
+        let walk_s = params.duration_s
+            - 2.0 * params.standing_s
+            - 1.8 * big_t
+            - 0.5 * RAMP_STRIDE_EXTRA * params.ramp_s;
         let n = (walk_s / big_t).floor() as usize + 1; // heel strikes of the left leg
         if n < 4 {
             return Err(LdhError::param(
@@ -149,6 +157,15 @@ impl Timeline {
             }
             durations.push(d.clamp(0.6 * big_t, 1.6 * big_t));
         }
+        if params.ramp_s > 0.0 {
+            // The first heel strike comes 0.9 strides after the walk starts.
+            let mut elapsed = 0.9 * big_t;
+            for d in durations.iter_mut() {
+                let left = (1.0 - elapsed / params.ramp_s).max(0.0);
+                *d *= 1.0 + RAMP_STRIDE_EXTRA * left;
+                elapsed += *d;
+            }
+        }
         let phase = PhaseCurve::new(&phase_knots(t0, big_t, &durations));
         if !phase.is_monotone() {
             return Err(LdhError::param(
@@ -170,6 +187,7 @@ impl Timeline {
             turn_strides,
             phase,
             heading,
+            ramp_end_s: (params.ramp_s > 0.0).then_some(t0 + params.ramp_s),
         })
     }
 }

@@ -11,12 +11,13 @@ use super::phase::Heading;
 /// them: pitch extremes over the stride and the roll range from toe off to the next heel strike
 /// from the integration grid (`fine`), the stride length from the two heel contact points
 /// (NaN when one is missing), `turning` when the stride overlaps the turn, `bout_edge` for the
-/// first and last stride.
+/// first and last stride, `accelerating` when it begins before `ramp_end_s` (belt start-up).
 pub(super) fn stride_truth(
     leg: &LegModel,
     events: &LegEvents,
     fine: &FineTrack,
     heading: &Heading,
+    ramp_end_s: Option<f64>,
 ) -> Vec<StrideTruth> {
     let (hs_times, to_times) = (&events.hs, &events.to);
     let j_first = leg.first_stride();
@@ -65,6 +66,7 @@ pub(super) fn stride_truth(
             roll_swing_excursion_deg: rmx - rmn,
             turning,
             bout_edge,
+            accelerating: ramp_end_s.is_some_and(|e| t_hs < e),
         });
     }
     strides
