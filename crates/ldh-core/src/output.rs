@@ -180,6 +180,19 @@ pub struct RecordingRow {
     /// `overground`, `treadmill`, or empty when not said (analysed as overground).
     #[serde(default, with = "empty_is_none")]
     pub setting: Option<Label<crate::Setting>>,
+    /// Start of the steady walking the means and CVs are of, s (heel strike of its first
+    /// stride; empty when the rule is off or found no steady walking; docs/pipeline.md).
+    #[serde(default)]
+    pub steady_start_s: Option<f64>,
+    /// End of the steady walking, s (heel strike ending its last stride).
+    #[serde(default)]
+    pub steady_end_s: Option<f64>,
+    /// Valid strides excluded at the start as not steady (speeding up).
+    #[serde(default)]
+    pub steady_excluded_start: Option<usize>,
+    /// Valid strides excluded at the end as not steady (slowing down).
+    #[serde(default)]
+    pub steady_excluded_end: Option<usize>,
 }
 
 impl RecordingRow {
@@ -281,6 +294,10 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
                 clipped_samples: None,
                 trial_id: r.trial_id.clone().unwrap_or_default(),
                 setting: r.setting.map(Label::from),
+                steady_start_s: None,
+                steady_end_s: None,
+                steady_excluded_start: None,
+                steady_excluded_end: None,
             };
             match leg {
                 Err(e) => {
@@ -321,6 +338,12 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
                     row.axial_rotation_deg = num(l.alignment.axial_rotation_deg, 1);
                     row.outliers_replaced = Some(l.outliers_replaced);
                     row.clipped_samples = Some(l.read.saturated_samples);
+                    if let Some(w) = &l.steady {
+                        row.steady_start_s = num(w.start_s, 3);
+                        row.steady_end_s = num(w.end_s, 3);
+                        row.steady_excluded_start = Some(w.excluded_start);
+                        row.steady_excluded_end = Some(w.excluded_end);
+                    }
                 }
             }
             out.push(row);

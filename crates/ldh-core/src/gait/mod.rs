@@ -53,7 +53,8 @@ pub use segment::{
 };
 pub use side::{side_parameters, withhold_unvouched_lengths, MIN_LENGTH_SHARE, MIN_LENGTH_STRIDES};
 pub use steady::{
-    steady_window, SteadyParams, SteadyWindow, ValidSteadyParams, STEADY_REASON, TOO_LITTLE_STEADY,
+    exclude_unsteady, steady_window, SteadyParams, SteadySpan, SteadyWindow, ValidSteadyParams,
+    STEADY_REASON, TOO_LITTLE_STEADY,
 };
 
 /// One stride of one leg: a row of the per-stride table (SPEC §6).

@@ -24,6 +24,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::{append_reason, Stride};
 use crate::error::{LdhError, Result};
 
 /// The reason given on a stride outside the steady window.
@@ -156,6 +157,78 @@ pub fn steady_window(stride_time_s: &[f64], valid: &[bool], p: &ValidSteadyParam
             enough: false,
         },
     }
+}
+
+/// The steady window a leg's analysis used, in its recording's time (`recordings.csv` columns
+/// `steady_start_s`, `steady_end_s`, `steady_excluded_start`, `steady_excluded_end`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SteadySpan {
+    /// Heel strike that begins the first steady stride, s (NaN when no steady walking was found).
+    pub start_s: f64,
+    /// Heel strike that ends the last steady stride, s (NaN when no steady walking was found).
+    pub end_s: f64,
+    /// Valid strides excluded before the window (accelerating).
+    pub excluded_start: usize,
+    /// Valid strides excluded after the window (slowing down).
+    pub excluded_end: usize,
+    /// Valid strides inside the window.
+    pub steady_strides: usize,
+    /// Whether enough steady strides remain for the variability (`min_steady_strides`).
+    pub enough: bool,
+}
+
+/// Apply the steady-state rule to one leg's strides (in time order): the valid strides before
+/// and after the window become invalid with [`STEADY_REASON`], so every mean and CV is of
+/// steady walking. When no run of in-band strides exists at all (an irregular walk with no
+/// steady part), nothing is excluded and the span says so (`steady_strides` 0, times NaN): the
+/// means are then of the whole walk and the caller withholds the variability. `None` when the
+/// rule is disabled or the leg has no stride.
+///
+/// Idempotent: strides an earlier call excluded (reason [`STEADY_REASON`]) are taken back
+/// first, so a leg re-segmented or re-checked can be given to it again.
+pub fn exclude_unsteady(strides: &mut [Stride], p: &ValidSteadyParams) -> Option<SteadySpan> {
+    for s in strides.iter_mut() {
+        let reasons: Vec<&str> = s.reason.split("; ").collect();
+        if reasons.contains(&STEADY_REASON) {
+            // Only valid strides are ever excluded, so without this reason it is valid again.
+            s.reason = reasons
+                .into_iter()
+                .filter(|r| *r != STEADY_REASON)
+                .collect::<Vec<_>>()
+                .join("; ");
+            s.valid = true;
+        }
+    }
+    if !p.0.enabled || strides.is_empty() {
+        return None;
+    }
+    let t: Vec<f64> = strides.iter().map(|s| s.stride_time_s).collect();
+    let valid: Vec<bool> = strides.iter().map(|s| s.valid).collect();
+    let w = steady_window(&t, &valid, p);
+    if w.first == w.end {
+        return Some(SteadySpan {
+            start_s: f64::NAN,
+            end_s: f64::NAN,
+            excluded_start: 0,
+            excluded_end: 0,
+            steady_strides: 0,
+            enough: false,
+        });
+    }
+    for (i, s) in strides.iter_mut().enumerate() {
+        if s.valid && (i < w.first || i >= w.end) {
+            s.valid = false;
+            append_reason(s, STEADY_REASON.to_string());
+        }
+    }
+    Some(SteadySpan {
+        start_s: strides[w.first].hs_time_s,
+        end_s: strides[w.end - 1].next_hs_time_s,
+        excluded_start: w.excluded_start,
+        excluded_end: w.excluded_end,
+        steady_strides: w.steady,
+        enough: w.enough,
+    })
 }
 
 /// Median and band half-width of the stride times (`None` for fewer than 3).

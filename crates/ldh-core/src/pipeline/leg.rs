@@ -55,6 +55,10 @@ pub struct LegResult {
     /// in `parameters.withheld` (docs/quality.md).
     #[serde(default)]
     pub warnings: Vec<Warning>,
+    /// The steady-walking window the means and CVs are of (`None`: the rule is disabled or the
+    /// leg has no stride).
+    #[serde(default)]
+    pub steady: Option<crate::gait::SteadySpan>,
 }
 
 /// Analyse one recording up to its strides (no bilateral parameters yet). With no other leg the
@@ -226,6 +230,9 @@ pub fn leg_back(
             .warnings
             .sort_by_key(|x| std::cmp::Reverse(x.severity));
     }
+    // Means and CVs of steady walking only (belt start-up, initiation, termination out; a
+    // subject applies it again after re-segmenting its legs for turns).
+    let steady = quality::apply_steady(&mut st, &mut checks.warnings, v.steady());
     let mut parameters = side_parameters(&st, None);
     t.lap(Stage::Strides, &mut clock);
     if params.compute_sta && !checks.gyro_fault {
@@ -283,6 +290,7 @@ pub fn leg_back(
             attitude: Some(att),
             signals: Some(al),
             warnings,
+            steady,
         },
         hs,
     ))

@@ -20,6 +20,8 @@ mod subject;
 mod tests;
 #[cfg(test)]
 mod tests_inputs;
+#[cfg(test)]
+mod tests_steady;
 
 pub use batch::{analyze_many_on, bare_subject, leg_from_arrays};
 pub use bilateral::{bilateral_events, bilateral_events_on_clock, BilateralEvent, EventKind};
@@ -52,7 +54,7 @@ use crate::align::{AlignParams, ValidAlignParams};
 use crate::attitude::{AttitudeModel, AttitudeParams, ValidAttitudeParams};
 use crate::error::Result;
 use crate::events::{EventParams, ValidEventParams};
-use crate::gait::{StrideParams, ValidStrideParams};
+use crate::gait::{SteadyParams, StrideParams, ValidSteadyParams, ValidStrideParams};
 use crate::nonlinear::GaitStaParams;
 use crate::preprocess::PreprocessParams;
 
@@ -82,6 +84,10 @@ pub struct AnalysisParams {
     /// Neurosci Methods 2009;178:327–333, who advise ≥ 150 strides and equal numbers across
     /// subjects), and it bounds the cost of a 2-hour recording. 0 = no limit.
     pub sta_max_strides: usize,
+    /// Steady-state walking: the strides of the belt's start-up, gait initiation and
+    /// termination are excluded before any mean or CV ([`crate::gait::SteadyParams`]; module
+    /// docs of `gait::steady` give the rule and its sources).
+    pub steady: SteadyParams,
 }
 
 impl Default for AnalysisParams {
@@ -95,6 +101,7 @@ impl Default for AnalysisParams {
             sta: GaitStaParams::default(),
             compute_sta: true,
             sta_max_strides: 150,
+            steady: SteadyParams::default(),
         }
     }
 }
@@ -161,6 +168,7 @@ impl AnalysisParams {
             attitude: self.attitude.check()?,
             events: self.events.check()?,
             strides: self.strides.check()?,
+            steady: self.steady.check()?,
             params: self.clone(),
         })
     }
@@ -178,6 +186,7 @@ pub struct ValidAnalysisParams {
     attitude: ValidAttitudeParams,
     events: ValidEventParams,
     strides: ValidStrideParams,
+    steady: ValidSteadyParams,
 }
 
 impl ValidAnalysisParams {
@@ -196,6 +205,10 @@ impl ValidAnalysisParams {
     /// The checked event parameters.
     pub fn events(&self) -> &ValidEventParams {
         &self.events
+    }
+    /// The checked steady-state parameters.
+    pub fn steady(&self) -> &ValidSteadyParams {
+        &self.steady
     }
     /// The checked stride parameters with a subject's sensor height, m, when it has one (the
     /// height belongs to the subject, so it is checked here, at the call). Without one, the

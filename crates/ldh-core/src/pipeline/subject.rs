@@ -233,10 +233,17 @@ fn pair_legs(
     };
     // The leg's own findings again (the strides may have been re-segmented for turns since the
     // leg checks ran), then the pair's; then the stride lengths the other leg contradicts.
+    // Then steady walking only, on the strides as re-segmented.
+    let steady = checked
+        .map(|v| *v.steady())
+        .or_else(|| params.steady.check().ok());
     for (leg, _) in [l.as_mut(), r.as_mut()].into_iter().flatten() {
         quality::apply_to_strides(&mut leg.strides, &leg.warnings);
         quality::apply_to_strides(&mut leg.strides, &warnings);
         withhold_unvouched_lengths(&mut leg.strides);
+        if let Some(p) = &steady {
+            leg.steady = quality::apply_steady(&mut leg.strides, &mut leg.warnings, p);
+        }
     }
     // Not when the pair's checks doubt they are one walk (what withholds the step time).
     let one_walk = overlapping

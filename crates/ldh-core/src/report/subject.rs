@@ -209,7 +209,7 @@ fn missing(s: &SubjectReport) -> Vec<String> {
 }
 
 /// Names of the rows of the recordings table.
-const FACTS: [&str; 10] = [
+const FACTS: [&str; 11] = [
     "file",
     "status",
     "warnings",
@@ -219,11 +219,12 @@ const FACTS: [&str; 10] = [
     "clipped samples",
     "mounting",
     "strides detected / used",
+    "steady walking used (docs/pipeline.md)",
     "STA",
 ];
 
 /// The values of [`FACTS`] for one side.
-fn facts(r: &RecordingRow) -> [String; 10] {
+fn facts(r: &RecordingRow) -> [String; 11] {
     let mounting = match (r.mirrored, r.axial_rotation_deg) {
         (Some(m), Some(a)) => format!(
             "{}; rotated {a:.0}° about the shank",
@@ -257,6 +258,7 @@ fn facts(r: &RecordingRow) -> [String; 10] {
             (Some(t), Some(v)) => format!("{t} / {v}"),
             _ => "–".into(),
         },
+        steady_fact(r),
         if r.sta_status.is_empty() {
             "computed".into()
         } else {
@@ -265,8 +267,25 @@ fn facts(r: &RecordingRow) -> [String; 10] {
     ]
 }
 
+/// The steady window of a side in words: "12.0–80.0 s (4 strides at the start excluded)".
+fn steady_fact(r: &RecordingRow) -> String {
+    let (Some(a), Some(b)) = (r.steady_start_s, r.steady_end_s) else {
+        return "–".into();
+    };
+    let ends = match (
+        r.steady_excluded_start.unwrap_or(0),
+        r.steady_excluded_end.unwrap_or(0),
+    ) {
+        (0, 0) => "the whole walk".to_string(),
+        (x, 0) => format!("{x} stride(s) at the start excluded"),
+        (0, y) => format!("{y} stride(s) at the end excluded"),
+        (x, y) => format!("{x} stride(s) at the start and {y} at the end excluded"),
+    };
+    format!("{a:.1}–{b:.1} s ({ends})")
+}
+
 fn recordings_table(sides: &[&RecordingRow]) -> Markup {
-    let values: Vec<[String; 10]> = sides.iter().map(|r| facts(r)).collect();
+    let values: Vec<[String; 11]> = sides.iter().map(|r| facts(r)).collect();
     html! {
         h2 { "1. Recordings" } "\n"
         table {

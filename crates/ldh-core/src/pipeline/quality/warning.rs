@@ -138,6 +138,10 @@ pub mod codes {
     /// The heel strikes were placed at the walk's own delay from the gyroscope's landmark to
     /// the impact (a note: which rule placed them, and the delay).
     pub const HS_AT_IMPACT: &str = "hs_at_impact";
+    /// Strides at the start or end of the walk excluded as not steady (a note with the window).
+    pub const STEADY_WINDOW: &str = "steady_window";
+    /// Too little steady walking for the variability (CVs withheld).
+    pub const TOO_LITTLE_STEADY: &str = "too_little_steady";
 }
 
 /// Column names of recordings.csv, by what they are computed from.
@@ -167,6 +171,8 @@ pub mod params {
     pub const LENGTH: [&str; 3] = ["stride_length_m", "speed_mps", "stride_length_cv"];
     /// The parameters that pair the legs.
     pub const PAIRED: [&str; 2] = ["step_time_s", "step_frequency_steps_per_s"];
+    /// Stride-to-stride variability.
+    pub const VARIABILITY: [&str; 2] = ["stride_time_cv", "stride_length_cv"];
 }
 
 /// A list of warnings: a JSON array of objects, and one readable CSV cell (the warnings'
