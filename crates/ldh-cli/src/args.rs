@@ -101,6 +101,13 @@ pub enum Command {
         /// A format's name; omit to list them all.
         name: Option<String>,
     },
+    /// Explain the output columns (recordings.csv, strides.csv, events.csv): unit and meaning.
+    ///
+    /// Without NAME the whole dictionary is printed as Markdown (docs/columns.md is the same).
+    Columns {
+        /// A column's name, e.g. wqk_deg; omit to print them all.
+        name: Option<String>,
+    },
     /// Write the embedded demo cohort (the default data of `ldh analyze`) to a folder.
     Demo {
         /// Output folder.

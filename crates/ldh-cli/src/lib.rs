@@ -44,6 +44,7 @@ where
         Command::Simulate(a) => commands::simulate::run(a),
         Command::Inspect(a) => commands::inspect::run(a),
         Command::Formats { name } => commands::formats::run(name),
+        Command::Columns { name } => commands::columns::run(name),
         Command::Demo { out } => commands::demo::run(&out),
         Command::Completions { shell } => commands::completions::run(shell),
         Command::Man => commands::completions::man(),

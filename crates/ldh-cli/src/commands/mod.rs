@@ -26,6 +26,7 @@ macro_rules! note {
 pub(crate) use note;
 
 pub mod analyze;
+pub mod columns;
 pub mod completions;
 pub mod demo;
 pub mod evaluate;

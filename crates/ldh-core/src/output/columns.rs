@@ -1,0 +1,259 @@
+//! The column dictionary: every column of `recordings.csv`, `strides.csv` and `events.csv` with
+//! its unit and meaning, in words a clinician or a data scientist can use (issue 39). One table
+//! in code; `docs/columns.md` is generated from it ([`markdown`]) and `ldh columns [NAME]`
+//! prints it. A test checks that every column the writers emit is here exactly once and that
+//! the committed docs/columns.md is what [`markdown`] writes.
+
+use std::fmt::Write;
+
+/// Which output table a column belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Table {
+    /// `recordings.csv`: one row per subject (and trial) and side.
+    Recordings,
+    /// `strides.csv`: one row per stride.
+    Strides,
+    /// `events.csv`: both legs' heel strikes and toe offs in time order.
+    Events,
+}
+
+impl Table {
+    /// The file name.
+    pub fn file(self) -> &'static str {
+        match self {
+            Table::Recordings => "recordings.csv",
+            Table::Strides => "strides.csv",
+            Table::Events => "events.csv",
+        }
+    }
+}
+
+/// One column: table, name, unit ("" for text, "1" for a dimensionless number) and meaning.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ColumnDoc {
+    /// The table.
+    pub table: Table,
+    /// The column name as written.
+    pub name: &'static str,
+    /// The unit ("" for text and flags; "1" for a dimensionless ratio).
+    pub unit: &'static str,
+    /// What it means.
+    pub meaning: &'static str,
+}
+
+const fn c(
+    table: Table,
+    name: &'static str,
+    unit: &'static str,
+    meaning: &'static str,
+) -> ColumnDoc {
+    ColumnDoc {
+        table,
+        name,
+        unit,
+        meaning,
+    }
+}
+
+use Table::{Events as E, Recordings as R, Strides as S};
+
+/// Every output column, in each table's column order.
+pub const COLUMNS: &[ColumnDoc] = &[
+    c(R, "subject_id", "", "The person (manifest `subject_id`, or the folder name)."),
+    c(R, "side", "", "`left` or `right`: the leg this row is about."),
+    c(R, "model", "", "Attitude model: `fusion` (adaptive Kalman fusion of gyroscope and accelerometer, the default) or `acc` (accelerometer only, for comparison)."),
+    c(R, "group", "", "The group label as given in the manifest (`healthy`, `ldh` or any other label); empty when not given."),
+    c(R, "affected_side", "", "The LDH subject's affected side as given: `left`, `right`, `none`, or empty when unknown."),
+    c(R, "side_role", "", "This side's role in the cohort comparison: `affected` (LDHE), `unaffected` (LDHH), `healthy` (H), or empty."),
+    c(R, "source", "", "The file this side was read from."),
+    c(R, "status", "", "`ok`; `no_valid_strides` (analysed, but no stride passed the checks: every parameter withheld); `error` (not analysed; see `error`)."),
+    c(R, "error", "", "Why the recording could not be analysed (status `error`)."),
+    c(R, "warnings", "", "What the quality checks found, most severe first, as `code [severity]: message` joined by ` | ` (docs/quality.md lists every code)."),
+    c(R, "withheld", "", "Parameters withheld by a check, as `column: reason` joined by ` | `; their cells are empty."),
+    c(R, "fs_hz", "Hz", "Sampling rate of the recording."),
+    c(R, "duration_s", "s", "Length of the recording."),
+    c(R, "strides_total", "strides", "Strides found (heel strike to the next heel strike of the same leg)."),
+    c(R, "strides_valid", "strides", "Strides the parameters are means of (not a turn, not at a bout's edge, steady walking, passed the checks)."),
+    c(R, "stride_time_s", "s", "ST: mean stride time (heel strike to the next heel strike of the same leg)."),
+    c(R, "step_time_s", "s", "STT: mean step time (the other leg's heel strike to this leg's); empty with one leg."),
+    c(R, "step_frequency_steps_per_s", "steps/s", "SF: 1 / mean step time (× 60 = steps/min of this side; the report's cadence is one value per walk from both legs)."),
+    c(R, "stance_ratio", "1 (fraction of the stride)", "STP: mean share of the stride the foot is on the ground (toe off − heel strike) / stride time; normal ≈ 0.60."),
+    c(R, "swing_ratio", "1 (fraction of the stride)", "SWP: 1 − stance ratio: the share of the stride the foot is in the air."),
+    c(R, "stride_length_m", "m", "SL: mean distance the foot travels over a stride (both feet travel the same distance on a straight walk)."),
+    c(R, "speed_mps", "m/s", "SS: mean walking speed, stride length / stride time."),
+    c(R, "stride_length_cv", "1 (SD / mean)", "SV: stride-to-stride variability of stride length (× 100 = %)."),
+    c(R, "stride_time_cv", "1 (SD / mean)", "STV: stride-to-stride variability of stride time (× 100 = %); healthy ≈ 0.01–0.03."),
+    c(R, "sta_per_s", "1/s", "STA: short-term largest Lyapunov exponent of the shank's sagittal angular velocity (Rosenstein): how fast nearby gait states diverge; higher = less stable."),
+    c(R, "sta_per_stride", "1/stride", "STA × mean stride time: the same divergence per stride."),
+    c(R, "sta_status", "", "Why STA is empty (too few strides, not computed, a fault)."),
+    c(R, "wqk_deg", "deg", "WQK: mean largest forward inclination of the shank in a stride (sagittal pitch maximum, the knee ahead of the ankle, late swing)."),
+    c(R, "pbi_deg", "deg", "PBI: mean largest backward inclination of the shank in a stride (−pitch minimum, at push-off)."),
+    c(R, "bdk_deg", "deg", "BDK: mean range of the shank's frontal-plane roll in swing (toe off to heel strike): sideways swing of the leg, e.g. circumduction."),
+    c(R, "mirrored", "", "`true` when the device is mounted with its y axis backwards (as a device worn on the lateral side of the right shank is); corrected for."),
+    c(R, "axial_rotation_deg", "deg", "How far the device is turned about the shank axis from its nominal mounting; corrected for."),
+    c(R, "outliers_replaced", "samples", "Samples replaced as outliers (3 SD of |a|) or clipped."),
+    c(R, "clipped_samples", "samples", "Samples at the sensor's range (clipped)."),
+    c(R, "trial_id", "", "The trial of the person (manifest `trial_id`); empty for a single recording pair. Statistics and classifiers average a person's trials first."),
+    c(R, "setting", "", "`overground`, `treadmill`, or empty (analysed as overground)."),
+    c(R, "steady_start_s", "s", "Start of the steady walking the means and CVs are of (heel strike of its first stride); empty when the rule is off or found none (docs/pipeline.md)."),
+    c(R, "steady_end_s", "s", "End of the steady walking (heel strike ending its last stride)."),
+    c(R, "steady_excluded_start", "strides", "Valid strides excluded at the start as not steady (speeding up: belt start-up, gait initiation)."),
+    c(R, "steady_excluded_end", "strides", "Valid strides excluded at the end as not steady (slowing down)."),
+    c(S, "subject_id", "", "The person."),
+    c(S, "side", "", "`left` or `right`."),
+    c(S, "model", "", "Attitude model (`fusion` or `acc`)."),
+    c(S, "stride_index", "", "Stride number within the recording, from 0."),
+    c(S, "bout", "", "Walking bout (a pause or a turn ends one), from 0."),
+    c(S, "hs_time_s", "s", "Heel strike that begins the stride, from the recording's first sample."),
+    c(S, "to_time_s", "s", "Toe off within the stride; empty when not found."),
+    c(S, "next_hs_time_s", "s", "Heel strike that ends the stride."),
+    c(S, "stride_time_s", "s", "Stride time."),
+    c(S, "stance_ratio", "1 (fraction of the stride)", "(toe off − heel strike) / stride time."),
+    c(S, "stride_length_m", "m", "Stride length; empty when withheld (`reason` says why)."),
+    c(S, "speed_mps", "m/s", "Stride length / stride time."),
+    c(S, "wqk_deg", "deg", "Largest forward shank inclination in the stride (WQK)."),
+    c(S, "pbi_deg", "deg", "Largest backward shank inclination in the stride (PBI)."),
+    c(S, "bdk_deg", "deg", "Range of frontal-plane shank roll from toe off to the next heel strike (BDK)."),
+    c(S, "heading_change_deg", "deg", "Change of walking direction over the stride (turn detection; not a clinical value)."),
+    c(S, "valid", "", "`true` when the stride counts in the means; `false` with its reason (a turn, a bout's edge, not steady walking, a check)."),
+    c(S, "reason", "", "Why the stride is not valid, or why one of its values is withheld; reasons joined by `; `."),
+    c(S, "trial_id", "", "The trial of the person (manifest `trial_id`)."),
+    c(E, "subject_id", "", "The person."),
+    c(E, "time_s", "s", "Time of the event, from the recordings' first sample."),
+    c(E, "side", "", "`left` or `right`."),
+    c(E, "event", "", "`HS` (heel strike) or `TO` (toe off)."),
+    c(E, "order", "", "Where the left/right alternation breaks, why; empty otherwise."),
+    c(E, "trial_id", "", "The trial of the person (manifest `trial_id`)."),
+];
+
+/// Labels that appear in the cohort statistics and reports rather than as columns.
+pub const LABELS: &[(&str, &str)] = &[
+    ("LDHE", "the affected side of the LDH subjects"),
+    ("LDHH", "the unaffected side of the LDH subjects"),
+    ("H", "healthy subjects (mean of both legs)"),
+    ("HE", "the paired comparison of the two LDH sides"),
+    ("H-H", "LDHH against H"),
+    ("E-H", "LDHE against H"),
+    ("LR", "healthy left against right"),
+];
+
+/// The columns called `name` (case-insensitive), in every table that has one.
+pub fn lookup(name: &str) -> Vec<&'static ColumnDoc> {
+    COLUMNS
+        .iter()
+        .filter(|c| c.name.eq_ignore_ascii_case(name.trim()))
+        .collect()
+}
+
+/// Column names that contain `part` (case-insensitive), for a "did you mean".
+pub fn similar(part: &str) -> Vec<&'static str> {
+    let part = part.trim().to_ascii_lowercase();
+    let mut v: Vec<&str> = COLUMNS
+        .iter()
+        .map(|c| c.name)
+        .filter(|n| !part.is_empty() && (n.contains(&part) || part.contains(n)))
+        .collect();
+    v.sort_unstable();
+    v.dedup();
+    v
+}
+
+/// One column as a few lines of text (`ldh columns NAME`).
+pub fn describe(c: &ColumnDoc) -> String {
+    let unit = if c.unit.is_empty() { "text" } else { c.unit };
+    format!("{} ({}; {unit})\n  {}\n", c.name, c.table.file(), c.meaning)
+}
+
+/// The whole dictionary as Markdown (docs/columns.md).
+pub fn markdown() -> String {
+    let mut s = String::from(
+        "# Output columns\n\nGenerated from `crates/ldh-core/src/output/columns.rs` (`ldh columns` prints it, `ldh columns NAME`\none column); a test keeps this file and the writers in step. Ratios and CVs are fractions (× 100 = %).\nAn empty cell is a value that was not measured: the `withheld` column (recordings) or `reason`\n(strides) says why.\n",
+    );
+    for t in [Table::Recordings, Table::Strides, Table::Events] {
+        let _ = write!(
+            s,
+            "\n## {}\n\n| column | unit | meaning |\n|---|---|---|\n",
+            t.file()
+        );
+        for c in COLUMNS.iter().filter(|c| c.table == t) {
+            let _ = writeln!(s, "| `{}` | {} | {} |", c.name, c.unit, c.meaning);
+        }
+    }
+    s.push_str(
+        "\n## Labels in the cohort statistics and reports\n\n| label | meaning |\n|---|---|\n",
+    );
+    for (l, m) in LABELS {
+        let _ = writeln!(s, "| {l} | {m} |");
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The header line a writer emits for `rows`.
+    fn header<T: serde::Serialize>(rows: &[T]) -> Vec<String> {
+        let text = crate::output::to_csv(rows, &[]).unwrap();
+        text.lines()
+            .next()
+            .unwrap()
+            .split(',')
+            .map(String::from)
+            .collect()
+    }
+
+    #[test]
+    fn every_written_column_is_documented_once_in_order() {
+        let inputs = crate::pipeline::demo_inputs().unwrap();
+        let params = crate::pipeline::AnalysisParams {
+            compute_sta: false,
+            ..Default::default()
+        };
+        let read = crate::io::ReadParams::default().check().unwrap();
+        let results: Vec<_> = inputs[..1]
+            .iter()
+            .map(|i| crate::pipeline::analyze_subject(i, &params, None, &read))
+            .collect();
+        for (t, written) in [
+            (
+                Table::Recordings,
+                header(&crate::output::recording_rows(&results)),
+            ),
+            (
+                Table::Strides,
+                header(&crate::output::stride_rows(&results)),
+            ),
+            (Table::Events, header(&crate::output::event_rows(&results))),
+        ] {
+            let documented: Vec<String> = COLUMNS
+                .iter()
+                .filter(|c| c.table == t)
+                .map(|c| c.name.to_string())
+                .collect();
+            assert_eq!(written, documented, "{}", t.file());
+        }
+    }
+
+    #[test]
+    fn docs_columns_md_is_generated() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/columns.md");
+        if std::env::var_os("LDH_PIN_WRITE").is_some() {
+            std::fs::write(path, markdown()).unwrap();
+        }
+        let committed = std::fs::read_to_string(path).unwrap_or_default();
+        assert!(
+            committed == markdown(),
+            "docs/columns.md is not what output::columns::markdown() writes: regenerate with LDH_PIN_WRITE=1 cargo test -p ldh-core columns"
+        );
+    }
+
+    #[test]
+    fn lookup_and_similar() {
+        assert_eq!(lookup("WQK_DEG").len(), 2);
+        assert_eq!(lookup("steady_end_s")[0].table, Table::Recordings);
+        assert!(lookup("wqk").is_empty());
+        assert!(similar("wqk").contains(&"wqk_deg"));
+        assert!(describe(lookup("stance_ratio")[0]).contains("fraction of the stride"));
+    }
+}
