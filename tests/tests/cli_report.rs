@@ -256,14 +256,14 @@ fn reports_are_well_formed_self_contained_and_label_every_axis() {
         s.contains("left shank: attitude with gait events"),
         "the good side still plots"
     );
-    // the failed leg named once, one asymmetry row, and the good leg's SV withheld with why
+    // the failed leg named once, one asymmetry row, and the good leg's CVs withheld with why
     assert!(
         s.contains("anything of the right leg (its recording could not be analysed)"),
         "{s}"
     );
     assert_eq!(s.matches("(SI %, left vs right)").count(), 0);
     assert!(s.contains("the right leg was not analysed (see above)"));
-    assert!(s.contains("sv unchecked"));
+    assert!(s.contains("too little steady ("), "{s}");
 }
 
 /// The bad-corpus leg with a gyroscope amplified ×10 (HuGaDB's fault): its report shows no

@@ -113,3 +113,18 @@ def test_a_two_g_accelerometer_clips_and_the_stride_length_is_still_reported(tmp
     assert np.all(np.isfinite(rows["stride_length_m"])), rows["withheld"]
     with pytest.raises(ldh.LdhParamError, match="acc_range_g"):
         ldh.simulate_cohort(tmp_path / "c", acc_range_g=-1.0)
+
+
+def test_a_belt_start_up_is_simulated_and_left_out_of_the_means(tmp_path):
+    # as `ldh simulate --no-turn --ramp-s 10` (issue 36): the start-up strides are excluded as
+    # not steady, and recordings say the window
+    m = ldh.simulate_cohort(tmp_path / "r", healthy=1, ldh=0, seconds=60, seed=4, turn=False, ramp_s=10.0)
+    assert m.splitlines()[0].endswith(",setting") and m.splitlines()[1].endswith(",treadmill"), m
+    out = ldh.analyze(tmp_path / "r", as_frame=False)
+    rec, st = out.recordings, out.strides
+    assert np.all(rec["steady_excluded_start"] >= 2), rec["steady_excluded_start"]
+    assert np.all(rec["steady_start_s"] > 3.0), rec["steady_start_s"]
+    reasons = [r for r in st["reason"] if "not steady walking" in r]
+    assert len(reasons) >= 4, reasons
+    with pytest.raises(ldh.LdhParamError, match="ramp_s"):
+        ldh.simulate_cohort(tmp_path / "t", ramp_s=10.0)  # with the turn: refused

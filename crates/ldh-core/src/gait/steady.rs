@@ -21,6 +21,16 @@
 //! - `min_steady_strides` 10: fewer steady strides leave the CV too uncertain (its relative
 //!   standard error ≈ 1/√(2n) is > 20 % below 10 strides; Hausdorff 2005 asks for many strides),
 //!   so the variability is withheld with [`TOO_LITTLE_STEADY`] rather than guessed.
+//! - `max_transient_strides` 12: a transient is short (gait initiation 2–3 strides, Lindemann
+//!   2008; a treadmill belt's start-up ≈ 8 strides on the real trials of issue 36, steady after
+//!   ≈ 15 s). A longer out-of-band stretch at an end is a change of walking speed (HuGaDB's
+//!   walks "at various speeds": 08_02 walks its last 20 strides at 0.95 s against 0.88 s) and
+//!   is kept as the walk's own, as speed changes inside a walk are.
+//! - `min_strides_to_trim` 20 (2 × `min_steady_strides`): on a shorter walk the median and MAD
+//!   of a handful of strides cannot tell a transient from the walk's own variation (the 25 s
+//!   demo walks, 7 valid strides a leg, lost their first bout as "speeding up" when a slower
+//!   pace before the turn fell outside the band), so nothing is trimmed there; the first and
+//!   last stride of every bout are still dropped (`StrideParams::drop_bout_edges`).
 
 use serde::{Deserialize, Serialize};
 
@@ -48,6 +58,14 @@ pub struct SteadyParams {
     pub run_strides: usize,
     /// Fewest steady strides for the side's variability (CV). Default 10.
     pub min_steady_strides: usize,
+    /// Most valid strides excluded at one end: a longer out-of-band stretch there is a change
+    /// of walking speed, not a transient, and is kept. Default 12.
+    pub max_transient_strides: usize,
+    /// Fewest valid strides for the rule to exclude any: a shorter walk's median and MAD do
+    /// not tell a transient from its own variation, so nothing is excluded (its first and last
+    /// stride of each bout are dropped as always, and with fewer than `min_steady_strides`
+    /// the variability is withheld). Default 20.
+    pub min_strides_to_trim: usize,
 }
 
 impl Default for SteadyParams {
@@ -58,6 +76,8 @@ impl Default for SteadyParams {
             min_band_share: 0.05,
             run_strides: 3,
             min_steady_strides: 10,
+            max_transient_strides: 12,
+            min_strides_to_trim: 20,
         }
     }
 }
@@ -130,7 +150,7 @@ pub fn steady_window(stride_time_s: &[f64], valid: &[bool], p: &ValidSteadyParam
     ) else {
         return whole(ok.len());
     };
-    if !p.enabled {
+    if !p.enabled || ok.len() < p.min_strides_to_trim {
         return whole(ok.len());
     }
     let inb = |i: usize| (stride_time_s[i] - centre).abs() <= half;
@@ -138,6 +158,19 @@ pub fn steady_window(stride_time_s: &[f64], valid: &[bool], p: &ValidSteadyParam
     let last = first_run(ok.iter().rev().copied(), &inb, p.run_strides);
     match (start, last) {
         (Some(a), Some(b)) if a <= b => {
+            // A longer out-of-band stretch at an end is a change of speed, kept (module docs).
+            let before = ok.iter().filter(|&&i| i < a).count();
+            let after = ok.iter().filter(|&&i| i > b).count();
+            let a = if before > p.max_transient_strides {
+                0
+            } else {
+                a
+            };
+            let b = if after > p.max_transient_strides {
+                n - 1
+            } else {
+                b
+            };
             let steady = ok.iter().filter(|&&i| i >= a && i <= b).count();
             SteadyWindow {
                 first: a,
@@ -337,12 +370,34 @@ mod tests {
     #[test]
     fn invalid_strides_neither_start_nor_break_a_run() {
         let mut t = vec![1.3, 1.0, 1.0, 9.0, 1.0];
-        t.extend(vec![1.0; 10]);
+        t.extend(vec![1.0; 20]);
         let mut valid = vec![true; t.len()];
         valid[3] = false;
         let w = steady_window(&t, &valid, &p());
         assert_eq!(w.first, 1);
         assert_eq!(w.excluded_start, 1);
+    }
+
+    #[test]
+    fn a_long_change_of_speed_at_an_end_is_kept() {
+        let mut t: Vec<f64> = (0..60)
+            .map(|i| 0.88 + 0.01 * ((i as f64) * 1.3).sin())
+            .collect();
+        t.extend((0..20).map(|i| 0.96 + 0.01 * ((i as f64) * 0.7).sin()));
+        let w = steady_window(&t, &[true; 80], &p());
+        assert_eq!((w.first, w.end, w.excluded_end), (0, 80, 0), "{w:?}");
+        // Twelve such strides are still a transient.
+        let w = steady_window(&t[..72], &[true; 72], &p());
+        assert_eq!((w.end, w.excluded_end), (60, 12), "{w:?}");
+    }
+
+    #[test]
+    fn a_short_walk_is_not_trimmed() {
+        let mut t = vec![1.35, 1.36, 1.34];
+        t.extend([1.25, 1.24, 1.23, 1.28]);
+        let w = steady_window(&t, &[true; 7], &p());
+        assert_eq!((w.first, w.end, w.excluded_start, w.steady), (0, 7, 0, 7));
+        assert!(!w.enough);
     }
 
     #[test]

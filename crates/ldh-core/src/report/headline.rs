@@ -225,7 +225,11 @@ fn to_do(sides: &[&RecordingRow], anything_missing: bool) -> Option<String> {
                     .into(),
             );
         }
-        if has(codes::FEW_STRIDES) || has(codes::SV_UNCHECKED) || has(codes::SV_NOISE) {
+        if has(codes::FEW_STRIDES)
+            || has(codes::SV_UNCHECKED)
+            || has(codes::SV_NOISE)
+            || has(codes::TOO_LITTLE_STEADY)
+        {
             return Some("Record a longer walk (at least 30 s of straight walking).".into());
         }
     }

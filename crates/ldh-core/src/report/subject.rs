@@ -124,10 +124,11 @@ fn header(s: &SubjectReport, sides: &[&RecordingRow]) -> Markup {
 
 /// Findings whose only effect is a value withheld (said in the headline's "could not be
 /// measured") or that change no number: they stay out of "Check before reading".
-const NOT_FOR_THE_BOX: [&str; 3] = [
+const NOT_FOR_THE_BOX: [&str; 4] = [
     crate::pipeline::codes::SENSOR_HEIGHT_UNKNOWN,
     crate::pipeline::codes::SV_NOISE,
     crate::pipeline::codes::SV_UNCHECKED,
+    crate::pipeline::codes::TOO_LITTLE_STEADY,
 ];
 
 /// The findings of both legs, each once: (severity, code, text, the legs that have it).
@@ -208,6 +209,9 @@ fn missing(s: &SubjectReport) -> Vec<String> {
     missing
 }
 
+/// The recordings-table row of the steady window (shown when strides were excluded).
+const STEADY_FACT: &str = "steady walking used (docs/pipeline.md)";
+
 /// Names of the rows of the recordings table.
 const FACTS: [&str; 11] = [
     "file",
@@ -219,7 +223,7 @@ const FACTS: [&str; 11] = [
     "clipped samples",
     "mounting",
     "strides detected / used",
-    "steady walking used (docs/pipeline.md)",
+    STEADY_FACT,
     "STA",
 ];
 

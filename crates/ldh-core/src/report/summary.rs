@@ -106,7 +106,13 @@ pub(crate) fn value_cell(c: &Cell, q: &Quantity, colspan: usize) -> Markup {
 pub(crate) fn value_cells(row: &Row) -> Markup {
     match row.q.scope {
         Scope::Walk => value_cell(&row.cells[0], row.q, 2),
-        Scope::Side => html! { @for c in &row.cells { (value_cell(c, row.q, 1)) } },
+        // Both legs not measured for the same reason: said once, across both.
+        Scope::Side => match row.cells.as_slice() {
+            [Cell::NotMeasured(a), Cell::NotMeasured(b)] if a == b => {
+                html! { td.nm colspan="2" { "not measured (both legs): " (a) } }
+            }
+            cells => html! { @for c in cells { (value_cell(c, row.q, 1)) } },
+        },
     }
 }
 

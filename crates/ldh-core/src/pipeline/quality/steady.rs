@@ -39,13 +39,16 @@ pub fn steady_warning(s: &SteadySpan) -> Option<Warning> {
             Warning::new(
                 codes::TOO_LITTLE_STEADY,
                 Severity::Warning,
-                format!(
-                    "only {} steady stride(s) from {:.1} s to {:.1} s{}: stride-time and stride-length variability need at least 10",
-                    s.steady_strides,
-                    s.start_s,
-                    s.end_s,
-                    excluded(s).map(|e| format!(" ({e})")).unwrap_or_default()
-                ),
+                match excluded(s) {
+                    Some(e) => format!(
+                        "fewer than 10 steady strides: {} (steady walking from {:.1} s to {:.1} s; {e}), so stride-time and stride-length variability (CV) are withheld",
+                        s.steady_strides, s.start_s, s.end_s
+                    ),
+                    None => format!(
+                        "fewer than 10 steady strides: {} valid (walking from {:.1} s to {:.1} s), so stride-time and stride-length variability (CV) are withheld; a longer straight walk gives more",
+                        s.steady_strides, s.start_s, s.end_s
+                    ),
+                },
             )
             .withholding(&params::VARIABILITY),
         );
@@ -102,8 +105,16 @@ mod tests {
         assert!(w.affects.is_empty());
         let w = steady_warning(&span(6, 2, 1)).unwrap();
         assert_eq!(w.code, codes::TOO_LITTLE_STEADY);
-        assert!(w.message.starts_with("only 6 steady stride(s) from 12.0 s to 80.0 s (2 stride(s) at the start (speeding up) and 1 at the end (slowing down) excluded)"), "{}", w.message);
+        assert_eq!(w.message, "fewer than 10 steady strides: 6 (steady walking from 12.0 s to 80.0 s; 2 stride(s) at the start (speeding up) and 1 at the end (slowing down) excluded), so stride-time and stride-length variability (CV) are withheld");
+        assert_eq!(
+            w.reason(),
+            "too little steady (fewer than 10 steady strides)"
+        );
         assert_eq!(w.affects, ["stride_time_cv", "stride_length_cv"]);
+        assert_eq!(
+            steady_warning(&span(7, 0, 0)).unwrap().message,
+            "fewer than 10 steady strides: 7 valid (walking from 12.0 s to 80.0 s), so stride-time and stride-length variability (CV) are withheld; a longer straight walk gives more"
+        );
         let none = SteadySpan {
             start_s: f64::NAN,
             end_s: f64::NAN,
