@@ -180,6 +180,12 @@ pub struct RecordingRow {
     /// `overground`, `treadmill`, or empty when not said (analysed as overground).
     #[serde(default, with = "empty_is_none")]
     pub setting: Option<Label<crate::Setting>>,
+    /// Treadmill belt speed, m/s (manifest `belt_speed_mps`), empty when not given.
+    #[serde(default)]
+    pub belt_speed_mps: Option<f64>,
+    /// The visit of the recording (manifest `visit`), empty when not given.
+    #[serde(default)]
+    pub visit: String,
 }
 
 impl RecordingRow {
@@ -281,6 +287,8 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
                 clipped_samples: None,
                 trial_id: r.trial_id.clone().unwrap_or_default(),
                 setting: r.setting.map(Label::from),
+                belt_speed_mps: r.belt_speed_mps,
+                visit: r.visit.clone().unwrap_or_default(),
             };
             match leg {
                 Err(e) => {
