@@ -47,7 +47,7 @@ pub fn cohort_html(c: &CohortReport) -> Result<String> {
         (triage(c, &links)?)
         (group_sections(c, &n)?)
         (classifiers(&c.cv, &n)?)
-        (trials_of_people(&c.recordings, &links, n.heading("Trials of one person")))
+        (trials_of_people(&c.recordings, &links, || n.heading("Trials of one person")))
         (recordings_table(c, &links, &n))
     };
     Ok(page("Cohort gait report", body))

@@ -106,6 +106,9 @@ fn a_persons_trials_stand_side_by_side_grouped_by_visit_with_their_difference() 
     // One visit: the last trial minus the first.
     let mut recs = trial("P1", "healthy", "a", "", 1.0);
     recs.extend(trial("P1", "healthy", "b", "", 0.9));
+    // Without a person of several trials the section is left out and takes no number.
+    let one = cohort(trial("P2", "healthy", "t1", "", 1.0));
+    assert!(one.contains("3. Recordings") && !one.contains("Trials of one person"));
     let c = cohort(recs);
     assert!(
         c.contains("<th>b − a</th>") && c.contains("<td class=\"num\">-0.100</td>"),
@@ -140,7 +143,7 @@ fn the_subject_page_names_trial_visit_setting_belt_speed_and_files() {
     };
     let html = subject_html(&s, &Reference::published(&p), &p).unwrap();
     assert!(
-        html.contains("Recorded: trial t1, visit pre, treadmill, belt 1.10 m/s: left t1_left.csv, right t1_right.csv."),
+        html.contains(" Recorded: trial t1, visit pre, treadmill, belt 1.10 m/s: left t1_left.csv, right t1_right.csv."),
         "{html}"
     );
     assert!(!html.contains("/home/someone"));

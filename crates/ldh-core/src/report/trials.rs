@@ -148,11 +148,12 @@ fn difference_header(trials: &[Trial]) -> String {
 /// "Trials of one person": for each person with two or more analysed trials, per parameter
 /// the walk's value (mean of both legs) of each trial side by side, grouped by visit, and
 /// their difference. No change is marked: a change smaller than the measurement's own noise
-/// is not a change, and that noise is not yet measured. `title` is the numbered heading.
+/// is not a change, and that noise is not yet measured. `title` makes the numbered heading
+/// (called only when the section is shown, so an absent section takes no number).
 pub(crate) fn trials_of_people(
     rows: &[RecordingRow],
     links: &std::collections::HashMap<&str, &str>,
-    title: Markup,
+    title: impl FnOnce() -> Markup,
 ) -> Markup {
     let people: Vec<(&str, Vec<Trial>)> = rows_by_subject(rows)
         .into_iter()
@@ -163,7 +164,7 @@ pub(crate) fn trials_of_people(
         return html! {};
     }
     html! {
-        (title)
+        (title())
         p.meta { "Each person with two or more analysed trials: per parameter the value of each trial (the mean of both legs; a dash when a leg has none), trials grouped by visit, and their difference (with two visits, the difference of the visits' means). No change is marked: changes smaller than the measurement's own noise are not told apart here." } "\n"
         @for (id, trials) in &people {
             @let visits = visits_of(trials);

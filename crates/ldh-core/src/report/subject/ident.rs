@@ -12,7 +12,7 @@ pub(crate) fn setting_text(r: &RecordingRow) -> String {
     match (labels::text(&r.setting), r.belt_speed_mps) {
         ("treadmill", Some(b)) => format!("treadmill, belt {b:.2} m/s"),
         ("treadmill", None) => "treadmill (belt speed not given)".into(),
-        ("", _) => "setting not given (analysed as overground)".into(),
+        ("", _) => "setting not given".into(),
         (other, _) => other.to_string(),
     }
 }
@@ -42,8 +42,8 @@ fn trial_line(legs: &[&RecordingRow]) -> String {
     format!("{}: {}", head.join(", "), files.join(", "))
 }
 
-/// The identification of a page's recordings (every trial, in order).
-pub(crate) fn identification(recordings: &[RecordingRow]) -> Markup {
+/// One line per trial of a page's recordings, in order.
+fn lines(recordings: &[RecordingRow]) -> Vec<String> {
     let mut trials: Vec<Vec<&RecordingRow>> = Vec::new();
     for r in recordings {
         match trials.iter_mut().find(|t| t[0].trial_id == r.trial_id) {
@@ -51,13 +51,29 @@ pub(crate) fn identification(recordings: &[RecordingRow]) -> Markup {
             None => trials.push(vec![r]),
         }
     }
-    let lines: Vec<String> = trials.iter().map(|t| trial_line(t)).collect();
+    trials.iter().map(|t| trial_line(t)).collect()
+}
+
+/// The identification of a page with one trial, as sentences that end the header's paragraph
+/// (one paragraph: the printed page keeps its length).
+pub(crate) fn identification_inline(recordings: &[RecordingRow]) -> Markup {
+    let l = lines(recordings);
     html! {
-        @if lines.len() == 1 {
-            p.meta { "Recorded: " (lines[0]) ". Recording date and time: not read from the files (not yet parsed)." } "\n"
-        } @else if !lines.is_empty() {
+        @if l.len() == 1 {
+            " Recorded: " (l[0]) "."
+            // On screen only: the printed page keeps its length (at most 3 A4 pages).
+            span.screen-only { " Recording date and time: not read from the files (not yet parsed)." }
+        }
+    }
+}
+
+/// The identification of a page with several trials: one line each.
+pub(crate) fn identification_list(recordings: &[RecordingRow]) -> Markup {
+    let l = lines(recordings);
+    html! {
+        @if l.len() > 1 {
             p.meta { "Recorded (recording date and time: not read from the files, not yet parsed):" } "\n"
-            ul.meta { @for l in &lines { li { (l) } "\n" } } "\n"
+            ul.meta { @for x in &l { li { (x) } "\n" } } "\n"
         }
     }
 }
