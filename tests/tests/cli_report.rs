@@ -214,10 +214,11 @@ fn reports_are_well_formed_self_contained_and_label_every_axis() {
     assert_eq!(pages.len(), 13);
     let index = std::fs::read_to_string(&pages[0]).unwrap();
     for must in [
-        "Table 3",
-        "Table 4",
-        "Fig. 7",
-        "Tables 6–7",
+        "1. Group statistics",
+        "2. Offsets from the healthy baseline",
+        "3. Distributions",
+        "4. Classifiers",
+        "5. Recordings",
         "grouped 3-fold",
         "subjects/H01.html",
         "Subjects, worst first",

@@ -80,7 +80,7 @@ fn stats_refuses_cohorts_it_cannot_test_and_names_what_is_missing() {
     let o = ldh(&["stats", "--out", d.path().join("s").to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));
     assert!(
-        text(&o).contains("has 2 subject(s) with both legs analysed; at least 3 are needed"),
+        text(&o).contains("has 2 usable subject(s) (both legs analysed"),
         "{}",
         text(&o)
     );

@@ -35,16 +35,17 @@ fn similar_subject_ids_get_distinct_reports_with_their_own_data() {
     assert_eq!(files.len(), 3, "{files:?}");
     assert_eq!(std::fs::read_dir(out.join("traces")).unwrap().count(), 3);
     let index = std::fs::read_to_string(out.join("reports").join("index.html")).unwrap();
-    for (id, h) in ids.iter().zip(["H01", "H02", "H03"]) {
+    for id in ids.iter() {
         let stem = ldh_core::report::file_stem(id);
         let html = std::fs::read_to_string(subjects.join(format!("{stem}.html"))).unwrap();
         assert!(html.contains(&format!("Gait report — {id}")), "{stem}");
-        // The recordings shown are this subject's files, not another's.
-        assert!(html.contains(&format!("{h}/left.csv")), "{stem} lacks {h}");
-        for other in ["H01", "H02", "H03"].iter().filter(|o| *o != &h) {
+        // The files by name only, no folders (issue 36 item 5): that the page shows this
+        // subject's data, not another's, is checked by its stride time below.
+        assert!(html.contains("left left.csv"), "{stem}");
+        for any in ["H01", "H02", "H03"] {
             assert!(
-                !html.contains(&format!("{other}/left.csv")),
-                "{stem} shows {other}"
+                !html.contains(&format!("{any}/left.csv")),
+                "{stem} shows a folder"
             );
         }
         // Its stride time (one value per walk since issue 36: the mean of both legs, shown to

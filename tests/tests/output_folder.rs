@@ -93,7 +93,10 @@ fn a_rerun_replaces_the_whole_result_set() {
     // `ldh report` of the new run: no trace, so no signals drawn (never the old H01's).
     let o = ldh_ok(&["report", s(&out)]);
     let page = std::fs::read_to_string(out.join("reports/subjects/H01.html")).unwrap();
-    assert!(page.contains("H03/left.csv"), "the new recording");
+    // Pages name files without folders (issue 36 item 5): the new recording is the table's.
+    let table = std::fs::read_to_string(out.join("recordings.csv")).unwrap();
+    assert!(table.contains("H03/left.csv") && !table.contains("H01/left.csv"));
+    assert!(page.contains("left left.csv"), "the new recording");
     assert!(
         page.contains("Signal plots are not available"),
         "{}",
@@ -277,10 +280,14 @@ fn a_subject_named_like_a_trial_key_keeps_its_own_trace() {
             (Some("P1"), Some("2"))
         );
         assert_ne!(a["legs"], b["legs"], "two recordings, two traces");
-        for (stem, src) in [("P1__trial_2", "H01"), ("P1", "H02")] {
+        // Pages name files without folders (issue 36 item 5): each page by its trial.
+        for (stem, ident) in [
+            ("P1__trial_2", "Recorded: setting not given: left"),
+            ("P1", "Recorded: trial 2, setting not given: left"),
+        ] {
             let page =
                 std::fs::read_to_string(out.join(format!("reports/subjects/{stem}.html"))).unwrap();
-            assert!(page.contains(&format!("{src}/left.csv")), "{stem}");
+            assert!(page.contains(ident), "{stem}");
             assert!(!page.contains("Signal plots are not available"), "{stem}");
         }
         seen.push(files(&out));

@@ -205,7 +205,10 @@ impl Cohort {
                 )),
             }
         }
-        for (name, n) in [("LDH", c.ldh.len()), ("healthy", c.healthy.len())] {
+        // Group names as the manifest writes them (`ldh`, `healthy`), never upper-cased; a
+        // person is usable with both legs analysed, in one of the two groups (ldh: with an
+        // affected side): the count says so, not "with both legs analysed" alone.
+        for (name, n) in [("ldh", c.ldh.len()), ("healthy", c.healthy.len())] {
             if n < MIN_GROUP_SIZE {
                 let why = if c.excluded.is_empty() {
                     String::new()
@@ -214,7 +217,7 @@ impl Cohort {
                 };
                 return Err(LdhError::signal(
                     "cohort statistics",
-                    format!("the {name} group has {n} subject(s) with both legs analysed; at least {MIN_GROUP_SIZE} are needed{why}"),
+                    format!("the {name} group has {n} usable subject(s) (both legs analysed, in group '{name}'{side}); at least {MIN_GROUP_SIZE} are needed{why}", side = if name == "ldh" { ", affected side given" } else { "" }),
                 ));
             }
         }

@@ -194,6 +194,12 @@ pub struct RecordingRow {
     /// Valid strides excluded at the end as not steady (slowing down).
     #[serde(default)]
     pub steady_excluded_end: Option<usize>,
+    /// Treadmill belt speed, m/s (manifest `belt_speed_mps`), empty when not given.
+    #[serde(default)]
+    pub belt_speed_mps: Option<f64>,
+    /// The visit of the recording (manifest `visit`), empty when not given.
+    #[serde(default)]
+    pub visit: String,
 }
 
 impl RecordingRow {
@@ -299,6 +305,8 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
                 steady_end_s: None,
                 steady_excluded_start: None,
                 steady_excluded_end: None,
+                belt_speed_mps: r.belt_speed_mps,
+                visit: r.visit.clone().unwrap_or_default(),
             };
             match leg {
                 Err(e) => {

@@ -99,6 +99,8 @@ pub const COLUMNS: &[ColumnDoc] = &[
     c(R, "steady_end_s", "s", "End of the steady walking (heel strike ending its last stride)."),
     c(R, "steady_excluded_start", "strides", "Valid strides excluded at the start as not steady (speeding up: belt start-up, gait initiation)."),
     c(R, "steady_excluded_end", "strides", "Valid strides excluded at the end as not steady (slowing down)."),
+    c(R, "belt_speed_mps", "m/s", "Treadmill belt speed as given in the manifest (`belt_speed_mps`); empty when not given."),
+    c(R, "visit", "", "The visit of the recording as given in the manifest (`visit`: a label or a date); empty when not given."),
     c(S, "subject_id", "", "The person."),
     c(S, "side", "", "`left` or `right`."),
     c(S, "model", "", "Attitude model (`fusion` or `acc`)."),

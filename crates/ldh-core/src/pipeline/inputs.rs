@@ -84,6 +84,12 @@ pub struct SubjectInput {
     /// Trial of the person (manifest `trial_id` or `trial`); `None` for a single recording pair.
     #[serde(default)]
     pub trial_id: Option<String>,
+    /// Treadmill belt speed, m/s (manifest `belt_speed_mps`; only with a treadmill setting).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub belt_speed_mps: Option<f64>,
+    /// The visit (session) of this recording pair, a free label (manifest `visit`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub visit: Option<String>,
     /// Files of a subject folder not taken for a leg, each named with why (ignored, ambiguous,
     /// a dangling symlink; [`super::pairing`]): a missing leg's error names them, and a leg
     /// that was found lists them among its reader's notes.

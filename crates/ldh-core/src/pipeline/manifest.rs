@@ -11,7 +11,10 @@
 //! `setting` (`overground` | `treadmill`), `format` / `left_format` / `right_format` (a built-in
 //! format name or a TOML column map relative to the manifest; the side's own column wins), and
 //! `trial_id` (or `trial`): several rows of one `subject_id` are that person's trials, analysed
-//! one by one and averaged per person before any statistic ([`crate::cohort::Cohort`]).
+//! one by one and averaged per person before any statistic ([`crate::cohort::Cohort`]);
+//! `belt_speed_mps` (the treadmill's belt speed, m/s, 0 < v ≤ 5; only with `setting`
+//! `treadmill`) and `visit` (a free label of the session, e.g. `pre` or `2026-03-01`: the
+//! reports keep a person's visits apart).
 
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -25,7 +28,7 @@ use crate::recording::{Setting, Side};
 use crate::simulate::Group;
 
 /// The columns a manifest may have.
-pub const MANIFEST_COLUMNS: [&str; 14] = [
+pub const MANIFEST_COLUMNS: [&str; 16] = [
     "subject_id",
     "trial_id",
     "trial",
@@ -40,7 +43,12 @@ pub const MANIFEST_COLUMNS: [&str; 14] = [
     "format",
     "left_format",
     "right_format",
+    "belt_speed_mps",
+    "visit",
 ];
+
+/// The fastest treadmill belt speed a manifest may give, m/s (a sprint; faster is a typo).
+pub const MAX_BELT_SPEED_MPS: f64 = 5.0;
 
 /// A subject's group as a manifest names it: the reference group, the LDH group (whose
 /// affected side is compared with the unaffected one), or any other label (carried into the
@@ -408,6 +416,10 @@ fn parse_row(
         formats.insert(v.to_string(), f.clone());
         Ok(Some(f))
     };
+    let belt_speed_mps = belt_speed(row, setting)?;
+    let visit = Some(row.get("visit"))
+        .filter(|v| !v.is_empty())
+        .map(str::to_string);
     let both = spec("format")?;
     let left_format = spec("left_format")?.or_else(|| both.clone());
     let right_format = spec("right_format")?.or(both);
@@ -426,8 +438,36 @@ fn parse_row(
         left_format,
         right_format,
         trial_id: None,
+        belt_speed_mps,
+        visit,
         ..SubjectInput::default()
     })
+}
+
+/// The row's `belt_speed_mps`: finite, 0 < v ≤ [`MAX_BELT_SPEED_MPS`], and only on a treadmill.
+fn belt_speed(row: &Row, setting: Option<Setting>) -> Result<Option<f64>> {
+    let v = row.get("belt_speed_mps");
+    if v.is_empty() {
+        return Ok(None);
+    }
+    let speed = match v.parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 && x <= MAX_BELT_SPEED_MPS => x,
+        _ => {
+            return Err(row.invalid(
+                "belt_speed_mps",
+                v,
+                &format!("a belt speed in m/s, > 0 and at most {MAX_BELT_SPEED_MPS}"),
+            ))
+        }
+    };
+    if setting != Some(Setting::Treadmill) {
+        return Err(row.invalid(
+            "belt_speed_mps",
+            v,
+            "empty unless the row's setting is 'treadmill' (a belt speed is a treadmill's)",
+        ));
+    }
+    Ok(Some(speed))
 }
 
 /// A format cell of a manifest in `dir`: a path to a TOML map (a name ending in `.toml`, or an

@@ -37,6 +37,12 @@ pub struct SubjectResult {
     /// Where the walk happened, as given (`None`: not said, analysed as overground).
     #[serde(default)]
     pub setting: Option<crate::recording::Setting>,
+    /// Treadmill belt speed, m/s, as given (manifest `belt_speed_mps`).
+    #[serde(default)]
+    pub belt_speed_mps: Option<f64>,
+    /// The visit of this recording pair, as given (manifest `visit`).
+    #[serde(default)]
+    pub visit: Option<String>,
     /// Attitude model used.
     pub model: AttitudeModel,
     /// Left leg, or the error that stopped it.
@@ -300,6 +306,8 @@ fn pair_legs(
         affected_side: input.affected_side,
         affected_side_unknown: input.affected_side_unknown,
         setting: input.setting,
+        belt_speed_mps: input.belt_speed_mps,
+        visit: input.visit.clone(),
         model: params.attitude.model,
         left,
         right,

@@ -503,3 +503,50 @@ fn each_leg_uses_its_own_sensor_height() {
         "the left leg's lengths move with its height: {l0:?} {l1:?}"
     );
 }
+
+#[test]
+fn belt_speed_and_visit_are_read_checked_and_carried_to_the_rows() {
+    let (_d, m) = manifest(
+        "subject_id,trial_id,visit,left,right,setting,belt_speed_mps\n\
+         P1,1,pre,a/l.csv,a/r.csv,treadmill,1.10\n\
+         P1,2,post,b/l.csv,b/r.csv,treadmill,\n\
+         P2,1,,c/l.csv,c/r.csv,,\n",
+    );
+    let v = read_manifest(&m).unwrap();
+    assert_eq!(v[0].belt_speed_mps, Some(1.10));
+    assert_eq!(v[0].visit.as_deref(), Some("pre"));
+    assert_eq!(v[1].belt_speed_mps, None);
+    assert_eq!(v[1].visit.as_deref(), Some("post"));
+    assert_eq!((v[2].belt_speed_mps, v[2].visit.as_deref()), (None, None));
+    // The rows carry both (trailing columns of the recordings table).
+    let r = analyze_subject(
+        &v[0],
+        &AnalysisParams::default(),
+        None,
+        &crate::io::ReadParams::default().check().unwrap(),
+    );
+    let rows = crate::output::recording_rows(&[r]);
+    assert_eq!(rows[0].belt_speed_mps, Some(1.10));
+    assert_eq!(rows[0].visit, "pre");
+    // A bad speed is refused with its file, line and column.
+    let head = "subject_id,left,right,setting,belt_speed_mps\n";
+    for bad in ["0", "-1", "5.5", "NaN", "inf", "fast"] {
+        let e = err(&format!("{head}S1,a,b,treadmill,{bad}\n"));
+        assert!(
+            e.contains(&format!(
+                "manifest.csv:2:5: column 'belt_speed_mps': '{bad}' is not valid"
+            )) && e.contains("at most 5"),
+            "{bad}: {e}"
+        );
+    }
+    let (_d5, m5) = manifest(&format!("{head}S1,a,b,treadmill,5\n"));
+    assert_eq!(read_manifest(&m5).unwrap()[0].belt_speed_mps, Some(5.0));
+    // A belt speed off a treadmill contradicts the setting.
+    let e = err(&format!("{head}S1,a,b,overground,1.2\n"));
+    assert!(
+        e.contains("manifest.csv:2:5: column 'belt_speed_mps'") && e.contains("treadmill"),
+        "{e}"
+    );
+    let e = err(&format!("{head}S1,a,b,,1.2\n"));
+    assert!(e.contains("treadmill"), "{e}");
+}

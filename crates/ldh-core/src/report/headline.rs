@@ -19,6 +19,10 @@ pub(crate) const MAX_FINDINGS: usize = 4;
 pub(crate) struct Headline {
     /// What the values are (e.g. the mean of two trials), when worth saying.
     pub context: Option<String>,
+    /// The person's visits, when the recordings come from two or more (manifest `visit`).
+    pub visits: Option<String>,
+    /// On a treadmill with a given belt speed: the belt's speed is the walking speed.
+    pub belt: Option<String>,
     /// The findings, asymmetry first, then the whole walk, then each side (at most
     /// [`MAX_FINDINGS`], then one sentence counting the rest).
     pub findings: Vec<String>,
@@ -245,10 +249,62 @@ fn to_do(sides: &[&RecordingRow], anything_missing: bool) -> Option<String> {
     None
 }
 
-/// The headline of a subject's page.
-pub(crate) fn make(v: &Verdicts, sides: &[&RecordingRow], reference: &Reference) -> Headline {
+/// The visits of `recordings` (manifest `visit`, in order of appearance), when two or more:
+/// which they are, where to compare them, and that no change is marked.
+pub(crate) fn visits_sentence(recordings: &[RecordingRow]) -> Option<String> {
+    let mut visits: Vec<&str> = Vec::new();
+    for r in recordings.iter().filter(|r| !r.visit.is_empty()) {
+        if !visits.contains(&r.visit.as_str()) {
+            visits.push(&r.visit);
+        }
+    }
+    (visits.len() >= 2).then(|| {
+        format!(
+            "Recorded at {} visits ({}): the values on this page are the mean of all of them; \
+             compare the visits on the cohort page (\"Trials of one person\"). Changes smaller \
+             than the measurement's own noise are not marked.",
+            visits.len(),
+            visits.join(", ")
+        )
+    })
+}
+
+/// On a treadmill with a belt speed given (manifest `belt_speed_mps`, the same for every
+/// recording of the page): the belt speed is the walking speed, the sensors' estimate beside it.
+fn belt_sentence(v: &Verdicts, recordings: &[RecordingRow]) -> Option<String> {
+    let belt = recordings.first()?.belt_speed_mps?;
+    if recordings.iter().any(|r| r.belt_speed_mps != Some(belt)) {
+        return None;
+    }
+    let imu = v
+        .rows
+        .iter()
+        .find(|r| r.q.parameter == crate::output::Parameter::Speed)
+        .and_then(|r| match r.cells.first() {
+            Some(Cell::Value { v, .. }) => Some(val(r, *v)),
+            _ => None,
+        });
+    Some(match imu {
+        Some(x) => format!(
+            "On a treadmill, belt at {belt:.2} m/s: the walking speed is the belt's; the speed the sensors estimate is {x}."
+        ),
+        None => format!(
+            "On a treadmill, belt at {belt:.2} m/s: the walking speed is the belt's; the sensors could not estimate it."
+        ),
+    })
+}
+
+/// The headline of a subject's page; `recordings` are the page's own rows (every trial).
+pub(crate) fn make(
+    v: &Verdicts,
+    sides: &[&RecordingRow],
+    recordings: &[RecordingRow],
+    reference: &Reference,
+) -> Headline {
     let not_measured = not_measured(v, sides);
     Headline {
+        visits: visits_sentence(recordings),
+        belt: belt_sentence(v, recordings),
         context: sides
             .iter()
             .map(|r| r.trial_id.as_str())
@@ -266,6 +322,8 @@ pub(crate) fn headline(h: &Headline) -> Markup {
         div.headline {
             "\n"
             @if let Some(c) = &h.context { p { (c) } "\n" }
+            @if let Some(c) = &h.visits { p { (c) } "\n" }
+            @if let Some(c) = &h.belt { p { (c) } "\n" }
             @if h.findings.is_empty() {
                 p { b { "No finding: " } "every measured value lies within its normal range and left and right are even." } "\n"
             } @else {

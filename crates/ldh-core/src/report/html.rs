@@ -106,6 +106,26 @@ pub(crate) fn fmt(v: Option<f64>, dec: usize) -> String {
     }
 }
 
+/// A file's name without the folders before it (a report names no machine's paths); a
+/// person's several files (`t1: a/l.csv; t2: b/l.csv`) each by its name.
+pub(crate) fn base_name(source: &str) -> String {
+    source
+        .split("; ")
+        .map(|part| {
+            let (label, path) = match part.split_once(": ") {
+                Some((t, p)) if !t.contains(['/', '\\']) => (Some(t), p),
+                _ => (None, part),
+            };
+            let name = path.rsplit(['/', '\\']).next().unwrap_or(path);
+            match label {
+                Some(t) => format!("{t}: {name}"),
+                None => name.to_string(),
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
 /// An optional count, an en dash when missing.
 pub(crate) fn count(v: Option<usize>) -> String {
     v.map(|v| v.to_string()).unwrap_or("–".into())

@@ -33,6 +33,7 @@ pub mod reference;
 mod subject;
 mod summary;
 pub mod trace;
+mod trials;
 mod verdict;
 
 use serde::{Deserialize, Serialize};
@@ -164,5 +165,7 @@ pub struct CohortReport {
 
 #[cfg(test)]
 pub(crate) mod tests;
+#[cfg(test)]
+mod tests_cohort;
 #[cfg(test)]
 mod tests_headline;

@@ -42,7 +42,7 @@ fn page_parts(recs: Vec<RecordingRow>) -> (String, Verdicts, Headline) {
     let own = super::subject::person_sides(&s.recordings);
     let sides: Vec<&RecordingRow> = own.iter().collect();
     let v = verdicts(&sides, &reference, p.0.asymmetry_flag_pct);
-    let h = make(&v, &sides, &reference);
+    let h = make(&v, &sides, &s.recordings, &reference);
     (html, v, h)
 }
 
@@ -167,6 +167,8 @@ fn headline_without_the_sensor_height() {
         h,
         Headline {
             context: None,
+            visits: None,
+            belt: None,
             findings: vec![],
             not_measured: Some(
                 "Could not be measured: walking speed, stride length, stride length variability."
@@ -238,4 +240,54 @@ fn headline_of_two_trials_of_one_person() {
         ]
     );
     assert!(html.contains(h.context.as_deref().unwrap()));
+}
+
+/// `id`'s uneven walk as trial `trial` of visit `visit`.
+fn visit(id: &str, trial: &str, visit: &str) -> Vec<RecordingRow> {
+    let mut recs = uneven(id);
+    for r in recs.iter_mut() {
+        r.trial_id = trial.into();
+        r.visit = visit.into();
+    }
+    recs
+}
+
+#[test]
+fn headline_of_two_visits_of_one_person() {
+    let mut recs = visit("V", "1", "pre");
+    recs.extend(visit("V", "2", "post"));
+    let (html, _, h) = page_parts(recs);
+    assert_eq!(
+        h.context.as_deref(),
+        Some("The values are the mean of 2 trials (1, 2) of this person.")
+    );
+    assert_eq!(
+        h.visits.as_deref(),
+        Some(
+            "Recorded at 2 visits (pre, post): the values on this page are the mean of all of \
+             them; compare the visits on the cohort page (\"Trials of one person\"). Changes \
+             smaller than the measurement's own noise are not marked."
+        )
+    );
+    assert!(html.contains("compare the visits on the cohort page"));
+    // Two trials of one visit say no visits.
+    let mut recs = visit("W", "1", "pre");
+    recs.extend(visit("W", "2", "pre"));
+    assert_eq!(page_parts(recs).2.visits, None);
+}
+
+#[test]
+fn headline_on_a_treadmill_with_a_belt_speed() {
+    let mut recs = uneven("B");
+    for r in recs.iter_mut() {
+        r.setting = Some(crate::Setting::Treadmill.into());
+        r.belt_speed_mps = Some(1.1);
+    }
+    let (html, _, h) = page_parts(recs);
+    assert_eq!(
+        h.belt.as_deref(),
+        Some("On a treadmill, belt at 1.10 m/s: the walking speed is the belt's; the speed the sensors estimate is 1.24 m/s.")
+    );
+    assert!(html.contains("treadmill, belt 1.10 m/s"));
+    assert_eq!(page_parts(uneven("C")).2.belt, None);
 }
