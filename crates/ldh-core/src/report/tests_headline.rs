@@ -291,3 +291,53 @@ fn headline_on_a_treadmill_with_a_belt_speed() {
     assert!(html.contains("treadmill, belt 1.10 m/s"));
     assert_eq!(page_parts(uneven("C")).2.belt, None);
 }
+
+/// Issue 36 item 7, done when: the wording of a frozen gyroscope segment. The fault is named
+/// with its span once, in "Check before reading"; its strides are left out but every parameter
+/// is still measured (from the other strides), so the headline itself has nothing to add.
+#[test]
+fn headline_with_a_frozen_gyroscope_segment() {
+    use crate::pipeline::quality::{fault_warning, ChannelFault, FaultKind};
+    let mut recs = vec![leg("F", "left", 0.525), leg("F", "right", 0.525)];
+    let fault = ChannelFault {
+        channel: 5,
+        kind: FaultKind::Frozen,
+        start_s: 12.3,
+        end_s: 15.8,
+        samples: 351,
+    };
+    let w = fault_warning(&fault);
+    for c in &w.affects {
+        if let Ok(p) = crate::output::Parameter::from_column(c) {
+            recs[0].set_value(p, None);
+        }
+    }
+    recs[0].withheld = WithheldList(w.affects.iter().map(|c| (c.clone(), w.reason())).collect());
+    recs[0].warnings = WarningList(vec![w]);
+    let (html, _, h) = page_parts(recs);
+    assert_eq!(
+        h,
+        Headline {
+            context: None,
+            findings: vec![],
+            not_measured: Some(
+                "Could not be measured: stride length (left), stride length variability (left)."
+                    .into()
+            ),
+            to_do: Some("The affected side is not given: add it to the manifest so the legs are compared as affected and unaffected.".into()),
+        }
+    );
+    let at = html
+        .find("<div class=\"missing\"><b>Check before reading")
+        .unwrap();
+    let bx = &html[at..];
+    let bx = &bx[..bx.find("</div>").unwrap() + 6];
+    assert_eq!(
+        bx,
+        "<div class=\"missing\"><b>Check before reading the numbers.</b><ul><li>left: shank gyroscope z frozen from 12.3 s to 15.8 s: it repeated one value for 3.5 s while the other channels moved, so the strides in this span are left out and, as the attitude carries the lost rotation on, the shank angles and stride length of this leg are not measured</li></ul></div>"
+    );
+    // Once in the box, once (with its code) in the technical appendix; the withheld cells
+    // give it as their reason.
+    assert_eq!(bx.matches("frozen from 12.3 s to 15.8 s").count(), 1);
+    assert_eq!(html.matches("channel_fault [warning]").count(), 1);
+}

@@ -4,6 +4,8 @@
 //! cell, JSON `null`) with its reason in [`SideParameters::withheld`].
 //!
 //! - [`sensor`]: gyroscope scale faults and clipping, accelerometer clipping (raw recording);
+//! - [`faults`]: one channel frozen, dropped to zero or spiking for part of the walk, with its
+//!   span (the strides overlapping it are withheld);
 //! - [`attitude`]: attitude health (stance pitch stride to stride, anatomical bounds);
 //! - [`height`]: a stride length that used an assumed sensor height;
 //! - this module: the leg's gait (running, a time base that cannot be right, few strides, a
@@ -18,6 +20,7 @@ use super::LegResult;
 
 mod agreement;
 mod attitude;
+mod faults;
 mod height;
 mod noise;
 mod pair;
@@ -25,6 +28,8 @@ mod sensor;
 mod steady;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_faults;
 #[cfg(test)]
 mod tests_height;
 #[cfg(test)]
@@ -39,6 +44,11 @@ pub use agreement::{withhold_disagreeing_lengths, MAX_LEG_DISAGREEMENT};
 pub use attitude::{
     attitude_checks, MAX_BDK_DEG, MAX_PITCH_DEG, MIN_PITCH_EXCURSION_DEG, OUT_OF_BOUNDS_SHARE,
     STANCE_PITCH_MAX_DEG, STANCE_PITCH_SPREAD_DEG,
+};
+pub use faults::{
+    detect_faults, fault_warning, withhold_faulty_strides, ChannelFault, FaultKind, CHANNEL_NAMES,
+    MAX_SPIKE_S, MIN_FROZEN_S, MIN_ZERO_S, MOVING_ACC_G, MOVING_GYRO_DPS, SPIKE_BAND_WIDTHS,
+    SPIKE_MERGE_S,
 };
 pub use height::sensor_height_warning;
 pub use noise::{
@@ -173,6 +183,9 @@ pub fn leg_checks(
     p: &SideParameters,
 ) -> LegChecks {
     let mut warnings = sensor.warnings;
+    // Strides over a partial channel fault are withheld first, so the checks below count
+    // only the others.
+    withhold_faulty_strides(st, &sensor.faults);
     if !sensor.gyro_fault {
         warnings.extend(attitude_checks(al, att, st));
         let p = crate::gait::side_parameters(st, None);
@@ -194,7 +207,8 @@ pub fn leg_checks(
 }
 
 /// Whether a finding says the leg's attitude cannot be vouched for (a faulty or clipped
-/// gyroscope, a drifting attitude, angles outside anatomical bounds): its yaw, and so every
+/// gyroscope, a gyroscope channel frozen, zeroed or spiking for part of the walk, a drifting
+/// attitude, angles outside anatomical bounds): its yaw, and so every
 /// heading change computed from it, is then not a measurement either, so it neither decides
 /// turns nor is reported per stride.
 pub fn discredits_attitude(w: &Warning) -> bool {
@@ -205,13 +219,20 @@ pub fn discredits_attitude(w: &Warning) -> bool {
         codes::IMPLAUSIBLE_ANGLE,
     ]
     .contains(&w.code.as_str())
+        // A gyroscope channel fault (it withholds the angles; an accelerometer's does not).
+        || (w.code == codes::CHANNEL_FAULT && !w.affects.is_empty())
 }
 
-/// Per-stride consequences of leg-level findings: a finding that withholds every parameter
+/// Per-stride consequences of leg-level findings: a finding about a span of the walk
+/// (`channel_fault`) withholds the strides over it; a finding that withholds every parameter
 /// invalidates every stride; one that withholds angles or stride length blanks them per stride
 /// (the strides table must not show what the recordings table withholds).
 pub fn apply_to_strides(st: &mut [Stride], warnings: &[Warning]) {
     for w in warnings {
+        // A finding about part of the walk: the strides over it only.
+        if let Some([a, b]) = w.span_s {
+            faults::withhold_span(st, a, b, &w.reason());
+        }
         let has = |c: &str| w.affects.iter().any(|a| a == c);
         if w.affects.is_empty() {
             continue;

@@ -31,6 +31,9 @@ pub struct SensorFindings {
     pub acc_clipped: Vec<bool>,
     /// The gyroscope is faulty: nothing derived from it is vouched for.
     pub gyro_fault: bool,
+    /// Partial faults of single channels, with their spans ([`super::faults`]); each has its
+    /// warning in `warnings`.
+    pub faults: Vec<super::faults::ChannelFault>,
 }
 
 /// Clipped samples of three channels: flat runs (≥ 3 equal values) at a channel's extreme, the
@@ -97,6 +100,9 @@ pub fn sensor_checks(rec: &Recording) -> SensorFindings {
             .withholding(&affects),
         );
     }
+    out.faults = super::faults::detect_faults(rec);
+    out.warnings
+        .extend(out.faults.iter().map(super::faults::fault_warning));
     out.acc_clipped = clipped(&rec.acc_g, 1.5);
     let n_aclip = out.acc_clipped.iter().filter(|&&c| c).count();
     if n_aclip > 0 {

@@ -41,6 +41,12 @@ pub struct Warning {
     /// The parameters it withholds (column names of recordings.csv); empty when none.
     #[serde(default)]
     pub affects: Vec<String>,
+    /// The time span the finding covers, s from the recording's first sample (first and last
+    /// sample), for a finding about part of the walk (`channel_fault`): the strides overlapping
+    /// it are withheld ([`crate::pipeline::quality::apply_to_strides`]). Absent for findings
+    /// about the whole leg.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub span_s: Option<[f64; 2]>,
 }
 
 impl Warning {
@@ -51,7 +57,13 @@ impl Warning {
             severity,
             message: message.into().replace(" | ", " / "),
             affects: Vec::new(),
+            span_s: None,
         }
+    }
+    /// The same finding about the span `[start_s, end_s]` only.
+    pub fn over_span(mut self, start_s: f64, end_s: f64) -> Warning {
+        self.span_s = Some([start_s, end_s]);
+        self
     }
     /// The same finding withholding `params`.
     pub fn withholding(mut self, params: &[&str]) -> Warning {
@@ -142,6 +154,9 @@ pub mod codes {
     pub const STEADY_WINDOW: &str = "steady_window";
     /// Too little steady walking for the variability (CVs withheld).
     pub const TOO_LITTLE_STEADY: &str = "too_little_steady";
+    /// One channel frozen, dropped to zero or spiking for part of the walk, named with its
+    /// span; the strides overlapping it are withheld ([`crate::pipeline::quality::detect_faults`]).
+    pub const CHANNEL_FAULT: &str = "channel_fault";
 }
 
 /// Column names of recordings.csv, by what they are computed from.
