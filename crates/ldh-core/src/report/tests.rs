@@ -417,7 +417,8 @@ fn the_summary_uses_clinical_units_and_plain_flags() {
         assert!(summary.contains(must), "no '{must}' in {summary}");
     }
     // Stride length is not in the rows: "not measured", never a number.
-    assert!(summary.contains("not measured: not computable from these strides"));
+    // Said once for both legs when their reason is the same.
+    assert!(summary.contains("not measured (both legs): not computable from these strides"));
     assert!(
         html.contains("Cadence is below normal: 90 steps/min (normal 96–126 steps/min)."),
         "{html}"

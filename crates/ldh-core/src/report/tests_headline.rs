@@ -319,6 +319,8 @@ fn headline_with_a_frozen_gyroscope_segment() {
         h,
         Headline {
             context: None,
+            visits: None,
+            belt: None,
             findings: vec![],
             not_measured: Some(
                 "Could not be measured: stride length (left), stride length variability (left)."
