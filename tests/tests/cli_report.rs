@@ -50,16 +50,19 @@ fn check_page(path: &Path) -> usize {
             );
         }
     }
+    check_figure_numbers(path, &src);
     let mut figures = 0;
-    for f in root
-        .descendants()
-        .filter(|n| n.has_tag_name("figure") && n.attribute("class") == Some("plot"))
-    {
+    for f in root.descendants().filter(|n| {
+        n.has_tag_name("figure")
+            && n.attribute("class")
+                .is_some_and(|c| c.split_whitespace().any(|c| c == "plot"))
+    }) {
         figures += 1;
         let svg = f
             .children()
             .find(|c| c.tag_name().name() == "svg")
             .unwrap_or_else(|| panic!("{}: figure without svg", path.display()));
+        check_print_text(path, &src, f, svg);
         let texts: Vec<String> = svg
             .descendants()
             .filter(|n| n.tag_name().name() == "text")
@@ -95,6 +98,63 @@ fn check_page(path: &Path) -> usize {
 
 fn demo_with_reports(out: &Path) {
     ldh_ok(&["analyze", "--out", out.to_str().unwrap(), "--report"]);
+}
+
+/// No text of a figure prints under 8 pt: the figure prints `data-print-width-pt` wide (and the
+/// page's print CSS gives its class exactly that width), its SVG is `viewBox` wide, so a text of
+/// `font-size` f prints at f × width / viewBox pt.
+fn check_print_text(path: &Path, src: &str, f: roxmltree::Node, svg: roxmltree::Node) {
+    let width_pt: f64 = f
+        .attribute("data-print-width-pt")
+        .and_then(|w| w.parse().ok())
+        .unwrap_or_else(|| panic!("{}: a figure without its print width", path.display()));
+    let class = f.attribute("class").unwrap_or("");
+    let print_class = class
+        .split_whitespace()
+        .find(|c| c.starts_with("print-"))
+        .unwrap_or_else(|| panic!("{}: a figure without a print class", path.display()));
+    let rule = format!("figure.{print_class} {{ width: {width_pt}pt;");
+    assert!(
+        src.contains(&rule),
+        "{}: the print CSS does not give '{print_class}' its width ({rule})",
+        path.display()
+    );
+    let view_w: f64 = svg
+        .attribute("viewBox")
+        .and_then(|v| v.split_whitespace().nth(2)?.parse().ok())
+        .unwrap_or_else(|| panic!("{}: an svg without a viewBox", path.display()));
+    for t in svg.descendants().filter(|n| n.has_tag_name("text")) {
+        let size: f64 = t
+            .attribute("font-size")
+            .and_then(|v| v.parse().ok())
+            .unwrap_or_else(|| panic!("{}: a figure text without font-size", path.display()));
+        let printed = size * width_pt / view_w;
+        let txt: String = t.descendants().filter_map(|n| n.text()).collect();
+        assert!(
+            printed >= 8.0 - 1e-9,
+            "{}: '{txt}' prints at {printed:.2} pt (font-size {size} in a {view_w}-wide figure printed {width_pt} pt wide)",
+            path.display()
+        );
+    }
+}
+
+/// Figure captions are numbered once each, 1, 2, … in page order.
+fn check_figure_numbers(path: &Path, src: &str) {
+    let numbers: Vec<usize> = src
+        .match_indices("<figcaption>Fig. ")
+        .map(|(i, m)| {
+            let rest = &src[i + m.len()..];
+            rest[..rest.find('.').unwrap()].parse().unwrap()
+        })
+        .collect();
+    let expected: Vec<usize> = (1..=numbers.len()).collect();
+    assert_eq!(numbers, expected, "{}: figure numbers", path.display());
+    assert_eq!(
+        src.matches("<figcaption>").count(),
+        numbers.len(),
+        "{}: a figure without a number",
+        path.display()
+    );
 }
 
 /// A simulated cohort large enough for group statistics, with stats and train outputs.
@@ -202,7 +262,7 @@ fn reports_are_well_formed_self_contained_and_label_every_axis() {
             "2. Gait parameters",
             "reference range",
             "SI (%)",
-            "Fig. 4",
+            "leg: shank attitude; red lines heel strikes",
         ] {
             assert!(s.contains(must), "{}: no '{must}'", p.display());
         }
@@ -505,6 +565,21 @@ fn chromium_renders_every_report() {
             if i == 1 {
                 std::fs::copy(&pdf, artefact_dir().join("subject_report.pdf")).unwrap();
             }
+        }
+        // The demo's cohort page (4 people) prints to one A4 page: at most a page per 10 people.
+        if i == 0 {
+            let pdf = tmp.path().join("cohort.pdf");
+            let o = run_chromium(
+                &chrome,
+                &[
+                    "--no-pdf-header-footer",
+                    &format!("--print-to-pdf={}", pdf.display()),
+                ],
+                p,
+            );
+            assert!(o.status.success(), "{}", text(&o));
+            let n = pdf_pages(&std::fs::read(&pdf).unwrap());
+            assert_eq!(n, 1, "the demo's cohort page prints to {n} A4 pages");
         }
     }
 }

@@ -78,8 +78,7 @@ fn box_plots(cohort: &Cohort) -> Result<Vec<(String, String)>> {
             continue;
         }
         let svg = plots::boxplot_svg(
-            &format!("{} — {}", p.code(), p.name()),
-            &format!("{} ({})", p.name(), p.unit()),
+            &format!("{} ({})", p.code(), p.unit()),
             &[
                 ("LDHH".into(), g.ldhh),
                 ("LDHE".into(), g.ldhe),

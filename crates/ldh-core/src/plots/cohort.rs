@@ -3,16 +3,24 @@
 
 use plotters::prelude::*;
 
-use super::{perr, COLORS};
+use super::{perr, Fonts, PrintWidth, COLORS};
 use crate::error::{LdhError, Result};
 
-/// The x-axis label of [`boxplot_svg`].
-pub const BOX_GROUP_LABEL: &str = "group (LDHH, LDHE, H)";
 /// The axis labels of [`confusion_svg`].
 pub const CONFUSION_LABELS: [&str; 2] = ["predicted class (count, % of row)", "true class (rows)"];
 
-/// Box plots of one parameter per group (quartiles, whiskers at 1.5 IQR) with axis labels.
-pub fn boxplot_svg(title: &str, y_label: &str, groups: &[(String, Vec<f64>)]) -> Result<String> {
+/// The canvas width of [`boxplot_svg`], px (five side by side across the page).
+const BOX_W: u32 = 260;
+/// How wide [`boxplot_svg`] prints.
+pub const BOX_PRINT: PrintWidth = PrintWidth::Fifth;
+/// How wide [`confusion_svg`] prints (three side by side).
+pub const CONFUSION_PRINT: PrintWidth = PrintWidth::Third;
+
+/// Box plots of one parameter per group (quartiles, whiskers at 1.5 IQR), the groups in the
+/// order given and told apart by colour (the series colours: blue, orange, green); `title`
+/// names the parameter with its unit (the y axis has no other label: five of these stand side
+/// by side).
+pub fn boxplot_svg(title: &str, groups: &[(String, Vec<f64>)]) -> Result<String> {
     let all: Vec<f64> = groups
         .iter()
         .flat_map(|g| g.1.iter().copied())
@@ -31,13 +39,14 @@ pub fn boxplot_svg(title: &str, y_label: &str, groups: &[(String, Vec<f64>)]) ->
     let names: Vec<String> = groups.iter().map(|g| g.0.clone()).collect();
     let mut buf = String::new();
     {
-        let root = SVGBackend::with_string(&mut buf, (800, 480)).into_drawing_area();
+        let f = Fonts::for_canvas(BOX_W, BOX_PRINT);
+        let root = SVGBackend::with_string(&mut buf, (BOX_W, 190)).into_drawing_area();
         root.fill(&WHITE).map_err(perr)?;
         let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 22))
-            .margin(15)
-            .x_label_area_size(45)
-            .y_label_area_size(70)
+            .caption(title, ("sans-serif", f.title))
+            .margin(6)
+            .x_label_area_size(8)
+            .y_label_area_size(5 * f.label / 2)
             .build_cartesian_2d(
                 names.as_slice().into_segmented(),
                 (lo - pad) as f32..(hi + pad) as f32,
@@ -45,14 +54,11 @@ pub fn boxplot_svg(title: &str, y_label: &str, groups: &[(String, Vec<f64>)]) ->
             .map_err(perr)?;
         chart
             .configure_mesh()
-            .x_desc(BOX_GROUP_LABEL)
-            .x_label_formatter(&|v| match v {
-                SegmentValue::CenterOf(s) | SegmentValue::Exact(s) => s.to_string(),
-                SegmentValue::Last => String::new(),
-            })
-            .y_desc(y_label)
-            .axis_desc_style(("sans-serif", 16))
-            .label_style(("sans-serif", 14))
+            // The groups are told apart by colour (blue LDHH, orange LDHE, green H, as on the
+            // radar; said in the caption): five charts side by side leave no room for names.
+            .x_label_formatter(&|_| String::new())
+            .label_style(("sans-serif", f.label))
+            .y_labels(5)
             .draw()
             .map_err(perr)?;
         for (k, (name, v)) in groups.iter().enumerate() {
@@ -65,7 +71,7 @@ pub fn boxplot_svg(title: &str, y_label: &str, groups: &[(String, Vec<f64>)]) ->
             chart
                 .draw_series(std::iter::once(
                     Boxplot::new_vertical(SegmentValue::CenterOf(name), &q)
-                        .width(60)
+                        .width(30)
                         .style(c.stroke_width(2)),
                 ))
                 .map_err(perr)?;
@@ -75,50 +81,49 @@ pub fn boxplot_svg(title: &str, y_label: &str, groups: &[(String, Vec<f64>)]) ->
     Ok(buf)
 }
 
-/// A confusion matrix (rows true, columns predicted) as an SVG heat map with counts.
+/// The canvas width of [`confusion_svg`], px, whatever the number of classes.
+const CONFUSION_W: u32 = 600;
+
+/// A confusion matrix (rows true, columns predicted) as an SVG heat map: in each cell the count
+/// and, under it, the share of its row. The axis names are the figure's labels
+/// ([`CONFUSION_LABELS`]), the column axis above the matrix, the row axis turned along the
+/// left edge.
 pub fn confusion_svg(title: &str, classes: &[String], m: &[Vec<usize>]) -> Result<String> {
-    let k = classes.len();
-    let cell = 110i32;
-    let (left, top) = (150i32, 90i32);
-    let w = (left + cell * k as i32 + 40) as u32;
-    let h = (top + cell * k as i32 + 70) as u32;
+    let k = classes.len().max(1) as i32;
+    let f = Fonts::for_canvas(CONFUSION_W, CONFUSION_PRINT);
+    let line = f.label + 6;
+    let name_w =
+        classes.iter().map(|c| c.chars().count()).max().unwrap_or(1) as i32 * f.label * 6 / 10;
+    let (left, top) = (line + name_w + 12, 10 + f.title + 2 * line + 8);
+    let cell = ((CONFUSION_W as i32 - left - 10) / k).max(2 * line);
+    let h = (top + cell * k + 10) as u32;
     let max = m.iter().flatten().copied().max().unwrap_or(1).max(1) as f64;
+    let font = |s: i32| ("sans-serif", s).into_font();
     let mut buf = String::new();
     {
-        let root = SVGBackend::with_string(&mut buf, (w.max(420), h)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut buf, (CONFUSION_W, h)).into_drawing_area();
         root.fill(&WHITE).map_err(perr)?;
-        root.draw(&Text::new(
-            title.to_string(),
-            (15, 15),
-            ("sans-serif", 20).into_font(),
-        ))
-        .map_err(perr)?;
+        root.draw(&Text::new(title.to_string(), (8, 8), font(f.title)))
+            .map_err(perr)?;
         root.draw(&Text::new(
             CONFUSION_LABELS[0].to_string(),
-            (left, top - 45),
-            ("sans-serif", 15).into_font(),
+            (8, 10 + f.title + 4),
+            font(f.label),
         ))
         .map_err(perr)?;
         root.draw(&Text::new(
             CONFUSION_LABELS[1].to_string(),
-            (10, top + cell * k as i32 / 2),
-            ("sans-serif", 15).into_font(),
+            (4, top + cell * k),
+            font(f.label).transform(FontTransform::Rotate270),
         ))
         .map_err(perr)?;
         for (i, name) in classes.iter().enumerate() {
             let x = left + cell * i as i32;
-            root.draw(&Text::new(
-                name.clone(),
-                (x + cell / 3, top - 22),
-                ("sans-serif", 15).into_font(),
-            ))
-            .map_err(perr)?;
-            root.draw(&Text::new(
-                name.clone(),
-                (left - 60, top + cell * i as i32 + cell / 2 - 8),
-                ("sans-serif", 15).into_font(),
-            ))
-            .map_err(perr)?;
+            root.draw(&Text::new(name.clone(), (x + 6, top - line), font(f.label)))
+                .map_err(perr)?;
+            let y = top + cell * i as i32 + cell / 2 - f.label / 2;
+            root.draw(&Text::new(name.clone(), (line + 6, y), font(f.label)))
+                .map_err(perr)?;
         }
         for (i, row) in m.iter().enumerate() {
             let total: usize = row.iter().sum();
@@ -136,10 +141,13 @@ pub fn confusion_svg(title: &str, classes: &[String], m: &[Vec<usize>]) -> Resul
                 } else {
                     0.0
                 };
+                let y0 = y + cell / 2 - line;
+                root.draw(&Text::new(format!("{v}"), (x + 8, y0), font(f.label)))
+                    .map_err(perr)?;
                 root.draw(&Text::new(
-                    format!("{v} ({pct:.0} %)"),
-                    (x + 18, y + cell / 2 - 8),
-                    ("sans-serif", 15).into_font(),
+                    format!("{pct:.0} %"),
+                    (x + 8, y0 + line),
+                    font(f.label),
                 ))
                 .map_err(perr)?;
             }

@@ -4,7 +4,7 @@
 
 use plotters::prelude::*;
 
-use super::{colour_of, perr};
+use super::{colour_of, perr, Fonts, PrintWidth};
 use crate::error::Result;
 
 /// The start of the note [`radar_svg`] writes under a chart with clipped values.
@@ -17,6 +17,13 @@ pub const RADAR_Z_CLIP: f64 = 4.0;
 /// |z| above which a radar point is marked abnormal (outside mean ± 1.96 SD).
 pub const RADAR_Z_ABNORMAL: f64 = 1.96;
 
+/// The canvas width of [`radar_svg`], px.
+const RADAR_W: u32 = 800;
+/// How wide [`radar_svg`] prints.
+pub const RADAR_PRINT: PrintWidth = PrintWidth::Chart;
+/// The most characters of a note line under the chart (at the chart's label font).
+const NOTE_LINE_CHARS: usize = 60;
+
 /// A radar chart: one axis per parameter (`codes`), one polygon per series of z-scores, its
 /// colour by series (left/right by hue). The scale runs from −zmax (centre) to +zmax (rim),
 /// zmax the largest |z| rounded up, between 2 and [`RADAR_Z_CLIP`]; rings at −zmax, −zmax/2, 0,
@@ -25,46 +32,94 @@ pub const RADAR_Z_ABNORMAL: f64 = 1.96;
 /// triangle (clipped) and named under the chart; |z| > [`RADAR_Z_ABNORMAL`] is marked with a
 /// black-edged dot. The legend sits above the chart, clear of the data.
 pub fn radar_svg(title: &str, codes: &[String], series: &[(String, Vec<f64>)]) -> Result<String> {
+    let f = Fonts::for_canvas(RADAR_W, RADAR_PRINT);
+    let zabs = series
+        .iter()
+        .flat_map(|s| s.1.iter())
+        .filter(|v| v.is_finite())
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    let g = Geometry::new(zabs.ceil().clamp(2.0, RADAR_Z_CLIP), codes.len());
+    let clipped: Vec<String> = series
+        .iter()
+        .flat_map(|(name, z)| {
+            z.iter()
+                .enumerate()
+                .filter(|(_, v)| v.abs() > g.z_max && v.is_finite())
+                .map(move |(i, v)| {
+                    let code = codes.get(i).map(String::as_str).unwrap_or("");
+                    format!("{name} {code} z = {v:+.1}")
+                })
+        })
+        .collect();
+    let notes = note_lines(g.z_max, &clipped);
+    let height = NOTES_TOP as u32 + notes.len() as u32 * (f.label as u32 + 6) + 8;
     let mut buf = String::new();
     {
-        let root = SVGBackend::with_string(&mut buf, (800, 720)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut buf, (RADAR_W, height)).into_drawing_area();
         root.fill(&WHITE).map_err(perr)?;
-        let zabs = series
-            .iter()
-            .flat_map(|s| s.1.iter())
-            .filter(|v| v.is_finite())
-            .fold(0.0f64, |m, v| m.max(v.abs()));
-        let g = Geometry::new(zabs.ceil().clamp(2.0, RADAR_Z_CLIP), codes.len());
-        root.draw(&Text::new(title.to_string(), (20, 15), font(24)))
+        root.draw(&Text::new(title.to_string(), (20, 12), font(f.title)))
             .map_err(perr)?;
-        draw_rings(&root, &g)?;
-        draw_axes(&root, &g, codes)?;
-        let mut clipped: Vec<String> = Vec::new();
+        draw_rings(&root, &g, f)?;
+        draw_axes(&root, &g, codes, f)?;
         let mut x_legend = 20i32;
+        let y_legend = 20 + f.title;
         for (k, (name, z)) in series.iter().enumerate() {
             let c = colour_of(name, k);
             draw_polygon(&root, &g, z, c)?;
             for (i, &v) in z.iter().enumerate().filter(|(_, v)| v.is_finite()) {
-                if draw_point(&root, &g, i, v, c)? {
-                    clipped.push(format!(
-                        "{name} {} z = {v:+.1}",
-                        codes.get(i).map(String::as_str).unwrap_or("")
-                    ));
-                }
+                draw_point(&root, &g, i, v, c)?;
             }
             root.draw(&Rectangle::new(
-                [(x_legend, 52), (x_legend + 20, 66)],
+                [
+                    (x_legend, y_legend + 2),
+                    (x_legend + 24, y_legend + f.label * 3 / 4),
+                ],
                 c.filled(),
             ))
             .map_err(perr)?;
-            root.draw(&Text::new(name.clone(), (x_legend + 28, 50), font(16)))
-                .map_err(perr)?;
-            x_legend += 60 + 9 * name.chars().count() as i32;
+            root.draw(&Text::new(
+                name.clone(),
+                (x_legend + 32, y_legend),
+                font(f.label),
+            ))
+            .map_err(perr)?;
+            x_legend += 64 + f.label * 6 / 10 * name.chars().count() as i32;
         }
-        draw_notes(&root, g.z_max, &clipped)?;
+        for (k, line) in notes.iter().enumerate() {
+            let y = NOTES_TOP + k as i32 * (f.label + 6);
+            root.draw(&Text::new(line.clone(), (20, y), font(f.label)))
+                .map_err(perr)?;
+        }
         root.present().map_err(perr)?;
     }
     Ok(buf)
+}
+
+/// Where the notes under a radar chart start, px from the top.
+const NOTES_TOP: i32 = 660;
+
+/// The lines under the chart: the scale and, when values were clipped, which ones (wrapped
+/// at [`NOTE_LINE_CHARS`]). The key to the marks is in the figure's caption.
+fn note_lines(z_max: f64, clipped: &[String]) -> Vec<String> {
+    let mut lines = vec![RADAR_SCALE_LABEL.to_string()];
+    if clipped.is_empty() {
+        return lines;
+    }
+    let mut line = format!("{RADAR_CLIPPED}{z_max:.0} SD:");
+    for c in clipped {
+        if line.chars().count() + c.chars().count() + 2 > NOTE_LINE_CHARS {
+            lines.push(std::mem::take(&mut line) + ",");
+        }
+        if !line.is_empty() && !line.ends_with(':') {
+            line.push(',');
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(c);
+    }
+    lines.push(line);
+    lines
 }
 
 /// The drawing area of a radar chart.
@@ -87,13 +142,12 @@ struct Geometry {
 }
 
 impl Geometry {
-    /// The 800 × 720 chart's geometry for a scale of ± `z_max` and `n_codes` axes.
+    /// The chart's geometry (centre, radius) for a scale of ± `z_max` and `n_codes` axes.
     fn new(z_max: f64, n_codes: usize) -> Self {
-        let (w, h) = (800.0, 720.0);
         Geometry {
-            cx: w / 2.0,
-            cy: h / 2.0 + 30.0,
-            rad: 250.0,
+            cx: f64::from(RADAR_W) / 2.0,
+            cy: 372.0,
+            rad: 230.0,
             z_min: -z_max,
             z_max,
             n: n_codes.max(1),
@@ -116,7 +170,7 @@ impl Geometry {
 }
 
 /// The rings at −zmax, −zmax/2, 0 (black: the healthy mean), zmax/2 and zmax, labelled on axis 0.
-fn draw_rings(root: &Area, g: &Geometry) -> Result<()> {
+fn draw_rings(root: &Area, g: &Geometry, f: Fonts) -> Result<()> {
     let z_max = g.z_max;
     for z in [-z_max, -z_max / 2.0, 0.0, z_max / 2.0, z_max] {
         let ring: Vec<(i32, i32)> = (0..=g.n).map(|i| g.pt(i % g.n, g.to_r(z))).collect();
@@ -132,25 +186,26 @@ fn draw_rings(root: &Area, g: &Geometry) -> Result<()> {
         } else {
             format!("z = {z:+.1}")
         };
-        root.draw(&Text::new(label, (x + 4, y - 14), font(13)))
+        root.draw(&Text::new(label, (x + 6, y + 2), font(f.label)))
             .map_err(perr)?;
     }
     Ok(())
 }
 
 /// One spoke per parameter, its code beyond the rim.
-fn draw_axes(root: &Area, g: &Geometry, codes: &[String]) -> Result<()> {
+fn draw_axes(root: &Area, g: &Geometry, codes: &[String], f: Fonts) -> Result<()> {
     for (i, c) in codes.iter().enumerate() {
         root.draw(&PathElement::new(
             vec![(g.cx as i32, g.cy as i32), g.pt(i, g.rad)],
             RGBColor(200, 200, 200),
         ))
         .map_err(perr)?;
-        let (x, y) = g.pt(i, g.rad + 22.0);
+        let (x, y) = g.pt(i, g.rad + f64::from(f.label));
+        let half = f.label * 3 / 10 * c.chars().count() as i32;
         root.draw(&Text::new(
             c.clone(),
-            (x - 14, y - 8),
-            ("sans-serif", 16).into_font(),
+            (x - half, y - f.label / 2),
+            font(f.label),
         ))
         .map_err(perr)?;
     }
@@ -200,30 +255,4 @@ fn draw_point(root: &Area, g: &Geometry, i: usize, v: f64, c: RGBColor) -> Resul
         root.draw(&Circle::new(p, 3, c.filled())).map_err(perr)?;
     }
     Ok(false)
-}
-
-/// The key to the marks, the scale label and, when values were clipped, which ones.
-fn draw_notes(root: &Area, z_max: f64, clipped: &[String]) -> Result<()> {
-    root.draw(&Text::new(
-        "● with black edge: beyond ±1.96 SD (abnormal) · △ on the rim: clipped · gap: not measured"
-            .to_string(),
-        (20, 76),
-        font(13),
-    ))
-    .map_err(perr)?;
-    root.draw(&Text::new(
-        format!("{RADAR_SCALE_LABEL}: (x − mean_H) / SD_H, eq. 18"),
-        (20, 675),
-        font(14),
-    ))
-    .map_err(perr)?;
-    if !clipped.is_empty() {
-        root.draw(&Text::new(
-            format!("{RADAR_CLIPPED}{z_max:.0} SD: {}", clipped.join(", ")),
-            (20, 697),
-            font(13),
-        ))
-        .map_err(perr)?;
-    }
-    Ok(())
 }

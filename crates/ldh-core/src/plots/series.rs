@@ -3,8 +3,17 @@
 
 use plotters::prelude::*;
 
-use super::{colour_of, legend, legend_room, perr};
+use super::{colour_of, legend, legend_room, perr, Fonts, PrintWidth};
 use crate::error::{LdhError, Result};
+
+/// The canvas width of [`stride_series_svg`], px.
+const STRIDE_SERIES_W: u32 = 800;
+/// How wide [`stride_series_svg`] prints.
+pub const STRIDE_SERIES_PRINT: PrintWidth = PrintWidth::Full;
+/// The canvas width of [`cycle_svg`], px.
+const CYCLE_W: u32 = 800;
+/// How wide [`cycle_svg`] prints.
+pub const CYCLE_PRINT: PrintWidth = PrintWidth::Chart;
 
 /// A parameter stride by stride: x = heel-strike time (s), one series per side; strides
 /// excluded from the parameters are drawn as hollow circles, used ones filled.
@@ -28,13 +37,14 @@ pub fn stride_series_svg(title: &str, y_label: &str, series: &[Series]) -> Resul
     let yp = ((y_hi - y_lo) * 0.1).max(1e-3 * y_hi.abs().max(1e-3));
     let mut buf = String::new();
     {
-        let root = SVGBackend::with_string(&mut buf, (800, 300)).into_drawing_area();
+        let f = Fonts::for_canvas(STRIDE_SERIES_W, STRIDE_SERIES_PRINT);
+        let root = SVGBackend::with_string(&mut buf, (STRIDE_SERIES_W, 320)).into_drawing_area();
         root.fill(&WHITE).map_err(perr)?;
         let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 18))
+            .caption(title, ("sans-serif", f.title))
             .margin(10)
-            .x_label_area_size(40)
-            .y_label_area_size(70)
+            .x_label_area_size(2 * f.desc + 10)
+            .y_label_area_size(4 * f.label + f.desc)
             .build_cartesian_2d(
                 x_lo - xp..x_hi + xp,
                 y_lo - yp..y_hi + yp + legend_room(series.len(), y_hi - y_lo + 2.0 * yp),
@@ -44,8 +54,8 @@ pub fn stride_series_svg(title: &str, y_label: &str, series: &[Series]) -> Resul
             .configure_mesh()
             .x_desc("heel-strike time (s)")
             .y_desc(y_label)
-            .axis_desc_style(("sans-serif", 15))
-            .label_style(("sans-serif", 13))
+            .axis_desc_style(("sans-serif", f.desc))
+            .label_style(("sans-serif", f.label))
             .light_line_style(RGBColor(235, 235, 235))
             .max_light_lines(2)
             .draw()
@@ -77,7 +87,7 @@ pub fn stride_series_svg(title: &str, y_label: &str, series: &[Series]) -> Resul
                 ))
                 .map_err(perr)?;
         }
-        legend(&mut chart)?;
+        legend(&mut chart, f.label)?;
         root.present().map_err(perr)?;
     }
     Ok(buf)
@@ -119,21 +129,22 @@ pub fn cycle_svg(
     let room = legend_room(n_legend, hi - lo + 2.0 * pad);
     let mut buf = String::new();
     {
-        let root = SVGBackend::with_string(&mut buf, (800, 360)).into_drawing_area();
+        let f = Fonts::for_canvas(CYCLE_W, CYCLE_PRINT);
+        let root = SVGBackend::with_string(&mut buf, (CYCLE_W, 380)).into_drawing_area();
         root.fill(&WHITE).map_err(perr)?;
         let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 18))
+            .caption(title, ("sans-serif", f.title))
             .margin(10)
-            .x_label_area_size(40)
-            .y_label_area_size(70)
+            .x_label_area_size(2 * f.desc + 10)
+            .y_label_area_size(4 * f.label + f.desc)
             .build_cartesian_2d(0.0..100.0, lo - pad..hi + pad + room)
             .map_err(perr)?;
         chart
             .configure_mesh()
             .x_desc(CYCLE_X_LABEL)
             .y_desc(y_label)
-            .axis_desc_style(("sans-serif", 15))
-            .label_style(("sans-serif", 13))
+            .axis_desc_style(("sans-serif", f.desc))
+            .label_style(("sans-serif", f.label))
             .light_line_style(RGBColor(235, 235, 235))
             .max_light_lines(2)
             .draw()
@@ -171,7 +182,7 @@ pub fn cycle_svg(
                     Rectangle::new([(x, y - 5), (x + 16, y + 5)], c.mix(0.5).filled())
                 });
         }
-        legend(&mut chart)?;
+        legend(&mut chart, f.label)?;
         root.present().map_err(perr)?;
     }
     Ok(buf)

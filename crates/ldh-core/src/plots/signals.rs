@@ -3,8 +3,13 @@
 
 use plotters::prelude::*;
 
-use super::{colour_of, legend, legend_room, perr};
+use super::{colour_of, legend, legend_room, perr, Fonts, PrintWidth};
 use crate::error::{LdhError, Result};
+
+/// The canvas width of [`signals_svg`], px.
+const SIGNALS_W: u32 = 800;
+/// How wide [`signals_svg`] prints.
+pub const SIGNALS_PRINT: PrintWidth = PrintWidth::Full;
 
 /// One panel of [`signals_svg`]: a y-axis label with its unit and named series sampled on the
 /// common time axis.
@@ -57,9 +62,10 @@ pub fn signals_svg(
     let height = 70 + 230 * panels.len() as u32;
     let mut buf = String::new();
     {
-        let root = SVGBackend::with_string(&mut buf, (800, height)).into_drawing_area();
+        let f = Fonts::for_canvas(SIGNALS_W, SIGNALS_PRINT);
+        let root = SVGBackend::with_string(&mut buf, (SIGNALS_W, height)).into_drawing_area();
         root.fill(&WHITE).map_err(perr)?;
-        let root = root.titled(title, ("sans-serif", 20)).map_err(perr)?;
+        let root = root.titled(title, ("sans-serif", f.title)).map_err(perr)?;
         let areas = root.split_evenly((panels.len(), 1));
         let axis = TimeAxis {
             t0_s,
@@ -68,7 +74,7 @@ pub fn signals_svg(
             t_hi,
         };
         for (k, (area, p)) in areas.iter().zip(panels).enumerate() {
-            draw_panel(area, p, k + 1 == panels.len(), &axis, marks)?;
+            draw_panel(area, p, k + 1 == panels.len(), &axis, marks, f)?;
         }
         root.present().map_err(perr)?;
     }
@@ -99,6 +105,7 @@ fn draw_panel(
     last: bool,
     axis: &TimeAxis,
     marks: Option<&EventMarks>,
+    f: Fonts,
 ) -> Result<()> {
     let (t_lo, t_hi) = (axis.t_lo, axis.t_hi);
     let vals = p
@@ -114,14 +121,14 @@ fn draw_panel(
     let (y_lo, y_hi) = (lo - pad, hi + pad + room);
     let mut chart = ChartBuilder::on(area)
         .margin(8)
-        .x_label_area_size(if last { 40 } else { 22 })
-        .y_label_area_size(70)
+        .x_label_area_size(if last { 2 * f.desc + 10 } else { f.label + 10 })
+        .y_label_area_size(4 * f.label + f.desc)
         .build_cartesian_2d(t_lo..t_hi, y_lo..y_hi)
         .map_err(perr)?;
     let mut mesh = chart.configure_mesh();
     mesh.y_desc(p.y_label.as_str())
-        .axis_desc_style(("sans-serif", 15))
-        .label_style(("sans-serif", 13))
+        .axis_desc_style(("sans-serif", f.desc))
+        .label_style(("sans-serif", f.label))
         .light_line_style(RGBColor(235, 235, 235))
         .max_light_lines(2);
     if last {
@@ -134,7 +141,7 @@ fn draw_panel(
     for (j, (name, v)) in p.series.iter().enumerate() {
         draw_line(&mut chart, name, v, colour_of(name, j), axis)?;
     }
-    legend(&mut chart)
+    legend(&mut chart, f.label)
 }
 
 /// Stance shading (grey) and heel-strike (red) and toe-off (blue) lines within the time range.

@@ -216,6 +216,7 @@ pub(crate) fn cycle_section(
             &svg,
             &format!("Shank pitch (sagittal inclination) from heel strike (0 %) to the next heel strike (100 %) of the same leg: mean (line) ± 1 SD (band) over the valid strides of the plotted window; left blue, right orange. {band_text}{clip}"),
             &[plots::CYCLE_X_LABEL, "shank pitch (deg)"],
+            plots::CYCLE_PRINT,
         )
     };
     Ok(html! {

@@ -11,6 +11,7 @@
 use maud::{html, Markup, PreEscaped, DOCTYPE};
 
 use crate::output::RecordingRow;
+use crate::plots::PrintWidth;
 
 /// The ldh version written into every page.
 pub(crate) const VERSION: &str = env!("CARGO_PKG_VERSION");
@@ -32,12 +33,17 @@ span.flagword { font-weight: normal; font-size: 11.5px; color: #333; }
 p.headline, div.headline { font-size: 14.5px; margin: 6px 0; }
 figure { margin: 10px 0; page-break-inside: avoid; break-inside: avoid; }
 figure svg { width: 100%; height: auto; display: block; }
+figure.print-chart { max-width: 560px; margin: 10px auto; }
+div.side { display: flex; flex-wrap: wrap; gap: 12px; align-items: flex-start; } div.side > figure { flex: 0 0 auto; margin: 0; } div.side > div { flex: 1 1 200px; }
+@media screen { div.side > figure.print-chart { width: 60%; } }
+span.g0 { color: #0072b2; } span.g1 { color: #e69f00; } span.g2 { color: #009e73; }
+div.figgrid { display: grid; grid-template-columns: repeat(5, 1fr); gap: 8px; } div.figgrid.cols3 { grid-template-columns: repeat(3, 1fr); } div.figgrid figure { margin: 0; }
 figcaption { font-size: 12px; color: #333; margin-top: 3px; }
 ol.refs { font-size: 11.5px; }
 table.triage td.bad { background: #fde2e2; font-weight: bold; }
 .print-only { display: none; }
 @page { size: A4; margin: 7mm; }
-@media print { body { margin: 0; max-width: none; font-size: 8.5pt; line-height: 1.25; } div.headline p, div.headline ul { margin: 1px 0; } div.headline li { margin: 0; } .missing { padding: 2px 8px; margin: 3px 0; } .missing ul { margin: 1px 0; } .screen-only { display: none; } .print-only { display: block; } figure.plot { width: 50%; margin: 2px auto; } figure.plot[data-axis-labels^="z-score"] { width: 36%; } figcaption { font-size: 8pt; } table { font-size: 8pt; } th, td { padding: 1px 4px; } h1 { font-size: 15pt; } h2 { font-size: 11pt; margin-top: 6px; margin-bottom: 3px; page-break-after: avoid; break-after: avoid; } .note, .missing, .support, figure, tr { page-break-inside: avoid; break-inside: avoid; } .out, .flag, th, td.bad { -webkit-print-color-adjust: exact; print-color-adjust: exact; } }
+@media print { body { margin: 0; max-width: none; font-size: 8.5pt; line-height: 1.25; } div.headline p, div.headline ul { margin: 1px 0; } div.headline li { margin: 0; } .missing { padding: 2px 8px; margin: 3px 0; } .missing ul { margin: 1px 0; } .screen-only { display: none; } .print-only { display: block; } figcaption { font-size: 8pt; } table { font-size: 8pt; } th, td { padding: 1px 4px; } h1 { font-size: 15pt; } h2 { font-size: 11pt; margin-top: 6px; margin-bottom: 3px; page-break-after: avoid; break-after: avoid; } .note, .missing, .support, figure, tr { page-break-inside: avoid; break-inside: avoid; } .out, .flag, th, td.bad { -webkit-print-color-adjust: exact; print-color-adjust: exact; } }
 "#;
 
 /// The whole page around `body`: doctype, head (charset, viewport, generator, title, CSS).
@@ -52,7 +58,7 @@ pub(crate) fn page(title: &str, body: Markup) -> String {
             head {
                 (PreEscaped(head))
                 title { (title) } "\n"
-                style { (PreEscaped(CSS)) } "\n"
+                style { (PreEscaped(CSS)) (PreEscaped(print_figure_css())) } "\n"
             }
             "\n"
             body { "\n" (body) }
@@ -60,7 +66,41 @@ pub(crate) fn page(title: &str, body: Markup) -> String {
         }
         "\n"
     };
-    without_control_chars(m.into_string())
+    without_control_chars(numbered_figures(m.into_string()))
+}
+
+/// The print widths of the figures ([`PrintWidth::pt`]): each figure prints exactly as wide as
+/// its fonts were sized for, so no figure text prints under 8 pt.
+fn print_figure_css() -> String {
+    let mut css = String::from("@media print { ");
+    for w in PrintWidth::ALL {
+        css += &format!(
+            "figure.{} {{ width: {}pt; margin: 2px auto; }} ",
+            w.class(),
+            w.pt()
+        );
+    }
+    css += &format!(
+        "div.figgrid {{ grid-template-columns: repeat(5, {}pt); gap: 4pt; }} div.figgrid.cols3 {{ grid-template-columns: repeat(3, {}pt); }} div.figgrid figure.plot {{ margin: 0; }} }}\n",
+        PrintWidth::Fifth.pt(),
+        PrintWidth::Third.pt()
+    );
+    css
+}
+
+/// Every figure caption of a page numbered in the order of the page ("Fig. 1. …"), so each
+/// number is used once. The figures printed come first on every page, the on-screen ones
+/// after them, so the printed numbers are 1, 2, … as well. Only [`figure`] writes
+/// `<figcaption>` (spliced text is escaped by maud, so no file name or message can add one).
+fn numbered_figures(page: String) -> String {
+    let mut out = String::with_capacity(page.len() + 64);
+    for (k, part) in page.split("<figcaption>").enumerate() {
+        if k > 0 {
+            out += &format!("<figcaption>Fig. {k}. ");
+        }
+        out += part;
+    }
+    out
 }
 
 /// Control characters other than tab, line feed and carriage return are not allowed in XML 1.0;
@@ -84,13 +124,15 @@ fn without_control_chars(s: String) -> String {
 }
 
 /// A figure: the SVG inline, its caption, and the axis labels it draws (each with its unit), so
-/// a checker can verify them (`data-axis-labels`, separated by `|`).
-pub(crate) fn figure(svg: &str, caption: &str, axis_labels: &[&str]) -> Markup {
+/// a checker can verify them (`data-axis-labels`, separated by `|`); `print` is the width the
+/// SVG's fonts were sized for (the plot's `…_PRINT` constant), written as its class and as
+/// `data-print-width-pt`.
+pub(crate) fn figure(svg: &str, caption: &str, axis_labels: &[&str], print: PrintWidth) -> Markup {
     let svg = svg
         .trim_start_matches("<?xml version=\"1.0\" encoding=\"UTF-8\"?>")
         .trim();
     html! {
-        figure.plot data-axis-labels=(axis_labels.join("|")) {
+        figure.plot.(print.class()) data-axis-labels=(axis_labels.join("|")) data-print-width-pt=(print.pt()) {
             "\n" (PreEscaped(svg)) "\n"
             figcaption { (caption) } "\n"
         }

@@ -330,18 +330,31 @@ fn leg_notes(leg: &LegTrace) -> Vec<String> {
     notes
 }
 
-/// Strides excluded from the parameters, counted by side and reason.
+/// Strides excluded from the parameters, counted by reason (one row each) and side (a column
+/// each, in the order the sides first appear).
 fn excluded_strides(strides: &[StrideRow]) -> Markup {
-    let mut excl: Vec<(String, String, usize)> = Vec::new();
+    let mut sides: Vec<String> = Vec::new();
+    let mut excl: Vec<(String, Vec<usize>)> = Vec::new();
     for st in strides.iter().filter(|st| !st.valid) {
+        let side = st.side.to_string();
+        let col = match sides.iter().position(|s| *s == side) {
+            Some(c) => c,
+            None => {
+                sides.push(side);
+                sides.len() - 1
+            }
+        };
         let reason = reason_kind(&st.reason);
-        match excl
-            .iter_mut()
-            .find(|e| e.0 == st.side.as_str() && e.1 == reason)
-        {
-            Some(e) => e.2 += 1,
-            None => excl.push((st.side.to_string(), reason, 1)),
-        }
+        let row = match excl.iter().position(|e| e.0 == reason) {
+            Some(r) => r,
+            None => {
+                excl.push((reason, Vec::new()));
+                excl.len() - 1
+            }
+        };
+        let counts = &mut excl[row].1;
+        counts.resize(counts.len().max(col + 1), 0);
+        counts[col] += 1;
     }
     html! {
         @if excl.is_empty() {
@@ -349,9 +362,12 @@ fn excluded_strides(strides: &[StrideRow]) -> Markup {
         } @else {
             h3 { "Strides excluded from the parameters" } "\n"
             table {
-                tr { th { "side" } th { "reason" } th { "strides" } } "\n"
-                @for (side, reason, n) in &excl {
-                    tr { td { (side) } td { (reason) } td.num { (n) " strides" } } "\n"
+                tr { th { "reason" } @for side in &sides { th { (side) " (strides)" } } } "\n"
+                @for (reason, counts) in &excl {
+                    tr {
+                        td { (reason) }
+                        @for c in 0..sides.len() { td.num { (counts.get(c).copied().unwrap_or(0)) } }
+                    } "\n"
                 }
             }
             "\n"

@@ -182,5 +182,6 @@ pub(super) fn subject_radar(
         &svg,
         &format!("Radar chart of the subject's parameters as z-scores against the reference of section 2 (0 = the reference mean, the black ring); left blue, right orange. A dot with a black edge lies beyond ±{:.2} SD (abnormal); a gap in a polygon is a parameter not measured on that side (never drawn as 0). The scale stops at ±{:.0} SD: a value beyond it is an open triangle on the rim{}.", plots::RADAR_Z_ABNORMAL, plots::RADAR_Z_CLIP, if svg.contains(plots::RADAR_CLIPPED) { " — clipped here, the values are named under the chart" } else { " (none here)" }),
         &[plots::RADAR_SCALE_LABEL],
+        plots::RADAR_PRINT,
     ))
 }

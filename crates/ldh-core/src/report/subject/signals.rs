@@ -79,8 +79,9 @@ fn leg_signals(leg: &LegTrace) -> Result<Markup> {
     )?;
     Ok(figure(
         &svg,
-        &format!("Fig. 3 — {} leg: filtered acceleration and angular velocity in the shank frame (after alignment and outlier replacement).{}", leg.side, clip_note(&clipped)),
+        &format!("{} leg: filtered acceleration and angular velocity in the shank frame (after alignment and outlier replacement).{}", leg.side, clip_note(&clipped)),
         &["time (s)", "acceleration (g)", "angular velocity (deg/s)"],
+        plots::SIGNALS_PRINT,
     ))
 }
 
@@ -115,8 +116,9 @@ fn leg_attitude(leg: &LegTrace) -> Result<Markup> {
     )?;
     Ok(figure(
         &svg,
-        &format!("Fig. 4 — {} leg: shank attitude; red lines heel strikes (HS), blue lines toe offs (TO), grey bands stance (HS to TO).{}", leg.side, clip_note(&clipped)),
+        &format!("{} leg: shank attitude; red lines heel strikes (HS), blue lines toe offs (TO), grey bands stance (HS to TO).{}", leg.side, clip_note(&clipped)),
         &["time (s)", "angle (deg)"],
+        plots::SIGNALS_PRINT,
     ))
 }
 
@@ -217,6 +219,7 @@ pub(super) fn stride_by_stride(strides: &[StrideRow]) -> Result<Markup> {
                 })
             ),
             &["heel-strike time (s)", ylab],
+            plots::STRIDE_SERIES_PRINT,
         ));
     }
     Ok(html! { h2 { "4. Stride by stride" } "\n" @for f in &figs { (f) } })
