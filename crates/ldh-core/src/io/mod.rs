@@ -4,18 +4,22 @@
 
 mod channels;
 mod checks;
+mod column_info;
 mod columns;
 pub mod format;
 mod header;
 mod inspect;
+mod labelled;
 pub(crate) mod limits;
 mod number;
 pub mod reader;
 mod rows;
 mod text;
 mod timebase;
+pub mod units;
 pub mod writer;
 
+pub use column_info::ColumnInfo;
 pub use format::{ColumnRef, FormatSpec, SensorSelect, BUILTIN_FORMATS, DETECTED_FORMATS};
 pub use inspect::{inspect, Inspection, PreprocessSummary};
 pub use limits::{
@@ -30,6 +34,7 @@ pub use writer::{
     recording_to_csv, remove_stale_temp_files, write_atomic, write_recording, AtomicFile,
     OutputLock, WriteOptions,
 };
+pub use units::{Quantity, Unit, UnitError, UnknownUnit};
 
 /// The largest magnitude a signal cell may hold (raw, before the format's scale): 1e12, far
 /// beyond any sensor's range in physical units or raw counts. A larger finite value (`1e308`)
@@ -50,3 +55,5 @@ mod tests;
 mod tests_columns;
 #[cfg(test)]
 mod tests_stream;
+#[cfg(test)]
+mod tests_units;

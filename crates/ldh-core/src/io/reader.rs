@@ -210,6 +210,10 @@ pub struct ReadReport {
     pub samples: usize,
     /// Duration kept, s.
     pub duration_s: f64,
+    /// Each column read: the channel it feeds, the unit understood and the conversion applied
+    /// (`ldh inspect` shows them).
+    #[serde(default)]
+    pub columns: Vec<super::ColumnInfo>,
     /// Assumptions and findings, one sentence each.
     pub notes: Vec<String>,
     /// Problems that did not stop the reading but need the user's attention (data dropped at a
@@ -278,6 +282,7 @@ fn read_from(
     // The header row and the format (column resolution: `columns.rs`).
     let mut found = super::header::find_header(&mut lines, format, path, &mut notes)?;
     let delim_name = header_notes(&found, format.is_none(), &mut notes);
+    let columns = super::column_info::describe_columns(&found);
     let spec = &found.spec;
 
     // Data rows into columns: after the header row and the rows the format skips (counted from
@@ -367,6 +372,7 @@ fn read_from(
         saturated_samples: clipping.samples,
         samples: grid.n_out,
         duration_s,
+        columns,
         notes,
         warnings,
     };
