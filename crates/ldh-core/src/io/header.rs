@@ -12,6 +12,7 @@ use super::columns::{
 use super::format::{Delimiter, FormatSpec};
 use super::labelled::{labelled, stated_unit, with_units_row, without_units, Labelled};
 use super::text::{detect_delimiter, split_header, Lines};
+use super::start_time::{start_in_comment, DateTime};
 use super::units::Unit;
 use crate::error::{LdhError, Location, Result};
 
@@ -37,6 +38,8 @@ pub(crate) struct Header {
     pub sep_line: Option<u8>,
     /// Where the units of the columns read come from.
     pub units_from: UnitsFrom,
+    /// The start date and time a line above the header states (`// Start Time: ...`).
+    pub start: Option<DateTime>,
 }
 
 /// Where the units of the columns read come from (shown per column by `ldh inspect`).
@@ -87,6 +90,7 @@ pub(super) fn find_header<R: BufRead>(
     let mut all_blank = true;
     // A row read ahead (a possible units row that was not one) and read next.
     let mut pending: Option<(u64, String)> = None;
+    let mut start: Option<DateTime> = None;
     loop {
         let (lineno, line) = match pending.take() {
             Some(p) => p,
@@ -101,6 +105,9 @@ pub(super) fn find_header<R: BufRead>(
             continue;
         }
         all_blank = false;
+        if start.is_none() {
+            start = start_in_comment(trimmed);
+        }
         if let Some(sep) = sep_line_delimiter(trimmed) {
             sep_line = sep;
             notes.push(format!(
@@ -122,7 +129,7 @@ pub(super) fn find_header<R: BufRead>(
         for f in &candidates {
             let row = (lineno, line);
             match match_row(f, row, sep_line, format.is_some(), path, notes)? {
-                RowMatch::Found(header) => return Ok(*header),
+                RowMatch::Found(header) => return Ok(Header { start, ..*header }),
                 RowMatch::No => {}
                 RowMatch::Missing(missing, fields) => {
                     // Only the first header-like row is described; among the formats,
@@ -144,7 +151,7 @@ pub(super) fn find_header<R: BufRead>(
         }
         if format.is_none() {
             match try_labelled(lines, (lineno, line), sep_line, path, notes)? {
-                (Some(header), _) => return Ok(header),
+                (Some(header), _) => return Ok(Header { start, ..header }),
                 (None, next) => pending = next,
             }
         }
@@ -186,6 +193,7 @@ fn try_labelled<R: BufRead>(
         first_row: None,
         sep_line,
         units_from,
+        start: None,
     };
     match labelled(base, &fields, path, lineno)? {
         Labelled::No => Ok((None, None)),
@@ -317,6 +325,7 @@ fn match_row(
                 sep_line,
                 first_row,
                 units_from,
+                start: None,
             })))
         }
         Err(Unresolved::Duplicate { column, positions }) => Err(LdhError::DuplicateColumn {

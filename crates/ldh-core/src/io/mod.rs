@@ -14,6 +14,7 @@ pub(crate) mod limits;
 mod number;
 pub mod reader;
 mod rows;
+mod start_time;
 mod text;
 mod timebase;
 pub mod units;
@@ -34,6 +35,7 @@ pub use writer::{
     recording_to_csv, remove_stale_temp_files, write_atomic, write_recording, AtomicFile,
     OutputLock, WriteOptions,
 };
+pub use start_time::{BadDateTime, DateTime, RecordedAt, StartFrom};
 pub use units::{Quantity, Unit, UnitError, UnknownUnit};
 
 /// The largest magnitude a signal cell may hold (raw, before the format's scale): 1e12, far
@@ -57,3 +59,5 @@ mod tests_columns;
 mod tests_stream;
 #[cfg(test)]
 mod tests_units;
+#[cfg(test)]
+mod tests_start;

@@ -11,7 +11,7 @@ use crate::simulate::CohortParams;
 use std::path::{Path, PathBuf};
 
 /// A simulated walk, made once for all the tests of this file.
-fn walking() -> &'static Recording {
+pub(super) fn walking() -> &'static Recording {
     static REC: std::sync::OnceLock<Recording> = std::sync::OnceLock::new();
     REC.get_or_init(|| {
         let c = CohortParams {

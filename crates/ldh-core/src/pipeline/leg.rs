@@ -376,6 +376,7 @@ pub fn memory_report(rec: &Recording) -> ReadReport {
         samples: rec.len(),
         duration_s: rec.duration_s(),
         columns: vec![],
+        recorded_at: rec.recorded_at,
         notes: vec![],
         warnings: crate::io::flat_channel_warnings(&rec.acc_g, &rec.gyro_dps, rec.fs_hz, rec.t0_s),
     }
