@@ -57,7 +57,11 @@ fn time_info(h: &Header, from: &str) -> Option<ColumnInfo> {
     let i = h.cols.time?;
     let spec = &h.spec;
     let (unit, factor, conversion) = match Unit::from_time(spec.time.unit) {
-        Some(u) => (u.symbol().to_string(), Some(u.to_internal()), words(&[u.conversion()])),
+        Some(u) => (
+            u.symbol().to_string(),
+            Some(u.to_internal()),
+            words(&[u.conversion()]),
+        ),
         None => match spec.time.unit {
             TimeUnit::Counter => (
                 "counter".to_string(),
@@ -73,7 +77,10 @@ fn time_info(h: &Header, from: &str) -> Option<ColumnInfo> {
     };
     Some(ColumnInfo {
         column: i + 1,
-        name: h.fields.get(i).map_or(String::new(), |f| f.trim().to_string()),
+        name: h
+            .fields
+            .get(i)
+            .map_or(String::new(), |f| f.trim().to_string()),
         channel: "time".into(),
         unit,
         unit_from: from.to_string(),
@@ -131,11 +138,17 @@ fn sensor_info(
             parts.push(format!("sign flipped (axis map -{})", AXES[file_axis]));
         }
         if file_axis != ldh_axis {
-            parts.push(format!("file axis {} → ldh axis {ldh_name}", AXES[file_axis]));
+            parts.push(format!(
+                "file axis {} → ldh axis {ldh_name}",
+                AXES[file_axis]
+            ));
         }
         out.push(ColumnInfo {
             column: i + 1,
-            name: h.fields.get(i).map_or(String::new(), |f| f.trim().to_string()),
+            name: h
+                .fields
+                .get(i)
+                .map_or(String::new(), |f| f.trim().to_string()),
             channel: format!("{prefix}_{ldh_name}"),
             unit: unit.symbol().to_string(),
             unit_from: from.to_string(),
@@ -153,7 +166,12 @@ pub(super) fn describe_columns(h: &Header) -> Vec<ColumnInfo> {
     let mut out: Vec<ColumnInfo> = time_info(h, &from).into_iter().collect();
     let acc = ("acc", h.cols.acc, Unit::from(spec.acc.unit), spec.acc.scale);
     sensor_info(h, spec, acc, &from, &mut out);
-    let gyro = ("gyro", h.cols.gyro, Unit::from(spec.gyro.unit), spec.gyro.scale);
+    let gyro = (
+        "gyro",
+        h.cols.gyro,
+        Unit::from(spec.gyro.unit),
+        spec.gyro.scale,
+    );
     sensor_info(h, spec, gyro, &from, &mut out);
     out
 }

@@ -11,8 +11,8 @@ use super::columns::{
 };
 use super::format::{Delimiter, FormatSpec};
 use super::labelled::{labelled, stated_unit, with_units_row, without_units, Labelled};
-use super::text::{detect_delimiter, split_header, Lines};
 use super::start_time::{start_in_comment, DateTime};
+use super::text::{detect_delimiter, split_header, Lines};
 use super::units::Unit;
 use crate::error::{LdhError, Location, Result};
 
@@ -166,6 +166,10 @@ pub(super) fn find_header<R: BufRead>(
     ))
 }
 
+/// What [`try_labelled`] found: the header, or none and the row it read ahead (to be read
+/// next), if any.
+type LabelledRow = (Option<Header>, Option<(u64, String)>);
+
 /// A row no built-in format reads, tried as names carrying units (`labelled.rs`): the header
 /// found, or none and the row read ahead to look for units under the names, if any, to be read
 /// next.
@@ -175,7 +179,7 @@ fn try_labelled<R: BufRead>(
     sep_line: Option<u8>,
     path: &Path,
     notes: &mut Vec<String>,
-) -> Result<(Option<Header>, Option<(u64, String)>)> {
+) -> Result<LabelledRow> {
     let (lineno, line) = row;
     let delim = sep_line.unwrap_or_else(|| detect_delimiter(line));
     let fields = split_header(line, delim);
@@ -215,7 +219,9 @@ fn try_labelled<R: BufRead>(
             let units = split_header(&text, delim);
             match with_units_row(base, &fields, &pos, &units, (lineno, n), path)? {
                 Some(found) => {
-                    notes.push(format!("units read from the row under the names (line {n})"));
+                    notes.push(format!(
+                        "units read from the row under the names (line {n})"
+                    ));
                     Ok((Some(header(found, UnitsFrom::UnitsRow(n))), None))
                 }
                 None => Ok((None, Some((n, text)))),

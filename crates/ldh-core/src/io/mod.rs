@@ -31,12 +31,12 @@ pub use reader::{
     flat_channel_warnings, read_recording, read_recording_bytes, read_recording_from, GapPolicy,
     ReadParams, ReadReport, ValidReadParams, DEFAULT_MAX_SAMPLES,
 };
+pub use start_time::{BadDateTime, DateTime, RecordedAt, StartFrom};
+pub use units::{Quantity, Unit, UnitError, UnknownUnit};
 pub use writer::{
     recording_to_csv, remove_stale_temp_files, write_atomic, write_recording, AtomicFile,
     OutputLock, WriteOptions,
 };
-pub use start_time::{BadDateTime, DateTime, RecordedAt, StartFrom};
-pub use units::{Quantity, Unit, UnitError, UnknownUnit};
 
 /// The largest magnitude a signal cell may hold (raw, before the format's scale): 1e12, far
 /// beyond any sensor's range in physical units or raw counts. A larger finite value (`1e308`)
@@ -56,8 +56,8 @@ mod tests;
 #[cfg(test)]
 mod tests_columns;
 #[cfg(test)]
+mod tests_start;
+#[cfg(test)]
 mod tests_stream;
 #[cfg(test)]
 mod tests_units;
-#[cfg(test)]
-mod tests_start;

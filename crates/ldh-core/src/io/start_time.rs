@@ -43,7 +43,7 @@ fn days_in_month(y: i64, m: u8) -> u8 {
 }
 
 /// Days since 1970-01-01 of a civil date (Howard Hinnant's algorithm).
-fn days_from_civil(y: i64, m: i64, d: i64) -> i64 {
+pub(crate) fn days_from_civil(y: i64, m: i64, d: i64) -> i64 {
     let y = if m <= 2 { y - 1 } else { y };
     let era = if y >= 0 { y } else { y - 399 } / 400;
     let yoe = y - era * 400;
@@ -79,7 +79,7 @@ impl DateTime {
             && (0..24).contains(&hh)
             && (0..60).contains(&mm)
             && (0..=60).contains(&ss);
-        ok.then(|| DateTime {
+        ok.then_some(DateTime {
             year: y as u16,
             month: m as u8,
             day: d as u8,
@@ -194,7 +194,9 @@ impl FromStr for DateTime {
             (rest, false, 0)
         };
         let d = numbers(date, &['-', '/']).ok_or_else(bad)?;
-        let [y, m, day] = d[..] else { return Err(bad()) };
+        let [y, m, day] = d[..] else {
+            return Err(bad());
+        };
         let whole = time.split('.').next().unwrap_or("");
         let t = numbers(whole, &[':']).ok_or_else(bad)?;
         let (hh, mm, ss) = match t[..] {

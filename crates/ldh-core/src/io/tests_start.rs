@@ -56,12 +56,18 @@ fn date_time_spellings_parse_and_bad_ones_do_not() {
 #[test]
 fn start_comments_are_recognised_by_their_key_only() {
     let at = dt((2024, 3, 5), (10, 21, 33), false);
-    assert_eq!(start_in_comment("// Start Time: 2024-03-05 10:21:33"), Some(at));
+    assert_eq!(
+        start_in_comment("// Start Time: 2024-03-05 10:21:33"),
+        Some(at)
+    );
     assert_eq!(
         start_in_comment("# start: 2024-03-05T10:21:33Z"),
         Some(DateTime { utc: true, ..at })
     );
-    assert_eq!(start_in_comment("% date = \"2024-03-05 10:21:33\""), Some(at));
+    assert_eq!(
+        start_in_comment("% date = \"2024-03-05 10:21:33\""),
+        Some(at)
+    );
     assert_eq!(start_in_comment("# exported: 2024-03-05 10:21:33"), None);
     assert_eq!(start_in_comment("// Start Time: soon"), None);
     assert_eq!(start_in_comment("time_s,acc_x,acc_y"), None);
@@ -160,14 +166,18 @@ fn files_give_their_start_where_they_have_one() {
         ("iso", &iso, (local, StartFrom::IsoTime)),
         ("shimmer", &shim, (at, StartFrom::UnixTime)),
     ] {
-        let want = Some(RecordedAt {
+        let want = RecordedAt {
             at: want.0,
             from: want.1,
-        });
-        assert_eq!(r.recorded_at, want, "{name}");
-        assert_eq!(rep.recorded_at, want, "{name}");
-        let note = format!("recording start {} (from the ", want.unwrap().at.iso());
-        assert!(rep.notes.iter().any(|n| n.starts_with(&note)), "{name}: {:?}", rep.notes);
+        };
+        assert_eq!(r.recorded_at, Some(want), "{name}");
+        assert_eq!(rep.recorded_at, Some(want), "{name}");
+        let note = format!("recording start {} (from the ", want.at.iso());
+        assert!(
+            rep.notes.iter().any(|n| n.starts_with(&note)),
+            "{name}: {:?}",
+            rep.notes
+        );
     }
     // The channels of the UTC-column file are the Xsens file's: the read-ahead row was read.
     assert_eq!(utc_cols.0.len(), xsens.0.len());

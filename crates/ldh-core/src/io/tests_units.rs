@@ -137,7 +137,14 @@ fn headers_with_units_read_into_identical_recordings() {
     let plain = "time_s,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z";
     let (reference, _) = read(&file(d, "ref.csv", plain, ',', [1.0, 1.0, 1.0]), None).unwrap();
     // (file, header, delimiter, factors time/acc/gyro, units understood time/acc/gyro, from)
-    type Case = (&'static str, &'static str, char, [f64; 3], [&'static str; 3], &'static str);
+    type Case = (
+        &'static str,
+        &'static str,
+        char,
+        [f64; 3],
+        [&'static str; 3],
+        &'static str,
+    );
     let cases: [Case; 8] = [
         (
             "brackets.csv",
@@ -217,13 +224,24 @@ fn headers_with_units_read_into_identical_recordings() {
             file(d, name, header, delim, k)
         };
         let (rec, rep) = read(&p, None).unwrap_or_else(|e| panic!("{name}: {e}"));
-        assert!((rec.fs_hz - reference.fs_hz).abs() < 1e-9, "{name}: {}", rec.fs_hz);
+        assert!(
+            (rec.fs_hz - reference.fs_hz).abs() < 1e-9,
+            "{name}: {}",
+            rec.fs_hz
+        );
         let diff = max_diff(&rec, &reference);
         assert!(diff <= 1e-12, "{name}: channels differ by {diff}");
         assert_eq!(rep.columns.len(), 7, "{name}");
-        let got: Vec<&str> = [0, 1, 4].iter().map(|&i| rep.columns[i].unit.as_str()).collect();
+        let got: Vec<&str> = [0, 1, 4]
+            .iter()
+            .map(|&i| rep.columns[i].unit.as_str())
+            .collect();
         assert_eq!(got, units, "{name}");
-        assert!(rep.columns.iter().all(|c| c.unit_from == from), "{name}: {:?}", rep.columns);
+        assert!(
+            rep.columns.iter().all(|c| c.unit_from == from),
+            "{name}: {:?}",
+            rep.columns
+        );
         let chans: Vec<&str> = rep.columns.iter().map(|c| c.channel.as_str()).collect();
         assert_eq!(
             chans,
@@ -254,7 +272,16 @@ fn unusable_units_are_refused_with_file_line_column_and_text() {
         "unknown.csv",
         "time [s],acc_x [furlongs/fortnight],acc_y [g],acc_z [g],gyro_x [dps],gyro_y [dps],gyro_z [dps]",
     );
-    assert!(matches!(e, UnitError::Unknown { quantity: Quantity::Acceleration, .. }), "{e:?}");
+    assert!(
+        matches!(
+            e,
+            UnitError::Unknown {
+                quantity: Quantity::Acceleration,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
     assert!(msg.contains("unknown.csv:1:2"), "{msg}");
     assert!(msg.contains("'furlongs/fortnight'"), "{msg}");
     assert!(msg.contains("accepted: g, m/s^2"), "{msg}");
@@ -264,23 +291,50 @@ fn unusable_units_are_refused_with_file_line_column_and_text() {
         "wrong.csv",
         "time [s],acc_x [g],acc_y [g],acc_z [g],gyro_x [g],gyro_y [g],gyro_z [g]",
     );
-    assert!(matches!(e, UnitError::WrongQuantity { found: Unit::G, .. }), "{e:?}");
-    assert!(msg.contains("wrong.csv:1:5") && msg.contains("is an acceleration"), "{msg}");
+    assert!(
+        matches!(e, UnitError::WrongQuantity { found: Unit::G, .. }),
+        "{e:?}"
+    );
+    assert!(
+        msg.contains("wrong.csv:1:5") && msg.contains("is an acceleration"),
+        "{msg}"
+    );
 
     let (e, msg) = unit_error(
         d,
         "row.csv",
         "time,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z\ns,g,g,g,deg/s,deg/s,turns/min",
     );
-    assert!(matches!(e, UnitError::Unknown { quantity: Quantity::AngularRate, .. }), "{e:?}");
-    assert!(msg.contains("row.csv:2:7") && msg.contains("'turns/min'"), "{msg}");
+    assert!(
+        matches!(
+            e,
+            UnitError::Unknown {
+                quantity: Quantity::AngularRate,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    assert!(
+        msg.contains("row.csv:2:7") && msg.contains("'turns/min'"),
+        "{msg}"
+    );
 
     let (e, msg) = unit_error(
         d,
         "missing.csv",
         "time,acc_x [g],acc_y [g],acc_z [g],gyro_x [dps],gyro_y [dps],gyro_z [dps]",
     );
-    assert!(matches!(e, UnitError::Missing { quantity: Quantity::Time, .. }), "{e:?}");
+    assert!(
+        matches!(
+            e,
+            UnitError::Missing {
+                quantity: Quantity::Time,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
     assert!(msg.contains("missing.csv:1:1"), "{msg}");
 
     let (e, msg) = unit_error(
@@ -288,8 +342,20 @@ fn unusable_units_are_refused_with_file_line_column_and_text() {
         "mixed.csv",
         "time [s],acc_x [g],acc_y [m/s^2],acc_z [g],gyro_x [dps],gyro_y [dps],gyro_z [dps]",
     );
-    assert!(matches!(e, UnitError::Mixed { unit: Unit::MetresPerSecond2, .. }), "{e:?}");
-    assert!(msg.contains("mixed.csv:1:3") && msg.contains("share one unit"), "{msg}");
+    assert!(
+        matches!(
+            e,
+            UnitError::Mixed {
+                unit: Unit::MetresPerSecond2,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    assert!(
+        msg.contains("mixed.csv:1:3") && msg.contains("share one unit"),
+        "{msg}"
+    );
 }
 
 #[test]
@@ -333,7 +399,13 @@ unit = "deg/s"
     let p = file(d, "given.csv", header, ',', [1.0, MPS2, 1.0]);
     let (rec, rep) = read(&p, Some(&map)).unwrap();
     let (reference, _) = read(
-        &file(d, "ref.csv", "time_s,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z", ',', [1.0; 3]),
+        &file(
+            d,
+            "ref.csv",
+            "time_s,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z",
+            ',',
+            [1.0; 3],
+        ),
         None,
     )
     .unwrap();

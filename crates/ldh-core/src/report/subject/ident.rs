@@ -48,11 +48,7 @@ fn trial_line(legs: &[&RecordingRow]) -> String {
 fn recorded_text(legs: &[&RecordingRow]) -> String {
     match legs.iter().find(|r| !r.recorded_at.is_empty()) {
         Some(r) => match r.recorded_at.parse::<crate::io::DateTime>() {
-            Ok(at) => format!(
-                "Recorded {} (from the {} file)",
-                at.to_minute(),
-                r.side
-            ),
+            Ok(at) => format!("Recorded {} (from the {} file)", at.to_minute(), r.side),
             Err(_) => format!("Recorded {} (from the {} file)", r.recorded_at, r.side),
         },
         None => "Recording date and time: not in the files".to_string(),
