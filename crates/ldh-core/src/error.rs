@@ -453,6 +453,10 @@ pub enum LdhError {
     /// (see [`crate::agreement`]).
     #[error(transparent)]
     Agreement(#[from] crate::agreement::AgreementError),
+    /// A unit in a recording's header that ldh cannot use (unknown, of another quantity,
+    /// missing or mixed; [`crate::io::UnitError`]), with its file, line and column.
+    #[error(transparent)]
+    Unit(Box<crate::io::UnitError>),
     /// A nonlinear-dynamics computation is undefined for its input (see [`crate::nonlinear`]).
     #[error(transparent)]
     Nonlinear(#[from] crate::nonlinear::NonlinearError),

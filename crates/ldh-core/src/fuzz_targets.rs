@@ -484,6 +484,7 @@ fn hand_built_recording(
         saturated,
         acc_saturated: Vec::new(),
         gyro_saturated: Vec::new(),
+        recorded_at: None,
     }
 }
 

@@ -200,6 +200,10 @@ pub struct RecordingRow {
     /// The visit of the recording (manifest `visit`), empty when not given.
     #[serde(default)]
     pub visit: String,
+    /// When the recording started, where its file says it (ISO 8601, `Z` when UTC:
+    /// `io::RecordedAt`); empty when the file does not.
+    #[serde(default)]
+    pub recorded_at: String,
 }
 
 impl RecordingRow {
@@ -307,6 +311,7 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
                 steady_excluded_end: None,
                 belt_speed_mps: r.belt_speed_mps,
                 visit: r.visit.clone().unwrap_or_default(),
+                recorded_at: String::new(),
             };
             match leg {
                 Err(e) => {
@@ -321,6 +326,7 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
                     row.warnings = WarningList(w);
                     row.withheld = WithheldList(p.withheld.clone());
                     row.source = l.source.clone();
+                    row.recorded_at = l.read.recorded_at.map_or(String::new(), |r| r.at.iso());
                     row.fs_hz = num(l.read.fs_hz, 4);
                     row.duration_s = num(l.read.duration_s, 3);
                     row.strides_total = Some(p.strides_total);

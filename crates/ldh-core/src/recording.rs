@@ -131,6 +131,10 @@ pub struct Recording {
     /// `true` for samples where a gyroscope channel was clipped; empty as `acc_saturated`.
     #[serde(default)]
     pub gyro_saturated: Vec<bool>,
+    /// When the recording started, where its file says it (`io::RecordedAt`); `None` when
+    /// the file does not, or the recording did not come from a file.
+    #[serde(default)]
+    pub recorded_at: Option<crate::io::RecordedAt>,
 }
 
 impl Recording {
@@ -159,6 +163,7 @@ impl Recording {
             saturated,
             acc_saturated: Vec::new(),
             gyro_saturated: Vec::new(),
+            recorded_at: None,
         };
         rec.validate()?;
         Ok(rec)

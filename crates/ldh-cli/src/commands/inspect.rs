@@ -50,7 +50,12 @@ pub fn run(a: InspectArgs) -> Result<ExitCode> {
     } else {
         for (_, r) in &outcomes {
             match r {
-                Ok(i) => println!("{}", i.line()),
+                Ok(i) => {
+                    println!("{}", i.line());
+                    for c in i.column_lines() {
+                        println!("  {c}");
+                    }
+                }
                 Err(e) => eprintln!("error: {e}"),
             }
         }

@@ -3,6 +3,7 @@
 //! the units converted to g and deg/s and the axes mapped to ldh's frame.
 
 use super::format::{AccUnit, AxisMap, FormatSpec, GyroUnit};
+use super::units::Unit;
 use crate::error::Result;
 use crate::recording::STANDARD_GRAVITY_MPS2;
 
@@ -84,14 +85,9 @@ pub(super) fn to_ldh_frame(
     spec: &FormatSpec,
     notes: &mut Vec<String>,
 ) -> Result<(Axes, Axes)> {
-    let acc_to_g = match spec.acc.unit {
-        AccUnit::G => 1.0,
-        AccUnit::Mps2 => 1.0 / STANDARD_GRAVITY_MPS2,
-    };
-    let gyro_to_dps = match spec.gyro.unit {
-        GyroUnit::Dps => 1.0,
-        GyroUnit::Rps => 180.0 / std::f64::consts::PI,
-    };
+    // The factors `ldh inspect` shows (`units.rs`).
+    let acc_to_g = Unit::from(spec.acc.unit).to_internal();
+    let gyro_to_dps = Unit::from(spec.gyro.unit).to_internal();
     let map = spec.axis_map()?;
     let [c0, c1, c2, c3, c4, c5] = channels;
     // In place: the map is a permutation (checked by `axis_map`), each input taken once.

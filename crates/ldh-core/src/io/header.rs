@@ -10,7 +10,10 @@ use super::columns::{
     all_by_index, describe_missing, resolve, unit_suffixed, Columns, Missing, Unresolved,
 };
 use super::format::{Delimiter, FormatSpec};
+use super::labelled::{labelled, stated_unit, with_units_row, without_units, Labelled};
+use super::start_time::{start_in_comment, DateTime};
 use super::text::{detect_delimiter, split_header, Lines};
+use super::units::Unit;
 use crate::error::{LdhError, Location, Result};
 
 /// The header row found in a file and the format that reads it.
@@ -33,6 +36,23 @@ pub(crate) struct Header {
     pub first_row: Option<(u64, String)>,
     /// Delimiter named by a `sep=` line.
     pub sep_line: Option<u8>,
+    /// Where the units of the columns read come from.
+    pub units_from: UnitsFrom,
+    /// The start date and time a line above the header states (`// Start Time: ...`).
+    pub start: Option<DateTime>,
+}
+
+/// Where the units of the columns read come from (shown per column by `ldh inspect`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum UnitsFrom {
+    /// The format (a built-in or the user's column map).
+    Format,
+    /// The names' suffixes (`acc_x_mps2`, `time_ms`).
+    NameSuffix,
+    /// The header's names (`Acc_X [m/s^2]`, `GyrX/deg/s`).
+    Labels,
+    /// The row of units under the names, at this 1-based line.
+    UnitsRow(u64),
 }
 
 fn is_number(f: &str) -> bool {
@@ -68,12 +88,26 @@ pub(super) fn find_header<R: BufRead>(
     // Detection mode: the closest format for the first header-like row, for the message.
     let mut closest: Option<Closest> = None;
     let mut all_blank = true;
-    while let Some((lineno, line)) = lines.next_line()? {
+    // A row read ahead (a possible units row that was not one) and read next.
+    let mut pending: Option<(u64, String)> = None;
+    let mut start: Option<DateTime> = None;
+    loop {
+        let (lineno, line) = match pending.take() {
+            Some(p) => p,
+            None => match lines.next_line()? {
+                Some((n, l)) => (n, l.to_string()),
+                None => break,
+            },
+        };
+        let line = line.as_str();
         let trimmed = line.trim();
         if trimmed.is_empty() {
             continue;
         }
         all_blank = false;
+        if start.is_none() {
+            start = start_in_comment(trimmed);
+        }
         if let Some(sep) = sep_line_delimiter(trimmed) {
             sep_line = sep;
             notes.push(format!(
@@ -95,7 +129,7 @@ pub(super) fn find_header<R: BufRead>(
         for f in &candidates {
             let row = (lineno, line);
             match match_row(f, row, sep_line, format.is_some(), path, notes)? {
-                RowMatch::Found(header) => return Ok(*header),
+                RowMatch::Found(header) => return Ok(Header { start, ..*header }),
                 RowMatch::No => {}
                 RowMatch::Missing(missing, fields) => {
                     // Only the first header-like row is described; among the formats,
@@ -115,6 +149,12 @@ pub(super) fn find_header<R: BufRead>(
                 }
             }
         }
+        if format.is_none() {
+            match try_labelled(lines, (lineno, line), sep_line, path, notes)? {
+                (Some(header), _) => return Ok(Header { start, ..header }),
+                (None, next) => pending = next,
+            }
+        }
     }
     Err(no_header(
         all_blank,
@@ -124,6 +164,70 @@ pub(super) fn find_header<R: BufRead>(
         path,
         first_row,
     ))
+}
+
+/// What [`try_labelled`] found: the header, or none and the row it read ahead (to be read
+/// next), if any.
+type LabelledRow = (Option<Header>, Option<(u64, String)>);
+
+/// A row no built-in format reads, tried as names carrying units (`labelled.rs`): the header
+/// found, or none and the row read ahead to look for units under the names, if any, to be read
+/// next.
+fn try_labelled<R: BufRead>(
+    lines: &mut Lines<R>,
+    row: (u64, &str),
+    sep_line: Option<u8>,
+    path: &Path,
+    notes: &mut Vec<String>,
+) -> Result<LabelledRow> {
+    let (lineno, line) = row;
+    let delim = sep_line.unwrap_or_else(|| detect_delimiter(line));
+    let fields = split_header(line, delim);
+    if !header_like(&fields) {
+        return Ok((None, None));
+    }
+    let base = &FormatSpec::detected()[0];
+    let header = |(spec, cols): (FormatSpec, Columns), units_from| Header {
+        line: lineno,
+        spec,
+        delim,
+        fields: fields.clone(),
+        cols,
+        has_row: true,
+        first_row: None,
+        sep_line,
+        units_from,
+        start: None,
+    };
+    match labelled(base, &fields, path, lineno)? {
+        Labelled::No => Ok((None, None)),
+        Labelled::Found(b) => {
+            notes.push("units read from the column names".to_string());
+            Ok((Some(header(*b, UnitsFrom::Labels)), None))
+        }
+        Labelled::NeedsUnitsRow(pos) => {
+            let next = loop {
+                match lines.next_line()? {
+                    Some((_, l)) if l.trim().is_empty() => continue,
+                    Some((n, l)) => break Some((n, l.to_string())),
+                    None => break None,
+                }
+            };
+            let Some((n, text)) = next else {
+                return Ok((None, None));
+            };
+            let units = split_header(&text, delim);
+            match with_units_row(base, &fields, &pos, &units, (lineno, n), path)? {
+                Some(found) => {
+                    notes.push(format!(
+                        "units read from the row under the names (line {n})"
+                    ));
+                    Ok((Some(header(found, UnitsFrom::UnitsRow(n))), None))
+                }
+                None => Ok((None, Some((n, text)))),
+            }
+        }
+    }
 }
 
 /// The delimiter a `sep=` line names (`Some(None)`: a `sep=` line naming no delimiter ldh
@@ -188,14 +292,22 @@ fn match_row(
         return Ok(RowMatch::No);
     }
     let attempt = match resolve(f, &fields) {
-        Ok(c) => Ok((f.clone(), c)),
+        Ok(c) => Ok((f.clone(), c, UnitsFrom::Format)),
         Err(e) => match unit_suffixed(f, &fields) {
-            Some(g) => resolve(&g, &fields).map(|c| (g, c)),
-            None => Err(e),
+            Some(g) => resolve(&g, &fields).map(|c| (g, c, UnitsFrom::NameSuffix)),
+            None => match without_units(&fields).filter(|_| format_given) {
+                // A given map keeps its units; its names may be written without the units
+                // the header adds (`Acc_X` for `Acc_X [m/s^2]`).
+                Some(cut) => resolve(f, &cut).map(|c| (f.clone(), c, UnitsFrom::Format)),
+                None => Err(e),
+            },
         },
     };
     match attempt {
-        Ok((spec, cols)) => {
+        Ok((spec, cols, units_from)) => {
+            if units_from == UnitsFrom::Format && format_given {
+                map_units_notes(&spec, &cols, &fields, notes);
+            }
             let has_row = !(by_index && fields.iter().all(|x| is_number(x)));
             let fields = if has_row {
                 fields
@@ -218,6 +330,8 @@ fn match_row(
                 has_row,
                 sep_line,
                 first_row,
+                units_from,
+                start: None,
             })))
         }
         Err(Unresolved::Duplicate { column, positions }) => Err(LdhError::DuplicateColumn {
@@ -238,6 +352,28 @@ fn match_row(
                 });
             }
             Ok(RowMatch::Missing(m, fields))
+        }
+    }
+}
+
+/// Notes for a given map's columns whose header states another unit than the map's: the map
+/// wins (it was given), and the note says so.
+fn map_units_notes(spec: &FormatSpec, cols: &Columns, fields: &[String], notes: &mut Vec<String>) {
+    let mut read: Vec<(usize, Unit)> = Vec::new();
+    if let (Some(t), Some(u)) = (cols.time, Unit::from_time(spec.time.unit)) {
+        read.push((t, u));
+    }
+    read.extend(cols.acc.iter().map(|&i| (i, Unit::from(spec.acc.unit))));
+    read.extend(cols.gyro.iter().map(|&i| (i, Unit::from(spec.gyro.unit))));
+    for (i, unit) in read {
+        if let Some(stated) = fields.get(i).and_then(|c| stated_unit(c)) {
+            if stated != unit {
+                notes.push(format!(
+                    "column '{}' states {stated}, the format '{}' says {unit}: the format's unit is used",
+                    fields[i].trim(),
+                    spec.name
+                ));
+            }
         }
     }
 }

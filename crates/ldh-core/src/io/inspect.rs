@@ -73,6 +73,13 @@ impl Inspection {
         )
     }
 
+    /// One line per column read: the channel it feeds, the unit understood and where it came
+    /// from, the conversion applied (`column 2 'Acc_X [m/s^2]' → acc_x: m/s² (header), ÷ 9.80665
+    /// (m/s² → g)`).
+    pub fn column_lines(&self) -> Vec<String> {
+        self.read.columns.iter().map(|c| c.line()).collect()
+    }
+
     /// As JSON with the keys sorted (the `ldh inspect --json` layout).
     pub fn to_json(&self) -> Result<serde_json::Value> {
         Ok(serde_json::to_value(self)?)

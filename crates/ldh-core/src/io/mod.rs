@@ -4,18 +4,23 @@
 
 mod channels;
 mod checks;
+mod column_info;
 mod columns;
 pub mod format;
 mod header;
 mod inspect;
+mod labelled;
 pub(crate) mod limits;
 mod number;
 pub mod reader;
 mod rows;
+mod start_time;
 mod text;
 mod timebase;
+pub mod units;
 pub mod writer;
 
+pub use column_info::ColumnInfo;
 pub use format::{ColumnRef, FormatSpec, SensorSelect, BUILTIN_FORMATS, DETECTED_FORMATS};
 pub use inspect::{inspect, Inspection, PreprocessSummary};
 pub use limits::{
@@ -26,6 +31,8 @@ pub use reader::{
     flat_channel_warnings, read_recording, read_recording_bytes, read_recording_from, GapPolicy,
     ReadParams, ReadReport, ValidReadParams, DEFAULT_MAX_SAMPLES,
 };
+pub use start_time::{BadDateTime, DateTime, RecordedAt, StartFrom};
+pub use units::{Quantity, Unit, UnitError, UnknownUnit};
 pub use writer::{
     recording_to_csv, remove_stale_temp_files, write_atomic, write_recording, AtomicFile,
     OutputLock, WriteOptions,
@@ -49,4 +56,8 @@ mod tests;
 #[cfg(test)]
 mod tests_columns;
 #[cfg(test)]
+mod tests_start;
+#[cfg(test)]
 mod tests_stream;
+#[cfg(test)]
+mod tests_units;

@@ -34,7 +34,8 @@ use super::channels::{scale_and_flag_clipping, to_ldh_frame};
 use super::format::{Delimiter, FormatSpec};
 use super::limits::{check_headroom, open_limited};
 use super::rows::{parse_rows, Layout};
-use super::text::Lines;
+use super::start_time::{start_in_time, start_in_utc_cells, utc_columns, RecordedAt, StartFrom};
+use super::text::{split_fields, Lines};
 use super::timebase::{
     check_median_rate, check_monotonic, fit_grid, place_on_grid, split_at_gaps, times_in_seconds,
     RateBounds,
@@ -210,6 +211,14 @@ pub struct ReadReport {
     pub samples: usize,
     /// Duration kept, s.
     pub duration_s: f64,
+    /// Each column read: the channel it feeds, the unit understood and the conversion applied
+    /// (`ldh inspect` shows them).
+    #[serde(default)]
+    pub columns: Vec<super::ColumnInfo>,
+    /// When the recording started, where the file says it (a header line, UTC columns, the
+    /// first ISO or Unix timestamp); `None` when it does not.
+    #[serde(default)]
+    pub recorded_at: Option<RecordedAt>,
     /// Assumptions and findings, one sentence each.
     pub notes: Vec<String>,
     /// Problems that did not stop the reading but need the user's attention (data dropped at a
@@ -278,6 +287,7 @@ fn read_from(
     // The header row and the format (column resolution: `columns.rs`).
     let mut found = super::header::find_header(&mut lines, format, path, &mut notes)?;
     let delim_name = header_notes(&found, format.is_none(), &mut notes);
+    let columns = super::column_info::describe_columns(&found);
     let spec = &found.spec;
 
     // Data rows into columns: after the header row and the rows the format skips (counted from
@@ -286,6 +296,25 @@ fn read_from(
     for _ in 0..spec.skip_rows_after_header {
         if first_row.take().is_none() && lines.next_line()?.is_none() {
             break;
+        }
+    }
+    // The start date and time: a header line, else Xsens' UTC columns of the first data row
+    // (read ahead and handed to the row parser), else the time column's first value.
+    let mut recorded_at = found.start.map(|at| RecordedAt {
+        at,
+        from: StartFrom::Header,
+    });
+    if let (None, Some(at)) = (recorded_at, utc_columns(&found.fields)) {
+        if first_row.is_none() {
+            first_row = lines.next_line()?.map(|(n, l)| (n, l.to_string()));
+        }
+        if let Some((_, row)) = &first_row {
+            let mut cells = Vec::new();
+            split_fields(row, found.delim, &mut cells);
+            recorded_at = start_in_utc_cells(&cells, at).map(|at| RecordedAt {
+                at,
+                from: StartFrom::UtcColumns,
+            });
         }
     }
     let layout = Layout {
@@ -304,6 +333,16 @@ fn read_from(
     }
 
     // The time base: seconds, checks, the longest segment between gaps, the grid.
+    if let (None, Some(&t), Some(i)) = (recorded_at, rows.time_raw.first(), found.cols.time) {
+        recorded_at = start_in_time(t, spec.time.unit, &found.fields[i]);
+    }
+    if let Some(r) = recorded_at {
+        notes.push(format!(
+            "recording start {} (from the {})",
+            r.at.iso(),
+            r.from.words()
+        ));
+    }
     let times = times_in_seconds(rows.time_raw, spec, n_rows, &mut notes);
     check_monotonic(&times, &rows.row_lines, found.cols.time, path)?;
     let bounds = RateBounds {
@@ -346,6 +385,7 @@ fn read_from(
         })?;
     rec.t0_s = grid.t0;
     rec.source = Some(path.to_path_buf());
+    rec.recorded_at = recorded_at;
     if params.check_units {
         check_units_plausible(&rec, spec, path)?;
     }
@@ -367,6 +407,8 @@ fn read_from(
         saturated_samples: clipping.samples,
         samples: grid.n_out,
         duration_s,
+        columns,
+        recorded_at,
         notes,
         warnings,
     };

@@ -400,14 +400,7 @@ pub fn parse_iso8601(s: &str) -> Option<f64> {
     {
         return None;
     }
-    // Days from civil (Howard Hinnant's algorithm).
-    let y2 = if m <= 2 { y - 1 } else { y };
-    let era = if y2 >= 0 { y2 } else { y2 - 399 } / 400;
-    let yoe = y2 - era * 400;
-    let mp = (m + 9) % 12;
-    let doy = (153 * mp + 2) / 5 + day - 1;
-    let doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
-    let days = era * 146097 + doe - 719468;
+    let days = super::start_time::days_from_civil(y, m, day);
     Some(days as f64 * 86400.0 + hh * 3600.0 + mm * 60.0 + ss)
 }
 

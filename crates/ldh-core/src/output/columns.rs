@@ -101,6 +101,7 @@ pub const COLUMNS: &[ColumnDoc] = &[
     c(R, "steady_excluded_end", "strides", "Valid strides excluded at the end as not steady (slowing down)."),
     c(R, "belt_speed_mps", "m/s", "Treadmill belt speed as given in the manifest (`belt_speed_mps`); empty when not given."),
     c(R, "visit", "", "The visit of the recording as given in the manifest (`visit`: a label or a date); empty when not given."),
+    c(R, "recorded_at", "", "When the recording started, as its file says it (a header line such as `// Start Time:` or `# start:`, Xsens' `UTC_Year` … `UTC_Second` columns, the first ISO 8601 or Unix timestamp), ISO 8601 to the second, `Z` when UTC; empty when the file does not say (docs/input.md)."),
     c(S, "subject_id", "", "The person."),
     c(S, "side", "", "`left` or `right`."),
     c(S, "model", "", "Attitude model (`fusion` or `acc`)."),

@@ -375,6 +375,8 @@ pub fn memory_report(rec: &Recording) -> ReadReport {
         saturated_samples: rec.saturated_count(),
         samples: rec.len(),
         duration_s: rec.duration_s(),
+        columns: vec![],
+        recorded_at: rec.recorded_at,
         notes: vec![],
         warnings: crate::io::flat_channel_warnings(&rec.acc_g, &rec.gyro_dps, rec.fs_hz, rec.t0_s),
     }

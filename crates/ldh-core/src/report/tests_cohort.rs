@@ -148,3 +148,31 @@ fn the_subject_page_names_trial_visit_setting_belt_speed_and_files() {
     );
     assert!(!html.contains("/home/someone"));
 }
+
+/// The recording's start as the file gave it (`recorded_at`, the left file's here) is on the
+/// page to the minute; without one the page says the files do not give it.
+#[test]
+fn the_subject_page_says_when_the_files_were_recorded_or_that_they_do_not_say() {
+    let p = ReportParams::default().check().unwrap();
+    let page = |at: &str| {
+        let mut recs = trial("P1", "healthy", "t1", "", 1.2);
+        recs[0].recorded_at = at.into();
+        let s = SubjectReport {
+            subject_id: "P1".into(),
+            recordings: recs,
+            ..Default::default()
+        };
+        subject_html(&s, &Reference::published(&p), &p).unwrap()
+    };
+    let html = page("2024-03-05T10:21:33Z");
+    assert!(
+        html.contains("right t1_right.csv. Recorded 2024-03-05 10:21 UTC (from the left file)."),
+        "{html}"
+    );
+    let html = page("");
+    assert!(
+        html.contains("right t1_right.csv. Recording date and time: not in the files."),
+        "{html}"
+    );
+    assert!(!html.contains("not yet parsed"));
+}

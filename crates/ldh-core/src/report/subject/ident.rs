@@ -42,8 +42,26 @@ fn trial_line(legs: &[&RecordingRow]) -> String {
     format!("{}: {}", head.join(", "), files.join(", "))
 }
 
+/// When a trial was recorded, from the first of its files that says it (a header line, UTC
+/// columns or the first timestamp: `recorded_at`): `Recorded 2024-03-05 10:21 UTC (from the
+/// left file)`, or that the files do not say.
+fn recorded_text(legs: &[&RecordingRow]) -> String {
+    match legs.iter().find(|r| !r.recorded_at.is_empty()) {
+        Some(r) => match r.recorded_at.parse::<crate::io::DateTime>() {
+            Ok(at) => format!("Recorded {} (from the {} file)", at.to_minute(), r.side),
+            Err(_) => format!("Recorded {} (from the {} file)", r.recorded_at, r.side),
+        },
+        None => "Recording date and time: not in the files".to_string(),
+    }
+}
+
 /// One line per trial of a page's recordings, in order.
 fn lines(recordings: &[RecordingRow]) -> Vec<String> {
+    trials(recordings).iter().map(|t| trial_line(t)).collect()
+}
+
+/// The recordings grouped by trial, in order.
+fn trials(recordings: &[RecordingRow]) -> Vec<Vec<&RecordingRow>> {
     let mut trials: Vec<Vec<&RecordingRow>> = Vec::new();
     for r in recordings {
         match trials.iter_mut().find(|t| t[0].trial_id == r.trial_id) {
@@ -51,7 +69,7 @@ fn lines(recordings: &[RecordingRow]) -> Vec<String> {
             None => trials.push(vec![r]),
         }
     }
-    trials.iter().map(|t| trial_line(t)).collect()
+    trials
 }
 
 /// The identification of a page with one trial, as sentences that end the header's paragraph
@@ -60,9 +78,7 @@ pub(crate) fn identification_inline(recordings: &[RecordingRow]) -> Markup {
     let l = lines(recordings);
     html! {
         @if l.len() == 1 {
-            " Recorded: " (l[0]) "."
-            // On screen only: the printed page keeps its length (at most 3 A4 pages).
-            span.screen-only { " Recording date and time: not read from the files (not yet parsed)." }
+            " Recorded: " (l[0]) ". " (recorded_text(&trials(recordings)[0])) "."
         }
     }
 }
@@ -72,8 +88,8 @@ pub(crate) fn identification_list(recordings: &[RecordingRow]) -> Markup {
     let l = lines(recordings);
     html! {
         @if l.len() > 1 {
-            p.meta { "Recorded (recording date and time: not read from the files, not yet parsed):" } "\n"
-            ul.meta { @for x in &l { li { (x) } "\n" } } "\n"
+            p.meta { "Recorded:" } "\n"
+            ul.meta { @for (x, t) in l.iter().zip(trials(recordings)) { li { (x) ". " (recorded_text(&t)) "." } "\n" } } "\n"
         }
     }
 }
