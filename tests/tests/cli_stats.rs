@@ -70,7 +70,7 @@ fn stats_on_a_simulated_cohort_finds_the_simulated_effects() {
         assert!(t.len() > 200, "{f}");
     }
     let b = std::fs::read_to_string(out.join("box_SS.svg")).unwrap();
-    assert!(b.contains("stride speed (m/s)") && b.contains("LDHE"));
+    assert!(b.contains("SS (m/s)") && b.contains("LDHE"));
 }
 
 #[test]

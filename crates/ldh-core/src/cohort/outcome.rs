@@ -84,6 +84,7 @@ fn box_plots(cohort: &Cohort) -> Result<Vec<(String, String)>> {
                 ("LDHE".into(), g.ldhe),
                 ("H".into(), g.h),
             ],
+            true,
         )?;
         files.push((format!("box_{}.svg", p.code()), svg));
     }

@@ -11,6 +11,8 @@ pub const CONFUSION_LABELS: [&str; 2] = ["predicted class (count, % of row)", "t
 
 /// The canvas width of [`boxplot_svg`], px (five side by side across the page).
 const BOX_W: u32 = 260;
+/// The canvas height of [`boxplot_svg`] without its legend row, px.
+const BOX_H: u32 = 190;
 /// How wide [`boxplot_svg`] prints.
 pub const BOX_PRINT: PrintWidth = PrintWidth::Fifth;
 /// How wide [`confusion_svg`] prints (three side by side).
@@ -19,8 +21,9 @@ pub const CONFUSION_PRINT: PrintWidth = PrintWidth::Third;
 /// Box plots of one parameter per group (quartiles, whiskers at 1.5 IQR), the groups in the
 /// order given and told apart by colour (the series colours: blue, orange, green); `title`
 /// names the parameter with its unit (the y axis has no other label: five of these stand side
-/// by side).
-pub fn boxplot_svg(title: &str, groups: &[(String, Vec<f64>)]) -> Result<String> {
+/// by side). With `legend` the groups are also named in a row under the chart (for a file that
+/// stands alone, without the report's caption).
+pub fn boxplot_svg(title: &str, groups: &[(String, Vec<f64>)], legend: bool) -> Result<String> {
     let all: Vec<f64> = groups
         .iter()
         .flat_map(|g| g.1.iter().copied())
@@ -40,8 +43,31 @@ pub fn boxplot_svg(title: &str, groups: &[(String, Vec<f64>)]) -> Result<String>
     let mut buf = String::new();
     {
         let f = Fonts::for_canvas(BOX_W, BOX_PRINT);
-        let root = SVGBackend::with_string(&mut buf, (BOX_W, 190)).into_drawing_area();
-        root.fill(&WHITE).map_err(perr)?;
+        let legend_h = if legend { f.label as u32 + 12 } else { 0 };
+        let whole =
+            SVGBackend::with_string(&mut buf, (BOX_W, BOX_H + legend_h)).into_drawing_area();
+        whole.fill(&WHITE).map_err(perr)?;
+        let (root, under) = whole.split_vertically(BOX_H);
+        if legend {
+            let mut x = 6i32;
+            for (k, name) in names.iter().enumerate() {
+                let c = COLORS[k % COLORS.len()];
+                under
+                    .draw(&Rectangle::new(
+                        [(x, 6), (x + f.label / 2, 6 + f.label / 2)],
+                        c.filled(),
+                    ))
+                    .map_err(perr)?;
+                under
+                    .draw(&Text::new(
+                        name.clone(),
+                        (x + f.label * 2 / 3, 2),
+                        ("sans-serif", f.label).into_font(),
+                    ))
+                    .map_err(perr)?;
+                x += f.label + f.label * 6 / 10 * name.chars().count() as i32;
+            }
+        }
         let mut chart = ChartBuilder::on(&root)
             .caption(title, ("sans-serif", f.title))
             .margin(6)

@@ -22,10 +22,17 @@ fn svgs_have_titles_labels_and_shapes() {
             ("LDHH".into(), vec![1.0, 1.1, 1.2, 1.05]),
             ("H".into(), vec![0.9, 1.0, 0.95]),
         ],
+        true,
     )
     .unwrap();
-    assert!(b.contains("stride time (s)") && b.matches("<rect").count() >= 3);
-    assert!(boxplot_svg("x (s)", &[("A".into(), vec![])]).is_err());
+    assert!(b.contains("stride time (s)") && b.contains("LDHH"));
+    let no_names =
+        boxplot_svg("stride time (s)", &[("LDHH".into(), vec![1.0, 1.2])], false).unwrap();
+    assert!(
+        !no_names.contains("LDHH"),
+        "without the legend the groups go by colour"
+    );
+    assert!(boxplot_svg("x (s)", &[("A".into(), vec![])], false).is_err());
 }
 
 /// A missing value is a gap (no point, no segment to it), never a point at 0; values beyond
@@ -151,6 +158,7 @@ fn every_figure_prints_text_of_at_least_8_pt() {
                     ("LDHH".into(), vec![1.0, 2.0, 3.0]),
                     ("H".into(), vec![2.0, 2.5]),
                 ],
+                true,
             )
             .unwrap(),
             BOX_PRINT,

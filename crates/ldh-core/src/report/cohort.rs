@@ -330,6 +330,7 @@ fn boxplots(co: &Cohort, n: &Sections) -> Result<Markup> {
                 ("LDHE".into(), g.ldhe),
                 ("H".into(), g.h),
             ],
+            false,
         )?;
         figs.push(figure(
             &svg,
