@@ -453,6 +453,10 @@ pub enum LdhError {
     /// (see [`crate::agreement`]).
     #[error(transparent)]
     Agreement(#[from] crate::agreement::AgreementError),
+    /// A reference file for `ldh agree` that cannot be used, or a comparison that cannot be made
+    /// (see [`crate::agreement::ReferenceError`]).
+    #[error(transparent)]
+    Reference(Box<crate::agreement::ReferenceError>),
     /// A nonlinear-dynamics computation is undefined for its input (see [`crate::nonlinear`]).
     #[error(transparent)]
     Nonlinear(#[from] crate::nonlinear::NonlinearError),
