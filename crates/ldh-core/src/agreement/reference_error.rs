@@ -93,7 +93,7 @@ pub enum ReferenceError {
         high: f64,
     },
     /// A time earlier than the previous row's of the same subject, trial, side (and event).
-    #[error("{loc}: {what}: {value} s comes after {previous} s (line {previous_line}); list each subject's, side's and event's times in ascending order")]
+    #[error("{loc}: {what}: {value} s is earlier than {previous} s on line {previous_line}; list the times of each subject, trial, side (and event) in ascending order")]
     OutOfOrder {
         /// File, line, column.
         loc: Location,

@@ -120,9 +120,18 @@ impl LdhResults {
     }
 
     /// Read `recordings.json`, `strides.csv` and `events.csv` of an `ldh analyze` output
-    /// folder. Errors: a missing or unreadable table, a row that is not an ldh row, the results
-    /// of several attitude models.
+    /// folder. Errors: a run that did not finish or that another command wrote (its
+    /// `ldh-run.json`), a missing or unreadable table, a row that is not an ldh row, the
+    /// results of several attitude models.
     pub fn read(dir: &Path) -> Result<LdhResults> {
+        if let Some(m) = crate::output::read_marker(dir)? {
+            if !m.complete || m.command != crate::output::RunKind::Analyze {
+                return Err(LdhError::signal(
+                    dir.display().to_string(),
+                    "not a finished ldh analyze run (its ldh-run.json says it did not finish, or another command wrote it); re-run ldh analyze",
+                ));
+            }
+        }
         let recordings = crate::report::read_recordings(dir)?;
         let mut models: Vec<String> = recordings.iter().map(|r| r.model.to_string()).collect();
         models.sort();
