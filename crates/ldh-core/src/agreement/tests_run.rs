@@ -307,6 +307,25 @@ fn agreement_with_the_exported_truth_reproduces_evaluate() {
         .find(|p| p.level == "recording" && p.parameter == "stride_time_s")
         .unwrap();
     assert_eq!(rec.pairs.len(), 2 * truths.len(), "one pair per leg");
+
+    let dir = tempfile::tempdir().unwrap();
+    let files = super::write_report(dir.path(), &rep).unwrap();
+    assert_eq!(files.len(), 3);
+    let csv = std::fs::read_to_string(dir.path().join("agreement.csv")).unwrap();
+    assert_eq!(
+        csv.lines().count(),
+        1 + rep.events.len() + rep.parameters.len()
+    );
+    assert!(
+        csv.lines().any(|l| l.starts_with("events,HS,both,")),
+        "{csv}"
+    );
+    let json: super::AgreementReport =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("agreement.json")).unwrap())
+            .unwrap();
+    assert_eq!(json.strides_matched, rep.strides_matched);
+    let md = std::fs::read_to_string(dir.path().join("agreement.md")).unwrap();
+    assert!(md.contains("| stride | stride_time_s |"), "{md}");
 }
 
 /// A reference clock started 0.75 s before ldh's: the offset is found (within one grid step)
