@@ -377,3 +377,55 @@ fn a_clock_offset_of_0_75_s_is_found_and_removed() {
     let given = agree_with(&ldh, &ev_s, &st_s, OffsetMode::Fixed(-0.75));
     assert_eq!(matches(&steady), matches(&given));
 }
+
+/// A per-stride reference keyed by ldh's stride number pairs each row with that stride; the
+/// per-recording reference is the mean of the leg's reference strides.
+#[test]
+fn strides_by_number_pair_with_that_stride_and_recordings_use_the_mean_of_a_leg() {
+    let (results, _) = simulated();
+    let ldh = LdhResults::from_results(&results);
+    let mut text = String::from("subject_id,side,stride,stride_time_s\n");
+    let mut shifts = Vec::new();
+    for s in ldh.strides.iter().filter(|s| s.values[0].is_finite()) {
+        let shift = 0.001 * (s.stride_index % 5) as f64;
+        shifts.push(shift);
+        let v = s.values[0] - shift;
+        text.push_str(&format!(
+            "{},{},{},{v}\n",
+            s.subject_id, s.side, s.stride_index
+        ));
+    }
+    let p = ValidAgreementParams::default();
+    let mut reference = Reference::default();
+    parse_reference(&text, Path::new("st.csv"), &ldh, &p, &mut reference).unwrap();
+    let rep = run(&ldh, &reference, &p, OffsetMode::None).unwrap();
+    assert_eq!(rep.strides_matched, shifts.len());
+    let st = rep
+        .parameters
+        .iter()
+        .find(|x| x.level == "stride" && x.parameter == "stride_time_s")
+        .unwrap();
+    let a = st.agreement.as_ref().unwrap();
+    assert_eq!(a.n_pairs, shifts.len());
+    let mean_shift = shifts.iter().sum::<f64>() / shifts.len() as f64;
+    assert!(
+        (a.limits.bias - mean_shift).abs() < 1e-12,
+        "{}",
+        a.limits.bias
+    );
+    let rec = rep
+        .parameters
+        .iter()
+        .find(|x| x.level == "recording" && x.parameter == "stride_time_s")
+        .unwrap();
+    for pair in &rec.pairs {
+        let leg: Vec<f64> = reference
+            .strides
+            .iter()
+            .filter(|v| v.subject_id == pair.subject_id && v.side.as_str() == pair.side)
+            .map(|v| v.values[0].1)
+            .collect();
+        let mean = leg.iter().sum::<f64>() / leg.len() as f64;
+        assert!((pair.reference.unwrap() - mean).abs() < 1e-12, "{pair:?}");
+    }
+}
