@@ -60,6 +60,18 @@ pub enum Command {
     /// truth.json per subject) is analysed with both attitude models and the event and
     /// stride accuracy is printed as a Markdown table.
     Evaluate(EvaluateArgs),
+    /// Agreement of an `ldh analyze` run with a laboratory's reference system (force plates,
+    /// an instrumented walkway, motion capture).
+    ///
+    /// RESULTS is an `ldh analyze` output folder; each --reference a long CSV of events
+    /// (subject_id[,trial_id],side,event,time_s) or of parameters (subject_id[,trial_id],side
+    /// and parameter columns such as stride_time_s, per stride with time_s or stride, else per
+    /// recording); docs/agreement.md. Events are matched one-to-one within --tolerance-s; each
+    /// parameter gets bias, limits of agreement, MAE, ICC and Pearson's r per stride and per
+    /// recording. Writes agreement.csv, agreement.json and agreement.md to --out and prints the
+    /// Markdown. A bad reference file is refused, naming file, line and column, before anything
+    /// is written (exit 2).
+    Agree(AgreeArgs),
     /// Cohort statistics like the paper's Tables 3 and 4, with radar charts and box plots.
     ///
     /// Analyses INPUT (a manifest or cohort folder with groups; see `analyze`) — or reads the
@@ -319,6 +331,44 @@ pub struct EvaluateArgs {
     /// Worker threads (default: all cores).
     #[arg(short, long)]
     pub jobs: Option<usize>,
+}
+
+#[derive(Debug, Args)]
+pub struct AgreeArgs {
+    /// The output folder of `ldh analyze` (recordings.json, strides.csv, events.csv).
+    pub results: PathBuf,
+    /// A reference file (CSV); repeat for events and parameters in separate files.
+    #[arg(long, required = true)]
+    pub reference: Vec<PathBuf>,
+    /// Output folder (created if missing).
+    #[arg(short, long, default_value = "ldh-agree")]
+    pub out: PathBuf,
+    /// Largest |ldh − reference| time of two matched events, s [default: 0.2, or --params].
+    #[arg(long)]
+    pub tolerance_s: Option<f64>,
+    /// Clock offset ldh − reference, s, for the trials whose reference gives no offset_s; or
+    /// `estimate` to estimate it per trial from the events (refused when ambiguous). Default:
+    /// the clocks agree.
+    #[arg(long, value_parser = parse_offset)]
+    pub offset_s: Option<ldh_core::agreement::OffsetMode>,
+    /// Agreement parameters as TOML (loa_sd_multiplier, confidence_level, tolerance_s,
+    /// max_clock_offset_s, clock_offset_step_s).
+    #[arg(long)]
+    pub params: Option<PathBuf>,
+}
+
+/// `--offset-s`: a number of seconds or `estimate`.
+fn parse_offset(s: &str) -> Result<ldh_core::agreement::OffsetMode, String> {
+    use ldh_core::agreement::OffsetMode;
+    if s.trim().eq_ignore_ascii_case("estimate") {
+        return Ok(OffsetMode::Estimate);
+    }
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(OffsetMode::Fixed(v)),
+        _ => Err(format!(
+            "'{s}' is neither a number of seconds nor 'estimate'"
+        )),
+    }
 }
 
 #[derive(Debug, Args)]

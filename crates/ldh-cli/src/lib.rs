@@ -38,6 +38,7 @@ where
         Command::Analyze(a) => commands::analyze::run(a),
         Command::Report(a) => commands::report::run(a),
         Command::Evaluate(a) => commands::evaluate::run(a),
+        Command::Agree(a) => commands::agree::run(a),
         Command::Stats(a) => commands::stats::run(a),
         Command::Train(a) => commands::train::run(a),
         Command::Predict(a) => commands::predict::run(a),

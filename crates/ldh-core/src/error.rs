@@ -457,6 +457,10 @@ pub enum LdhError {
     /// missing or mixed; [`crate::io::UnitError`]), with its file, line and column.
     #[error(transparent)]
     Unit(Box<crate::io::UnitError>),
+    /// A reference file for `ldh agree` that cannot be used, or a comparison that cannot be made
+    /// (see [`crate::agreement::ReferenceError`]).
+    #[error(transparent)]
+    Reference(Box<crate::agreement::ReferenceError>),
     /// A nonlinear-dynamics computation is undefined for its input (see [`crate::nonlinear`]).
     #[error(transparent)]
     Nonlinear(#[from] crate::nonlinear::NonlinearError),

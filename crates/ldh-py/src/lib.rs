@@ -6,6 +6,7 @@
 //! * [`stats`]: the scipy.stats look-alikes;
 //! * [`nonlinear`]: the nolds look-alikes (Lyapunov exponents);
 //! * [`ml`]: cross-validation, training, prediction;
+//! * [`agreement`]: `ldh.agree`, an analysis against a laboratory's reference files;
 //! * [`errors`]: core errors as the `ldh` exception family; [`convert`]: values in and out.
 //!
 //! Conversion only: numpy arrays and typed records in and out (never JSON text for results),
@@ -16,6 +17,7 @@
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+mod agreement;
 mod convert;
 mod errors;
 mod io;
@@ -29,6 +31,7 @@ mod stats;
 #[pyfunction]
 fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let d = PyDict::new(py);
+    agreement::defaults(py, &d)?;
     io::defaults(py, &d)?;
     nonlinear::defaults(py, &d)?;
     pipeline::defaults(py, &d)?;
@@ -62,6 +65,7 @@ fn _ldh(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(ml::cross_validate, m)?)?;
     m.add_function(wrap_pyfunction!(ml::train, m)?)?;
     m.add_function(wrap_pyfunction!(ml::predict, m)?)?;
+    m.add_function(wrap_pyfunction!(agreement::agree, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -45,6 +45,7 @@ WRAPPED = {
     ldh.simulate_cohort: "simulate_cohort",
     ldh.lyap_r: "lyap_r",
     ldh.lyap_e: "lyap_e",
+    ldh.agree: "agree",
 }
 
 

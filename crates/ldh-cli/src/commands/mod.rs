@@ -25,6 +25,7 @@ macro_rules! note {
 }
 pub(crate) use note;
 
+pub mod agree;
 pub mod analyze;
 pub mod columns;
 pub mod completions;

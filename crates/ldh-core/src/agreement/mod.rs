@@ -14,6 +14,10 @@
 //!   ([`events`]); [`estimate_clock_offset`] finds the offset between the two clocks
 //!   ([`offset`]).
 //!
+//! - [`run`]: `ldh agree` — an `ldh analyze` run ([`LdhResults`]) against a laboratory's
+//!   reference files ([`read_reference`]): clock offsets, event matching, per-stride and
+//!   per-recording agreement ([`AgreementReport`], written by [`write_report`]).
+//!
 //! Every formula, the pingouin / scipy function it reproduces, and the decisions where they are
 //! silent: `docs/agreement.md`, "Statistics". The goldens (`data-fixtures/golden/agreement/`,
 //! written by `data-fixtures/scripts/gen_agreement_golden.py` with pingouin 0.7.0, scipy 1.17.1)
@@ -30,18 +34,30 @@ pub mod icc;
 pub mod offset;
 mod paired;
 mod params;
+pub mod reference;
+mod reference_error;
 pub mod reliability;
+pub mod results;
+pub mod run;
+pub mod write;
 
 #[cfg(test)]
 mod tests;
 #[cfg(test)]
 mod tests_events;
+#[cfg(test)]
+mod tests_run;
 
 pub use bland_altman::{limits_of_agreement, linregress, LimitsOfAgreement, LinearFit};
 pub use error::AgreementError;
 pub use events::{match_events, match_groups, summarize, EventMatch, MatchSummary};
 pub use icc::{icc, Icc, IccResult};
-pub use offset::{estimate_clock_offset, ClockOffset, OffsetCandidate};
+pub use offset::{estimate_clock_offset, polish_offset, ClockOffset, OffsetCandidate};
 pub use paired::{agreement, ParameterAgreement, MIN_PAIRS};
 pub use params::{AgreementParams, ValidAgreementParams, MAX_OFFSET_GRID_POINTS};
+pub use reference::{read_reference, Reference};
+pub use reference_error::ReferenceError;
 pub use reliability::{test_retest, Reliability, VarianceComponents, MIN_SUBJECTS};
+pub use results::LdhResults;
+pub use run::{run, AgreementReport, OffsetMode};
+pub use write::write_report;

@@ -13,6 +13,7 @@ from ._errors import (
     LdhParamError,
     LdhWarning,
 )
+from ._agreement import agree
 from ._io import butter_filtfilt, preprocess, read_recording, simulate_cohort, write_demo
 from ._ml import cross_validate, predict, train
 from ._nonlinear import lyap_e, lyap_r
@@ -35,6 +36,7 @@ from ._stats import (
 
 __version__ = _ldh.__version__
 __all__ = [
+    "agree",
     "LdhError",
     "LdhDataError",
     "LdhParamError",

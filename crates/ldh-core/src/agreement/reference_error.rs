@@ -1,0 +1,180 @@
+//! Why a reference file, or its use against an `ldh analyze` output folder, is refused.
+
+use crate::error::{clip, Location};
+
+/// A reference file (`ldh agree --reference`) that cannot be used, or a comparison that cannot
+/// be made. Each case names the file and, where there is one, the line (and column): what
+/// `docs/agreement.md`, "Command line and Python", lists. [`crate::LdhError::Reference`] wraps
+/// it (boxed).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ReferenceError {
+    /// The file has no data rows.
+    #[error("{loc}: the reference file has no data rows")]
+    Empty {
+        /// The file.
+        loc: Location,
+    },
+    /// A column the file needs is missing from its header.
+    #[error("{loc}: no column '{column}' ({why}); the header has: {header}")]
+    MissingColumn {
+        /// The file (line 1).
+        loc: Location,
+        /// The missing column.
+        column: &'static str,
+        /// Why it is needed.
+        why: &'static str,
+        /// The header as read.
+        header: String,
+    },
+    /// A header column that is neither a key nor a known parameter.
+    #[error("{loc}: unknown column '{}'; known: {known}", clip(column))]
+    UnknownColumn {
+        /// The file, line 1, the column.
+        loc: Location,
+        /// The column name.
+        column: String,
+        /// The columns a reference file may have.
+        known: String,
+    },
+    /// A cell that is not what its column holds (an unknown side or event, not a number).
+    #[error("{loc}: column '{column}': '{}' is not {expected}", clip(value))]
+    BadValue {
+        /// File, line, column.
+        loc: Location,
+        /// The column.
+        column: &'static str,
+        /// The cell.
+        value: String,
+        /// What the column holds.
+        expected: &'static str,
+    },
+    /// A subject (or subject and trial) the results do not have.
+    #[error(
+        "{loc}: subject '{}'{} is not in the results ({known})",
+        clip(subject_id),
+        trial_note(trial_id)
+    )]
+    UnknownSubject {
+        /// File, line, column.
+        loc: Location,
+        /// The subject.
+        subject_id: String,
+        /// The trial, empty when the file has none.
+        trial_id: String,
+        /// What the results have (a few ids).
+        known: String,
+    },
+    /// The subject has several trials in the results and the row does not say which.
+    #[error(
+        "{loc}: subject '{}' has several trials in the results ({trials}): add a trial_id column",
+        clip(subject_id)
+    )]
+    AmbiguousTrial {
+        /// File and line.
+        loc: Location,
+        /// The subject.
+        subject_id: String,
+        /// Its trials in the results.
+        trials: String,
+    },
+    /// A time outside the recording (its duration, widened by the largest clock offset).
+    #[error("{loc}: column '{column}': {value} s is outside the recording, [{low} s, {high} s] (its duration ± max_clock_offset_s)")]
+    OutOfRange {
+        /// File, line, column.
+        loc: Location,
+        /// The column.
+        column: &'static str,
+        /// The time, s.
+        value: f64,
+        /// Lowest allowed, s.
+        low: f64,
+        /// Highest allowed, s.
+        high: f64,
+    },
+    /// A time earlier than the previous row's of the same subject, trial, side (and event).
+    #[error("{loc}: {what}: {value} s is earlier than {previous} s on line {previous_line}; list the times of each subject, trial, side (and event) in ascending order")]
+    OutOfOrder {
+        /// File, line, column.
+        loc: Location,
+        /// The series, e.g. `S01 left HS`.
+        what: String,
+        /// The time, s.
+        value: f64,
+        /// The previous time, s.
+        previous: f64,
+        /// The previous row's line.
+        previous_line: u64,
+    },
+    /// The same row twice (same time, or same stride, or the same recording).
+    #[error("{loc}: duplicate row: {what} was already given on line {first_line}")]
+    Duplicate {
+        /// File and line.
+        loc: Location,
+        /// What is duplicated.
+        what: String,
+        /// The first row's line.
+        first_line: u64,
+    },
+    /// Two rows of one trial give different clock offsets.
+    #[error("{loc}: offset_s {value} s differs from {first} s given for the same trial on line {first_line}")]
+    OffsetConflict {
+        /// File, line, column.
+        loc: Location,
+        /// The offset, s.
+        value: f64,
+        /// The first offset, s.
+        first: f64,
+        /// Its line.
+        first_line: u64,
+    },
+    /// The clock offset of a trial could not be estimated, or is ambiguous.
+    #[error(
+        "clock offset of subject '{}'{}: {reason}; give it with --offset-s or an offset_s column",
+        clip(subject_id),
+        trial_note(trial_id)
+    )]
+    Offset {
+        /// The subject.
+        subject_id: String,
+        /// The trial.
+        trial_id: String,
+        /// Why.
+        reason: String,
+    },
+    /// The output folder holds several attitude models' results.
+    #[error("{loc}: the results hold several attitude models ({models}); agree one model's results at a time")]
+    SeveralModels {
+        /// The table.
+        loc: Location,
+        /// The models found.
+        models: String,
+    },
+    /// The file is not a well-formed CSV table (e.g. a row with more or fewer cells than the
+    /// header).
+    #[error("{loc}: not a CSV table: {}", clip(reason))]
+    Unreadable {
+        /// File and line.
+        loc: Location,
+        /// The CSV reader's message.
+        reason: String,
+    },
+    /// A row of an output table of `ldh analyze` that cannot be read.
+    #[error("{loc}: not an ldh {table} row: {}", clip(reason))]
+    ResultsRow {
+        /// File and line.
+        loc: Location,
+        /// The table.
+        table: &'static str,
+        /// What is wrong.
+        reason: String,
+    },
+}
+
+fn trial_note(trial_id: &str) -> String {
+    if trial_id.is_empty() {
+        String::new()
+    } else {
+        format!(", trial '{}'", clip(trial_id))
+    }
+}

@@ -1,0 +1,277 @@
+//! What `ldh agree` compares with the reference: the events, strides and per-recording values
+//! of one `ldh analyze` run, read back from its output folder ([`LdhResults::read`]) or taken
+//! from results in memory ([`LdhResults::from_results`], unrounded).
+
+use std::path::Path;
+
+use crate::error::{LdhError, Location, Result};
+use crate::output::{Parameter, RecordingRow, StrideRow};
+use crate::pipeline::{EventKind, SubjectResult};
+use crate::Side;
+
+use super::ReferenceError;
+
+/// The parameters a stride has (columns of `strides.csv`), in this order.
+pub const STRIDE_PARAMETERS: [Parameter; 7] = [
+    Parameter::StrideTime,
+    Parameter::StanceRatio,
+    Parameter::StrideLength,
+    Parameter::Speed,
+    Parameter::Wqk,
+    Parameter::Pbi,
+    Parameter::Bdk,
+];
+
+/// One gait event (ldh's, or a reference's on its own clock).
+#[derive(Debug, Clone, PartialEq)]
+pub struct GaitEvent {
+    /// Subject.
+    pub subject_id: String,
+    /// Trial (empty without one).
+    pub trial_id: String,
+    /// Leg.
+    pub side: Side,
+    /// HS or TO.
+    pub event: EventKind,
+    /// Time, s (ldh's: from the recordings' first sample).
+    pub time_s: f64,
+}
+
+/// One stride ldh segmented (valid or not).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LdhStride {
+    /// Subject.
+    pub subject_id: String,
+    /// Trial (empty without one).
+    pub trial_id: String,
+    /// Leg.
+    pub side: Side,
+    /// Stride number within the leg.
+    pub stride_index: usize,
+    /// Heel strike starting the stride, s (NaN when not known).
+    pub hs_time_s: f64,
+    /// Heel strike ending it, s (NaN when not known).
+    pub next_hs_time_s: f64,
+    /// Used for the per-side means.
+    pub valid: bool,
+    /// Values in the order of [`STRIDE_PARAMETERS`] (NaN: withheld).
+    pub values: [f64; 7],
+}
+
+/// One `ldh analyze` run's results as `ldh agree` uses them.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct LdhResults {
+    /// Bilateral events.
+    pub events: Vec<GaitEvent>,
+    /// Strides.
+    pub strides: Vec<LdhStride>,
+    /// Per-recording rows (one per subject, trial and side).
+    pub recordings: Vec<RecordingRow>,
+}
+
+fn opt(x: Option<f64>) -> f64 {
+    x.unwrap_or(f64::NAN)
+}
+
+impl LdhResults {
+    /// Results in memory, with their times and per-stride values unrounded (the tables round
+    /// times to 0.1 ms); per-recording values as `recordings.csv` holds them.
+    pub fn from_results(results: &[SubjectResult]) -> LdhResults {
+        let mut out = LdhResults {
+            recordings: crate::output::recording_rows(results),
+            ..Default::default()
+        };
+        for r in results {
+            let trial_id = r.trial_id.clone().unwrap_or_default();
+            for e in r.bilateral_events() {
+                out.events.push(GaitEvent {
+                    subject_id: r.subject_id.clone(),
+                    trial_id: trial_id.clone(),
+                    side: e.side,
+                    event: e.event,
+                    time_s: e.time_s,
+                });
+            }
+            for (side, leg) in r.legs() {
+                let Ok(leg) = leg else { continue };
+                for s in &leg.strides {
+                    out.strides.push(LdhStride {
+                        subject_id: r.subject_id.clone(),
+                        trial_id: trial_id.clone(),
+                        side,
+                        stride_index: s.stride_index,
+                        hs_time_s: s.hs_time_s,
+                        next_hs_time_s: s.next_hs_time_s,
+                        valid: s.valid,
+                        values: [
+                            s.stride_time_s,
+                            s.stance_ratio,
+                            s.stride_length_m,
+                            s.speed_mps,
+                            s.wqk_deg,
+                            s.pbi_deg,
+                            s.bdk_deg,
+                        ],
+                    });
+                }
+            }
+        }
+        out
+    }
+
+    /// Read `recordings.json`, `strides.csv` and `events.csv` of an `ldh analyze` output
+    /// folder. Errors: a run that did not finish or that another command wrote (its
+    /// `ldh-run.json`), a missing or unreadable table, a row that is not an ldh row, the
+    /// results of several attitude models.
+    pub fn read(dir: &Path) -> Result<LdhResults> {
+        if let Some(m) = crate::output::read_marker(dir)? {
+            if !m.complete || m.command != crate::output::RunKind::Analyze {
+                return Err(LdhError::signal(
+                    dir.display().to_string(),
+                    "not a finished ldh analyze run (its ldh-run.json says it did not finish, or another command wrote it); re-run ldh analyze",
+                ));
+            }
+        }
+        let recordings = crate::report::read_recordings(dir)?;
+        let mut models: Vec<String> = recordings.iter().map(|r| r.model.to_string()).collect();
+        models.sort();
+        models.dedup();
+        if models.len() > 1 {
+            return Err(boxed(ReferenceError::SeveralModels {
+                loc: Location::file(dir.join("recordings.json")),
+                models: models.join(", "),
+            }));
+        }
+        let strides = read_rows::<StrideRow>(&dir.join("strides.csv"), "strides.csv")?
+            .into_iter()
+            .map(|(line, r)| stride_from_row(r, &dir.join("strides.csv"), line))
+            .collect::<Result<Vec<_>>>()?;
+        let events = read_rows::<crate::output::EventRow>(&dir.join("events.csv"), "events.csv")?
+            .into_iter()
+            .map(|(line, r)| event_from_row(r, &dir.join("events.csv"), line))
+            .collect::<Result<Vec<_>>>()?;
+        Ok(LdhResults {
+            events,
+            strides,
+            recordings,
+        })
+    }
+
+    /// Duration of a trial, s: the longest of its legs' (`None` when no leg has one).
+    pub fn duration_s(&self, subject_id: &str, trial_id: &str) -> Option<f64> {
+        self.recordings
+            .iter()
+            .filter(|r| r.subject_id == subject_id && r.trial_id == trial_id)
+            .filter_map(|r| r.duration_s)
+            .reduce(f64::max)
+    }
+
+    /// The trials of a subject in the results, in order of first appearance.
+    pub fn trials_of(&self, subject_id: &str) -> Vec<&str> {
+        let mut v: Vec<&str> = Vec::new();
+        for r in self
+            .recordings
+            .iter()
+            .filter(|r| r.subject_id == subject_id)
+        {
+            if !v.contains(&r.trial_id.as_str()) {
+                v.push(&r.trial_id);
+            }
+        }
+        v
+    }
+
+    /// Every (subject, trial) of the results, in order of first appearance.
+    pub fn trials(&self) -> Vec<(&str, &str)> {
+        let mut v: Vec<(&str, &str)> = Vec::new();
+        for r in &self.recordings {
+            let k = (r.subject_id.as_str(), r.trial_id.as_str());
+            if !v.contains(&k) {
+                v.push(k);
+            }
+        }
+        v
+    }
+}
+
+/// A [`ReferenceError`] as an [`LdhError`].
+pub(crate) fn boxed(e: ReferenceError) -> LdhError {
+    LdhError::Reference(Box::new(e))
+}
+
+/// The rows of an output table with their line numbers.
+fn read_rows<T: serde::de::DeserializeOwned>(
+    path: &Path,
+    table: &'static str,
+) -> Result<Vec<(u64, T)>> {
+    let text = crate::io::read_text_limited(path, crate::io::MAX_TABLE_MB, "an output table")?;
+    let mut rdr = csv::Reader::from_reader(text.as_bytes());
+    let headers = rdr.headers()?.clone();
+    let mut out = Vec::new();
+    for rec in rdr.records() {
+        let rec = rec?;
+        let line = rec.position().map_or(0, |p| p.line());
+        let row = rec.deserialize(Some(&headers)).map_err(|e| {
+            boxed(ReferenceError::ResultsRow {
+                loc: Location::line(path, line),
+                table,
+                reason: e.to_string(),
+            })
+        })?;
+        out.push((line, row));
+    }
+    Ok(out)
+}
+
+fn known_side(
+    side: &crate::output::Label<Side>,
+    path: &Path,
+    line: u64,
+    table: &'static str,
+) -> Result<Side> {
+    side.known().ok_or_else(|| {
+        boxed(ReferenceError::ResultsRow {
+            loc: Location::line(path, line),
+            table,
+            reason: format!("side '{side}' is not left or right"),
+        })
+    })
+}
+
+fn stride_from_row(r: StrideRow, path: &Path, line: u64) -> Result<LdhStride> {
+    Ok(LdhStride {
+        side: known_side(&r.side, path, line, "strides.csv")?,
+        stride_index: r.stride_index,
+        hs_time_s: opt(r.hs_time_s),
+        next_hs_time_s: opt(r.next_hs_time_s),
+        valid: r.valid,
+        values: [
+            opt(r.stride_time_s),
+            opt(r.stance_ratio),
+            opt(r.stride_length_m),
+            opt(r.speed_mps),
+            opt(r.wqk_deg),
+            opt(r.pbi_deg),
+            opt(r.bdk_deg),
+        ],
+        subject_id: r.subject_id,
+        trial_id: r.trial_id,
+    })
+}
+
+fn event_from_row(r: crate::output::EventRow, path: &Path, line: u64) -> Result<GaitEvent> {
+    let event = r.event.parse::<EventKind>().map_err(|_| {
+        boxed(ReferenceError::ResultsRow {
+            loc: Location::line(path, line),
+            table: "events.csv",
+            reason: format!("event '{}' is not HS or TO", r.event),
+        })
+    })?;
+    Ok(GaitEvent {
+        side: known_side(&r.side, path, line, "events.csv")?,
+        event,
+        time_s: r.time_s,
+        subject_id: r.subject_id,
+        trial_id: r.trial_id,
+    })
+}

@@ -1,0 +1,585 @@
+//! `ldh agree`: one `ldh analyze` run against a laboratory's reference files
+//! (`docs/agreement.md`, "Command line and Python").
+//!
+//! 1. **Clock offset** per trial (ldh clock − reference clock): the reference file's
+//!    `offset_s`, else [`OffsetMode`] (none, one given for all trials, or estimated by
+//!    [`super::estimate_clock_offset`] from the trial's event trains — or, without reference
+//!    events, its stride start times; an ambiguous estimate is refused — and polished by
+//!    [`super::polish_offset`]). Subtracted from ldh's
+//!    times before anything is matched.
+//! 2. **Events** per subject, trial, side and event kind: ldh's events inside the span the
+//!    reference covers (its first event − tolerance to its last + tolerance: a walkway sees a
+//!    few strides of a long walk) matched one-to-one ([`super::match_events`]); rates and
+//!    timing errors per event kind and side, and pooled over both sides.
+//! 3. **Strides**: a reference stride with `time_s` is matched to the ldh stride whose first
+//!    heel strike is its mutual nearest within the tolerance (and, when the reference gives
+//!    `end_time_s`, whose ending heel strike lies within the tolerance of it); with only a
+//!    `stride` number, to ldh's stride of that number. ldh's value of a matched stride is used
+//!    for the event-timing parameters (`stride_time_s`, `stance_ratio`) whether or not the
+//!    stride is valid, and for the others only when it is valid (an invalid stride's length or
+//!    angles are not reported) — the rule of `ldh evaluate`.
+//! 4. **Recordings** (one leg of one trial): the reference's per-recording row, else the mean
+//!    of its strides of that leg, against `recordings.csv`.
+//! 5. Each parameter's [`super::agreement`] per stride and per recording; one that cannot be
+//!    computed (too few pairs, constant values) is reported with the reason.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::Result;
+use crate::output::Parameter;
+use crate::pipeline::EventKind;
+use crate::Side;
+
+use super::reference::{Reference, ReferenceValues};
+use super::results::{boxed, LdhResults, LdhStride, STRIDE_PARAMETERS};
+use super::{
+    agreement, estimate_clock_offset, match_events, polish_offset, summarize, AgreementParams,
+    ClockOffset, EventMatch, MatchSummary, ParameterAgreement, ReferenceError,
+    ValidAgreementParams,
+};
+
+/// The clock offset of the trials whose reference file gives none.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OffsetMode {
+    /// The clocks agree (offset 0).
+    #[default]
+    None,
+    /// This offset, s (ldh clock − reference clock), for every trial.
+    Fixed(f64),
+    /// Estimated per trial from the events ([`super::estimate_clock_offset`]); note that an
+    /// estimated offset absorbs a constant bias of the event times.
+    Estimate,
+}
+
+/// The clock offset used for one trial.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TrialOffset {
+    /// Subject.
+    pub subject_id: String,
+    /// Trial (empty without one).
+    pub trial_id: String,
+    /// ldh clock − reference clock, s (subtracted from ldh's times).
+    pub offset_s: f64,
+    /// `file` (an `offset_s` column), `given` (`--offset-s X`), `estimated` or `none`.
+    pub source: String,
+    /// The estimate, when estimated (`offset_s` is its best offset polished).
+    pub estimate: Option<ClockOffset>,
+}
+
+/// Detection rates and timing errors of one event kind on one side (or both).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EventAgreement {
+    /// `HS` or `TO`.
+    pub event: String,
+    /// `left`, `right` or `both`.
+    pub side: String,
+    /// Rates and errors (ldh − reference, s).
+    pub summary: MatchSummary,
+}
+
+/// An event without a partner.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct UnmatchedEvent {
+    /// `ldh` (a false positive) or `reference` (a missed event).
+    pub system: String,
+    /// Subject.
+    pub subject_id: String,
+    /// Trial.
+    pub trial_id: String,
+    /// Leg.
+    pub side: String,
+    /// `HS` or `TO`.
+    pub event: String,
+    /// Time on the reference clock, s (ldh's with the offset removed).
+    pub time_s: f64,
+}
+
+/// One pair of values (NaN: missing on that side, dropped from the statistics).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PairedValue {
+    /// Subject.
+    pub subject_id: String,
+    /// Trial.
+    pub trial_id: String,
+    /// Leg.
+    pub side: String,
+    /// ldh's stride number (per-stride pairs).
+    pub stride_index: Option<usize>,
+    /// ldh's value (`None`: withheld or missing).
+    pub ldh: Option<f64>,
+    /// The reference value (`None`: empty cell).
+    pub reference: Option<f64>,
+}
+
+/// The agreement of one parameter at one level.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ParameterResult {
+    /// `stride` or `recording`.
+    pub level: String,
+    /// The column, e.g. `stride_time_s`.
+    pub parameter: String,
+    /// The statistics, when they could be computed.
+    pub agreement: Option<ParameterAgreement>,
+    /// Why not, otherwise.
+    pub not_computed: Option<String>,
+    /// The pairs, in the order of the results.
+    pub pairs: Vec<PairedValue>,
+}
+
+/// Everything `ldh agree` found (what `agreement.json` holds).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AgreementReport {
+    /// The parameters used.
+    pub params: AgreementParams,
+    /// The reference files.
+    pub reference_files: Vec<String>,
+    /// The clock offset of each trial the reference covers.
+    pub offsets: Vec<TrialOffset>,
+    /// Per event kind: left, right, both.
+    pub events: Vec<EventAgreement>,
+    /// Unmatched events (ldh's only inside the span the reference covers).
+    pub unmatched_events: Vec<UnmatchedEvent>,
+    /// Reference strides (with a time or a number).
+    pub reference_strides: usize,
+    /// Of those, matched to an ldh stride.
+    pub strides_matched: usize,
+    /// Per parameter: stride level first, then recording level.
+    pub parameters: Vec<ParameterResult>,
+}
+
+type Trial = (String, String);
+
+/// Compare `results` with `reference` (see the module docs).
+///
+/// Errors: a trial's offset that cannot be estimated or is ambiguous
+/// ([`ReferenceError::Offset`]); an event train that is not finite.
+pub fn run(
+    results: &LdhResults,
+    reference: &Reference,
+    params: &ValidAgreementParams,
+    mode: OffsetMode,
+) -> Result<AgreementReport> {
+    let trials = reference_trials(results, reference);
+    let offsets = trials
+        .iter()
+        .map(|t| trial_offset(results, reference, t, params, mode))
+        .collect::<Result<Vec<_>>>()?;
+    let mut report = AgreementReport {
+        params: params.params().clone(),
+        reference_files: reference
+            .files
+            .iter()
+            .map(|f| f.display().to_string())
+            .collect(),
+        offsets,
+        events: Vec::new(),
+        unmatched_events: Vec::new(),
+        reference_strides: reference.strides.len(),
+        strides_matched: 0,
+        parameters: Vec::new(),
+    };
+    events(results, reference, params, &trials, &mut report)?;
+    strides(results, reference, params, &trials, &mut report)?;
+    recordings(results, reference, params, &trials, &mut report);
+    Ok(report)
+}
+
+/// The trials the reference covers, in the order of the results.
+fn reference_trials(results: &LdhResults, reference: &Reference) -> Vec<Trial> {
+    let covered = |s: &str, t: &str| {
+        reference
+            .events
+            .iter()
+            .any(|e| e.subject_id == s && e.trial_id == t)
+            || reference
+                .strides
+                .iter()
+                .chain(&reference.recordings)
+                .any(|v| v.subject_id == s && v.trial_id == t)
+    };
+    results
+        .trials()
+        .into_iter()
+        .filter(|(s, t)| covered(s, t))
+        .map(|(s, t)| (s.to_string(), t.to_string()))
+        .collect()
+}
+
+fn in_trial<'a>(s: &'a str, t: &'a str) -> impl Fn(&(&str, &str)) -> bool + 'a {
+    move |k| k.0 == s && k.1 == t
+}
+
+/// ldh's and the reference's sorted times of one trial, side and event kind.
+fn event_train(
+    results: &LdhResults,
+    reference: &Reference,
+    (s, t): (&str, &str),
+    side: Side,
+    kind: EventKind,
+) -> (Vec<f64>, Vec<f64>) {
+    let f = in_trial(s, t);
+    let mut l: Vec<f64> = results
+        .events
+        .iter()
+        .filter(|e| f(&(&e.subject_id, &e.trial_id)) && e.side == side && e.event == kind)
+        .map(|e| e.time_s)
+        .collect();
+    let mut r: Vec<f64> = reference
+        .events
+        .iter()
+        .filter(|e| f(&(&e.subject_id, &e.trial_id)) && e.side == side && e.event == kind)
+        .map(|e| e.time_s)
+        .collect();
+    l.sort_by(f64::total_cmp);
+    r.sort_by(f64::total_cmp);
+    (l, r)
+}
+
+/// ldh's strides (sorted by start) and the reference's timed strides of one trial and side.
+fn stride_train<'a>(
+    results: &'a LdhResults,
+    reference: &'a Reference,
+    (s, t): (&str, &str),
+    side: Side,
+) -> (Vec<&'a LdhStride>, Vec<&'a ReferenceValues>) {
+    let mut l: Vec<&LdhStride> = results
+        .strides
+        .iter()
+        .filter(|x| x.subject_id == s && x.trial_id == t && x.side == side)
+        .filter(|x| x.hs_time_s.is_finite())
+        .collect();
+    l.sort_by(|a, b| a.hs_time_s.total_cmp(&b.hs_time_s));
+    let mut r: Vec<&ReferenceValues> = reference
+        .strides
+        .iter()
+        .filter(|x| x.subject_id == s && x.trial_id == t && x.side == side)
+        .collect();
+    r.sort_by(|a, b| {
+        let k = |v: &ReferenceValues| v.time_s.unwrap_or(f64::NEG_INFINITY);
+        k(a).total_cmp(&k(b))
+    });
+    (l, r)
+}
+
+const KINDS: [EventKind; 2] = [EventKind::HeelStrike, EventKind::ToeOff];
+const SIDES: [Side; 2] = [Side::Left, Side::Right];
+
+/// The offset of one trial: the file's, else by `mode`.
+fn trial_offset(
+    results: &LdhResults,
+    reference: &Reference,
+    (s, t): &Trial,
+    params: &ValidAgreementParams,
+    mode: OffsetMode,
+) -> Result<TrialOffset> {
+    let mut out = TrialOffset {
+        subject_id: s.clone(),
+        trial_id: t.clone(),
+        offset_s: 0.0,
+        source: "none".into(),
+        estimate: None,
+    };
+    if let Some(o) = reference
+        .offsets
+        .iter()
+        .find(|o| &o.subject_id == s && &o.trial_id == t)
+    {
+        out.offset_s = o.offset_s;
+        out.source = "file".into();
+        return Ok(out);
+    }
+    match mode {
+        OffsetMode::None => return Ok(out),
+        OffsetMode::Fixed(x) => {
+            out.offset_s = x;
+            out.source = "given".into();
+            return Ok(out);
+        }
+        OffsetMode::Estimate => {}
+    }
+    let mut trains: Vec<(Vec<f64>, Vec<f64>)> = Vec::new();
+    for side in SIDES {
+        for kind in KINDS {
+            let tr = event_train(results, reference, (s, t), side, kind);
+            if !tr.1.is_empty() {
+                trains.push(tr);
+            }
+        }
+    }
+    if trains.is_empty() {
+        for side in SIDES {
+            let (l, r) = stride_train(results, reference, (s, t), side);
+            let r: Vec<f64> = r.iter().filter_map(|v| v.time_s).collect();
+            if !r.is_empty() {
+                trains.push((l.iter().map(|x| x.hs_time_s).collect(), r));
+            }
+        }
+    }
+    let refuse = |reason: String| {
+        boxed(ReferenceError::Offset {
+            subject_id: s.clone(),
+            trial_id: t.clone(),
+            reason,
+        })
+    };
+    if trains.is_empty() {
+        // Per-recording values only: no times to align, none needed.
+        return Ok(out);
+    }
+    let views: Vec<(&[f64], &[f64])> = trains.iter().map(|(l, r)| (&l[..], &r[..])).collect();
+    let est = estimate_clock_offset(&views, params).map_err(|e| refuse(e.to_string()))?;
+    if est.ambiguous {
+        let r = est.runner_up.expect("ambiguous has a runner-up");
+        return Err(refuse(format!(
+            "ambiguous: {:.3} s and {:.3} s both match {} events",
+            est.best.offset_s, r.offset_s, est.best.n_matched
+        )));
+    }
+    out.offset_s = polish_offset(&views, est.best.offset_s, params).offset_s;
+    out.source = "estimated".into();
+    out.estimate = Some(est);
+    Ok(out)
+}
+
+fn offset_of(report: &AgreementReport, (s, t): &Trial) -> f64 {
+    report
+        .offsets
+        .iter()
+        .find(|o| &o.subject_id == s && &o.trial_id == t)
+        .map_or(0.0, |o| o.offset_s)
+}
+
+/// Match every trial's events and summarise per event kind and side.
+fn events(
+    results: &LdhResults,
+    reference: &Reference,
+    params: &ValidAgreementParams,
+    trials: &[Trial],
+    report: &mut AgreementReport,
+) -> Result<()> {
+    if reference.events.is_empty() {
+        return Ok(());
+    }
+    let tol = params.params().tolerance_s;
+    for kind in KINDS {
+        let mut per_side: [Vec<EventMatch>; 2] = [Vec::new(), Vec::new()];
+        // Pooled: each trial's left then right, as `ldh evaluate` pools them.
+        let mut both: Vec<EventMatch> = Vec::new();
+        for trial in trials {
+            let offset = offset_of(report, trial);
+            for (k, side) in SIDES.into_iter().enumerate() {
+                let (l, r) = event_train(results, reference, (&trial.0, &trial.1), side, kind);
+                let (Some(first), Some(last)) = (r.first(), r.last()) else {
+                    continue;
+                };
+                let l: Vec<f64> = l
+                    .iter()
+                    .map(|x| x - offset)
+                    .filter(|x| *x >= first - tol && *x <= last + tol)
+                    .collect();
+                let m = match_events(&l, &r, params)?;
+                let mut miss = |system: &str, time_s: f64| {
+                    report.unmatched_events.push(UnmatchedEvent {
+                        system: system.into(),
+                        subject_id: trial.0.clone(),
+                        trial_id: trial.1.clone(),
+                        side: side.to_string(),
+                        event: kind.to_string(),
+                        time_s,
+                    })
+                };
+                m.unmatched_ldh.iter().for_each(|&i| miss("ldh", l[i]));
+                m.unmatched_reference
+                    .iter()
+                    .for_each(|&j| miss("reference", r[j]));
+                both.push(m.clone());
+                per_side[k].push(m);
+            }
+        }
+        for (k, side) in SIDES.into_iter().enumerate() {
+            report.events.push(EventAgreement {
+                event: kind.to_string(),
+                side: side.to_string(),
+                summary: summarize(&per_side[k]),
+            });
+        }
+        report.events.push(EventAgreement {
+            event: kind.to_string(),
+            side: "both".into(),
+            summary: summarize(&both),
+        });
+    }
+    Ok(())
+}
+
+/// The pairs of one level, per parameter, in first-seen order of the parameters.
+#[derive(Default)]
+struct Pairs(Vec<(Parameter, Vec<PairedValue>)>);
+
+impl Pairs {
+    fn push(&mut self, p: Parameter, v: PairedValue) {
+        match self.0.iter_mut().find(|(q, _)| *q == p) {
+            Some((_, list)) => list.push(v),
+            None => self.0.push((p, vec![v])),
+        }
+    }
+
+    fn finish(
+        mut self,
+        level: &str,
+        params: &ValidAgreementParams,
+        out: &mut Vec<ParameterResult>,
+    ) {
+        self.0
+            .sort_by_key(|(p, _)| Parameter::ALL.iter().position(|q| q == p));
+        for (p, pairs) in self.0 {
+            let nan = |x: Option<f64>| x.unwrap_or(f64::NAN);
+            let l: Vec<f64> = pairs.iter().map(|v| nan(v.ldh)).collect();
+            let r: Vec<f64> = pairs.iter().map(|v| nan(v.reference)).collect();
+            let (agreement, not_computed) = match agreement(&l, &r, params) {
+                Ok(a) => (Some(a), None),
+                Err(e) => (None, Some(e.to_string())),
+            };
+            out.push(ParameterResult {
+                level: level.into(),
+                parameter: p.column().into(),
+                agreement,
+                not_computed,
+                pairs,
+            });
+        }
+    }
+}
+
+fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+/// ldh's reported value of parameter `p` for a matched stride (see the module docs).
+fn stride_value(s: &LdhStride, p: Parameter) -> Option<f64> {
+    let i = STRIDE_PARAMETERS.iter().position(|q| *q == p)?;
+    let timing = matches!(p, Parameter::StrideTime | Parameter::StanceRatio);
+    if timing || s.valid {
+        finite(s.values[i])
+    } else {
+        None
+    }
+}
+
+/// Match the reference strides to ldh's and pair their values.
+fn strides(
+    results: &LdhResults,
+    reference: &Reference,
+    params: &ValidAgreementParams,
+    trials: &[Trial],
+    report: &mut AgreementReport,
+) -> Result<()> {
+    let tol = params.params().tolerance_s;
+    let mut pairs = Pairs::default();
+    for trial in trials {
+        let offset = offset_of(report, trial);
+        for side in SIDES {
+            let (l, r) = stride_train(results, reference, (&trial.0, &trial.1), side);
+            let timed: Vec<&ReferenceValues> =
+                r.iter().copied().filter(|v| v.time_s.is_some()).collect();
+            let starts: Vec<f64> = l.iter().map(|s| s.hs_time_s - offset).collect();
+            let ref_starts: Vec<f64> = timed.iter().filter_map(|v| v.time_s).collect();
+            let m = match_events(&starts, &ref_starts, params)?;
+            let mut matched: Vec<(&LdhStride, &ReferenceValues)> = Vec::new();
+            for &(i, j) in &m.pairs {
+                let ends_ok = timed[j]
+                    .end_time_s
+                    .is_none_or(|e| (l[i].next_hs_time_s - offset - e).abs() <= tol);
+                if ends_ok {
+                    matched.push((l[i], timed[j]));
+                }
+            }
+            for v in r.iter().filter(|v| v.time_s.is_none()) {
+                if let Some(s) = l.iter().find(|s| Some(s.stride_index) == v.stride) {
+                    matched.push((s, v));
+                }
+            }
+            report.strides_matched += matched.len();
+            for (s, v) in matched {
+                for &(p, x) in &v.values {
+                    pairs.push(
+                        p,
+                        PairedValue {
+                            subject_id: trial.0.clone(),
+                            trial_id: trial.1.clone(),
+                            side: side.to_string(),
+                            stride_index: Some(s.stride_index),
+                            ldh: stride_value(s, p),
+                            reference: finite(x),
+                        },
+                    );
+                }
+            }
+        }
+    }
+    pairs.finish("stride", params, &mut report.parameters);
+    Ok(())
+}
+
+/// Pair each leg's reference value (given, or the mean of its strides) with recordings.csv.
+fn recordings(
+    results: &LdhResults,
+    reference: &Reference,
+    params: &ValidAgreementParams,
+    trials: &[Trial],
+    report: &mut AgreementReport,
+) {
+    let mut pairs = Pairs::default();
+    for (s, t) in trials {
+        for side in SIDES {
+            let of_leg =
+                |v: &&ReferenceValues| &v.subject_id == s && &v.trial_id == t && v.side == side;
+            let values: Vec<(Parameter, f64)> = match reference.recordings.iter().find(of_leg) {
+                Some(v) => v.values.clone(),
+                None => leg_means(reference.strides.iter().filter(of_leg)),
+            };
+            let row = results
+                .recordings
+                .iter()
+                .find(|r| &r.subject_id == s && &r.trial_id == t && r.side == side);
+            for (p, x) in values {
+                pairs.push(
+                    p,
+                    PairedValue {
+                        subject_id: s.clone(),
+                        trial_id: t.clone(),
+                        side: side.to_string(),
+                        stride_index: None,
+                        ldh: row.and_then(|r| r.value(p)).and_then(finite),
+                        reference: finite(x),
+                    },
+                );
+            }
+        }
+    }
+    pairs.finish("recording", params, &mut report.parameters);
+}
+
+/// Mean of each parameter over a leg's reference strides (empty cells skipped; NaN when none).
+fn leg_means<'a>(rows: impl Iterator<Item = &'a ReferenceValues>) -> Vec<(Parameter, f64)> {
+    let mut acc: Vec<(Parameter, f64, usize)> = Vec::new();
+    for v in rows {
+        for &(p, x) in &v.values {
+            let i = match acc.iter().position(|a| a.0 == p) {
+                Some(i) => i,
+                None => {
+                    acc.push((p, 0.0, 0));
+                    acc.len() - 1
+                }
+            };
+            if x.is_finite() {
+                acc[i].1 += x;
+                acc[i].2 += 1;
+            }
+        }
+    }
+    acc.into_iter()
+        .map(|(p, sum, n)| (p, if n > 0 { sum / n as f64 } else { f64::NAN }))
+        .collect()
+}

@@ -1,0 +1,57 @@
+"""Agreement of an ``ldh analyze`` run with a laboratory's reference system (``ldh agree``)."""
+from __future__ import annotations
+
+import os
+from typing import Any, Dict, Optional, Sequence, Union
+
+from . import _ldh
+from ._util import PathLike
+
+
+def agree(
+    results_dir: PathLike,
+    reference: Union[PathLike, Sequence[PathLike]],
+    tolerance_s: float = 0.2,
+    offset_s: Optional[Union[float, str]] = None,
+) -> Dict[str, Any]:
+    """Compare an ``ldh analyze`` output folder with reference files (docs/agreement.md).
+
+    Parameters
+    ----------
+    results_dir : str or path-like
+        The output folder of ``ldh analyze`` (recordings.json, strides.csv, events.csv).
+    reference : str, path-like, or a list of them
+        Reference CSV files: events (``subject_id[,trial_id],side,event,time_s``) and/or
+        parameters (``subject_id[,trial_id],side`` and columns such as ``stride_time_s``;
+        per stride with ``time_s`` or ``stride``, else per recording).
+    tolerance_s : float, default 0.2
+        Largest |ldh − reference| time of two matched events, in seconds.
+    offset_s : float, "estimate" or None
+        Clock offset ldh − reference (s) of the trials whose file gives no ``offset_s``;
+        ``"estimate"`` estimates it per trial (refused when ambiguous); None: the clocks agree.
+
+    Returns
+    -------
+    dict
+        ``offsets``, ``events`` (per event kind and side: rates and timing errors, s),
+        ``unmatched_events``, ``parameters`` (per parameter and level: ``agreement`` with bias,
+        limits, ICCs…, or ``not_computed``; ``pairs``), and ``table``: the rows of
+        ``agreement.csv`` (``pandas.DataFrame(result["table"])``).
+
+    Raises
+    ------
+    LdhDataError
+        A bad reference file (the message names file, line and column), an ambiguous clock
+        offset, or a results folder that is not a finished ``ldh analyze`` run.
+    LdhParamError
+        A bad ``tolerance_s`` or ``offset_s``.
+    LdhFileNotFoundError
+        A missing file.
+    """
+    refs = [reference] if isinstance(reference, (str, os.PathLike)) else list(reference)
+    return _ldh.agree(
+        os.fspath(results_dir),
+        [os.fspath(r) for r in refs],
+        tolerance_s=float(tolerance_s),
+        offset_s=offset_s,
+    )

@@ -1,0 +1,88 @@
+//! `ldh agree` end to end: an analysed simulated cohort against its exported truth, with the
+//! reference clock shifted by 0.75 s, and a bad reference refused before anything is written.
+
+mod common;
+use common::{json, ldh, ldh_ok, simulate_cohort, text};
+
+use ldh_core::evaluate::{truth_reference, TruthScope};
+
+#[test]
+fn agree_reads_an_analyze_folder_estimates_the_offset_and_refuses_a_bad_reference() {
+    let d = tempfile::tempdir().unwrap();
+    let (sim, res) = (d.path().join("sim"), d.path().join("res"));
+    simulate_cohort(&sim, 2, 2, 25, 38);
+    ldh_ok(&[
+        "analyze",
+        sim.to_str().unwrap(),
+        "-o",
+        res.to_str().unwrap(),
+        "-q",
+    ]);
+    let truths: Vec<_> = ["H01", "H02", "L01", "L02"]
+        .iter()
+        .map(|s| ldh_core::simulate::read_truth(sim.join(s).join("truth.json")).unwrap())
+        .collect();
+    let (ev, st) = truth_reference(&truths, TruthScope::All, 0.75);
+    let (evp, stp) = (d.path().join("ev.csv"), d.path().join("st.csv"));
+    std::fs::write(&evp, ev).unwrap();
+    std::fs::write(&stp, st).unwrap();
+    let out = d.path().join("agree");
+    let o = ldh_ok(&[
+        "agree",
+        res.to_str().unwrap(),
+        "--reference",
+        evp.to_str().unwrap(),
+        "--reference",
+        stp.to_str().unwrap(),
+        "--offset-s",
+        "estimate",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(text(&o).contains("| HS | both |"), "{}", text(&o));
+    let j = json(&out.join("agreement.json"));
+    for o in j["offsets"].as_array().unwrap() {
+        let off = o["offset_s"].as_f64().unwrap();
+        assert!((off + 0.75).abs() <= 0.01, "{o}");
+        assert_eq!(o["source"], "estimated");
+    }
+    let hs = j["events"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|e| e["event"] == "HS" && e["side"] == "both")
+        .unwrap();
+    assert!(hs["summary"]["recall"].as_f64().unwrap() > 0.9, "{hs}");
+    let csv = std::fs::read_to_string(out.join("agreement.csv")).unwrap();
+    assert!(
+        csv.lines()
+            .any(|l| l.starts_with("stride,stride_time_s,both,")),
+        "{csv}"
+    );
+    assert!(std::fs::read_to_string(out.join("agreement.md"))
+        .unwrap()
+        .contains("stride_length_m"));
+
+    let bad = d.path().join("bad.csv");
+    std::fs::write(
+        &bad,
+        "subject_id,side,event,time_s\nH01,left,HS,2\nX9,left,HS,3\n",
+    )
+    .unwrap();
+    let out2 = d.path().join("agree2");
+    let o = ldh(&[
+        "agree",
+        res.to_str().unwrap(),
+        "--reference",
+        bad.to_str().unwrap(),
+        "-o",
+        out2.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("bad.csv:3:1") && text(&o).contains("X9"),
+        "{}",
+        text(&o)
+    );
+    assert!(!out2.exists(), "nothing written");
+}
