@@ -122,7 +122,7 @@ fn every_figure_prints_text_of_at_least_8_pt() {
             cycle_svg(
                 "Subject H01: shank pitch over the gait cycle",
                 "shank pitch (deg)",
-                &[curve.clone()],
+                std::slice::from_ref(&curve),
                 Some(&curve),
             )
             .unwrap(),
