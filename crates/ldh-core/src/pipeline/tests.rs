@@ -5,7 +5,8 @@ use proptest::prelude::*;
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
-    /// Detected events alternate HS/TO and increase, on any simulated subject.
+    /// Detected events alternate HS/TO and increase, on any simulated subject, except where a
+    /// toe off was not found: that stride is withheld with the reason "no toe off".
     #[test]
     fn events_alternate_and_increase(seed in 0u64..10_000, ldh in any::<bool>()) {
         let c = CohortParams { healthy: usize::from(!ldh), ldh: usize::from(ldh), duration_s: 20.0, seed, ..CohortParams::default() };
@@ -17,7 +18,12 @@ proptest! {
             prop_assert!(ev.len() >= 16);
             for w in ev.windows(2) {
                 prop_assert!(w[1].0 > w[0].0);
-                prop_assert_ne!(w[0].1, w[1].1, "two {} in a row at {} s", if w[0].1 == 0 { "HS" } else { "TO" }, w[1].0);
+                // A toe off missed (in a turn, seed 8918) leaves two heel strikes in a row: the
+                // stride between them is withheld and says so; never two toe offs in a row.
+                let missed_to = w[0].1 == 0 && w[1].1 == 0 && leg.strides.iter().any(|s| {
+                    s.hs_time_s == w[0].0 && !s.valid && s.reason.contains("no toe off")
+                });
+                prop_assert!(w[0].1 != w[1].1 || missed_to, "two {} in a row at {} s", if w[0].1 == 0 { "HS" } else { "TO" }, w[1].0);
             }
             for s in &leg.strides {
                 prop_assert!(s.hs_time_s < s.to_time_s || !s.to_time_s.is_finite());
@@ -492,3 +498,4 @@ fn each_toe_off_carries_its_swing_arc_and_the_affected_leg_swings_less() {
         crate::events::BRACKET_K0
     );
 }
+
