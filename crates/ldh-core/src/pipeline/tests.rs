@@ -498,4 +498,3 @@ fn each_toe_off_carries_its_swing_arc_and_the_affected_leg_swings_less() {
         crate::events::BRACKET_K0
     );
 }
-
