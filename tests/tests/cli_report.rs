@@ -368,12 +368,13 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_its_report() {
             }
             if cell.contains("colspan") {
                 // A symmetry index needs both legs.
-                assert!(cell.contains("not measured: left"), "{cell}");
+                assert!(cell.contains("not measured ["), "{cell}");
                 continue;
             }
             let text: String = cell.split('>').skip(1).collect::<Vec<_>>().join(">");
+            // "not measured [n]": the reason once, numbered under the first table.
             assert!(
-                text.starts_with("not measured: "),
+                text.starts_with("not measured ["),
                 "a value on the faulty leg: {row}"
             );
             assert!(!text.contains('▲') && !text.contains('▼'), "{row}");
@@ -382,6 +383,11 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_its_report() {
     }
     // The per-side quantities: 5 in the summary, 9 in section 2.
     assert!(rows >= 5 + 9, "{rows} rows checked");
+    assert_eq!(
+        s.matches("] not measured: gyro scale fault").count(),
+        1,
+        "the reason once on the page"
+    );
     // No gait-cycle curve for the faulty leg: it says why in place of the plot; the right leg
     // still has its curve.
     assert!(

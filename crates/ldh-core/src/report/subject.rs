@@ -9,7 +9,7 @@ use maud::{html, Markup};
 use super::cycle::cycle_section;
 use super::headline::{headline, make as make_headline};
 use super::html::{count, fmt, page, red_box, side_label, VERSION};
-use super::summary::clinical_summary;
+use super::summary::{clinical_summary, WhyNotes};
 use super::verdict::verdicts;
 use super::{LegTrace, ValidReportParams};
 use super::{Reference, ReferenceRange, ReferenceSource, SubjectReport};
@@ -35,17 +35,19 @@ pub fn subject_html(
     let citations = Citations::of(reference);
     // Every verdict of the page, made once: the headline, the summary and section 2 render it.
     let v = verdicts(&sides, reference, p.0.asymmetry_flag_pct);
+    // Why values were not measured: numbered once for the page, listed under the first table.
+    let notes = WhyNotes::default();
     let body = html! {
         (header(s, &sides))
         h2 #summary { "Clinical summary" } "\n"
         (headline(&make_headline(&v, &sides, &s.recordings, reference)))
         (warning_box(&sides))
         (red_box("Missing from this report.", &missing(s)))
-        (clinical_summary(&v, reference, &citations, p))
+        (clinical_summary(&v, reference, &citations, p, &notes))
         (recordings_table(&sides))
         (reading_notes(s))
         (excluded_strides(&s.strides))
-        (parameter_table(&v, &sides, reference, &citations, p))
+        (parameter_table(&v, &sides, reference, &citations, p, &notes))
         (subject_radar(s, &sides, reference)?)
         (cycle_section(s, &sides, reference, p)?)
         p.print-only.meta { "Printed report: the signal figures (section 3), the stride-by-stride plots (section 4) and the technical appendix (every quality finding with its code) are in the on-screen report." } "\n"
@@ -156,19 +158,33 @@ fn findings<'a>(
 /// faults, drift, gyroscope bias not removed…), in their own words, each once; notes and
 /// findings that only withhold a value are in the technical appendix.
 fn warning_box(sides: &[&RecordingRow]) -> Markup {
-    let mut items: Vec<String> = Vec::new();
+    // Each message once, with the legs that have it ("both legs" when both say the same).
+    let mut found: Vec<(String, Vec<String>)> = Vec::new();
     for r in sides {
         for w in r
             .warnings
             .at_least(crate::pipeline::Severity::Warning)
             .filter(|w| !NOT_FOR_THE_BOX.contains(&w.code.as_str()))
         {
-            let text = format!("{}: {}", r.side, w.message);
-            if !items.contains(&text) {
-                items.push(text);
+            let side = r.side.to_string();
+            match found.iter_mut().find(|(m, _)| *m == w.message) {
+                Some((_, legs)) if !legs.contains(&side) => legs.push(side),
+                Some(_) => {}
+                None => found.push((w.message.clone(), vec![side])),
             }
         }
     }
+    let items: Vec<String> = found
+        .into_iter()
+        .map(|(m, legs)| {
+            let who = if legs.len() > 1 {
+                "both legs".to_string()
+            } else {
+                legs.join("")
+            };
+            format!("{who}: {m}")
+        })
+        .collect();
     red_box("Check before reading the numbers.", &items)
 }
 

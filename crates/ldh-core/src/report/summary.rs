@@ -84,11 +84,53 @@ fn range_cells(
     }
 }
 
-/// One value's cell: the value with its mark and plain words, or "not measured: reason".
-pub(crate) fn value_cell(c: &Cell, q: &Quantity, colspan: usize) -> Markup {
+/// Why values were not measured, each reason numbered once per page: a cell says "not
+/// measured [n]" and the reason is written once under the first table that cites it (issue 36:
+/// each note said once per page; a real walk with withheld values otherwise repeats one long
+/// reason in a dozen cells).
+#[derive(Default)]
+pub(crate) struct WhyNotes(std::cell::RefCell<Vec<String>>);
+
+impl WhyNotes {
+    /// The number of `why` (1-based), given it on first use.
+    pub(crate) fn cite(&self, why: &str) -> usize {
+        let mut v = self.0.borrow_mut();
+        match v.iter().position(|w| w == why) {
+            Some(i) => i + 1,
+            None => {
+                v.push(why.to_string());
+                v.len()
+            }
+        }
+    }
+
+    /// How many reasons are numbered so far.
+    pub(crate) fn len(&self) -> usize {
+        self.0.borrow().len()
+    }
+
+    /// The reasons numbered since `from` (= [`Self::len`] before a table), one line each.
+    pub(crate) fn list_from(&self, from: usize) -> Markup {
+        let v = self.0.borrow();
+        html! {
+            @if v.len() > from {
+                div.meta.why {
+                    @for (i, w) in v.iter().enumerate().skip(from) {
+                        div { "[" (i + 1) "] not measured: " (w) }
+                    }
+                }
+                "\n"
+            }
+        }
+    }
+}
+
+/// One value's cell: the value with its mark and plain words, or "not measured [n]" with the
+/// reason numbered in `why`.
+pub(crate) fn value_cell(c: &Cell, q: &Quantity, colspan: usize, notes: &WhyNotes) -> Markup {
     match c {
         Cell::NotMeasured(why) => {
-            html! { td.nm colspan=[(colspan > 1).then_some(colspan)] { "not measured: " (why) } }
+            html! { td.nm colspan=[(colspan > 1).then_some(colspan)] { "not measured [" (notes.cite(why)) "]" } }
         }
         Cell::Value { v, judgement, note } => {
             let mark = judgement.mark();
@@ -103,25 +145,25 @@ pub(crate) fn value_cell(c: &Cell, q: &Quantity, colspan: usize) -> Markup {
 }
 
 /// The value cells of a row: one spanning both sides for a whole-walk quantity.
-pub(crate) fn value_cells(row: &Row) -> Markup {
+pub(crate) fn value_cells(row: &Row, notes: &WhyNotes) -> Markup {
     match row.q.scope {
-        Scope::Walk => value_cell(&row.cells[0], row.q, 2),
+        Scope::Walk => value_cell(&row.cells[0], row.q, 2, notes),
         // Both legs not measured for the same reason: said once, across both.
         Scope::Side => match row.cells.as_slice() {
             [Cell::NotMeasured(a), Cell::NotMeasured(b)] if a == b => {
-                html! { td.nm colspan="2" { "not measured (both legs): " (a) } }
+                html! { td.nm colspan="2" { "not measured (both legs) [" (notes.cite(a)) "]" } }
             }
-            cells => html! { @for c in cells { (value_cell(c, row.q, 1)) } },
+            cells => html! { @for c in cells { (value_cell(c, row.q, 1, notes)) } },
         },
     }
 }
 
 /// An asymmetry's cell: the SI with ◆ and "asymmetric"/"symmetric" when judged, "not judged"
 /// for a quantity without a reference range.
-pub(crate) fn asymmetry_cell(a: &Asymmetry, colspan: usize) -> Markup {
+pub(crate) fn asymmetry_cell(a: &Asymmetry, colspan: usize, notes: &WhyNotes) -> Markup {
     match a {
         Asymmetry::NotMeasured(why) => {
-            html! { td.nm colspan=[(colspan > 1).then_some(colspan)] { "not measured: " (why) } }
+            html! { td.nm colspan=[(colspan > 1).then_some(colspan)] { "not measured [" (notes.cite(why)) "]" } }
         }
         Asymmetry::Value(v, judged) => {
             let flag = *judged == Some(true);
@@ -145,8 +187,10 @@ pub(crate) fn clinical_summary(
     reference: &super::Reference,
     citations: &Citations,
     p: &ValidReportParams,
+    notes: &WhyNotes,
 ) -> Markup {
     let limit = p.0.asymmetry_flag_pct;
+    let first_note = notes.len();
     let rows = || v.rows.iter().filter(|r| r.q.in_summary);
     html! {
         table.summary {
@@ -157,7 +201,7 @@ pub(crate) fn clinical_summary(
                 @let (range, src) = range_cells(rr, row.q, citations);
                 tr {
                     td { b { (row.q.label) } " (" (row.q.unit) ")" @if row.q.scope == Scope::Walk { " — the walk, both legs" } }
-                    (value_cells(row))
+                    (value_cells(row, notes))
                     td.num { (range) } td { (src) }
                 }
                 "\n"
@@ -166,7 +210,7 @@ pub(crate) fn clinical_summary(
                 // no asymmetry can be computed: one row says why, not one per measure
                 tr {
                     td { b { "Left–right asymmetry" } " (SI %)" }
-                    td.nm colspan="2" { "not measured: " (why) }
+                    td.nm colspan="2" { "not measured [" (notes.cite(why)) "]" }
                     td.num { "|SI| ≤ " (format!("{limit:.0}")) }
                     td { "asymmetry threshold (Robinson et al. 1987)" }
                 }
@@ -176,7 +220,7 @@ pub(crate) fn clinical_summary(
                 @if let Some(a) = &row.asymmetry {
                     tr {
                         td { b { (row.q.label) " asymmetry" } " (SI %, left vs right)" }
-                        (asymmetry_cell(a, 2))
+                        (asymmetry_cell(a, 2, notes))
                         td.num { "|SI| ≤ " (format!("{limit:.0}")) }
                         td { "asymmetry threshold (Robinson et al. 1987)" }
                     }
@@ -185,6 +229,7 @@ pub(crate) fn clinical_summary(
             }
         }
         "\n"
+        (notes.list_from(first_note))
         p.meta {
             "▲ above, ▼ below the normal range (bounds included, compared as shown); ◆ asymmetry beyond the threshold (also shaded), judged only for measures that have a normal range. "
             "Cadence counts the steps of both legs: 60·(1/stride time left + 1/stride time right). "

@@ -228,7 +228,7 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
             continue;
         }
         assert!(
-            left_cell.contains("not measured: gyro scale fault"),
+            left_cell.contains("not measured ["),
             "{}: {left_cell}",
             q.label
         );
@@ -249,7 +249,7 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
         );
         // No symmetry index from a withheld value.
         assert!(
-            cells[6].contains(">–<") || cells[6].contains("not measured: left"),
+            cells[6].contains(">–<") || cells[6].contains("not measured ["),
             "{}: SI {}",
             q.label,
             cells[6]
@@ -269,19 +269,28 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
         let row = &row[..row.find("</tr>").unwrap()];
         let cells: Vec<&str> = row.split("<td").collect();
         assert!(
-            cells[1].contains("not measured: gyro scale fault"),
+            cells[1].contains("not measured ["),
             "{}: {}",
             q.label,
             cells[1]
         );
         assert!(!cells[1].contains('▲') && !cells[1].contains('▼'));
-        assert!(
-            !cells[1].chars().any(|c| c.is_ascii_digit()),
-            "{}",
-            cells[1]
-        );
+        // No number but the note's: "not measured [n]".
+        let text = cells[1].split(" [").next().unwrap_or("");
+        assert!(!text.chars().any(|c| c.is_ascii_digit()), "{}", cells[1]);
     }
-    assert!(summary.contains("not measured: left gyro scale fault"));
+    // Each reason once on the page, numbered, under the first table that cites it.
+    assert_eq!(
+        html.matches("] not measured: gyro scale fault (gyroscope sensor fault)</div>")
+            .count(),
+        1,
+        "{html}"
+    );
+    assert_eq!(
+        html.matches("] not measured: left gyro scale fault (gyroscope sensor fault)</div>")
+            .count(),
+        1
+    );
     // The warning box: one bullet for the fault, naming the leg.
     assert!(html.contains("left: gyro_scale_fault [fault]: gyroscope sensor fault"));
     // Every left stride is excluded, grouped under one kind.
@@ -419,8 +428,12 @@ fn the_summary_uses_clinical_units_and_plain_flags() {
         assert!(summary.contains(must), "no '{must}' in {summary}");
     }
     // Stride length is not in the rows: "not measured", never a number.
-    // Said once for both legs when their reason is the same.
-    assert!(summary.contains("not measured (both legs): not computable from these strides"));
+    // Said once for both legs when their reason is the same, the reason once under the table.
+    assert!(
+        summary.contains("not measured (both legs) [1]"),
+        "{summary}"
+    );
+    assert!(html.contains("<div>[1] not measured: not computable from these strides</div>"));
     assert!(
         html.contains("Cadence is below normal: 90 steps/min (normal 96–126 steps/min)."),
         "{html}"

@@ -11,7 +11,7 @@ use crate::output::RecordingRow;
 use crate::plots;
 use crate::report::html::{figure, fmt, side_label};
 use crate::report::reference::no_published_reason;
-use crate::report::summary::{asymmetry_cell, value_cells};
+use crate::report::summary::{asymmetry_cell, value_cells, WhyNotes};
 use crate::report::verdict::{Quantity, Verdicts};
 use crate::report::{Reference, ReferenceRange, ReferenceSource};
 use crate::report::{SubjectReport, ValidReportParams};
@@ -73,7 +73,9 @@ pub(super) fn parameter_table(
     reference: &Reference,
     citations: &Citations,
     p: &ValidReportParams,
+    notes: &WhyNotes,
 ) -> Markup {
+    let first_note = notes.len();
     let find = |s: crate::Side| sides.iter().find(|r| r.side == s);
     let (left, right) = (find(crate::Side::Left), find(crate::Side::Right));
     let label = |s: crate::Side| match find(s) {
@@ -102,10 +104,10 @@ pub(super) fn parameter_table(
                         }
                     }
                     td { (q.unit) }
-                    (value_cells(row))
+                    (value_cells(row, notes))
                     td { (range_text(reference.range(q.parameter), q, citations, p.0.min_healthy_subjects)) }
                     @match &row.asymmetry {
-                        Some(a) => (asymmetry_cell(a, 1)),
+                        Some(a) => (asymmetry_cell(a, 1, notes)),
                         None => td.num { "–" },
                     }
                 }
@@ -113,6 +115,7 @@ pub(super) fn parameter_table(
             }
         }
         "\n"
+        (notes.list_from(first_note))
         p { (v.outside()) " value(s) lie outside the reference range; " (v.asymmetric()) " asymmetry(ies) beyond the threshold." (no_published_note(reference)) } "\n"
     }
 }
