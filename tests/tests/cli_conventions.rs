@@ -45,7 +45,7 @@ fn summary_on_stdout_json_for_scripts_and_quiet() {
     let o = ldh_ok(&["analyze", "-o", out.to_str().unwrap(), "-j", "2"]);
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(
-        stdout.starts_with("8 recordings (4 subjects, model fusion): 8 ok, 0 failed;"),
+        stdout.starts_with("8 recordings (4 people, model fusion): 8 ok, 0 failed;"),
         "{stdout}"
     );
 

@@ -9,7 +9,7 @@ fn analyze_without_input_runs_the_embedded_demo() {
     let out = d.path().join("out");
     let o = ldh(&["analyze", "--out", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", text(&o));
-    assert!(text(&o).contains("embedded demo cohort (4 subjects)"));
+    assert!(text(&o).contains("embedded demo cohort (4 people)"));
     let strides = std::fs::read_to_string(out.join("strides.csv")).unwrap();
     assert!(strides.starts_with(
         "subject_id,side,model,stride_index,bout,hs_time_s,to_time_s,next_hs_time_s,stride_time_s,stance_ratio,stride_length_m,speed_mps,wqk_deg,pbi_deg,bdk_deg,heading_change_deg,valid,reason,trial_id\n"
@@ -86,7 +86,7 @@ fn a_bad_recording_is_reported_and_the_rest_is_written() {
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     let t = text(&o);
     assert!(
-        t.contains("8 recordings (4 subjects, model fusion): 6 ok, 2 failed"),
+        t.contains("8 recordings (4 people, model fusion): 6 ok, 2 failed"),
         "{t}"
     );
     assert!(

@@ -54,7 +54,7 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
     if a.inputs.is_empty() {
         super::note!(
             "no input given: analysing the embedded demo cohort ({})",
-            super::count(subjects.len(), "subject")
+            ldh_core::pipeline::PeopleTrials::of(&subjects).describe()
         );
     }
     // Names checked before the folder is touched: an id clash leaves an earlier run whole.
@@ -131,7 +131,7 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
     summary(
         &a,
         &sum,
-        subjects.len(),
+        ldh_core::pipeline::PeopleTrials::of(&subjects),
         params.attitude.model.as_str(),
         wall_s,
     )?;
@@ -147,7 +147,7 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
 fn summary(
     a: &AnalyzeArgs,
     sum: &FolderSummary,
-    subjects: usize,
+    who: ldh_core::pipeline::PeopleTrials,
     model: &str,
     wall_s: f64,
 ) -> Result<()> {
@@ -169,7 +169,9 @@ fn summary(
         let failure = |r: &&RecordingRow| serde_json::json!({"subject_id": r.subject_id, "side": r.side, "error": r.error});
         let warning = |r: &&RecordingRow| serde_json::json!({"subject_id": r.subject_id, "side": r.side, "warnings": r.warnings});
         let mut j = serde_json::json!({
-            "subjects": subjects,
+            "subjects": who.trials,
+            "people": who.people,
+            "trials": who.trials,
             "recordings": sum.recordings,
             "ok": sum.recordings - sum.failed,
             "failed": sum.failed,
@@ -189,7 +191,7 @@ fn summary(
         let line = format!(
             "{} ({}, model {model}): {} ok, {} failed; {}, {} valid; outputs in {}",
             super::count(sum.recordings, "recording"),
-            super::count(subjects, "subject"),
+            who.describe(),
             sum.recordings - sum.failed,
             sum.failed,
             super::count(sum.strides, "stride"),

@@ -97,6 +97,43 @@ pub struct SubjectInput {
     pub unpaired: Vec<String>,
 }
 
+/// People and trials among the inputs of a run: an input is one trial of a person, so a
+/// person walking twice is 1 person and 2 trials (never "2 subjects").
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PeopleTrials {
+    /// Distinct `subject_id`s.
+    pub people: usize,
+    /// Inputs (one per trial of a person).
+    pub trials: usize,
+}
+
+impl PeopleTrials {
+    /// The counts of `inputs`.
+    pub fn of(inputs: &[SubjectInput]) -> Self {
+        let mut ids: Vec<&str> = inputs.iter().map(|s| s.subject_id.as_str()).collect();
+        ids.sort_unstable();
+        ids.dedup();
+        PeopleTrials {
+            people: ids.len(),
+            trials: inputs.len(),
+        }
+    }
+
+    /// "4 people", "1 person", or "16 people, 18 trials" when some walked more than once.
+    pub fn describe(&self) -> String {
+        let people = if self.people == 1 {
+            "1 person".to_string()
+        } else {
+            format!("{} people", self.people)
+        };
+        if self.trials == self.people {
+            people
+        } else {
+            format!("{people}, {} trials", self.trials)
+        }
+    }
+}
+
 impl SubjectInput {
     /// The heights this input gives: for both legs and per leg.
     pub fn sensor_heights(&self) -> SensorHeights {

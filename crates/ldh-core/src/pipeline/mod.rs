@@ -28,7 +28,7 @@ pub use bilateral::{bilateral_events, bilateral_events_on_clock, BilateralEvent,
 pub use heights::{HeightConflict, SensorHeights, MAX_SENSOR_HEIGHT_M};
 pub use inputs::{
     demo_inputs, discover, discover_with, is_manifest, read_manifest, subject_id_from_files,
-    InputOptions, Source, SubjectInput,
+    InputOptions, PeopleTrials, Source, SubjectInput,
 };
 pub use leg::{
     analyze_leg, analyze_leg_alone, analyze_leg_checked, analyze_leg_timed, leg_back, leg_front,

@@ -156,6 +156,12 @@ fn trials_are_kept_together_and_ids_of_direct_files_come_from_their_names() {
         ids,
         [("P1", Some("t1")), ("P1", Some("t2")), ("P2", Some("t1"))]
     );
+    // Counted as people and trials, never as "3 subjects".
+    let who = PeopleTrials::of(&v);
+    assert_eq!((who.people, who.trials), (2, 3));
+    assert_eq!(who.describe(), "2 people, 3 trials");
+    assert_eq!(PeopleTrials::of(&v[..1]).describe(), "1 person");
+    assert_eq!(PeopleTrials::of(&v[1..]).describe(), "2 people");
     let d = tempfile::tempdir().unwrap();
     let p = |n: &str| {
         let f = d.path().join("exported000").join(n);
