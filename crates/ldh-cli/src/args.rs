@@ -349,26 +349,12 @@ pub struct AgreeArgs {
     /// Clock offset ldh − reference, s, for the trials whose reference gives no offset_s; or
     /// `estimate` to estimate it per trial from the events (refused when ambiguous). Default:
     /// the clocks agree.
-    #[arg(long, value_parser = parse_offset)]
+    #[arg(long)]
     pub offset_s: Option<ldh_core::agreement::OffsetMode>,
     /// Agreement parameters as TOML (loa_sd_multiplier, confidence_level, tolerance_s,
     /// max_clock_offset_s, clock_offset_step_s).
     #[arg(long)]
     pub params: Option<PathBuf>,
-}
-
-/// `--offset-s`: a number of seconds or `estimate`.
-fn parse_offset(s: &str) -> Result<ldh_core::agreement::OffsetMode, String> {
-    use ldh_core::agreement::OffsetMode;
-    if s.trim().eq_ignore_ascii_case("estimate") {
-        return Ok(OffsetMode::Estimate);
-    }
-    match s.trim().parse::<f64>() {
-        Ok(v) if v.is_finite() => Ok(OffsetMode::Fixed(v)),
-        _ => Err(format!(
-            "'{s}' is neither a number of seconds nor 'estimate'"
-        )),
-    }
 }
 
 #[derive(Debug, Args)]

@@ -19,18 +19,11 @@ fn offset_mode(offset_s: Option<&Bound<'_, PyAny>>) -> Result<OffsetMode, LdhErr
         return Ok(OffsetMode::None);
     };
     if let Ok(s) = o.extract::<String>() {
-        return match s.trim().to_ascii_lowercase().as_str() {
-            "estimate" => Ok(OffsetMode::Estimate),
-            _ => Err(LdhError::param(
-                "offset_s",
-                s,
-                "expected a number of seconds or 'estimate'",
-            )),
-        };
+        return s.parse();
     }
     match o.extract::<f64>() {
-        Ok(v) if v.is_finite() => Ok(OffsetMode::Fixed(v)),
-        _ => Err(LdhError::param(
+        Ok(v) => OffsetMode::fixed(v, "offset_s"),
+        Err(_) => Err(LdhError::param(
             "offset_s",
             o.to_string(),
             "expected a finite number of seconds or 'estimate'",

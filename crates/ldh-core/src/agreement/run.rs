@@ -25,7 +25,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::Result;
+use crate::error::{LdhError, Result};
 use crate::output::Parameter;
 use crate::pipeline::EventKind;
 use crate::Side;
@@ -50,6 +50,42 @@ pub enum OffsetMode {
     /// Estimated per trial from the events ([`super::estimate_clock_offset`]); note that an
     /// estimated offset absorbs a constant bias of the event times.
     Estimate,
+}
+
+impl OffsetMode {
+    /// A given offset, s: refused unless finite (`what` names the argument in the error).
+    pub fn fixed(offset_s: f64, what: &'static str) -> Result<Self, LdhError> {
+        if offset_s.is_finite() {
+            Ok(OffsetMode::Fixed(offset_s))
+        } else {
+            Err(LdhError::param(
+                what,
+                offset_s.to_string(),
+                "expected a finite number of seconds or 'estimate'",
+            ))
+        }
+    }
+}
+
+/// `estimate` (any case) or a finite number of seconds: the one reading of `--offset-s` and of
+/// Python's `offset_s=` string.
+impl std::str::FromStr for OffsetMode {
+    type Err = LdhError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let t = s.trim();
+        if t.eq_ignore_ascii_case("estimate") {
+            return Ok(OffsetMode::Estimate);
+        }
+        match t.parse::<f64>() {
+            Ok(v) => OffsetMode::fixed(v, "offset_s"),
+            Err(_) => Err(LdhError::param(
+                "offset_s",
+                s,
+                "expected a number of seconds or 'estimate'",
+            )),
+        }
+    }
 }
 
 /// The clock offset used for one trial.

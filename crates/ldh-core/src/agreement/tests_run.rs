@@ -429,3 +429,22 @@ fn strides_by_number_pair_with_that_stride_and_recordings_use_the_mean_of_a_leg(
         assert!((pair.reference.unwrap() - mean).abs() < 1e-12, "{pair:?}");
     }
 }
+
+/// `--offset-s` and Python's `offset_s=` read one way: `estimate` in any case, or a finite
+/// number of seconds; anything else names the argument.
+#[test]
+fn the_offset_mode_is_read_once() {
+    assert_eq!(
+        " Estimate ".parse::<OffsetMode>().unwrap(),
+        OffsetMode::Estimate
+    );
+    assert_eq!(
+        "-0.75".parse::<OffsetMode>().unwrap(),
+        OffsetMode::Fixed(-0.75)
+    );
+    for bad in ["soon", "inf", "NaN", ""] {
+        let e = bad.parse::<OffsetMode>().unwrap_err().to_string();
+        assert!(e.contains("offset_s"), "{bad}: {e}");
+    }
+    assert!(OffsetMode::fixed(f64::INFINITY, "offset_s").is_err());
+}
