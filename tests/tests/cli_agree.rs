@@ -86,3 +86,115 @@ fn agree_reads_an_analyze_folder_estimates_the_offset_and_refuses_a_bad_referenc
     );
     assert!(!out2.exists(), "nothing written");
 }
+
+/// `ldh agree --write-params` (issue 38 item 4): a lab whose reference times heel strikes 40 ms
+/// later and toe offs 25 ms earlier than the simulator's truth. The calibration it writes,
+/// given to `ldh analyze --params`, takes the mean error of both event kinds to within 2 ms
+/// of zero, and every report page says against what the events were calibrated.
+#[test]
+fn a_calibration_written_by_agree_removes_the_bias_and_the_report_says_so() {
+    let d = tempfile::tempdir().unwrap();
+    let (sim, res) = (d.path().join("sim"), d.path().join("res"));
+    simulate_cohort(&sim, 2, 2, 25, 38);
+    ldh_ok(&[
+        "analyze",
+        sim.to_str().unwrap(),
+        "-o",
+        res.to_str().unwrap(),
+        "-q",
+    ]);
+    let truths: Vec<_> = ["H01", "H02", "L01", "L02"]
+        .iter()
+        .map(|s| ldh_core::simulate::read_truth(sim.join(s).join("truth.json")).unwrap())
+        .collect();
+    let (ev, _) = truth_reference(&truths, TruthScope::All, 0.0);
+    // The lab's reference: heel strikes 40 ms later, toe offs 25 ms earlier than the truth.
+    let mut lines = ev.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |n: &str| header.iter().position(|h| *h == n).unwrap();
+    let (ce, ct) = (col("event"), col("time_s"));
+    let mut lab = header.join(",") + "\n";
+    for l in lines {
+        let mut f: Vec<String> = l.split(',').map(String::from).collect();
+        let t: f64 = f[ct].parse().unwrap();
+        let shift = if f[ce] == "HS" { 0.040 } else { -0.025 };
+        f[ct] = format!("{:.4}", t + shift);
+        lab += &(f.join(",") + "\n");
+    }
+    let evp = d.path().join("plates.csv");
+    std::fs::write(&evp, lab).unwrap();
+    let bias = |out: &std::path::Path, event: &str| {
+        json(&out.join("agreement.json"))["events"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|e| e["event"] == event && e["side"] == "both")
+            .unwrap()["summary"]["bias_s"]
+            .as_f64()
+            .unwrap()
+    };
+    let (a1, cal) = (d.path().join("a1"), d.path().join("calibration.toml"));
+    let o = ldh_ok(&[
+        "agree",
+        res.to_str().unwrap(),
+        "--reference",
+        evp.to_str().unwrap(),
+        "-o",
+        a1.to_str().unwrap(),
+        "--write-params",
+        cal.to_str().unwrap(),
+        "--reference-system",
+        "force plates",
+    ]);
+    assert!(text(&o).contains("calibration.toml"), "{}", text(&o));
+    let (hs1, to1) = (bias(&a1, "HS"), bias(&a1, "TO"));
+    let toml = std::fs::read_to_string(&cal).unwrap();
+    assert!(toml.contains("[events.calibration]"), "{toml}");
+    assert!(
+        toml.contains("against = \"force plates (plates.csv; "),
+        "{toml}"
+    );
+
+    let res2 = d.path().join("res2");
+    ldh_ok(&[
+        "analyze",
+        sim.to_str().unwrap(),
+        "-o",
+        res2.to_str().unwrap(),
+        "--params",
+        cal.to_str().unwrap(),
+        "--report",
+        "-q",
+    ]);
+    let a2 = d.path().join("a2");
+    ldh_ok(&[
+        "agree",
+        res2.to_str().unwrap(),
+        "--reference",
+        evp.to_str().unwrap(),
+        "-o",
+        a2.to_str().unwrap(),
+        "-q",
+    ]);
+    let (hs2, to2) = (bias(&a2, "HS"), bias(&a2, "TO"));
+    eprintln!("bias before: HS {hs1:.4} s, TO {to1:.4} s; after: HS {hs2:.5} s, TO {to2:.5} s");
+    assert!(hs1.abs() > 0.02 && hs2.abs() < 0.002, "HS {hs1} → {hs2}");
+    assert!(to2.abs() < 0.002, "TO {to1} → {to2}");
+    for page in ["reports/index.html", "reports/subjects/H01.html"] {
+        let html = std::fs::read_to_string(res2.join(page)).unwrap();
+        assert!(
+            html.contains("Gait events calibrated against force plates (plates.csv; "),
+            "{page}"
+        );
+    }
+    // An uncalibrated run's pages say nothing of it.
+    ldh_ok(&[
+        "report",
+        res.to_str().unwrap(),
+        "-o",
+        d.path().join("rep").to_str().unwrap(),
+        "-q",
+    ]);
+    let html = std::fs::read_to_string(d.path().join("rep/index.html")).unwrap();
+    assert!(!html.contains("calibrated against"));
+}

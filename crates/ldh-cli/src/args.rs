@@ -355,6 +355,15 @@ pub struct AgreeArgs {
     /// max_clock_offset_s, clock_offset_step_s).
     #[arg(long)]
     pub params: Option<PathBuf>,
+    /// Also write the analysis parameters of the compared run with its events calibrated to
+    /// this reference (each event kind shifted by minus its mean error; at least 20 matched
+    /// events of each kind): `ldh analyze --params FILE` then times events like the reference.
+    #[arg(long, value_name = "FILE")]
+    pub write_params: Option<PathBuf>,
+    /// What the reference system is, for the calibration's description in reports (e.g.
+    /// "force plates"); the reference files are named beside it.
+    #[arg(long, value_name = "TEXT", requires = "write_params")]
+    pub reference_system: Option<String>,
 }
 
 #[derive(Debug, Args)]

@@ -37,6 +37,7 @@
 //! fitted offsets" (`data-fixtures/scripts/toe_off_landmarks.py`).
 
 mod bracket;
+mod calibration;
 mod impact;
 mod peaks;
 
@@ -44,6 +45,7 @@ pub use bracket::{
     bracket_fraction, bracket_toe_off_s, landmark_geometry, place_bilateral, LegGeometry,
     BRACKET_K0, BRACKET_MAX, BRACKET_SLOPE, MIN_BRACKETS, SAME_WALK_STRIDE_TOLERANCE,
 };
+pub use calibration::{EventCalibration, MAX_CALIBRATION_SHIFT_S};
 pub use impact::{
     impact_delays_s, shift_to_impacts, IMPACT_MIN_G, IMPACT_MIN_STRIKES, IMPACT_RATIO, IMPACT_SHARE,
 };
@@ -161,6 +163,11 @@ pub struct EventParams {
     /// acceleration, where the walk shows impacts ([`shift_to_impacts`]); `gyro-bracket` only,
     /// and not when `hs_offset_stride` is given (an explicit offset wins). Default true.
     pub hs_impact: bool,
+    /// Shifts measured against a laboratory's reference by `ldh agree --write-params`
+    /// ([`EventCalibration`]), added to every event after detection. Default: none. Not
+    /// written when absent, so an uncalibrated run's `params.json` is unchanged.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub calibration: Option<EventCalibration>,
 }
 
 impl Default for EventParams {
@@ -174,6 +181,7 @@ impl Default for EventParams {
             min_stride_s: 0.7,
             max_stride_s: 2.5,
             hs_impact: true,
+            calibration: None,
         }
     }
 }
@@ -213,6 +221,9 @@ impl EventParams {
                 }
             }
         }
+        if let Some(c) = &self.calibration {
+            c.check(self.detector)?;
+        }
         let (h, t) = self.detector.offsets();
         Ok(ValidEventParams {
             p: self.clone(),
@@ -234,6 +245,14 @@ impl ValidEventParams {
     /// The parameters.
     pub fn params(&self) -> &EventParams {
         &self.p
+    }
+
+    /// Add the calibration's shifts, if any, to the events of a recording of `duration_s`
+    /// seconds ([`EventCalibration::apply`]).
+    pub fn calibrate(&self, ev: &mut Events, duration_s: f64) {
+        if let Some(c) = &self.p.calibration {
+            c.apply(ev, duration_s);
+        }
     }
 }
 

@@ -28,10 +28,26 @@ pub fn run(a: AgreeArgs) -> Result<ExitCode> {
         &params,
         a.offset_s.unwrap_or_default(),
     )?;
+    // The calibration is measured before anything is written: a refusal writes nothing.
+    let calibration = match &a.write_params {
+        Some(f) => {
+            let p = agreement::calibrated_params(
+                &report,
+                results.analysis_params.as_ref(),
+                a.reference_system.as_deref(),
+            )?;
+            Some((f, agreement::params_toml(&p)?))
+        }
+        None => None,
+    };
     let files = agreement::write_report(&a.out, &report)?;
     println!("{}", agreement::write::markdown(&report));
     for f in files {
         note!("wrote {}", f.display());
+    }
+    if let Some((f, text)) = calibration {
+        ldh_core::io::write_atomic(f, text.as_bytes())?;
+        note!("wrote {} (use it with ldh analyze --params)", f.display());
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -27,6 +27,7 @@
 //! [`AgreementError`] where pingouin or scipy would give NaN or raise; none returns a NaN.
 
 pub mod bland_altman;
+pub mod calibrate;
 mod dist;
 mod error;
 pub mod events;
@@ -49,6 +50,7 @@ mod tests_events;
 mod tests_run;
 
 pub use bland_altman::{limits_of_agreement, linregress, LimitsOfAgreement, LinearFit};
+pub use calibrate::{calibrated_params, params_toml, MIN_CALIBRATION_EVENTS};
 pub use error::AgreementError;
 pub use events::{match_events, match_groups, summarize, EventMatch, MatchSummary};
 pub use icc::{icc, Icc, IccResult};

@@ -67,6 +67,9 @@ pub struct LdhResults {
     pub strides: Vec<LdhStride>,
     /// Per-recording rows (one per subject, trial and side).
     pub recordings: Vec<RecordingRow>,
+    /// The analysis parameters of the run (`params.json` of its folder), when known: what
+    /// `ldh agree --write-params` starts from ([`super::calibrate::calibrated_params`]).
+    pub analysis_params: Option<crate::pipeline::AnalysisParams>,
 }
 
 fn opt(x: Option<f64>) -> f64 {
@@ -150,10 +153,25 @@ impl LdhResults {
             .into_iter()
             .map(|(line, r)| event_from_row(r, &dir.join("events.csv"), line))
             .collect::<Result<Vec<_>>>()?;
+        let params_file = dir.join("params.json");
+        let analysis_params = if params_file.is_file() {
+            let text = crate::io::read_text_limited(
+                &params_file,
+                crate::io::MAX_PARAMS_MB,
+                "a parameter file",
+            )?;
+            Some(serde_json::from_str(&text).map_err(|e| LdhError::Format {
+                name: params_file.display().to_string(),
+                reason: format!("not the parameters of an ldh analyze run: {e}"),
+            })?)
+        } else {
+            None
+        };
         Ok(LdhResults {
             events,
             strides,
             recordings,
+            analysis_params,
         })
     }
 

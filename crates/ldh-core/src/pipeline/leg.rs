@@ -210,9 +210,10 @@ pub fn leg_back(
         aligned: al,
         attitude: att,
         omega_s_dps: omega,
-        events: ev,
+        events: mut ev,
         sensor,
     } = front;
+    v.events().calibrate(&mut ev, rec.duration_s());
     let sp = v.strides(sensor_height_m)?;
     // With an assumed sensor height, each stride is also measured at the ends of the range
     // of heights, for the check below.

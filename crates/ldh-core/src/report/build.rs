@@ -10,10 +10,11 @@ use rayon::prelude::*;
 use super::cycle::{pitch_cycle, CycleReference};
 use super::reference::passes_every_check;
 use super::{
-    cohort_html, file_stem, subject_html, CohortReport, Reference, SubjectReport, SubjectTraces,
-    ValidReportParams,
+    cohort_html, file_stem, subject_html, CohortReport, Reference, RunContext, SubjectReport,
+    SubjectTraces, ValidReportParams,
 };
 use crate::error::{LdhError, Result};
+use crate::events::EventCalibration;
 use crate::ml::{ModelFile, Prediction};
 use crate::output::names::key_stem;
 use crate::output::{self, read_marker, OutputRun, RecordingRow, RunKind, RunMarker};
@@ -136,6 +137,9 @@ pub fn build(
     let mut reference = Reference::from_rows(&rows, params);
     reference.cycle = cycle_reference(&ctx, &rows, params)?;
     let mut preds_by = predictions_by_subject(src.model, &rows)?;
+    let context = RunContext {
+        calibration: run_calibration(results, &ctx)?,
+    };
     let model_desc = src.model.map(|m| m.describe()).unwrap_or_default();
     let subjects = output::rows_by_subject(&rows);
     let ids: Vec<String> = subjects.iter().map(|(id, _)| id.to_string()).collect();
@@ -163,6 +167,7 @@ pub fn build(
                 recordings: recs.iter().map(|r| (*r).clone()).collect(),
                 strides,
                 traces: None,
+                context: context.clone(),
                 predictions: src.model.map(|m| {
                     (
                         preds_by.remove(*id).unwrap_or_default(),
@@ -198,6 +203,7 @@ pub fn build(
         recordings: rows,
         reference: Some(reference),
         asymmetry_flag_pct: Some(params.0.asymmetry_flag_pct),
+        context,
     };
     run.write("index.html", cohort_html(&cohort)?.as_bytes())?;
     run.finish()?;
@@ -211,6 +217,37 @@ pub fn build(
             w
         },
     })
+}
+
+/// The event calibration of the run (`events.calibration` of its `params.json`), when it had
+/// one. Only that entry is read, so the parameters of an older ldh (other fields) still
+/// report; a calibration that does not read is a warning, and the pages then say nothing of
+/// one (an unreadable `params.json` is not this function's to judge).
+fn run_calibration(results: &Path, ctx: &Ctx) -> Result<Option<EventCalibration>> {
+    let path = results.join("params.json");
+    if !path.is_file() {
+        return Ok(None);
+    }
+    let value: serde_json::Value = match serde_json::from_str(&read_text(&path)?) {
+        Ok(v) => v,
+        Err(_) => return Ok(None),
+    };
+    let Some(c) = value
+        .pointer("/events/calibration")
+        .filter(|c| !c.is_null())
+    else {
+        return Ok(None);
+    };
+    match serde_json::from_value::<EventCalibration>(c.clone()) {
+        Ok(c) => Ok(Some(c)),
+        Err(e) => {
+            ctx.warnings.lock().expect("no panic holds it").push(format!(
+                "{}: events.calibration does not read ({e}); the pages do not say the events were calibrated",
+                path.display()
+            ));
+            Ok(None)
+        }
+    }
 }
 
 /// The `ldh analyze` folder being reported and what its traces raised.

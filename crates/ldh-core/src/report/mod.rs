@@ -136,6 +136,16 @@ pub struct SubjectReport {
     pub traces: Option<SubjectTraces>,
     /// Classifier output per side, with the model's class names and a description.
     pub predictions: Option<(Vec<Prediction>, Vec<String>, String)>,
+    /// What the run says about every page.
+    pub context: RunContext,
+}
+
+/// What one analysis run says about all its pages, besides its tables.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct RunContext {
+    /// The event calibration the run applied (`params.json`'s `events.calibration`, written by
+    /// `ldh agree --write-params`): every page says the events are calibrated and against what.
+    pub calibration: Option<crate::events::EventCalibration>,
 }
 
 /// The symmetry index of two values, % (Robinson et al. 1987): 100·(L − R) / ((L + R) / 2).
@@ -161,6 +171,8 @@ pub struct CohortReport {
     /// The asymmetry threshold the subject pages used (%); `None`: the default
     /// ([`ReportParams::asymmetry_flag_pct`]).
     pub asymmetry_flag_pct: Option<f64>,
+    /// What the run says about every page.
+    pub context: RunContext,
 }
 
 #[cfg(test)]
