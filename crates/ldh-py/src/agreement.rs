@@ -33,15 +33,18 @@ fn offset_mode(offset_s: Option<&Bound<'_, PyAny>>) -> Result<OffsetMode, LdhErr
 
 /// `ldh agree RESULTS --reference REF...` without writing files: the report (`offsets`,
 /// `events`, `unmatched_events`, `parameters` with their pairs, …) plus `table`, the rows of
-/// `agreement.csv`.
+/// `agreement.csv`. `write_params`: also write the run's parameters calibrated to this
+/// reference there (`ldh agree --write-params`), before returning.
 #[pyfunction]
-#[pyo3(signature = (results_dir, reference, tolerance_s=None, offset_s=None))]
+#[pyo3(signature = (results_dir, reference, tolerance_s=None, offset_s=None, write_params=None, reference_system=None))]
 pub(crate) fn agree<'py>(
     py: Python<'py>,
     results_dir: PathBuf,
     reference: Vec<PathBuf>,
     tolerance_s: Option<f64>,
     offset_s: Option<&Bound<'py, PyAny>>,
+    write_params: Option<PathBuf>,
+    reference_system: Option<String>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let mode = offset_mode(offset_s).or_raise(py)?;
     let v = py
@@ -54,6 +57,14 @@ pub(crate) fn agree<'py>(
             let results = LdhResults::read(&results_dir)?;
             let reference = agreement::read_reference(&reference, &results, &params)?;
             let report = agreement::run(&results, &reference, &params, mode)?;
+            if let Some(f) = write_params {
+                let p = agreement::calibrated_params(
+                    &report,
+                    results.analysis_params.as_ref(),
+                    reference_system.as_deref(),
+                )?;
+                ldh_core::io::write_atomic(f, agreement::params_toml(&p)?.as_bytes())?;
+            }
             let mut v = value_of(&report)?;
             let table = value_of(&agreement::write::rows(&report))?;
             if let serde_json::Value::Object(m) = &mut v {

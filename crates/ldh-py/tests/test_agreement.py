@@ -103,3 +103,35 @@ def test_bad_reference_and_bad_arguments_raise_typed_errors(results, tmp_path):
         ldh.agree(d, bad, tolerance_s=-1.0)
     with pytest.raises(ldh.LdhFileNotFoundError):
         ldh.agree(d, tmp_path / "missing.csv")
+
+
+def test_write_params_calibrates_the_events_to_the_reference(results, tmp_path):
+    """``write_params`` (``ldh agree --write-params``): the shifts are minus the mean errors, and
+    the file is the run's parameters as TOML with ``[events.calibration]``."""
+    d, truth = results
+    lines = (d / "events.csv").read_text().splitlines()
+    for (s, side), hs in truth.items():
+        st = hs[1] - hs[0]
+        lines += [f"{s},{t + 0.6 * st},{side},TO,," for t in hs[:-1]]
+    (d / "events.csv").write_text("\n".join(lines) + "\n")
+    ev = ["subject_id,side,event,time_s"]
+    for (s, side), hs in truth.items():
+        st = hs[1] - hs[0]
+        ev += [f"{s},{side},HS,{t + 0.030}" for t in hs]
+        ev += [f"{s},{side},TO,{t + 0.6 * st - 0.020}" for t in hs[:-1]]
+    (tmp_path / "plates.csv").write_text("\n".join(ev) + "\n")
+    out = tmp_path / "calibration.toml"
+    ldh.agree(d, tmp_path / "plates.csv", write_params=out, reference_system="force plates")
+    text = out.read_text()
+    assert text.startswith("# Written by `ldh agree --write-params`. Gait events calibrated against force plates")
+    section = text[text.index("[events.calibration]"):]
+    values = dict(line.split(" = ", 1) for line in section.splitlines()[1:] if " = " in line)
+    assert float(values["hs_shift_s"]) == pytest.approx(0.030, abs=1e-9)
+    assert float(values["to_shift_s"]) == pytest.approx(-0.020, abs=1e-9)
+    assert values["detector"] == '"gyro-bracket"'
+    # Too few matched events: refused, nothing written.
+    few = tmp_path / "few.csv"
+    few.write_text("subject_id,side,event,time_s\nH01,left,HS,1.03\nH01,left,TO,1.55\n")
+    with pytest.raises(ldh.LdhDataError, match="at least 20 matched events"):
+        ldh.agree(d, few, write_params=tmp_path / "no.toml")
+    assert not (tmp_path / "no.toml").exists()

@@ -13,6 +13,8 @@ def agree(
     reference: Union[PathLike, Sequence[PathLike]],
     tolerance_s: float = 0.2,
     offset_s: Optional[Union[float, str]] = None,
+    write_params: Optional[PathLike] = None,
+    reference_system: Optional[str] = None,
 ) -> Dict[str, Any]:
     """Compare an ``ldh analyze`` output folder with reference files (docs/agreement.md).
 
@@ -29,6 +31,12 @@ def agree(
     offset_s : float, "estimate" or None
         Clock offset ldh − reference (s) of the trials whose file gives no ``offset_s``;
         ``"estimate"`` estimates it per trial (refused when ambiguous); None: the clocks agree.
+    write_params : str or path-like, optional
+        Also write there the run's analysis parameters with its events calibrated to this
+        reference (``ldh agree --write-params``; ``ldh.analyze(..., params=...)`` or
+        ``ldh analyze --params`` use it). Needs at least 20 matched events of each kind.
+    reference_system : str, optional
+        What the reference system is ("force plates"), for the calibration's description.
 
     Returns
     -------
@@ -54,4 +62,6 @@ def agree(
         [os.fspath(r) for r in refs],
         tolerance_s=float(tolerance_s),
         offset_s=offset_s,
+        write_params=None if write_params is None else os.fspath(write_params),
+        reference_system=reference_system,
     )
