@@ -8,7 +8,8 @@
 //!   Fleiss 1979; McGraw & Wong 1996; [`icc`]) and Pearson's r. NaN pairs are dropped and
 //!   counted.
 //! - [`test_retest`]: a subjects × trials table → ICC(2,1), ICC(3,1), SEM, MDC95 (Weir 2005),
-//!   within-subject CV and the variance components ([`reliability`]).
+//!   within-subject CV and the variance components ([`reliability`]); [`ReliabilityTable`],
+//!   one row per parameter, is `reliability.csv` ([`reliability_table`]).
 //! - [`match_events`]: two sorted event trains → one-to-one matches within a tolerance (the
 //!   rule of gaitmap's `match_stride_lists`), recall, precision, F1 and timing errors
 //!   ([`events`]); [`estimate_clock_offset`] finds the offset between the two clocks
@@ -38,6 +39,7 @@ mod params;
 pub mod reference;
 mod reference_error;
 pub mod reliability;
+pub mod reliability_table;
 pub mod results;
 pub mod run;
 pub mod write;
@@ -60,6 +62,7 @@ pub use params::{AgreementParams, ValidAgreementParams, MAX_OFFSET_GRID_POINTS};
 pub use reference::{read_reference, Reference};
 pub use reference_error::ReferenceError;
 pub use reliability::{test_retest, Reliability, VarianceComponents, MIN_SUBJECTS};
+pub use reliability_table::{ReliabilityRow, ReliabilityTable};
 pub use results::LdhResults;
 pub use run::{run, AgreementReport, OffsetMode};
 pub use write::write_report;
