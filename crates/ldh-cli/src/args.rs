@@ -185,6 +185,10 @@ pub struct AnalyzeArgs {
     /// they plot to <OUT>/traces.
     #[arg(long)]
     pub report: bool,
+    /// With --report: a test–retest reliability table (reliability.csv of `ldh stats
+    /// --reliability`); a change between visits is marked only beyond its MDC95.
+    #[arg(long, value_name = "FILE", requires = "report")]
+    pub reliability: Option<PathBuf>,
     /// With --report: a model saved by `ldh train` whose output the subject reports show (a
     /// regular file of at most 256 MB).
     #[arg(long, requires = "report")]
@@ -231,6 +235,10 @@ pub struct ReportArgs {
     /// Output folder of `ldh train` (cv_results.json) for the cohort report.
     #[arg(long)]
     pub train: Option<PathBuf>,
+    /// A test–retest reliability table (reliability.csv of `ldh stats --reliability`): the
+    /// subject pages mark a change between visits only when it exceeds its MDC95.
+    #[arg(long, value_name = "FILE")]
+    pub reliability: Option<PathBuf>,
     /// Report parameters as TOML (docs/reports.md; a regular file of at most 1 MB).
     #[arg(long)]
     pub params: Option<PathBuf>,

@@ -26,6 +26,10 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
         a.no_sta,
     )?;
     let format = a.format.as_deref().map(resolve_format).transpose()?;
+    // The report's reliability table is read now, so a bad one stops the run before the analysis.
+    if let Some(f) = &a.reliability {
+        ldh_core::agreement::reliability_table::ReliabilityTable::read(f)?;
+    }
     let defaults = ReadParams::default();
     let read = ReadParams {
         max_file_size_mb: a.max_file_size_mb.unwrap_or(defaults.max_file_size_mb),
@@ -105,6 +109,7 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
         let dir = a.out.join("reports");
         let src = BuildSources {
             model: classifier.as_ref(),
+            reliability: a.reliability.as_deref(),
             ..BuildSources::default()
         };
         let pb = progress(0, "report");

@@ -28,6 +28,7 @@ pub fn run(a: ReportArgs) -> Result<ExitCode> {
         model: model.as_ref(),
         stats: a.stats.as_deref(),
         train: a.train.as_deref(),
+        reliability: a.reliability.as_deref(),
     };
     let pb = progress(0, "report");
     let built = pool.install(|| {

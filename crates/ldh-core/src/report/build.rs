@@ -28,6 +28,9 @@ pub struct BuildSources<'a> {
     pub stats: Option<&'a Path>,
     /// Output folder of `ldh train` (`cv_results.json`) for the cohort report.
     pub train: Option<&'a Path>,
+    /// A test–retest reliability table (`reliability.csv` of `ldh stats --reliability`): changes
+    /// between visits beyond its MDC95 are marked on the subject pages.
+    pub reliability: Option<&'a Path>,
 }
 
 /// A table of an output folder, read back whole (at most [`crate::io::MAX_TABLE_MB`] MB).
@@ -139,6 +142,15 @@ pub fn build(
     let mut preds_by = predictions_by_subject(src.model, &rows)?;
     let context = RunContext {
         calibration: run_calibration(results, &ctx)?,
+        reliability: src
+            .reliability
+            .map(crate::agreement::reliability_table::ReliabilityTable::read)
+            .transpose()?,
+        reliability_source: src.reliability.map(|p| {
+            p.file_name().map_or(p.display().to_string(), |n| {
+                n.to_string_lossy().into_owned()
+            })
+        }),
     };
     let model_desc = src.model.map(|m| m.describe()).unwrap_or_default();
     let subjects = output::rows_by_subject(&rows);

@@ -249,26 +249,6 @@ fn to_do(sides: &[&RecordingRow], anything_missing: bool) -> Option<String> {
     None
 }
 
-/// The visits of `recordings` (manifest `visit`, in order of appearance), when two or more:
-/// which they are, where to compare them, and that no change is marked.
-pub(crate) fn visits_sentence(recordings: &[RecordingRow]) -> Option<String> {
-    let mut visits: Vec<&str> = Vec::new();
-    for r in recordings.iter().filter(|r| !r.visit.is_empty()) {
-        if !visits.contains(&r.visit.as_str()) {
-            visits.push(&r.visit);
-        }
-    }
-    (visits.len() >= 2).then(|| {
-        format!(
-            "Recorded at {} visits ({}): the values on this page are the mean of all of them; \
-             compare the visits on the cohort page (\"Trials of one person\"). Changes smaller \
-             than the measurement's own noise are not marked.",
-            visits.len(),
-            visits.join(", ")
-        )
-    })
-}
-
 /// On a treadmill with a belt speed given (manifest `belt_speed_mps`, the same for every
 /// recording of the page): the belt speed is the walking speed, the sensors' estimate beside it.
 fn belt_sentence(v: &Verdicts, recordings: &[RecordingRow]) -> Option<String> {
@@ -300,10 +280,12 @@ pub(crate) fn make(
     sides: &[&RecordingRow],
     recordings: &[RecordingRow],
     reference: &Reference,
+    ctx: &super::RunContext,
 ) -> Headline {
     let not_measured = not_measured(v, sides);
     Headline {
-        visits: visits_sentence(recordings),
+        visits: super::visits::visit_changes(recordings, ctx)
+            .map(|c| super::visits::headline_sentence(&c)),
         belt: belt_sentence(v, recordings),
         context: sides
             .iter()

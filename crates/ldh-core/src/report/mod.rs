@@ -35,6 +35,7 @@ mod summary;
 pub mod trace;
 mod trials;
 mod verdict;
+mod visits;
 
 use serde::{Deserialize, Serialize};
 
@@ -146,6 +147,12 @@ pub struct RunContext {
     /// The event calibration the run applied (`params.json`'s `events.calibration`, written by
     /// `ldh agree --write-params`): every page says the events are calibrated and against what.
     pub calibration: Option<crate::events::EventCalibration>,
+    /// The test–retest reliability table given with `--reliability` (`ldh stats
+    /// --reliability`'s `reliability.csv`): its MDC95 decide which changes between visits are
+    /// marked (`report/visits.rs`); `None`: no change is marked.
+    pub reliability: Option<crate::agreement::reliability_table::ReliabilityTable>,
+    /// Where that table comes from (its file name), for the pages.
+    pub reliability_source: Option<String>,
 }
 
 /// The symmetry index of two values, % (Robinson et al. 1987): 100·(L − R) / ((L + R) / 2).

@@ -11,6 +11,7 @@ use super::headline::{headline, make as make_headline};
 use super::html::{count, fmt, page, red_box, side_label, VERSION};
 use super::summary::{clinical_summary, WhyNotes};
 use super::verdict::verdicts;
+use super::visits::{visit_changes, visits_section};
 use super::{LegTrace, ValidReportParams};
 use super::{Reference, ReferenceRange, ReferenceSource, SubjectReport};
 use crate::cohort::PARAMETERS;
@@ -40,10 +41,13 @@ pub fn subject_html(
     let body = html! {
         (header(s, &sides))
         h2 #summary { "Clinical summary" } "\n"
-        (headline(&make_headline(&v, &sides, &s.recordings, reference)))
+        (headline(&make_headline(&v, &sides, &s.recordings, reference, &s.context)))
         (warning_box(&sides))
         (red_box("Missing from this report.", &missing(s)))
         (clinical_summary(&v, reference, &citations, p, &notes))
+        @if let Some(c) = visit_changes(&s.recordings, &s.context) {
+            (visits_section(&c, html! { h2 #visits { "Change between visits" } "\n" }))
+        }
         (recordings_table(&sides))
         (reading_notes(s))
         (excluded_strides(&s.strides))

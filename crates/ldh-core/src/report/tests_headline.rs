@@ -42,7 +42,7 @@ fn page_parts(recs: Vec<RecordingRow>) -> (String, Verdicts, Headline) {
     let own = super::subject::person_sides(&s.recordings);
     let sides: Vec<&RecordingRow> = own.iter().collect();
     let v = verdicts(&sides, &reference, p.0.asymmetry_flag_pct);
-    let h = make(&v, &sides, &s.recordings, &reference);
+    let h = make(&v, &sides, &s.recordings, &reference, &s.context);
     (html, v, h)
 }
 
@@ -265,11 +265,18 @@ fn headline_of_two_visits_of_one_person() {
         h.visits.as_deref(),
         Some(
             "Recorded at 2 visits (pre, post): the values on this page are the mean of all of \
-             them; compare the visits on the cohort page (\"Trials of one person\"). Changes \
-             smaller than the measurement's own noise are not marked."
+             them. The changes between the visits are listed under \"Change between visits\" \
+             and none is judged: without a reliability table (ldh report --reliability) the \
+             measurement's own noise is not known, so no change can be told apart from it."
         )
     );
-    assert!(html.contains("compare the visits on the cohort page"));
+    assert!(html.contains("<h2 id=\"visits\">Change between visits</h2>"));
+    let section = &html[html.find("id=\"visits\"").unwrap()..];
+    let section = &section[..section.find("</table>").unwrap()];
+    assert!(
+        !section.contains('▲') && !section.contains('▼'),
+        "{section}"
+    );
     // Two trials of one visit say no visits.
     let mut recs = visit("W", "1", "pre");
     recs.extend(visit("W", "2", "pre"));

@@ -53,15 +53,15 @@ impl Counts {
 }
 
 /// One column of a person's comparison: a trial (its visit, its id) and its walk's values.
-struct Trial<'a> {
-    visit: &'a str,
-    id: &'a str,
+pub(super) struct Trial<'a> {
+    pub(super) visit: &'a str,
+    pub(super) id: &'a str,
     legs: Vec<&'a RecordingRow>,
 }
 
 impl Trial<'_> {
     /// The walk's value of `p`: the mean of both legs, `None` unless both legs have one.
-    fn value(&self, p: Parameter) -> Option<f64> {
+    pub(super) fn value(&self, p: Parameter) -> Option<f64> {
         let side = |s: Side| {
             self.legs
                 .iter()
@@ -72,9 +72,10 @@ impl Trial<'_> {
     }
 }
 
-/// The analysed trials of a person in column order: visits in order of first appearance, then
-/// trials in order of appearance.
-fn trials_of<'a>(recs: &[&'a RecordingRow]) -> Vec<Trial<'a>> {
+/// The analysed trials of a person in column order: visits in time order when every visit is a
+/// date (`2024-03-05`, or a date and time), else in order of first appearance; then trials in
+/// order of appearance.
+pub(super) fn trials_of<'a>(recs: &[&'a RecordingRow]) -> Vec<Trial<'a>> {
     let mut visits: Vec<&str> = Vec::new();
     let mut out: Vec<Trial> = Vec::new();
     for r in recs.iter().filter(|r| r.is_ok()) {
@@ -90,12 +91,25 @@ fn trials_of<'a>(recs: &[&'a RecordingRow]) -> Vec<Trial<'a>> {
             }),
         }
     }
+    let dates: Option<Vec<crate::io::DateTime>> = visits.iter().map(|v| visit_date(v)).collect();
+    if let Some(d) = dates {
+        let mut by_date: Vec<(crate::io::DateTime, &str)> = d.into_iter().zip(visits).collect();
+        by_date.sort_by_key(|a| a.0);
+        visits = by_date.into_iter().map(|(_, v)| v).collect();
+    }
     out.sort_by_key(|t| visits.iter().position(|v| *v == t.visit));
     out
 }
 
+/// A visit label as a date (`2024-03-05`, `2024/03/05`) or date and time, when it is one.
+fn visit_date(v: &str) -> Option<crate::io::DateTime> {
+    v.parse()
+        .ok()
+        .or_else(|| format!("{} 00:00", v.trim()).parse().ok())
+}
+
 /// The visits of `trials` in column order, each with its number of trials.
-fn visits_of<'a>(trials: &[Trial<'a>]) -> Vec<(&'a str, usize)> {
+pub(super) fn visits_of<'a>(trials: &[Trial<'a>]) -> Vec<(&'a str, usize)> {
     let mut v: Vec<(&str, usize)> = Vec::new();
     for t in trials {
         match v.last_mut() {
@@ -106,8 +120,18 @@ fn visits_of<'a>(trials: &[Trial<'a>]) -> Vec<(&'a str, usize)> {
     v
 }
 
+/// The mean of the walk values of `p` over the trials of `visit` (`None` when none has one).
+pub(super) fn visit_mean(trials: &[Trial], visit: &str, p: Parameter) -> Option<f64> {
+    let v: Vec<f64> = trials
+        .iter()
+        .filter(|t| t.visit == visit)
+        .filter_map(|t| t.value(p))
+        .collect();
+    (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+}
+
 /// Decimals of a parameter in the comparison.
-fn decimals(p: Parameter) -> usize {
+pub(super) fn decimals(p: Parameter) -> usize {
     if p.unit() == "deg" {
         1
     } else {
@@ -119,14 +143,7 @@ fn decimals(p: Parameter) -> usize {
 /// otherwise the last trial minus the first. Its header and the values.
 fn difference(trials: &[Trial], p: Parameter) -> Option<f64> {
     let visits = visits_of(trials);
-    let mean_of = |visit: &str| {
-        let v: Vec<f64> = trials
-            .iter()
-            .filter(|t| t.visit == visit)
-            .filter_map(|t| t.value(p))
-            .collect();
-        (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
-    };
+    let mean_of = |visit: &str| visit_mean(trials, visit, p);
     if visits.len() >= 2 {
         Some(mean_of(visits.last()?.0)? - mean_of(visits[0].0)?)
     } else {
@@ -147,8 +164,8 @@ fn difference_header(trials: &[Trial]) -> String {
 
 /// "Trials of one person": for each person with two or more analysed trials, per parameter
 /// the walk's value (mean of both legs) of each trial side by side, grouped by visit, and
-/// their difference. No change is marked: a change smaller than the measurement's own noise
-/// is not a change, and that noise is not yet measured. `title` makes the numbered heading
+/// their difference. No change is marked here: the subject page's "Change between visits"
+/// (`report/visits.rs`) marks those beyond a reliability table's MDC95. `title` makes the numbered heading
 /// (called only when the section is shown, so an absent section takes no number).
 pub(crate) fn trials_of_people(
     rows: &[RecordingRow],
@@ -165,7 +182,7 @@ pub(crate) fn trials_of_people(
     }
     html! {
         (title())
-        p.meta { "Each person with two or more analysed trials: per parameter the value of each trial (the mean of both legs; a dash when a leg has none), trials grouped by visit, and their difference (with two visits, the difference of the visits' means). No change is marked: changes smaller than the measurement's own noise are not told apart here." } "\n"
+        p.meta { "Each person with two or more analysed trials: per parameter the value of each trial (the mean of both legs; a dash when a leg has none), trials grouped by visit, and their difference (with two visits, the difference of the visits' means). No change is marked here: each person's page (\"Change between visits\") marks the changes beyond the measurement's own noise when a reliability table is given." } "\n"
         @for (id, trials) in &people {
             @let visits = visits_of(trials);
             @let several_visits = visits.len() >= 2;
@@ -198,7 +215,7 @@ pub(crate) fn trials_of_people(
 }
 
 /// `v` with its sign (`+0.012`), an en dash when missing.
-fn signed(v: Option<f64>, dec: usize) -> String {
+pub(super) fn signed(v: Option<f64>, dec: usize) -> String {
     match v {
         Some(x) if x.is_finite() => format!("{x:+.dec$}"),
         _ => "–".into(),
