@@ -95,13 +95,15 @@ pub(crate) fn visit_changes(recordings: &[RecordingRow], ctx: &RunContext) -> Op
     })
 }
 
-/// `+0.120 m (MDC95 0.080 m)`.
+/// `rose by 0.120 m (MDC95 0.080 m)` / `fell by …`.
 fn change_text(r: &VisitChange, i: usize) -> String {
     let d = decimals(r.parameter);
     let unit = r.parameter.unit();
+    let x = r.change(i).unwrap_or(f64::NAN);
+    let verb = if x > 0.0 { "rose" } else { "fell" };
     format!(
-        "{} {unit} (MDC95 {} {unit})",
-        signed(r.change(i), d),
+        "{verb} by {} {unit} (MDC95 {} {unit})",
+        fmt(Some(x.abs()), d),
         fmt(r.mdc95, d)
     )
 }
@@ -132,10 +134,10 @@ pub(crate) fn headline_sentence(c: &VisitChanges) -> String {
         .iter()
         .filter(|r| r.change(i).is_some() && r.mdc95.is_none())
         .count();
-    let rest = if unjudged > 0 {
-        format!(" {unjudged} parameter(s) have no MDC95 in the table and are not judged.")
-    } else {
-        String::new()
+    let rest = match unjudged {
+        0 => String::new(),
+        1 => " One parameter has no MDC95 in the table and is not judged.".to_string(),
+        n => format!(" {n} parameters have no MDC95 in the table and are not judged."),
     };
     if beyond.is_empty() {
         format!(
@@ -245,7 +247,7 @@ mod tests {
         assert_eq!(row(Parameter::StrideTime).beyond(1), None);
         let s = headline_sentence(&c);
         assert!(
-            s.contains("From pre to post, changed by more than the measurement's own noise (MDC95, reliability.csv: 10 people × 3 trials): stride speed +0.150 m/s (MDC95 0.100 m/s); every other change lies within the noise."),
+            s.contains("From pre to post, changed by more than the measurement's own noise (MDC95, reliability.csv: 10 people × 3 trials): stride speed rose by 0.150 m/s (MDC95 0.100 m/s); every other change lies within the noise."),
             "{s}"
         );
         assert!(!s.contains("stride length"), "{s}");
