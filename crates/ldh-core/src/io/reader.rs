@@ -46,7 +46,8 @@ use crate::recording::Recording;
 // The reader's public helpers, at their historical paths (`ldh_core::io::reader::...`).
 pub use super::channels::detect_clipping;
 pub use super::checks::{check_units_plausible, flat_channel_warnings};
-pub use super::timebase::{interp_linear, parse_iso8601, GapInfo};
+pub use super::start_time::parse_iso8601;
+pub use super::timebase::{interp_linear, GapInfo};
 // For the unit tests.
 #[cfg(test)]
 pub(crate) use super::limits::reserve;

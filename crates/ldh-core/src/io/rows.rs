@@ -10,8 +10,8 @@ use super::columns::Columns;
 use super::format::{FormatSpec, TimeUnit};
 use super::limits::reserve;
 use super::number::{parse_number, CellAt};
+use super::start_time::parse_iso8601;
 use super::text::{split_fields, Lines};
-use super::timebase::parse_iso8601;
 use crate::error::{LdhError, Location, Result};
 
 /// The data rows, column by column, as read.

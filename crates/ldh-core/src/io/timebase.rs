@@ -369,41 +369,6 @@ pub(super) fn place_on_grid(
     channels
 }
 
-/// Parse `YYYY-MM-DD[T ]HH:MM:SS[.fff][Z]` into seconds since 1970-01-01 (UTC assumed).
-///
-/// Hand-written: the timestamp grammar needed is tiny, and a date crate would be a large
-/// dependency for one conversion.
-pub fn parse_iso8601(s: &str) -> Option<f64> {
-    let s = s.trim().trim_end_matches('Z');
-    let (date, time) = s.split_once(['T', ' '])?;
-    let mut d = date.split('-');
-    let y: i64 = d.next()?.parse().ok()?;
-    let m: i64 = d.next()?.parse().ok()?;
-    let day: i64 = d.next()?.parse().ok()?;
-    // Four-digit years only (ISO 8601 without expansion): a longer year overflowed the day
-    // count below (found while fuzzing the reader, fuzz/regressions/read_csv/iso-huge-year).
-    if d.next().is_some()
-        || !(0..=9999).contains(&y)
-        || !(1..=12).contains(&m)
-        || !(1..=31).contains(&day)
-    {
-        return None;
-    }
-    let mut t = time.split(':');
-    let hh: f64 = t.next()?.parse().ok()?;
-    let mm: f64 = t.next()?.parse().ok()?;
-    let ss: f64 = t.next()?.parse().ok()?;
-    if t.next().is_some()
-        || !(0.0..24.0).contains(&hh)
-        || !(0.0..60.0).contains(&mm)
-        || !(0.0..61.0).contains(&ss)
-    {
-        return None;
-    }
-    let days = super::start_time::days_from_civil(y, m, day);
-    Some(days as f64 * 86400.0 + hh * 3600.0 + mm * 60.0 + ss)
-}
-
 /// Linear interpolation of `(x, y)` at increasing `at` (clamped at the ends).
 pub fn interp_linear(x: &[f64], y: &[f64], at: &[f64]) -> Vec<f64> {
     let mut out = Vec::with_capacity(at.len());

@@ -5,7 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::dataset::Task;
+use super::task::Task;
 use crate::cohort::{Cohort, Parameter};
 use crate::error::{LdhError, Result};
 use crate::output::RecordingRow;

@@ -29,6 +29,7 @@ pub mod model_plausible;
 mod model_plausible_fit;
 mod predict;
 pub mod svm;
+mod task;
 mod train;
 pub mod tree;
 

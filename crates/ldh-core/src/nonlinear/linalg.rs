@@ -49,3 +49,19 @@ pub(crate) fn matmul(a: &[f64], b: &[f64], d: usize) -> Vec<f64> {
     }
     c
 }
+
+/// Ordinary least-squares line `y ≈ slope·x + intercept` (same solution as
+/// `np.polyfit(x, y, 1)`; centred formulation for accuracy).
+pub(crate) fn line_fit(x: &[f64], y: &[f64]) -> (f64, f64) {
+    let n = x.len() as f64;
+    let xm = x.iter().sum::<f64>() / n;
+    let ym = y.iter().sum::<f64>() / n;
+    let mut sxy = 0.0;
+    let mut sxx = 0.0;
+    for (a, b) in x.iter().zip(y) {
+        sxy += (a - xm) * (b - ym);
+        sxx += (a - xm) * (a - xm);
+    }
+    let slope = sxy / sxx;
+    (slope, ym - slope * xm)
+}

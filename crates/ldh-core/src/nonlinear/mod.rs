@@ -32,6 +32,7 @@ mod fnn;
 mod gait;
 mod linalg;
 mod neighbours;
+mod npsum;
 mod ransac;
 mod rosenstein;
 mod window_tree;

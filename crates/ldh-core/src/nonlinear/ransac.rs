@@ -15,7 +15,7 @@
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
-use super::rosenstein::line_fit;
+use super::linalg::line_fit;
 
 /// Seeded repetitions of scikit-learn's random search; the most frequent line wins.
 pub const RUNS: u64 = 101;

@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 use super::divergence::divergence;
 use super::embed::delay_embed_flat;
 use super::fnn::FnnSearch;
+use super::linalg::line_fit;
 use super::neighbours::nearest_outside_window;
 use super::{check_series, fft, invalid, NonlinearError};
 
@@ -456,20 +457,4 @@ pub(crate) fn rosenstein_core(
         slope,
         intercept,
     })
-}
-
-/// Ordinary least-squares line `y ≈ slope·x + intercept` (same solution as
-/// `np.polyfit(x, y, 1)`; centred formulation for accuracy).
-pub(crate) fn line_fit(x: &[f64], y: &[f64]) -> (f64, f64) {
-    let n = x.len() as f64;
-    let xm = x.iter().sum::<f64>() / n;
-    let ym = y.iter().sum::<f64>() / n;
-    let mut sxy = 0.0;
-    let mut sxx = 0.0;
-    for (a, b) in x.iter().zip(y) {
-        sxy += (a - xm) * (b - ym);
-        sxx += (a - xm) * (a - xm);
-    }
-    let slope = sxy / sxx;
-    (slope, ym - slope * xm)
 }

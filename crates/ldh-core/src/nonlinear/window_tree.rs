@@ -120,7 +120,7 @@ fn sq_dist<const K: usize>(a: &[f64; K], b: &[f64; K], dims: usize) -> f64 {
             let d = a[ax] - b[ax];
             sq[ax] = d * d;
         }
-        super::neighbours::np_sum(&sq[..dims])
+        super::npsum::np_sum(&sq[..dims])
     }
 }
 
