@@ -50,6 +50,8 @@ mod tests;
 #[cfg(test)]
 mod tests_events;
 #[cfg(test)]
+mod tests_retest;
+#[cfg(test)]
 mod tests_run;
 
 pub use bland_altman::{limits_of_agreement, linregress, LimitsOfAgreement, LinearFit};
