@@ -31,11 +31,11 @@ pub fn run(a: SimulateArgs) -> Result<ExitCode> {
                 ldh_severity_min: a.ldh_severity_min,
                 ramp_s: a.ramp_s,
                 trials: a.trials,
-                day_to_day_sd_fraction: a.day_to_day_sd_fraction.unwrap_or(if a.trials > 1 {
-                    ldh_core::simulate::retest::DEFAULT_DAY_TO_DAY_SD_FRACTION
-                } else {
-                    0.0
-                }),
+                day_to_day_sd_fraction:
+                    ldh_core::simulate::retest::day_to_day_sd_fraction_or_default(
+                        a.trials,
+                        a.day_to_day_sd_fraction,
+                    ),
                 sensor: family_a_sensor(&a),
             };
             let ldh = if a.slow_ldh > 0 {

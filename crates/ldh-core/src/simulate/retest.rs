@@ -30,6 +30,17 @@ pub const MAX_DAY_TO_DAY_SD_FRACTION: f64 = 0.1;
 /// healthy adults' repeated walks on instrumented walkways).
 pub const DEFAULT_DAY_TO_DAY_SD_FRACTION: f64 = 0.03;
 
+/// The day-to-day SD fraction of a cohort of `trials` trials per person when `given` is
+/// not given: [`DEFAULT_DAY_TO_DAY_SD_FRACTION`] with two or more trials, else 0 (`ldh
+/// simulate` and `ldh.simulate_cohort` share this rule).
+pub fn day_to_day_sd_fraction_or_default(trials: usize, given: Option<f64>) -> f64 {
+    given.unwrap_or(if trials > 1 {
+        DEFAULT_DAY_TO_DAY_SD_FRACTION
+    } else {
+        0.0
+    })
+}
+
 /// The standard normal draws of the day-to-day variation are cut at this many SDs (the SD of
 /// the cut normal is 0.99943 of the uncut one's; no stride time or length leaves its range).
 const CUT_SD: f64 = 4.0;
@@ -129,6 +140,9 @@ mod tests {
         assert_eq!(trial_id(0, 3), "T1");
         assert_eq!(trial_id(2, 12), "T03");
         assert_eq!(trial_id(99, 100), "T100");
+        assert_eq!(day_to_day_sd_fraction_or_default(1, None), 0.0);
+        assert_eq!(day_to_day_sd_fraction_or_default(3, None), 0.03);
+        assert_eq!(day_to_day_sd_fraction_or_default(3, Some(0.01)), 0.01);
     }
 
     #[test]
