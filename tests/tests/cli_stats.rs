@@ -132,3 +132,88 @@ fn stats_refuses_cohorts_it_cannot_test_and_names_what_is_missing() {
     let o = ldh(&["stats", c.to_str().unwrap(), "--compare", "gyro"]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+/// Issue 38 item 2's done-when, end to end: `ldh simulate --trials 3`, `ldh analyze`, then
+/// `ldh stats --reliability` writes reliability.csv/.json/.md with one row per parameter
+/// (13), readable by `ReliabilityTable::read`, and prints the Markdown table.
+#[test]
+fn stats_reliability_on_a_simulated_retest_cohort_writes_the_table() {
+    let d = tempfile::tempdir().unwrap();
+    let (c, a, s) = (d.path().join("c"), d.path().join("a"), d.path().join("s"));
+    let p = |x: &std::path::Path| x.to_str().unwrap().to_string();
+    ldh_ok(&[
+        "simulate",
+        "--healthy",
+        "4",
+        "--ldh",
+        "0",
+        "--trials",
+        "3",
+        "--no-turn",
+        "--seconds",
+        "30",
+        "--seed",
+        "5",
+        "--out",
+        &p(&c),
+    ]);
+    let manifest = std::fs::read_to_string(c.join("manifest.csv")).unwrap();
+    assert!(
+        manifest.starts_with("subject_id,trial_id,group,affected_side,left,right,sensor_height_m\nH01,T1,healthy,none,H01/T1/left.csv,H01/T1/right.csv,"),
+        "{manifest}"
+    );
+    assert_eq!(manifest.lines().count(), 1 + 4 * 3);
+    ldh_ok(&["analyze", &p(&c), "--out", &p(&a)]);
+    let o = ldh(&[
+        "stats",
+        "--reliability",
+        "--results",
+        &p(&a),
+        "--out",
+        &p(&s),
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("| stride time (ST, s) | 4 × 3 | "), "{out}");
+    let t = ldh_core::agreement::ReliabilityTable::read(&s.join("reliability.csv")).unwrap();
+    assert_eq!(t.rows.len(), 13);
+    let st = t.row(ldh_core::output::Parameter::StrideTime).unwrap();
+    assert_eq!(
+        (st.n_subjects, st.k_trials, st.withheld.as_str()),
+        (4, 3, "")
+    );
+    // 3 % day-to-day SD of a ≈ 1.05 s stride: MDC95 ≈ 1.96·√2·0.03·1.05 ≈ 0.09 s.
+    let mdc = t.mdc95(ldh_core::output::Parameter::StrideTime).unwrap();
+    assert!((0.03..0.3).contains(&mdc), "{mdc}");
+    assert_eq!(
+        json(&s.join("reliability.json"))["rows"]
+            .as_array()
+            .unwrap()
+            .len(),
+        13
+    );
+    assert!(std::fs::read_to_string(s.join("reliability.md"))
+        .unwrap()
+        .contains("MDC95"));
+    assert!(
+        !s.join("stats.md").exists(),
+        "--reliability writes only its own files"
+    );
+}
+
+#[test]
+fn stats_reliability_without_repeated_trials_says_what_is_needed() {
+    let d = tempfile::tempdir().unwrap();
+    let o = ldh(&[
+        "stats",
+        "--reliability",
+        "--out",
+        d.path().join("s").to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    let t = text(&o);
+    assert!(
+        t.contains("no person has two or more trials") && t.contains("trial_id"),
+        "{t}"
+    );
+}

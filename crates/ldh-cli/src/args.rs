@@ -257,6 +257,13 @@ pub struct StatsArgs {
     /// Also analyse with this model and compare (Table 4): `acc`.
     #[arg(long, value_enum, conflicts_with = "results")]
     pub compare: Option<CompareModel>,
+    /// Test–retest reliability instead of the group statistics: per parameter ICC(2,1) and
+    /// ICC(3,1) with 95 % intervals, SEM, MDC95, within-subject CV and variance components, from
+    /// each person's repeated trials (manifest trial_id; the value of a trial is the mean of both
+    /// legs). Writes only reliability.csv, reliability.json and reliability.md and prints the
+    /// table; groups are not needed (docs/agreement.md, "Reliability table").
+    #[arg(long, conflicts_with = "compare")]
+    pub reliability: bool,
     /// Output folder.
     #[arg(short, long, default_value = "ldh-stats")]
     pub out: PathBuf,
@@ -424,6 +431,15 @@ pub struct SimulateArgs {
     /// walks, any sensor rotation, scale faults, clipping; docs/simulator.md).
     #[arg(long, value_enum, default_value_t = Family::A)]
     pub family: Family,
+    /// Family a: trials per subject, a retest cohort: each person walks N times with their own
+    /// gait and a day-to-day variation (--day-to-day-sd-fraction), written to
+    /// <OUT>/<subject>/T1/… with a trial_id column in the manifest. Default 1.
+    #[arg(long, default_value_t = 1, value_name = "N")]
+    pub trials: usize,
+    /// Family a, with --trials ≥ 2: day-to-day SD of each person's mean stride time and mean
+    /// stride length between trials, as a fraction of the person's own value (default 0.03).
+    #[arg(long, value_name = "FRACTION")]
+    pub day_to_day_sd_fraction: Option<f64>,
     /// Family b: every subject's mean walking speed, m/s (default: drawn per subject).
     #[arg(long)]
     pub speed_mps: Option<f64>,

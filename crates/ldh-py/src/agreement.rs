@@ -1,16 +1,19 @@
 //! `ldh.agree`: an `ldh analyze` output folder against reference files
 //! ([`ldh_core::agreement::run`]); the report as dicts and lists, and its flat table (the rows
-//! of `agreement.csv`) ready for `pandas.DataFrame`.
+//! of `agreement.csv`) ready for `pandas.DataFrame`. `ldh.reliability`: the test–retest table
+//! ([`ldh_core::agreement::reliability_table`]) of a folder or of a recordings table in memory.
 
 use std::path::PathBuf;
 
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use ldh_core::agreement::{self, AgreementParams, LdhResults, OffsetMode};
+use ldh_core::agreement::reliability_table::COLUMNS;
+use ldh_core::agreement::{self, AgreementParams, LdhResults, OffsetMode, ReliabilityTable};
+use ldh_core::output::{Parameter, RecordingRow};
 use ldh_core::LdhError;
 
-use crate::convert::{to_py, value_of, Opts};
+use crate::convert::{columns as columns_of, from_py, to_py, value_of, Opts};
 use crate::errors::OrRaise;
 
 /// `offset_s`: `None` (the clocks agree), a number of seconds, or `"estimate"`.
@@ -76,10 +79,93 @@ pub(crate) fn agree<'py>(
     to_py(py, &v, Opts::default())
 }
 
-/// The core's default of `ldh.agree`'s `tolerance_s`.
+/// The columns of a recordings table the reliability reads: the trial's keys (text) and the
+/// parameters (numbers; NaN or None is missing).
+const KEYS: [&str; 5] = ["subject_id", "trial_id", "visit", "side", "status"];
+
+/// Per-recording rows from a recordings table given as columns (`{name: list}`, as
+/// `ldh.Result` holds them): only what the reliability reads; a missing key column is empty.
+fn rows_of(columns: &serde_json::Value) -> Result<Vec<RecordingRow>, LdhError> {
+    let col = |name: &str| columns.get(name).and_then(|v| v.as_array());
+    let n = col("subject_id").map_or(0, Vec::len);
+    let mut rows = Vec::with_capacity(n);
+    for i in 0..n {
+        let mut m = serde_json::json!({
+            "model": "fusion", "group": "", "affected_side": "", "side_role": "", "source": "",
+            "error": "", "sta_status": "",
+        });
+        for k in KEYS {
+            let v = col(k)
+                .and_then(|c| c.get(i))
+                .and_then(|v| v.as_str())
+                .unwrap_or("");
+            m[k] = v.into();
+        }
+        for p in Parameter::ALL {
+            let v = col(p.column())
+                .and_then(|c| c.get(i))
+                .and_then(|v| v.as_f64());
+            m[p.column()] = v.into();
+        }
+        let row: RecordingRow = serde_json::from_value(m).map_err(|e| {
+            LdhError::param(
+                "results",
+                format!("row {i}"),
+                format!("not a recordings row: {e}"),
+            )
+        })?;
+        rows.push(row);
+    }
+    Ok(rows)
+}
+
+/// `ldh stats --reliability` without writing files: the rows of `reliability.csv` as columns,
+/// from an `ldh analyze` folder (`results_dir`) or a recordings table's columns.
+#[pyfunction]
+#[pyo3(signature = (results_dir=None, recordings=None, confidence_level=None))]
+pub(crate) fn reliability<'py>(
+    py: Python<'py>,
+    results_dir: Option<PathBuf>,
+    recordings: Option<&Bound<'py, PyAny>>,
+    confidence_level: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let columns = recordings.map(from_py).transpose()?;
+    let table = py
+        .detach(move || -> Result<ReliabilityTable, LdhError> {
+            let mut p = AgreementParams::default();
+            if let Some(c) = confidence_level {
+                p.confidence_level = c;
+            }
+            let params = p.check()?;
+            let rows = match (&results_dir, &columns) {
+                (Some(d), None) => ldh_core::report::read_recordings(d)?,
+                (None, Some(c)) => rows_of(c)?,
+                _ => {
+                    return Err(LdhError::param(
+                        "results",
+                        "",
+                        "give an ldh analyze output folder or a recordings table, one of them",
+                    ))
+                }
+            };
+            agreement::require_repeated_trials(&rows)?;
+            Ok(agreement::reliability_table(&rows, &params))
+        })
+        .or_raise(py)?;
+    columns_of(py, &table.rows, &COLUMNS)
+}
+
+/// The core's defaults of `ldh.agree`'s `tolerance_s` and `ldh.reliability`'s
+/// `confidence_level`.
 pub(crate) fn defaults(py: Python<'_>, d: &Bound<'_, PyDict>) -> PyResult<()> {
     let a = PyDict::new(py);
     a.set_item("tolerance_s", AgreementParams::default().tolerance_s)?;
     d.set_item("agree", a)?;
+    let r = PyDict::new(py);
+    r.set_item(
+        "confidence_level",
+        AgreementParams::default().confidence_level,
+    )?;
+    d.set_item("reliability", r)?;
     Ok(())
 }

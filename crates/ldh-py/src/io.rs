@@ -174,7 +174,7 @@ pub(crate) fn write_demo(py: Python<'_>, out: PathBuf) -> PyResult<usize> {
 
 /// Simulate a cohort into a folder as `ldh simulate` does; returns the manifest CSV text.
 #[pyfunction]
-#[pyo3(signature = (out, healthy=None, ldh=None, seconds=None, seed=None, rate_hz=None, turn=None, slow_ldh=None, acc_range_g=None, ramp_s=None))]
+#[pyo3(signature = (out, healthy=None, ldh=None, seconds=None, seed=None, rate_hz=None, turn=None, slow_ldh=None, acc_range_g=None, ramp_s=None, trials=None, day_to_day_sd_fraction=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn simulate_cohort(
     py: Python<'_>,
@@ -188,6 +188,8 @@ pub(crate) fn simulate_cohort(
     slow_ldh: Option<i128>,
     acc_range_g: Option<f64>,
     ramp_s: Option<f64>,
+    trials: Option<i128>,
+    day_to_day_sd_fraction: Option<f64>,
 ) -> PyResult<String> {
     let counts = || -> Result<_, LdhError> {
         Ok((
@@ -195,10 +197,12 @@ pub(crate) fn simulate_cohort(
             opt_uint::<usize>("ldh", ldh)?,
             opt_uint::<u64>("seed", seed)?,
             opt_uint::<usize>("slow_ldh", slow_ldh)?,
+            opt_uint::<usize>("trials", trials)?,
         ))
     };
-    let (healthy, ldh, seed, slow_ldh) = counts().or_raise(py)?;
+    let (healthy, ldh, seed, slow_ldh, trials) = counts().or_raise(py)?;
     let d = ldh_core::simulate::CohortParams::default();
+    let trials = trials.unwrap_or(d.trials);
     let sensor = match acc_range_g {
         Some(g) => d.sensor.clone().acc_range_g(g),
         None => d.sensor.clone(),
@@ -212,6 +216,11 @@ pub(crate) fn simulate_cohort(
         turn: turn.unwrap_or(d.turn),
         slow_ldh: slow_ldh.unwrap_or(d.slow_ldh),
         ramp_s: ramp_s.unwrap_or(d.ramp_s),
+        trials,
+        day_to_day_sd_fraction: ldh_core::simulate::retest::day_to_day_sd_fraction_or_default(
+            trials,
+            day_to_day_sd_fraction,
+        ),
         sensor,
         ..d
     };
@@ -261,6 +270,7 @@ pub(crate) fn defaults(py: Python<'_>, d: &Bound<'_, PyDict>) -> PyResult<()> {
     sim.set_item("slow_ldh", c.slow_ldh)?;
     sim.set_item("acc_range_g", c.sensor.acc_range_g)?;
     sim.set_item("ramp_s", c.ramp_s)?;
+    sim.set_item("trials", c.trials)?;
     d.set_item("simulate_cohort", sim)?;
     Ok(())
 }

@@ -6,7 +6,8 @@
 //! * [`stats`]: the scipy.stats look-alikes;
 //! * [`nonlinear`]: the nolds look-alikes (Lyapunov exponents);
 //! * [`ml`]: cross-validation, training, prediction;
-//! * [`agreement`]: `ldh.agree`, an analysis against a laboratory's reference files;
+//! * [`agreement`]: `ldh.agree`, an analysis against a laboratory's reference files, and
+//!   `ldh.reliability`, the test–retest table of repeated trials;
 //! * [`errors`]: core errors as the `ldh` exception family; [`convert`]: values in and out.
 //!
 //! Conversion only: numpy arrays and typed records in and out (never JSON text for results),
@@ -66,6 +67,7 @@ fn _ldh(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(ml::train, m)?)?;
     m.add_function(wrap_pyfunction!(ml::predict, m)?)?;
     m.add_function(wrap_pyfunction!(agreement::agree, m)?)?;
+    m.add_function(wrap_pyfunction!(agreement::reliability, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -46,6 +46,7 @@ WRAPPED = {
     ldh.lyap_r: "lyap_r",
     ldh.lyap_e: "lyap_e",
     ldh.agree: "agree",
+    ldh.reliability: "reliability",
 }
 
 

@@ -30,6 +30,12 @@ pub fn run(a: SimulateArgs) -> Result<ExitCode> {
                 turn: !a.no_turn,
                 ldh_severity_min: a.ldh_severity_min,
                 ramp_s: a.ramp_s,
+                trials: a.trials,
+                day_to_day_sd_fraction:
+                    ldh_core::simulate::retest::day_to_day_sd_fraction_or_default(
+                        a.trials,
+                        a.day_to_day_sd_fraction,
+                    ),
                 sensor: family_a_sensor(&a),
             };
             let ldh = if a.slow_ldh > 0 {
@@ -45,8 +51,10 @@ pub fn run(a: SimulateArgs) -> Result<ExitCode> {
                     && a.ldh_severity_min == 1.0
                     && a.slow_ldh == 0
                     && a.ramp_s == 0.0
-                    && a.acc_range_g.is_none(),
-                "--no-turn, --ldh-severity-min, --slow-ldh, --ramp-s and --acc-range-g apply to --family a (family b: --setting treadmill walks without turns; its ranges are drawn per subject)"
+                    && a.acc_range_g.is_none()
+                    && a.trials == 1
+                    && a.day_to_day_sd_fraction.is_none(),
+                "--no-turn, --ldh-severity-min, --slow-ldh, --ramp-s, --acc-range-g, --trials and --day-to-day-sd-fraction apply to --family a (family b: --setting treadmill walks without turns; its ranges are drawn per subject)"
             );
             let params = CohortParamsB {
                 healthy: a.healthy,
@@ -97,12 +105,18 @@ fn write<C: Cohort>(
 ) -> Result<ExitCode> {
     params.validate()?;
     let pool = thread_pool(a.jobs)?;
-    let pb = progress(params.len() as u64, "simulate");
+    let trials = params.trials().max(1);
+    let pb = progress((params.len() * trials) as u64, "simulate");
     let rows = pool.install(|| write_cohort(params, &a.out, format, &|| pb.inc(1)))?;
     pb.finish_and_clear();
+    let trials = if trials > 1 {
+        format!(", {trials} trials each")
+    } else {
+        String::new()
+    };
     super::note!(
-        "wrote {} ({} {healthy}, {} {ldh}) to {}",
-        super::count(rows.len(), "subject"),
+        "wrote {} ({} {healthy}, {} {ldh}{trials}) to {}",
+        super::count(rows.len() / params.trials().max(1), "subject"),
         a.healthy,
         a.ldh + a.slow_ldh,
         a.out.display()

@@ -1,4 +1,6 @@
-//! `ldh stats`: cohort statistics, Tables 3 and 4 ([`ldh_core::cohort::stats`]).
+//! `ldh stats`: cohort statistics, Tables 3 and 4 ([`ldh_core::cohort::stats`]), or with
+//! `--reliability` the test–retest reliability of every parameter
+//! ([`ldh_core::agreement::reliability_table`]).
 
 use std::process::ExitCode;
 
@@ -12,6 +14,9 @@ use crate::args::StatsArgs;
 pub fn run(a: StatsArgs) -> Result<ExitCode> {
     super::check_out_dir(&a.out)?;
     let pool = thread_pool(a.jobs)?;
+    if a.reliability {
+        return reliability(&a, &pool);
+    }
     let mut models = vec![rows_from(
         a.results.as_deref(),
         &a.inputs,
@@ -25,5 +30,19 @@ pub fn run(a: StatsArgs) -> Result<ExitCode> {
     write_files(&a.out, &outcome.files)?;
     println!("{}", outcome.markdown);
     super::note!("tables and figures in {}", a.out.display());
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `ldh stats --reliability`: the test–retest table of the repeated trials
+/// ([`ldh_core::agreement::reliability_table`]), written as reliability.csv, .json and .md.
+fn reliability(a: &StatsArgs, pool: &rayon::ThreadPool) -> Result<ExitCode> {
+    let rows = rows_from(a.results.as_deref(), &a.inputs, AttitudeModel::Fusion, pool)?;
+    ldh_core::agreement::require_repeated_trials(&rows)?;
+    let params = ldh_core::agreement::AgreementParams::default().check()?;
+    let table = ldh_core::agreement::reliability_table(&rows, &params);
+    let level = params.params().confidence_level;
+    write_files(&a.out, &table.files(level)?)?;
+    println!("{}", table.to_markdown(level));
+    super::note!("reliability.csv, .json and .md in {}", a.out.display());
     Ok(ExitCode::SUCCESS)
 }

@@ -9,7 +9,8 @@
 //!   counted.
 //! - [`test_retest`]: a subjects × trials table → ICC(2,1), ICC(3,1), SEM, MDC95 (Weir 2005),
 //!   within-subject CV and the variance components ([`reliability`]); [`ReliabilityTable`],
-//!   one row per parameter, is `reliability.csv` ([`reliability_table`]).
+//!   one row per parameter, is `reliability.csv` ([`reliability_table`](mod@reliability_table)),
+//!   computed from a cohort's repeated trials by [`fn@reliability_table`] ([`retest`]).
 //! - [`match_events`]: two sorted event trains → one-to-one matches within a tolerance (the
 //!   rule of gaitmap's `match_stride_lists`), recall, precision, F1 and timing errors
 //!   ([`events`]); [`estimate_clock_offset`] finds the offset between the two clocks
@@ -41,6 +42,7 @@ mod reference_error;
 pub mod reliability;
 pub mod reliability_table;
 pub mod results;
+pub mod retest;
 pub mod run;
 pub mod write;
 
@@ -48,6 +50,8 @@ pub mod write;
 mod tests;
 #[cfg(test)]
 mod tests_events;
+#[cfg(test)]
+mod tests_retest;
 #[cfg(test)]
 mod tests_run;
 
@@ -64,5 +68,6 @@ pub use reference_error::ReferenceError;
 pub use reliability::{test_retest, Reliability, VarianceComponents, MIN_SUBJECTS};
 pub use reliability_table::{ReliabilityRow, ReliabilityTable};
 pub use results::LdhResults;
+pub use retest::{reliability_table, require_repeated_trials};
 pub use run::{run, AgreementReport, OffsetMode};
 pub use write::write_report;

@@ -38,8 +38,23 @@ pub struct CohortParams {
     /// bytes).
     #[serde(skip_serializing_if = "super::params::is_zero_s")]
     pub ramp_s: f64,
+    /// Trials per subject (`ldh simulate --trials`): a retest cohort, each person walking this
+    /// many times with their own gait and a day-to-day variation between trials
+    /// ([`CohortParams::simulate_trial`]). Default 1 (then not written to cohort.json, so
+    /// earlier cohorts keep their bytes).
+    #[serde(skip_serializing_if = "is_one")]
+    pub trials: usize,
+    /// Day-to-day SD between a person's trials of their mean stride time and of their mean
+    /// stride length, each as a fraction of the person's own value (independent draws; stride
+    /// speed follows as length / time). Only with `trials` ≥ 2; default 0 (then not written).
+    #[serde(skip_serializing_if = "super::params::is_zero_s")]
+    pub day_to_day_sd_fraction: f64,
     /// Sensor model.
     pub sensor: SensorModel,
+}
+
+fn is_one(n: &usize) -> bool {
+    *n == 1
 }
 
 fn is_zero(n: &usize) -> bool {
@@ -58,6 +73,8 @@ impl Default for CohortParams {
             turn: true,
             ldh_severity_min: 1.0,
             ramp_s: 0.0,
+            trials: 1,
+            day_to_day_sd_fraction: 0.0,
             sensor: SensorModel::default(),
         }
     }
@@ -110,6 +127,7 @@ impl CohortParams {
             ));
         }
         self.sensor.validate()?;
+        self.validate_trials()?;
         if self.ramp_s != 0.0 && self.turn {
             return Err(LdhError::param(
                 "ramp_s",
@@ -148,8 +166,14 @@ impl CohortParams {
         rng.set_stream(i as u64 + 1);
         rng
     }
-    /// Draw and simulate subject `i`.
+    /// Draw and simulate subject `i` (its only trial).
     pub fn simulate(&self, i: usize) -> Result<SimSubject> {
+        let (p, mut rng) = self.draw(i);
+        simulate_subject(&p, &self.sensor, &mut rng)
+    }
+    /// Draw subject `i`'s parameters (the person's own gait) from its stream, and the stream
+    /// in the state the single-trial simulation continues from.
+    pub fn draw(&self, i: usize) -> (SubjectParams, ChaCha8Rng) {
         let others = self.healthy.saturating_add(self.ldh);
         if i >= others {
             // Slow subject j draws from its own stream family, so S01… are the same subjects
@@ -160,7 +184,7 @@ impl CohortParams {
                 SubjectParams::draw_slow(self.subject_id(i), self.fs_hz, self.duration_s, &mut rng);
             p.turn = self.turn;
             p.ramp_s = self.ramp_s;
-            return simulate_subject(&p, &self.sensor, &mut rng);
+            return (p, rng);
         }
         let mut rng = self.rng(i);
         let group = if i < self.healthy {
@@ -189,6 +213,6 @@ impl CohortParams {
         }
         p.turn = self.turn;
         p.ramp_s = self.ramp_s;
-        simulate_subject(&p, &self.sensor, &mut rng)
+        (p, rng)
     }
 }

@@ -14,7 +14,9 @@
 //! lengths are equal; asymmetry is in step length, stance and angles.
 //!
 //! Everything is drawn from a ChaCha8 stream seeded by the cohort seed with one stream per
-//! subject, so a cohort is byte-identical for a seed whatever the thread count.
+//! subject, so a cohort is byte-identical for a seed whatever the thread count. A retest
+//! cohort ([`retest`], `--trials N`) walks each person N times with a known day-to-day
+//! variation, each trial from a stream of its own.
 
 mod cohort;
 pub mod curves;
@@ -22,6 +24,7 @@ pub mod family_b;
 pub mod jet;
 pub mod model;
 mod params;
+pub mod retest;
 mod sensor;
 mod truth;
 mod write;

@@ -25,6 +25,14 @@ pub trait Cohort: serde::Serialize + Sync {
     }
     /// Draw and simulate subject `i` (independent of the other subjects and of threads).
     fn simulate(&self, i: usize) -> Result<SimSubject>;
+    /// Trials per subject (a retest cohort when ≥ 2). Default 1.
+    fn trials(&self) -> usize {
+        1
+    }
+    /// Trial `t` of subject `i`. Default: [`Cohort::simulate`] (one trial).
+    fn simulate_trial(&self, i: usize, _t: usize) -> Result<SimSubject> {
+        self.simulate(i)
+    }
 }
 
 impl Cohort for CohortParams {
@@ -36,6 +44,12 @@ impl Cohort for CohortParams {
     }
     fn simulate(&self, i: usize) -> Result<SimSubject> {
         CohortParams::simulate(self, i)
+    }
+    fn trials(&self) -> usize {
+        self.trials
+    }
+    fn simulate_trial(&self, i: usize, t: usize) -> Result<SimSubject> {
+        CohortParams::simulate_trial(self, i, t)
     }
 }
 
@@ -53,9 +67,12 @@ impl Cohort for CohortParamsB {
 
 /// Simulate every subject of `params` and write `<out>/<subject>/left.csv`, `right.csv`,
 /// `truth.json` (in `format`), then `<out>/manifest.csv` and `<out>/cohort.json` (the
-/// parameters). Subjects are simulated in parallel on the current rayon pool; the files are the
-/// same whatever the thread count. `done` is called once per subject written (progress).
-/// Returns the manifest rows in subject order; the first failing subject's error otherwise.
+/// parameters). With several trials per subject ([`Cohort::trials`]) each trial is written to
+/// `<out>/<subject>/<trial>/` and the manifest has a `trial_id` column (`T1`, `T2`, …;
+/// [`super::retest::trial_id`]). Recordings are simulated in parallel on the current rayon
+/// pool; the files are the same whatever the thread count. `done` is called once per
+/// recording pair written (progress). Returns the manifest rows in subject (then trial)
+/// order; the first failing recording's error otherwise.
 pub fn write_cohort<C: Cohort>(
     params: &C,
     out: &Path,
@@ -67,13 +84,22 @@ pub fn write_cohort<C: Cohort>(
         path: out.to_path_buf(),
         source,
     })?;
-    let results: Vec<Result<ManifestRow>> = (0..params.len())
+    let trials = params.trials().max(1);
+    let results: Vec<Result<ManifestRow>> = (0..params.len().saturating_mul(trials))
         .into_par_iter()
-        .map(|i| {
-            let s = params.simulate(i)?;
-            s.write(&out.join(&s.params.subject_id), format)?;
+        .map(|j| {
+            if trials == 1 {
+                let s = params.simulate(j)?;
+                s.write(&out.join(&s.params.subject_id), format)?;
+                done();
+                return Ok(ManifestRow::of(&s));
+            }
+            let (i, t) = (j / trials, j % trials);
+            let s = params.simulate_trial(i, t)?;
+            let trial = super::retest::trial_id(t, trials);
+            s.write(&out.join(&s.params.subject_id).join(&trial), format)?;
             done();
-            Ok(ManifestRow::of(&s))
+            Ok(ManifestRow::of(&s).in_trial(trial))
         })
         .collect();
     let rows: Vec<ManifestRow> = results.into_iter().collect::<Result<_>>()?;
@@ -91,6 +117,10 @@ pub fn write_cohort<C: Cohort>(
 pub struct ManifestRow {
     /// Subject.
     pub subject_id: String,
+    /// Trial of a retest cohort (`T1`, …), its files in `<subject>/<trial>/`; `None` for one
+    /// trial per subject (then the manifest has no `trial_id` column).
+    #[serde(default)]
+    pub trial_id: Option<String>,
     /// `healthy` or `ldh`.
     pub group: Group,
     /// `left`, `right` or `none`.
@@ -113,6 +143,7 @@ impl ManifestRow {
         let id = &s.params.subject_id;
         ManifestRow {
             subject_id: id.clone(),
+            trial_id: None,
             group: s.params.group,
             affected_side: s
                 .params
@@ -134,17 +165,37 @@ impl ManifestRow {
     }
 }
 
+impl ManifestRow {
+    /// This row as trial `trial` of its subject: files in `<subject>/<trial>/`.
+    pub fn in_trial(mut self, trial: String) -> ManifestRow {
+        let id = &self.subject_id;
+        self.left = format!("{id}/{trial}/left.csv");
+        self.right = format!("{id}/{trial}/right.csv");
+        self.trial_id = Some(trial);
+        self
+    }
+}
+
 /// Render manifest rows as CSV text.
 /// The `setting` column is written only when a row has a setting (family B), so family A
 /// manifests keep their columns.
 pub fn manifest_csv(rows: &[ManifestRow]) -> String {
     let with_setting = rows.iter().any(|r| r.setting.is_some());
-    let mut out = String::from("subject_id,group,affected_side,left,right,sensor_height_m");
+    let with_trial = rows.iter().any(|r| r.trial_id.is_some());
+    let mut out = String::from(if with_trial {
+        "subject_id,trial_id,group,affected_side,left,right,sensor_height_m"
+    } else {
+        "subject_id,group,affected_side,left,right,sensor_height_m"
+    });
     out.push_str(if with_setting { ",setting\n" } else { "\n" });
     for r in rows {
+        out.push_str(&r.subject_id);
+        if with_trial {
+            out.push(',');
+            out.push_str(r.trial_id.as_deref().unwrap_or(""));
+        }
         out.push_str(&format!(
-            "{},{},{},{},{},{}",
-            r.subject_id,
+            ",{},{},{},{},{}",
             r.group.as_str(),
             r.affected_side,
             r.left,

@@ -13,7 +13,7 @@ from ._errors import (
     LdhParamError,
     LdhWarning,
 )
-from ._agreement import agree
+from ._agreement import agree, reliability
 from ._io import butter_filtfilt, preprocess, read_recording, simulate_cohort, write_demo
 from ._ml import cross_validate, predict, train
 from ._nonlinear import lyap_e, lyap_r
@@ -37,6 +37,7 @@ from ._stats import (
 __version__ = _ldh.__version__
 __all__ = [
     "agree",
+    "reliability",
     "LdhError",
     "LdhDataError",
     "LdhParamError",

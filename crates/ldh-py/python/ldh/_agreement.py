@@ -1,10 +1,12 @@
-"""Agreement of an ``ldh analyze`` run with a laboratory's reference system (``ldh agree``)."""
+"""Agreement of an ``ldh analyze`` run with a laboratory's reference system (``ldh agree``), and
+the test–retest reliability of repeated trials (``ldh stats --reliability``)."""
 from __future__ import annotations
 
 import os
 from typing import Any, Dict, Optional, Sequence, Union
 
 from . import _ldh
+from ._result import _table, have_pandas
 from ._util import PathLike
 
 
@@ -65,3 +67,51 @@ def agree(
         write_params=None if write_params is None else os.fspath(write_params),
         reference_system=reference_system,
     )
+
+
+def reliability(results: Any, confidence_level: float = 0.95) -> Any:
+    """Test–retest reliability of every parameter from repeated trials (``ldh stats --reliability``).
+
+    Per parameter: ICC(2,1) and ICC(3,1) with confidence intervals, the SD of all values, SEM,
+    MDC95, the within-subject CV and the between- and within-subject variances, from each
+    person's trials (manifest ``trial_id``) of their first visit; the value of a trial is the
+    mean of both legs (docs/agreement.md, "Reliability table").
+
+    Parameters
+    ----------
+    results : str, path-like, ldh.Result, pandas.DataFrame or dict of columns
+        An ``ldh analyze`` output folder, the result of ``ldh.analyze``/``ldh.analyze_many``, or
+        its ``recordings`` table.
+    confidence_level : float, default 0.95
+        Level of the ICCs' intervals.
+
+    Returns
+    -------
+    pandas.DataFrame (dict of numpy arrays without pandas)
+        One row per parameter, the columns of ``reliability.csv`` in order; a parameter that
+        cannot be computed has its reason in ``withheld`` and NaN numbers.
+
+    Raises
+    ------
+    LdhDataError
+        No person has two or more trials, or a results folder that cannot be read.
+    LdhParamError
+        A bad ``confidence_level``.
+    LdhFileNotFoundError
+        A missing folder or file.
+    """
+    level = float(confidence_level)
+    if isinstance(results, (str, os.PathLike)):
+        cols = _ldh.reliability(os.fspath(results), None, confidence_level=level)
+    else:
+        rec = results.recordings if hasattr(results, "recordings") else results
+        if hasattr(rec, "columns") and hasattr(rec, "to_dict"):  # a pandas DataFrame
+            table = {str(k): rec[k].tolist() for k in rec.columns}
+        else:
+            table = {str(k): list(v) for k, v in dict(rec).items()}
+        cols = _ldh.reliability(None, table, confidence_level=level)
+    as_frame = have_pandas()
+    out = _table(cols, as_frame)
+    if as_frame:
+        out = out.astype({"n_subjects": int, "k_trials": int})
+    return out

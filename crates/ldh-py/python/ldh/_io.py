@@ -171,6 +171,8 @@ def simulate_cohort(
     slow_ldh: int = 0,
     acc_range_g: float = 8.0,
     ramp_s: float = 0.0,
+    trials: int = 1,
+    day_to_day_sd_fraction: Optional[float] = None,
 ) -> str:
     """Simulate a cohort into ``out`` exactly as ``ldh simulate`` does (subject folders,
     ``manifest.csv`` and ``cohort.json``); returns the manifest CSV text. The same seed gives
@@ -189,10 +191,16 @@ def simulate_cohort(
     ``ldh simulate --ramp-s``: strides 25 % longer at the first step, steady from ``ramp_s`` on
     (needs ``turn=False``; the truth marks those strides ``accelerating``).
 
+    ``trials`` ≥ 2 makes a retest cohort, as ``ldh simulate --trials``: each person walks that
+    many times (``<subject>/T1/``…, a ``trial_id`` column in the manifest) with their own gait
+    and a day-to-day variation of their mean stride time and stride length whose SD is
+    ``day_to_day_sd_fraction`` of their own value (default 0.03 with two or more trials; each
+    trial from a fresh random stream; docs/agreement.md). One trial is the plain cohort.
+
     Sizes beyond the core's declared limits (100 000 subjects; 1 000 000 samples per leg,
     i.e. ``seconds * rate_hz``) raise :class:`LdhParamError` (a ``ValueError``) before any
     work, as do negative or non-integer counts."""
-    for name, v in (("healthy", healthy), ("ldh", ldh), ("slow_ldh", slow_ldh), ("seed", seed)):
+    for name, v in (("healthy", healthy), ("ldh", ldh), ("slow_ldh", slow_ldh), ("seed", seed), ("trials", trials)):
         if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 0:
             raise LdhParamError(f"{name} must be a non-negative int, got {v!r}")
     if healthy >= 2**64 or ldh >= 2**64 or slow_ldh >= 2**64:
@@ -204,7 +212,8 @@ def simulate_cohort(
         raise LdhParamError(f"seed must be below 2**64, got {seed!r}")
     return _ldh.simulate_cohort(
         os.fspath(out), int(healthy), int(ldh), float(seconds), int(seed), float(rate_hz), bool(turn),
-        int(slow_ldh), float(acc_range_g), float(ramp_s),
+        int(slow_ldh), float(acc_range_g), float(ramp_s), int(trials),
+        None if day_to_day_sd_fraction is None else float(day_to_day_sd_fraction),
     )
 
 
