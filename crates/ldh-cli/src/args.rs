@@ -440,6 +440,11 @@ pub struct SimulateArgs {
     /// stride length between trials, as a fraction of the person's own value (default 0.03).
     #[arg(long, value_name = "FRACTION")]
     pub day_to_day_sd_fraction: Option<f64>,
+    /// Also write the cohort's true events and strides as reference files
+    /// (<OUT>/reference_events.csv, reference_strides.csv, with trial_id for --trials ≥ 2), the
+    /// files a lab's force plates would give, to try `ldh agree` end to end.
+    #[arg(long)]
+    pub reference: bool,
     /// Family b: every subject's mean walking speed, m/s (default: drawn per subject).
     #[arg(long)]
     pub speed_mps: Option<f64>,

@@ -19,7 +19,9 @@ use serde::{Deserialize, Serialize};
 mod strides;
 mod truth_reference;
 pub use strides::{stride_scores, write_stride_scores, StrideScore, MATCH_WINDOW_S};
-pub use truth_reference::{truth_reference, write_truth_reference, TruthScope};
+pub use truth_reference::{
+    truth_reference, write_cohort_reference, write_truth_reference, TruthScope,
+};
 
 use crate::gait::anatomical_roll_deg;
 use crate::pipeline::SubjectResult;

@@ -2,8 +2,10 @@
 script in a fresh folder, as a new user would paste it. The Dask recipe starts a LocalCluster
 with 2 workers; its recordings table must equal `ldh analyze` on the same manifest (checked in
 the block against ldh.analyze, and here against the CLI's recordings.csv when a binary is
-built)."""
+built). The third block is the lab workflow's Python half: it runs in the folder its shell
+half (the ```sh block starting `ldh simulate -o lab`) made, with the built binary."""
 import importlib.util
+import os
 import pathlib
 import re
 import subprocess
@@ -17,9 +19,18 @@ ROOT = pathlib.Path(__file__).resolve().parents[3]
 BLOCKS = re.findall(r"^```python\n(.*?)^```", (ROOT / "README.md").read_text(encoding="utf-8"), re.S | re.M)
 
 
-def test_the_readme_has_the_python_and_the_dask_block():
-    assert len(BLOCKS) == 2 and "LocalCluster(n_workers=2" in BLOCKS[1]
+README = (ROOT / "README.md").read_text(encoding="utf-8")
+# The lab workflow (issue 38): the shell block that starts with the simulated lab.
+WORKFLOW_SH = re.findall(r"^```sh\n(ldh simulate -o lab .*?)^```", README, re.S | re.M)
+
+
+def test_the_readme_has_the_python_the_dask_and_the_workflow_blocks():
+    assert len(BLOCKS) == 3 and "LocalCluster(n_workers=2" in BLOCKS[1]
     assert 'if __name__ == "__main__":' in BLOCKS[1]
+    assert "ldh.reliability" in BLOCKS[2] and len(WORKFLOW_SH) == 1
+    # The whole workflow in at most 10 lines of shell and 10 of Python (issue 38).
+    assert len(WORKFLOW_SH[0].strip().splitlines()) <= 10
+    assert len(BLOCKS[2].strip().splitlines()) <= 10
 
 
 def _run(block, cwd):
@@ -77,8 +88,34 @@ def test_readme_blocks_pass_mypy_strict(tmp_path):
     first block; on the Dask recipe too, with `--allow-untyped-calls` because dask itself ships
     no type hints (pandas' come from pandas-stubs)."""
     api = pytest.importorskip("mypy.api")
-    for i, (block, extra) in enumerate(zip(BLOCKS, ([], ["--allow-untyped-calls"]))):
+    for i, (block, extra) in enumerate(zip(BLOCKS, ([], ["--allow-untyped-calls"], []))):
         script = tmp_path / f"readme_block_{i}.py"
         script.write_text(block, encoding="utf-8")
         out, err, status = api.run(["--strict", "--no-incremental", *extra, str(script)])
         assert status == 0, f"block {i}:\n{out}{err}"
+
+
+def test_lab_workflow_runs_as_printed(tmp_path):
+    """The README's lab workflow (issue 38): the shell block with the built `ldh` on PATH, then
+    the Python block in the same folder; the agreement, calibration and reliability table exist
+    and the calibrated run's report says so."""
+    pytest.importorskip("pandas")
+    cli = _cli()
+    if cli is None:
+        print("skipped the README lab workflow: no ldh binary built")
+        return
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    (bin_dir / "ldh").symlink_to(cli)
+    work = tmp_path / "work"
+    work.mkdir()
+    env = dict(os.environ, PATH=f"{bin_dir}{os.pathsep}{os.environ.get('PATH', '')}")
+    p = subprocess.run(["bash", "-e", "-c", WORKFLOW_SH[0]], cwd=work, env=env, capture_output=True,
+                       text=True, timeout=600)
+    assert p.returncode == 0, f"stdout:\n{p.stdout}\nstderr:\n{p.stderr}"
+    assert "| HS | both |" in p.stdout and "| stride time (ST, s) | 10 × 3 |" in p.stdout, p.stdout
+    assert "[events.calibration]" in (work / "calibration.toml").read_text()
+    index = (work / "res2" / "reports" / "index.html").read_text(encoding="utf-8")
+    assert "Gait events calibrated against force plates" in index
+    out = _run(BLOCKS[2], work)
+    assert "stride_time_s" in out and "mdc95" in out, out

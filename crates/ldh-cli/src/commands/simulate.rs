@@ -109,6 +109,14 @@ fn write<C: Cohort>(
     let pb = progress((params.len() * trials) as u64, "simulate");
     let rows = pool.install(|| write_cohort(params, &a.out, format, &|| pb.inc(1)))?;
     pb.finish_and_clear();
+    if a.reference {
+        let [e, st] = ldh_core::evaluate::write_cohort_reference(&a.out)?;
+        super::note!(
+            "wrote the true events and strides as {} and {}",
+            e.display(),
+            st.display()
+        );
+    }
     let trials = if trials > 1 {
         format!(", {trials} trials each")
     } else {

@@ -30,11 +30,29 @@ pub fn truth_reference(
     scope: TruthScope,
     shift_s: f64,
 ) -> (String, String) {
-    let mut events = String::from("subject_id,side,event,time_s\n");
-    let mut strides = String::from(
-        "subject_id,side,time_s,end_time_s,stride_time_s,stance_ratio,stride_length_m\n",
+    let trials: Vec<(&SubjectTruth, Option<&str>)> = truths.iter().map(|t| (t, None)).collect();
+    reference_text(&trials, scope, shift_s)
+}
+
+/// [`truth_reference`] of truths that may belong to trials: with any trial, both files get a
+/// `trial_id` column after `subject_id`.
+fn reference_text(
+    truths: &[(&SubjectTruth, Option<&str>)],
+    scope: TruthScope,
+    shift_s: f64,
+) -> (String, String) {
+    let with_trials = truths.iter().any(|(_, t)| t.is_some());
+    let trial_col = if with_trials { "trial_id," } else { "" };
+    let mut events = format!("subject_id,{trial_col}side,event,time_s\n");
+    let mut strides = format!(
+        "subject_id,{trial_col}side,time_s,end_time_s,stride_time_s,stance_ratio,stride_length_m\n"
     );
-    for t in truths {
+    for (t, trial) in truths {
+        let who = match (with_trials, trial) {
+            (true, Some(tr)) => format!("{},{tr}", t.subject_id),
+            (true, None) => format!("{},", t.subject_id),
+            (false, _) => t.subject_id.clone(),
+        };
         for leg in [&t.left, &t.right] {
             let side = leg.side.as_str();
             for (kind, at) in [("HS", 0usize), ("TO", 1)] {
@@ -47,14 +65,13 @@ pub fn truth_reference(
                 };
                 for time in times {
                     // writing to a String cannot fail
-                    let _ = writeln!(events, "{},{side},{kind},{}", t.subject_id, time + shift_s);
+                    let _ = writeln!(events, "{who},{side},{kind},{}", time + shift_s);
                 }
             }
             for s in strides_of(leg, scope) {
                 let _ = writeln!(
                     strides,
-                    "{},{side},{},{},{},{},{}",
-                    t.subject_id,
+                    "{who},{side},{},{},{},{},{}",
                     s.hs_time_s + shift_s,
                     s.next_hs_time_s + shift_s,
                     s.stride_time_s,
@@ -90,4 +107,33 @@ pub fn write_truth_reference(
     crate::io::write_atomic(&e, events.as_bytes())?;
     crate::io::write_atomic(&s, strides.as_bytes())?;
     Ok([e, s])
+}
+
+/// The truth of a simulated cohort folder (`ldh simulate --reference`): every subject and
+/// trial of its manifest, each trial's `truth.json` beside its left recording, written into
+/// `cohort` as `reference_events.csv` and `reference_strides.csv` (with a `trial_id` column for
+/// a retest cohort), the whole walk ([`TruthScope::All`]): the files a lab's force plates would
+/// give, for trying `ldh agree` end to end.
+pub fn write_cohort_reference(cohort: &Path) -> Result<[PathBuf; 2]> {
+    let subjects = crate::pipeline::discover(&[cohort.to_path_buf()])?;
+    let mut truths = Vec::with_capacity(subjects.len());
+    for s in &subjects {
+        let dir = match &s.left {
+            Some(crate::pipeline::Source::Path(p)) => p.parent().map(Path::to_path_buf),
+            _ => None,
+        }
+        .unwrap_or_else(|| cohort.join(&s.subject_id));
+        truths.push((
+            crate::simulate::read_truth(dir.join("truth.json"))?,
+            s.trial_id.clone(),
+        ));
+    }
+    let refs: Vec<(&SubjectTruth, Option<&str>)> =
+        truths.iter().map(|(t, tr)| (t, tr.as_deref())).collect();
+    let (events, strides) = reference_text(&refs, TruthScope::All, 0.0);
+    let e = cohort.join("reference_events.csv");
+    let st = cohort.join("reference_strides.csv");
+    crate::io::write_atomic(&e, events.as_bytes())?;
+    crate::io::write_atomic(&st, strides.as_bytes())?;
+    Ok([e, st])
 }
