@@ -16,16 +16,15 @@
 //! `treadmill`) and `visit` (a free label of the session, e.g. `pre` or `2026-03-01`: the
 //! reports keep a person's visits apart).
 
-use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::path::Path;
 
 use super::heights::SensorHeights;
-use super::inputs::{Source, SubjectInput};
+pub use super::subject_input::GroupLabel;
+use super::subject_input::{Source, SubjectInput};
 use crate::error::{LdhError, Location, Result};
 use crate::io::FormatSpec;
 use crate::recording::{Setting, Side};
-use crate::simulate::Group;
 
 /// The columns a manifest may have.
 pub const MANIFEST_COLUMNS: [&str; 16] = [
@@ -49,62 +48,6 @@ pub const MANIFEST_COLUMNS: [&str; 16] = [
 
 /// The fastest treadmill belt speed a manifest may give, m/s (a sprint; faster is a typo).
 pub const MAX_BELT_SPEED_MPS: f64 = 5.0;
-
-/// A subject's group as a manifest names it: the reference group, the LDH group (whose
-/// affected side is compared with the unaffected one), or any other label (carried into the
-/// tables, not compared).
-#[derive(Debug, Clone, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(from = "String", into = "String")]
-pub enum GroupLabel {
-    /// `healthy` (also written `h` or `control`): the reference group.
-    Healthy,
-    /// `ldh`: lumbar disc herniation, one affected side.
-    Ldh,
-    /// Any other label, as written (e.g. `stroke`).
-    Other(String),
-}
-
-impl GroupLabel {
-    /// `healthy`, `ldh` or the label.
-    pub fn as_str(&self) -> &str {
-        match self {
-            GroupLabel::Healthy => "healthy",
-            GroupLabel::Ldh => "ldh",
-            GroupLabel::Other(s) => s,
-        }
-    }
-}
-
-impl From<String> for GroupLabel {
-    fn from(s: String) -> Self {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "healthy" | "h" | "control" => GroupLabel::Healthy,
-            "ldh" => GroupLabel::Ldh,
-            _ => GroupLabel::Other(s.trim().to_string()),
-        }
-    }
-}
-
-impl From<GroupLabel> for String {
-    fn from(g: GroupLabel) -> String {
-        g.as_str().to_string()
-    }
-}
-
-impl From<Group> for GroupLabel {
-    fn from(g: Group) -> Self {
-        match g {
-            Group::Healthy => GroupLabel::Healthy,
-            Group::Ldh => GroupLabel::Ldh,
-        }
-    }
-}
-
-impl std::fmt::Display for GroupLabel {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
 
 /// The first row of `text` that is not empty or a `#` comment, split as CSV and lower-cased.
 fn header_of(text: &str) -> Option<Vec<String>> {

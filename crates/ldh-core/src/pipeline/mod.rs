@@ -16,6 +16,7 @@ pub mod output_hint;
 pub mod pairing;
 pub mod quality;
 mod subject;
+mod subject_input;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]
