@@ -39,6 +39,7 @@ mod reference_error;
 pub mod reliability;
 pub mod results;
 pub mod run;
+mod run_events;
 pub mod write;
 
 #[cfg(test)]

@@ -21,6 +21,8 @@ pub struct AgreementRow {
     pub quantity: String,
     /// `left`, `right` or `both`.
     pub side: String,
+    /// `all`, or the subjects' group (event rows per group, when there are two or more).
+    pub group: String,
     /// ldh events (events).
     pub n_ldh: Option<usize>,
     /// Reference events (events).
@@ -86,12 +88,13 @@ pub struct AgreementRow {
 /// The rows of `agreement.csv`.
 pub fn rows(report: &AgreementReport) -> Vec<AgreementRow> {
     let mut out = Vec::new();
-    for e in &report.events {
+    for e in report.events.iter().chain(&report.events_by_group) {
         let s = &e.summary;
         out.push(AgreementRow {
             level: "events".into(),
             quantity: e.event.clone(),
             side: e.side.clone(),
+            group: e.group.clone(),
             n_ldh: Some(s.n_ldh),
             n_reference: Some(s.n_reference),
             n_matched: Some(s.n_matched),
@@ -110,6 +113,7 @@ pub fn rows(report: &AgreementReport) -> Vec<AgreementRow> {
             level: p.level.clone(),
             quantity: p.parameter.clone(),
             side: "both".into(),
+            group: super::run::ALL_GROUPS.into(),
             note: p.not_computed.clone().unwrap_or_default(),
             ..Default::default()
         };
@@ -168,28 +172,23 @@ pub fn markdown(report: &AgreementReport) -> String {
     }
     if !report.events.is_empty() {
         s.push_str("## Events (errors ldh − reference, ms)\n\n");
-        s.push_str("| event | side | ldh / reference / matched | recall | precision | F1 | bias | SD | MAE | P95 |\n");
-        s.push_str("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-        for e in &report.events {
-            let m = &e.summary;
-            let ms = |x: Option<f64>| f(x.map(|v| v * 1e3), 1);
+        if let [g] = report.groups.as_slice() {
             s.push_str(&format!(
-                "| {} | {} | {} / {} / {} | {} | {} | {} | {} | {} | {} | {} |\n",
-                e.event,
-                e.side,
-                m.n_ldh,
-                m.n_reference,
-                m.n_matched,
-                f(m.recall, 3),
-                f(m.precision, 3),
-                f(m.f1, 3),
-                ms(m.bias_s),
-                ms(m.sd_s),
-                ms(m.mae_s),
-                ms(m.p95_abs_s)
+                "Every subject is in group {} ({} subjects).\n\n",
+                g.group, g.subjects
             ));
         }
-        s.push('\n');
+        event_table(&mut s, &report.events, false);
+    }
+    if !report.events_by_group.is_empty() {
+        s.push_str("## Events per group (errors ldh − reference, ms)\n\n");
+        let n: Vec<String> = report
+            .groups
+            .iter()
+            .map(|g| format!("{} {} subjects", g.group, g.subjects))
+            .collect();
+        s.push_str(&format!("Groups: {}.\n\n", n.join(", ")));
+        event_table(&mut s, &report.events_by_group, true);
     }
     if !report.parameters.is_empty() {
         s.push_str(&format!(
@@ -220,6 +219,46 @@ pub fn markdown(report: &AgreementReport) -> String {
         }
     }
     s
+}
+
+/// One Markdown table of event rows (with a group column when `by_group`).
+fn event_table(s: &mut String, rows: &[super::run::EventAgreement], by_group: bool) {
+    let (gh, gl) = if by_group {
+        ("group | ", "---|")
+    } else {
+        ("", "")
+    };
+    s.push_str(&format!(
+        "| {gh}event | side | ldh / reference / matched | recall | precision | F1 | bias | SD | MAE | P95 |\n"
+    ));
+    s.push_str(&format!(
+        "|{gl}---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n"
+    ));
+    for e in rows {
+        let m = &e.summary;
+        let ms = |x: Option<f64>| f(x.map(|v| v * 1e3), 1);
+        let g = if by_group {
+            format!("{} | ", e.group.replace('|', "/"))
+        } else {
+            String::new()
+        };
+        s.push_str(&format!(
+            "| {g}{} | {} | {} / {} / {} | {} | {} | {} | {} | {} | {} | {} |\n",
+            e.event,
+            e.side,
+            m.n_ldh,
+            m.n_reference,
+            m.n_matched,
+            f(m.recall, 3),
+            f(m.precision, 3),
+            f(m.f1, 3),
+            ms(m.bias_s),
+            ms(m.sd_s),
+            ms(m.mae_s),
+            ms(m.p95_abs_s)
+        ));
+    }
+    s.push('\n');
 }
 
 /// Write `agreement.csv`, `agreement.json` and `agreement.md` into `dir` (created when
