@@ -2,6 +2,7 @@
 //! reference clock shifted by 0.75 s, and a bad reference refused before anything is written.
 
 mod common;
+use common::html::check_page;
 use common::{json, ldh, ldh_ok, simulate_cohort, text};
 
 use ldh_core::evaluate::{truth_reference, TruthScope};
@@ -62,6 +63,23 @@ fn agree_reads_an_analyze_folder_estimates_the_offset_and_refuses_a_bad_referenc
     assert!(std::fs::read_to_string(out.join("agreement.md"))
         .unwrap()
         .contains("stride_length_m"));
+    // The page: well-formed and self-contained, figures numbered, axis labels with units,
+    // text ≥ 8 pt in print; two timing histograms and a Bland–Altman plot per computed
+    // parameter (per stride and per recording).
+    let computed = j["parameters"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|p| !p["agreement"].is_null())
+        .count();
+    assert!(computed >= 6, "{computed}");
+    assert_eq!(check_page(&out.join("agreement.html")), 2 + computed);
+    let page = std::fs::read_to_string(out.join("agreement.html")).unwrap();
+    assert!(
+        page.contains("Bland–Altman plot of the stride time"),
+        "{page}"
+    );
+    assert!(text(&o).contains("agreement.html"), "{}", text(&o));
 
     let bad = d.path().join("bad.csv");
     std::fs::write(

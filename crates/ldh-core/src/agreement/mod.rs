@@ -16,7 +16,8 @@
 //!
 //! - [`run`]: `ldh agree` — an `ldh analyze` run ([`LdhResults`]) against a laboratory's
 //!   reference files ([`read_reference`]): clock offsets, event matching, per-stride and
-//!   per-recording agreement ([`AgreementReport`], written by [`write_report`]).
+//!   per-recording agreement ([`AgreementReport`], written by [`write_report`]; the page
+//!   with the Bland–Altman plots and timing histograms: [`page`]).
 //!
 //! Every formula, the pingouin / scipy function it reproduces, and the decisions where they are
 //! silent: `docs/agreement.md`, "Statistics". The goldens (`data-fixtures/golden/agreement/`,
@@ -32,6 +33,7 @@ mod error;
 pub mod events;
 pub mod icc;
 pub mod offset;
+pub mod page;
 mod paired;
 mod params;
 pub mod reference;
@@ -46,6 +48,8 @@ pub mod write;
 mod tests;
 #[cfg(test)]
 mod tests_events;
+#[cfg(test)]
+mod tests_page;
 #[cfg(test)]
 mod tests_run;
 

@@ -34,7 +34,9 @@ use crate::Side;
 use super::reference::{Reference, ReferenceValues};
 use super::results::{boxed, LdhResults, LdhStride, STRIDE_PARAMETERS};
 use super::run_events::{event_train, group_counts};
-pub use super::run_events::{EventAgreement, GroupCount, UnmatchedEvent, ALL_GROUPS, UNLABELLED};
+pub use super::run_events::{
+    EventAgreement, GroupCount, MatchedEvent, UnmatchedEvent, ALL_GROUPS, UNLABELLED,
+};
 use super::{
     agreement, estimate_clock_offset, match_events, polish_offset, AgreementParams, ClockOffset,
     ParameterAgreement, ReferenceError, ValidAgreementParams,
@@ -156,6 +158,9 @@ pub struct AgreementReport {
     /// rows are [`Self::events`]).
     #[serde(default)]
     pub events_by_group: Vec<EventAgreement>,
+    /// Matched events with their timing errors, in the order matched.
+    #[serde(default)]
+    pub event_pairs: Vec<MatchedEvent>,
     /// Unmatched events (ldh's only inside the span the reference covers).
     pub unmatched_events: Vec<UnmatchedEvent>,
     /// Reference strides (with a time or a number).
@@ -195,6 +200,7 @@ pub fn run(
         groups: group_counts(results, &trials),
         events: Vec::new(),
         events_by_group: Vec::new(),
+        event_pairs: Vec::new(),
         unmatched_events: Vec::new(),
         reference_strides: reference.strides.len(),
         strides_matched: 0,

@@ -62,6 +62,25 @@ pub struct UnmatchedEvent {
     pub time_s: f64,
 }
 
+/// A matched pair of events.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MatchedEvent {
+    /// Subject.
+    pub subject_id: String,
+    /// Trial.
+    pub trial_id: String,
+    /// The subject's group.
+    pub group: String,
+    /// Leg.
+    pub side: String,
+    /// `HS` or `TO`.
+    pub event: String,
+    /// The reference's time, s.
+    pub reference_time_s: f64,
+    /// ldh − reference, s (ldh's time with the offset removed).
+    pub error_s: f64,
+}
+
 /// One group of the trials the reference covers.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct GroupCount {
@@ -218,6 +237,17 @@ pub(crate) fn events(
                     })
                 };
                 m.unmatched_ldh.iter().for_each(|&i| miss("ldh", l[i]));
+                for (&(_, j), &error_s) in m.pairs.iter().zip(&m.errors_s) {
+                    report.event_pairs.push(MatchedEvent {
+                        subject_id: trial.0.clone(),
+                        trial_id: trial.1.clone(),
+                        group: group.clone(),
+                        side: side.to_string(),
+                        event: kind.to_string(),
+                        reference_time_s: r[j],
+                        error_s,
+                    });
+                }
                 m.unmatched_reference
                     .iter()
                     .for_each(|&j| miss("reference", r[j]));

@@ -190,7 +190,7 @@ fn a_file_that_fails_adds_nothing() {
 }
 
 /// A small simulated cohort analysed in memory, and its truth.
-fn simulated() -> (Vec<SubjectResult>, Vec<crate::simulate::SubjectTruth>) {
+pub(super) fn simulated() -> (Vec<SubjectResult>, Vec<crate::simulate::SubjectTruth>) {
     use crate::io::{FormatSpec, ReadParams};
     let dir = tempfile::tempdir().unwrap();
     let c = crate::simulate::CohortParams {
@@ -214,7 +214,7 @@ fn simulated() -> (Vec<SubjectResult>, Vec<crate::simulate::SubjectTruth>) {
     (results, truths)
 }
 
-fn agree_with(
+pub(super) fn agree_with(
     results: &LdhResults,
     events: &str,
     strides: &str,
@@ -310,7 +310,7 @@ fn agreement_with_the_exported_truth_reproduces_evaluate() {
 
     let dir = tempfile::tempdir().unwrap();
     let files = super::write_report(dir.path(), &rep).unwrap();
-    assert_eq!(files.len(), 3);
+    assert_eq!(files.len(), 4);
     let csv = std::fs::read_to_string(dir.path().join("agreement.csv")).unwrap();
     assert_eq!(
         csv.lines().count(),

@@ -1,6 +1,7 @@
 //! The files of `ldh agree`: `agreement.csv` (one row per event kind and side, and per
 //! parameter and level), `agreement.json` (the whole [`AgreementReport`], pairs and unmatched
-//! events included) and `agreement.md` (the same tables for reading). All three are rendered
+//! events included), `agreement.md` (the same tables for reading) and `agreement.html` (the
+//! page with the figures, [`super::page`]). All three are rendered
 //! before the first is written, and each is written atomically.
 
 use std::path::{Path, PathBuf};
@@ -261,12 +262,13 @@ fn event_table(s: &mut String, rows: &[super::run::EventAgreement], by_group: bo
     s.push('\n');
 }
 
-/// Write `agreement.csv`, `agreement.json` and `agreement.md` into `dir` (created when
-/// missing). Every file is rendered first; each is then written atomically. Returns the paths.
+/// Write `agreement.csv`, `agreement.json`, `agreement.md` and `agreement.html` (the page,
+/// [`super::page`]) into `dir` (created when missing). Every file is rendered first; each is then written atomically. Returns the paths.
 pub fn write_report(dir: &Path, report: &AgreementReport) -> Result<Vec<PathBuf>> {
     let csv = crate::output::to_csv(&rows(report), &["level"])?;
     let json = serde_json::to_string_pretty(report)?;
     let md = markdown(report);
+    let page = super::page::agreement_html(report)?;
     std::fs::create_dir_all(dir).map_err(|e| crate::LdhError::Write {
         path: dir.to_path_buf(),
         reason: e.to_string(),
@@ -276,6 +278,7 @@ pub fn write_report(dir: &Path, report: &AgreementReport) -> Result<Vec<PathBuf>
         ("agreement.csv", csv.as_bytes()),
         ("agreement.json", json.as_bytes()),
         ("agreement.md", md.as_bytes()),
+        ("agreement.html", page.as_bytes()),
     ] {
         let p = dir.join(name);
         crate::io::write_atomic(&p, bytes)?;
