@@ -17,7 +17,8 @@
 //! - [`run`]: `ldh agree` — an `ldh analyze` run ([`LdhResults`]) against a laboratory's
 //!   reference files ([`read_reference`]): clock offsets, event matching, per-stride and
 //!   per-recording agreement ([`AgreementReport`], written by [`write_report`]; the page
-//!   with the Bland–Altman plots and timing histograms: [`page`]).
+//!   with the Bland–Altman plots and timing histograms: [`page`]); per-step walkway exports
+//!   (GAITRite-like) read through a column map ([`walkway`]).
 //!
 //! Every formula, the pingouin / scipy function it reproduces, and the decisions where they are
 //! silent: `docs/agreement.md`, "Statistics". The goldens (`data-fixtures/golden/agreement/`,
@@ -42,6 +43,7 @@ pub mod reliability;
 pub mod results;
 pub mod run;
 mod run_events;
+pub mod walkway;
 pub mod write;
 
 #[cfg(test)]
@@ -52,6 +54,8 @@ mod tests_events;
 mod tests_page;
 #[cfg(test)]
 mod tests_run;
+#[cfg(test)]
+mod tests_walkway;
 
 pub use bland_altman::{limits_of_agreement, linregress, LimitsOfAgreement, LinearFit};
 pub use error::AgreementError;
@@ -65,4 +69,5 @@ pub use reference_error::ReferenceError;
 pub use reliability::{test_retest, Reliability, VarianceComponents, MIN_SUBJECTS};
 pub use results::LdhResults;
 pub use run::{run, AgreementReport, OffsetMode};
+pub use walkway::{read_walkway, WalkwayIds, WalkwayMap};
 pub use write::write_report;

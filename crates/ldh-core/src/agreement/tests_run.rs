@@ -12,7 +12,7 @@ use crate::LdhError;
 
 /// Results of subjects whose legs failed (no events or strides): enough for the reader's
 /// subject, trial and range checks. `trials`: (subject, trial, duration s).
-fn fake_results(trials: &[(&str, &str, f64)]) -> LdhResults {
+pub(super) fn fake_results(trials: &[(&str, &str, f64)]) -> LdhResults {
     let results: Vec<SubjectResult> = trials
         .iter()
         .map(|(s, t, _)| SubjectResult {
