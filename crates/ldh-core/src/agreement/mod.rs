@@ -44,6 +44,7 @@ pub mod results;
 pub mod run;
 mod run_events;
 pub mod walkway;
+mod walkway_map;
 pub mod write;
 
 #[cfg(test)]

@@ -23,163 +23,13 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-use serde::{Deserialize, Serialize};
-
 use crate::error::{LdhError, Location, Result};
-use crate::output::Parameter;
+
+pub use super::walkway_map::{MappedColumn, SideColumn, StrideAnchor, WalkwayMap, WalkwayUnit};
 
 use super::reference::{parse_reference, Reference};
 use super::results::{boxed, LdhResults, STRIDE_PARAMETERS};
 use super::{ReferenceError, ValidAgreementParams};
-
-/// A unit of a walkway column, converted to ldh's unit of the key by a factor.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-pub enum WalkwayUnit {
-    /// Seconds.
-    #[serde(rename = "s")]
-    Seconds,
-    /// Milliseconds (÷ 1000).
-    #[serde(rename = "ms")]
-    Milliseconds,
-    /// Metres.
-    #[serde(rename = "m")]
-    Metres,
-    /// Centimetres (÷ 100).
-    #[serde(rename = "cm")]
-    Centimetres,
-    /// Millimetres (÷ 1000).
-    #[serde(rename = "mm")]
-    Millimetres,
-    /// Metres per second.
-    #[serde(rename = "m/s")]
-    MetresPerSecond,
-    /// Centimetres per second (÷ 100).
-    #[serde(rename = "cm/s")]
-    CentimetresPerSecond,
-    /// A fraction, 0–1.
-    #[serde(rename = "ratio")]
-    Ratio,
-    /// Per cent (÷ 100).
-    #[serde(rename = "%")]
-    Percent,
-    /// Degrees.
-    #[serde(rename = "deg")]
-    Degrees,
-}
-
-impl WalkwayUnit {
-    /// The unit as the map writes it.
-    pub fn name(self) -> &'static str {
-        use WalkwayUnit::*;
-        match self {
-            Seconds => "s",
-            Milliseconds => "ms",
-            Metres => "m",
-            Centimetres => "cm",
-            Millimetres => "mm",
-            MetresPerSecond => "m/s",
-            CentimetresPerSecond => "cm/s",
-            Ratio => "ratio",
-            Percent => "%",
-            Degrees => "deg",
-        }
-    }
-
-    /// (ldh's unit this converts to, the divisor: value in ldh's unit = value / divisor, a
-    /// division so that e.g. 131.2 cm is the double nearest 1.312 m).
-    fn to_ldh(self) -> (&'static str, f64) {
-        use WalkwayUnit::*;
-        match self {
-            Seconds => ("s", 1.0),
-            Milliseconds => ("s", 1e3),
-            Metres => ("m", 1.0),
-            Centimetres => ("m", 1e2),
-            Millimetres => ("m", 1e3),
-            MetresPerSecond => ("m/s", 1.0),
-            CentimetresPerSecond => ("m/s", 1e2),
-            Ratio => ("ratio", 1.0),
-            Percent => ("ratio", 1e2),
-            Degrees => ("deg", 1.0),
-        }
-    }
-}
-
-/// One mapped column: its name in the export's header and its unit.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct MappedColumn {
-    /// The export's column (matched trimmed, without regard to case).
-    pub column: String,
-    /// Its unit.
-    pub unit: WalkwayUnit,
-}
-
-/// The foot column and its values.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SideColumn {
-    /// The export's column.
-    pub column: String,
-    /// Values meaning the left foot (without regard to case), e.g. `["L", "Left"]`.
-    pub left: Vec<String>,
-    /// Values meaning the right foot.
-    pub right: Vec<String>,
-}
-
-/// Which heel strike a footfall's stride values belong to.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum StrideAnchor {
-    /// The stride starts at this footfall's heel strike.
-    #[default]
-    Start,
-    /// The stride ends at this footfall's heel strike (GAITRite, Zeno): it starts at the same
-    /// foot's previous heel strike.
-    End,
-}
-
-/// The column map of a per-step walkway export (TOML; `data-fixtures/agreement/` has one for a
-/// GAITRite-like export).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct WalkwayMap {
-    /// Short name.
-    pub name: String,
-    /// Where the format comes from.
-    #[serde(default)]
-    pub description: String,
-    /// Field delimiter: `,` (default), `;` or a tab.
-    #[serde(default = "comma")]
-    pub delimiter: String,
-    /// Lines above the header row (a title block).
-    #[serde(default)]
-    pub skip_rows_before_header: usize,
-    /// The subject's column (else `--subject-id`).
-    #[serde(default)]
-    pub subject_column: Option<String>,
-    /// The trial's column (else `--trial-id`, or none).
-    #[serde(default)]
-    pub trial_column: Option<String>,
-    /// The foot.
-    pub side: SideColumn,
-    /// First contact (heel strike), a time.
-    #[serde(default)]
-    pub heel_strike: Option<MappedColumn>,
-    /// Last contact (toe off), a time.
-    #[serde(default)]
-    pub toe_off: Option<MappedColumn>,
-    /// Which heel strike the stride values belong to.
-    #[serde(default)]
-    pub stride_anchor: StrideAnchor,
-    /// Stride parameters: a column of `strides.csv` (`stride_time_s`, `stride_length_m`,
-    /// `speed_mps`, `stance_ratio`, …) → its export column.
-    #[serde(default)]
-    pub strides: std::collections::BTreeMap<String, MappedColumn>,
-}
-
-fn comma() -> String {
-    ",".into()
-}
 
 /// The subject and trial of an export whose map has no column for them.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -188,90 +38,6 @@ pub struct WalkwayIds {
     pub subject_id: Option<String>,
     /// The trial (`--trial-id`).
     pub trial_id: Option<String>,
-}
-
-impl WalkwayMap {
-    /// Read and check a map. Errors name the file, and the TOML's line and column.
-    pub fn from_toml_str(text: &str, file: &Path) -> Result<WalkwayMap> {
-        let bad = |loc: Location, reason: String| boxed(ReferenceError::Map { loc, reason });
-        let map: WalkwayMap = toml::from_str(text).map_err(|e| {
-            let loc = match e.span() {
-                Some(span) => {
-                    let before = &text[..span.start.min(text.len())];
-                    let line = before.matches('\n').count() as u64 + 1;
-                    let col = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
-                    Location::cell(file, line, col)
-                }
-                None => Location::file(file),
-            };
-            bad(loc, e.message().to_string())
-        })?;
-        map.check().map_err(|r| bad(Location::file(file), r))?;
-        Ok(map)
-    }
-
-    /// Read a map file.
-    pub fn from_toml_file(path: &Path) -> Result<WalkwayMap> {
-        let text = crate::io::read_text_limited(path, crate::io::MAX_FORMAT_MB, "a column map")?;
-        WalkwayMap::from_toml_str(&text, path)
-    }
-
-    fn delimiter_byte(&self) -> Option<u8> {
-        match self.delimiter.as_str() {
-            "," => Some(b','),
-            ";" => Some(b';'),
-            "\t" => Some(b'\t'),
-            _ => None,
-        }
-    }
-
-    /// Every stride key a per-stride parameter, every unit that parameter's (or a time).
-    fn check(&self) -> std::result::Result<(), String> {
-        if self.delimiter_byte().is_none() {
-            return Err(format!(
-                "delimiter '{}' is not ',', ';' or a tab",
-                self.delimiter
-            ));
-        }
-        for (what, c) in [
-            ("heel_strike", &self.heel_strike),
-            ("toe_off", &self.toe_off),
-        ] {
-            if let Some(c) = c {
-                if c.unit.to_ldh().0 != "s" {
-                    return Err(format!(
-                        "{what}: unit '{:?}' is not a time (s or ms)",
-                        c.unit
-                    ));
-                }
-            }
-        }
-        if self.heel_strike.is_none() && self.toe_off.is_none() && self.strides.is_empty() {
-            return Err("the map names no heel_strike, toe_off or strides column".into());
-        }
-        if !self.strides.is_empty() && self.heel_strike.is_none() {
-            return Err("strides need the heel_strike column (each stride's time)".into());
-        }
-        for (key, c) in &self.strides {
-            let p = Parameter::from_column(key)
-                .ok()
-                .filter(|p| STRIDE_PARAMETERS.contains(p))
-                .ok_or_else(|| {
-                    format!(
-                        "strides.{key}: not a per-stride parameter; known: {}",
-                        STRIDE_PARAMETERS.map(|p| p.column()).join(", ")
-                    )
-                })?;
-            if c.unit.to_ldh().0 != p.unit() {
-                return Err(format!(
-                    "strides.{key}: unit '{}' does not convert to {}",
-                    c.unit.name(),
-                    p.unit()
-                ));
-            }
-        }
-        Ok(())
-    }
 }
 
 /// Where a converted cell came from: the export's column (0-based), none for a given id.
@@ -376,7 +142,8 @@ pub fn parse_walkway(
     Ok(())
 }
 
-/// The export as three long-form tables: heel strikes, toe offs, strides.
+/// The export as three long-form tables (heel strikes, toe offs, strides) and its header's
+/// line.
 fn convert(
     text: &str,
     file: &Path,
@@ -405,149 +172,227 @@ fn convert(
             loc: Location::file(file),
         }));
     };
-    let header_line = header.position().map_or(1, |p| p.line());
-    let names: Vec<String> = header.iter().map(|h| h.to_ascii_lowercase()).collect();
-    let find = |name: &str| -> Result<usize> {
-        names
-            .iter()
-            .position(|h| *h == name.trim().to_ascii_lowercase())
-            .ok_or_else(|| {
-                boxed(ReferenceError::Map {
-                    loc: Location::line(file, header_line),
-                    reason: format!(
-                        "the map's column '{name}' is not in the header ({})",
-                        header.iter().collect::<Vec<_>>().join(", ")
-                    ),
-                })
-            })
-    };
-    let id_column = |column: &Option<String>| column.as_deref().map(find).transpose();
-    let subject_col = id_column(&map.subject_column)?;
-    let trial_col = id_column(&map.trial_column)?;
-    if subject_col.is_none() && ids.subject_id.is_none() {
-        return Err(boxed(ReferenceError::Map {
-            loc: Location::file(file),
-            reason: "no subject: give the subject id (--subject-id) or a subject_column in the map"
-                .into(),
-        }));
-    }
-    let side_col = find(&map.side.column)?;
-    let hs = map
-        .heel_strike
-        .as_ref()
-        .map(|c| Ok::<_, LdhError>((find(&c.column)?, c.unit.to_ldh().1)))
-        .transpose()?;
-    let to = map
-        .toe_off
-        .as_ref()
-        .map(|c| Ok::<_, LdhError>((find(&c.column)?, c.unit.to_ldh().1)))
-        .transpose()?;
-    let mut params = Vec::new();
-    for p in STRIDE_PARAMETERS {
-        if let Some(c) = map.strides.get(p.column()) {
-            params.push((p.column(), find(&c.column)?, c.unit.to_ldh().1));
-        }
-    }
-    let key_origin = vec![subject_col, trial_col, Some(side_col)];
-    let event_table = |col: Option<(usize, f64)>| {
-        let mut o = key_origin.clone();
-        o.extend([col.map(|c| c.0), col.map(|c| c.0)]);
-        Table::new(&["subject_id", "trial_id", "side", "event", "time_s"], o)
-    };
-    let mut heel = event_table(hs);
-    let mut toe = event_table(to);
-    let mut header_s: Vec<&str> = vec!["subject_id", "trial_id", "side", "time_s", "end_time_s"];
-    let mut origin = key_origin.clone();
-    origin.extend([hs.map(|c| c.0), hs.map(|c| c.0)]);
-    for (name, c, _) in &params {
-        header_s.push(name);
-        origin.push(Some(*c));
-    }
-    let mut strides = Table::new(&header_s, origin);
-    let mut previous_hs: HashMap<(String, String, String), f64> = HashMap::new();
+    let mut c = Converter::new(file, map, ids, header)?;
     for rec in records {
-        let rec = rec.map_err(unreadable)?;
-        let line = rec.position().map_or(0, |p| p.line());
-        if rec.len() != header.len() {
-            return Err(boxed(ReferenceError::Unreadable {
-                loc: Location::line(file, line),
-                reason: format!("{} cells under a header of {}", rec.len(), header.len()),
+        c.row(&rec.map_err(unreadable)?)?;
+    }
+    let line = c.header_line;
+    Ok((vec![c.heel, c.toe, c.strides], line))
+}
+
+/// The columns a map names, found in the export's header, and the tables being filled.
+struct Converter<'a> {
+    file: &'a Path,
+    map: &'a WalkwayMap,
+    ids: &'a WalkwayIds,
+    header: csv::StringRecord,
+    header_line: u64,
+    subject: Option<usize>,
+    trial: Option<usize>,
+    side: usize,
+    /// (column, divisor) of the heel strike and the toe off.
+    hs: Option<(usize, f64)>,
+    to: Option<(usize, f64)>,
+    /// (key, column, divisor) of each stride parameter.
+    params: Vec<(&'static str, usize, f64)>,
+    heel: Table,
+    toe: Table,
+    strides: Table,
+    /// The last heel strike of each (subject, trial, side), for `stride_anchor = "end"`.
+    previous_hs: HashMap<(String, String, String), f64>,
+}
+
+impl<'a> Converter<'a> {
+    /// Find the map's columns in `header`. Errors: a column not in the header, no subject.
+    fn new(
+        file: &'a Path,
+        map: &'a WalkwayMap,
+        ids: &'a WalkwayIds,
+        header: csv::StringRecord,
+    ) -> Result<Self> {
+        let header_line = header.position().map_or(1, |p| p.line());
+        let find = |name: &str| -> Result<usize> {
+            header
+                .iter()
+                .position(|h| h.eq_ignore_ascii_case(name.trim()))
+                .ok_or_else(|| {
+                    boxed(ReferenceError::Map {
+                        loc: Location::line(file, header_line),
+                        reason: format!(
+                            "the map's column '{name}' is not in the header ({})",
+                            header.iter().collect::<Vec<_>>().join(", ")
+                        ),
+                    })
+                })
+        };
+        let subject = map.subject_column.as_deref().map(find).transpose()?;
+        let trial = map.trial_column.as_deref().map(find).transpose()?;
+        if subject.is_none() && ids.subject_id.is_none() {
+            return Err(boxed(ReferenceError::Map {
+                loc: Location::file(file),
+                reason:
+                    "no subject: give the subject id (--subject-id) or a subject_column in the map"
+                        .into(),
             }));
         }
-        let cell = |c: usize| rec.get(c).unwrap_or("").to_string();
-        let bad = |c: usize, expected: String| {
-            boxed(ReferenceError::MappedValue {
-                loc: Location::cell(file, line, c + 1),
-                column: header.get(c).unwrap_or("").to_string(),
-                value: cell(c),
-                expected,
-            })
+        let side = find(&map.side.column)?;
+        let time = |c: &Option<MappedColumn>| {
+            c.as_ref()
+                .map(|c| Ok::<_, LdhError>((find(&c.column)?, c.unit.to_ldh().1)))
+                .transpose()
         };
-        let number = |c: usize, factor: f64| -> Result<Option<String>> {
-            let s = cell(c);
-            if s.is_empty() {
-                return Ok(None);
+        let (hs, to) = (time(&map.heel_strike)?, time(&map.toe_off)?);
+        let mut params = Vec::new();
+        for p in STRIDE_PARAMETERS {
+            if let Some(c) = map.strides.get(p.column()) {
+                params.push((p.column(), find(&c.column)?, c.unit.to_ldh().1));
             }
-            match s.parse::<f64>() {
-                Ok(v) if v.is_finite() => Ok(Some(format!("{}", v / factor))),
-                _ => Err(bad(c, "a finite number".into())),
-            }
+        }
+        let keys = vec![subject, trial, Some(side)];
+        let event_table = |col: Option<(usize, f64)>| {
+            let mut o = keys.clone();
+            o.extend([col.map(|c| c.0), col.map(|c| c.0)]);
+            Table::new(&["subject_id", "trial_id", "side", "event", "time_s"], o)
         };
-        let subject = subject_col.map_or_else(|| ids.subject_id.clone().unwrap_or_default(), cell);
-        let trial = trial_col.map_or_else(|| ids.trial_id.clone().unwrap_or_default(), cell);
-        let foot = cell(side_col);
-        let is = |list: &[String]| list.iter().any(|v| v.eq_ignore_ascii_case(&foot));
-        let side = if is(&map.side.left) {
-            "left"
-        } else if is(&map.side.right) {
-            "right"
+        let mut names: Vec<&str> = vec!["subject_id", "trial_id", "side", "time_s", "end_time_s"];
+        let mut origin = keys.clone();
+        origin.extend([hs.map(|c| c.0), hs.map(|c| c.0)]);
+        for (name, c, _) in &params {
+            names.push(name);
+            origin.push(Some(*c));
+        }
+        Ok(Converter {
+            heel: event_table(hs),
+            toe: event_table(to),
+            strides: Table::new(&names, origin),
+            file,
+            map,
+            ids,
+            header,
+            header_line,
+            subject,
+            trial,
+            side,
+            hs,
+            to,
+            params,
+            previous_hs: HashMap::new(),
+        })
+    }
+
+    /// A cell that the map cannot read.
+    fn bad(&self, rec: &csv::StringRecord, line: u64, c: usize, expected: String) -> LdhError {
+        boxed(ReferenceError::MappedValue {
+            loc: Location::cell(self.file, line, c + 1),
+            column: self.header.get(c).unwrap_or("").to_string(),
+            value: rec.get(c).unwrap_or("").to_string(),
+            expected,
+        })
+    }
+
+    /// A number in ldh's unit, written back as text (`None`: an empty cell).
+    fn number(
+        &self,
+        rec: &csv::StringRecord,
+        line: u64,
+        (c, divisor): (usize, f64),
+    ) -> Result<Option<String>> {
+        let s = rec.get(c).unwrap_or("");
+        if s.is_empty() {
+            return Ok(None);
+        }
+        match s.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(Some(format!("{}", v / divisor))),
+            _ => Err(self.bad(rec, line, c, "a finite number".into())),
+        }
+    }
+
+    /// The foot of a row, `left` or `right`.
+    fn foot(&self, rec: &csv::StringRecord, line: u64) -> Result<&'static str> {
+        let foot = rec.get(self.side).unwrap_or("");
+        let is = |list: &[String]| list.iter().any(|v| v.eq_ignore_ascii_case(foot));
+        if is(&self.map.side.left) {
+            Ok("left")
+        } else if is(&self.map.side.right) {
+            Ok("right")
         } else {
-            let listed = map.side.left.iter().chain(&map.side.right);
-            return Err(bad(
-                side_col,
-                format!(
-                    "a foot the map lists ({})",
-                    listed.cloned().collect::<Vec<_>>().join(", ")
+            let listed: Vec<&str> = self
+                .map
+                .side
+                .left
+                .iter()
+                .chain(&self.map.side.right)
+                .map(String::as_str)
+                .collect();
+            let expected = format!("a foot the map lists ({})", listed.join(", "));
+            Err(self.bad(rec, line, self.side, expected))
+        }
+    }
+
+    /// One footfall: its heel strike, toe off and stride rows.
+    fn row(&mut self, rec: &csv::StringRecord) -> Result<()> {
+        let line = rec.position().map_or(0, |p| p.line());
+        if rec.len() != self.header.len() {
+            return Err(boxed(ReferenceError::Unreadable {
+                loc: Location::line(self.file, line),
+                reason: format!(
+                    "{} cells under a header of {}",
+                    rec.len(),
+                    self.header.len()
                 ),
-            ));
+            }));
+        }
+        let id = |col: Option<usize>, given: &Option<String>| match col {
+            Some(c) => rec.get(c).unwrap_or("").to_string(),
+            None => given.clone().unwrap_or_default(),
         };
+        let subject = id(self.subject, &self.ids.subject_id);
+        let trial = id(self.trial, &self.ids.trial_id);
+        let side = self.foot(rec, line)?;
         let keys = vec![subject.clone(), trial.clone(), side.to_string()];
-        let hs_time = match hs {
-            Some((c, f)) => number(c, f)?,
-            None => None,
-        };
-        for (table, col, event) in [(&mut heel, hs, "HS"), (&mut toe, to, "TO")] {
-            let Some((c, f)) = col else { continue };
-            if let Some(t) = number(c, f)? {
+        let hs_time = self
+            .hs
+            .map(|c| self.number(rec, line, c))
+            .transpose()?
+            .flatten();
+        let to_time = self
+            .to
+            .map(|c| self.number(rec, line, c))
+            .transpose()?
+            .flatten();
+        // Every mapped cell is read, used or not: a typo is refused wherever it is.
+        let values = self
+            .params
+            .iter()
+            .map(|&(_, c, f)| Ok(self.number(rec, line, (c, f))?.unwrap_or_default()))
+            .collect::<Result<Vec<String>>>()?;
+        for (table, time, event) in [
+            (&mut self.heel, &hs_time, "HS"),
+            (&mut self.toe, &to_time, "TO"),
+        ] {
+            if let Some(t) = time {
                 let mut row = keys.clone();
-                row.extend([event.to_string(), t]);
+                row.extend([event.to_string(), t.clone()]);
                 table.rows.push((line, row));
             }
         }
-        // Every mapped cell is read, used or not: a typo is refused wherever it is.
-        let values = params
-            .iter()
-            .map(|&(_, c, f)| Ok(number(c, f)?.unwrap_or_default()))
-            .collect::<Result<Vec<String>>>()?;
-        let Some(hs_time) = hs_time else { continue };
-        let this: f64 = hs_time.parse().expect("formatted from a number");
-        let (start, end) = match map.stride_anchor {
-            StrideAnchor::Start => (Some(hs_time.clone()), String::new()),
-            StrideAnchor::End => (
-                previous_hs
-                    .insert((subject, trial, side.to_string()), this)
-                    .map(|p| format!("{p}")),
-                hs_time.clone(),
-            ),
+        let Some(hs_time) = hs_time else {
+            return Ok(());
         };
-        let Some(start) = start else { continue };
-        if params.is_empty() {
-            continue;
+        let (start, end) = match self.map.stride_anchor {
+            StrideAnchor::Start => (Some(hs_time), String::new()),
+            StrideAnchor::End => {
+                let this: f64 = hs_time.parse().expect("formatted from a number");
+                let previous = self.previous_hs.insert((subject, trial, side.into()), this);
+                (previous.map(|p| format!("{p}")), hs_time)
+            }
+        };
+        if let (Some(start), false) = (start, self.params.is_empty()) {
+            let mut row = keys;
+            row.extend([start, end]);
+            row.extend(values);
+            self.strides.rows.push((line, row));
         }
-        let mut row = keys;
-        row.extend([start, end]);
-        row.extend(values);
-        strides.rows.push((line, row));
+        Ok(())
     }
-    Ok((vec![heel, toe, strides], header_line))
 }
