@@ -2,6 +2,7 @@
 //! reference clock shifted by 0.75 s, and a bad reference refused before anything is written.
 
 mod common;
+use common::html::check_page;
 use common::{json, ldh, ldh_ok, simulate_cohort, text};
 
 use ldh_core::evaluate::{truth_reference, TruthScope};
@@ -62,6 +63,23 @@ fn agree_reads_an_analyze_folder_estimates_the_offset_and_refuses_a_bad_referenc
     assert!(std::fs::read_to_string(out.join("agreement.md"))
         .unwrap()
         .contains("stride_length_m"));
+    // The page: well-formed and self-contained, figures numbered, axis labels with units,
+    // text ≥ 8 pt in print; two timing histograms and a Bland–Altman plot per computed
+    // parameter (per stride and per recording).
+    let computed = j["parameters"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|p| !p["agreement"].is_null())
+        .count();
+    assert!(computed >= 6, "{computed}");
+    assert_eq!(check_page(&out.join("agreement.html")), 2 + computed);
+    let page = std::fs::read_to_string(out.join("agreement.html")).unwrap();
+    assert!(
+        page.contains("Bland–Altman plot of the stride time"),
+        "{page}"
+    );
+    assert!(text(&o).contains("agreement.html"), "{}", text(&o));
 
     let bad = d.path().join("bad.csv");
     std::fs::write(
@@ -85,6 +103,74 @@ fn agree_reads_an_analyze_folder_estimates_the_offset_and_refuses_a_bad_referenc
         text(&o)
     );
     assert!(!out2.exists(), "nothing written");
+}
+
+/// A GAITRite-like per-footfall export read through its column map (the shipped example, its
+/// subject renamed to one of the analysed cohort): its 8 heel strikes, 7 toe offs and 6 strides
+/// are the reference; a foot the map does not list is refused naming the export's line and
+/// column, before anything is written.
+#[test]
+fn agree_reads_a_walkway_export_through_its_column_map() {
+    let d = tempfile::tempdir().unwrap();
+    let (sim, res) = (d.path().join("sim"), d.path().join("res"));
+    simulate_cohort(&sim, 1, 1, 20, 7);
+    ldh_ok(&[
+        "analyze",
+        sim.to_str().unwrap(),
+        "-o",
+        res.to_str().unwrap(),
+        "-q",
+    ]);
+    let fixtures =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../data-fixtures/agreement");
+    let export = std::fs::read_to_string(fixtures.join("gaitrite-footfalls.csv"))
+        .unwrap()
+        .replace("S01,", "H01,");
+    let exp = d.path().join("export.csv");
+    std::fs::write(&exp, &export).unwrap();
+    let map = fixtures.join("gaitrite-footfalls.toml");
+    let out = d.path().join("agree");
+    ldh_ok(&[
+        "agree",
+        res.to_str().unwrap(),
+        "--walkway",
+        exp.to_str().unwrap(),
+        "--walkway-map",
+        map.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    let j = json(&out.join("agreement.json"));
+    let n_ref = |ev: &str| {
+        j["events"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|e| e["event"] == ev && e["side"] == "both")
+            .unwrap()["summary"]["n_reference"]
+            .as_u64()
+            .unwrap()
+    };
+    assert_eq!((n_ref("HS"), n_ref("TO")), (8, 7));
+    assert_eq!(j["reference_strides"], 6);
+    assert!(out.join("agreement.html").is_file());
+
+    let bad = d.path().join("bad.csv");
+    std::fs::write(&bad, export.replacen("H01,L,", "H01,X,", 1)).unwrap();
+    let out2 = d.path().join("agree2");
+    let o = ldh(&[
+        "agree",
+        res.to_str().unwrap(),
+        "--walkway",
+        bad.to_str().unwrap(),
+        "--walkway-map",
+        map.to_str().unwrap(),
+        "-o",
+        out2.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("bad.csv:4:2"), "{}", text(&o));
+    assert!(!out2.exists());
 }
 
 /// `ldh agree --write-params` (issue 38 item 4): a lab whose reference times heel strikes 40 ms

@@ -353,8 +353,22 @@ pub struct AgreeArgs {
     /// The output folder of `ldh analyze` (recordings.json, strides.csv, events.csv).
     pub results: PathBuf,
     /// A reference file (CSV); repeat for events and parameters in separate files.
-    #[arg(long, required = true)]
+    #[arg(long, required_unless_present = "walkway")]
     pub reference: Vec<PathBuf>,
+    /// A per-step walkway export (GAITRite / Zeno style, one row per footfall), read through
+    /// --walkway-map; repeatable.
+    #[arg(long, requires = "walkway_map")]
+    pub walkway: Vec<PathBuf>,
+    /// The column map (TOML) of the --walkway exports: which column is the foot, the heel
+    /// strike, the toe off and each stride parameter, in which unit (docs/agreement.md).
+    #[arg(long)]
+    pub walkway_map: Option<PathBuf>,
+    /// The subject of the --walkway exports, when their map names no subject column.
+    #[arg(long)]
+    pub subject_id: Option<String>,
+    /// The trial of the --walkway exports, when their map names no trial column.
+    #[arg(long)]
+    pub trial_id: Option<String>,
     /// Output folder (created if missing).
     #[arg(short, long, default_value = "ldh-agree")]
     pub out: PathBuf,

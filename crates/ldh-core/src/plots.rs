@@ -2,19 +2,25 @@
 //! SVG backend (no system font libraries: text is laid out with plotters' built-in estimate and
 //! rendered by the viewer), sized so that no text prints under 8 pt ([`PrintWidth`], [`Fonts`]): `radar.rs` z-score radar charts,
 //! `cohort.rs` box plots and the confusion matrix, `signals.rs` time-series panels with events,
-//! `series.rs` per-stride and gait-cycle plots. Here: the shared colours and legend.
+//! `series.rs` per-stride and gait-cycle plots, `agreement.rs` `ldh agree`'s Bland–Altman plots
+//! and event-timing histograms. Here: the shared colours and legend.
 
 use plotters::prelude::*;
 
 use crate::error::{LdhError, Result};
 
+mod agreement;
 mod cohort;
 mod radar;
 mod series;
 mod signals;
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
 
+pub use agreement::{
+    bland_altman_svg, histogram_bins, timing_histogram_svg, BlandAltmanSeries, BLAND_ALTMAN_PRINT,
+    TIMING_BAR_COLOUR, TIMING_PRINT, TIMING_X_LABEL, TIMING_Y_LABEL,
+};
 pub use cohort::{boxplot_svg, confusion_svg, BOX_PRINT, CONFUSION_LABELS, CONFUSION_PRINT};
 pub use radar::{
     radar_svg, RADAR_CLIPPED, RADAR_PRINT, RADAR_SCALE_LABEL, RADAR_Z_ABNORMAL, RADAR_Z_CLIP,

@@ -1,6 +1,8 @@
 //! Helpers shared by the end-to-end tests.
 #![allow(dead_code)]
 
+pub mod html;
+
 use std::process::{Command, Output};
 
 /// Run the `ldh` command (the `ldh-under-test` binary, i.e. `ldh_cli::run`).

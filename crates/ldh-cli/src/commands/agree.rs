@@ -21,7 +21,17 @@ pub fn run(a: AgreeArgs) -> Result<ExitCode> {
     }
     let params = p.check()?;
     let results = LdhResults::read(&a.results)?;
-    let reference = agreement::read_reference(&a.reference, &results, &params)?;
+    let mut reference = agreement::read_reference(&a.reference, &results, &params)?;
+    if let Some(map) = &a.walkway_map {
+        let map = agreement::WalkwayMap::from_toml_file(map)?;
+        let ids = agreement::WalkwayIds {
+            subject_id: a.subject_id.clone(),
+            trial_id: a.trial_id.clone(),
+        };
+        for w in &a.walkway {
+            agreement::read_walkway(w, &map, &ids, &results, &params, &mut reference)?;
+        }
+    }
     let report = agreement::run(
         &results,
         &reference,

@@ -18,7 +18,9 @@
 //!
 //! - [`run`]: `ldh agree` — an `ldh analyze` run ([`LdhResults`]) against a laboratory's
 //!   reference files ([`read_reference`]): clock offsets, event matching, per-stride and
-//!   per-recording agreement ([`AgreementReport`], written by [`write_report`]).
+//!   per-recording agreement ([`AgreementReport`], written by [`write_report`]; the page
+//!   with the Bland–Altman plots and timing histograms: [`page`]); per-step walkway exports
+//!   (GAITRite-like) read through a column map ([`walkway`]).
 //!
 //! Every formula, the pingouin / scipy function it reproduces, and the decisions where they are
 //! silent: `docs/agreement.md`, "Statistics". The goldens (`data-fixtures/golden/agreement/`,
@@ -35,6 +37,7 @@ mod error;
 pub mod events;
 pub mod icc;
 pub mod offset;
+pub mod page;
 mod paired;
 mod params;
 pub mod reference;
@@ -44,6 +47,9 @@ pub mod reliability_table;
 pub mod results;
 pub mod retest;
 pub mod run;
+mod run_events;
+pub mod walkway;
+mod walkway_map;
 pub mod write;
 
 #[cfg(test)]
@@ -51,9 +57,13 @@ mod tests;
 #[cfg(test)]
 mod tests_events;
 #[cfg(test)]
+mod tests_page;
+#[cfg(test)]
 mod tests_retest;
 #[cfg(test)]
 mod tests_run;
+#[cfg(test)]
+mod tests_walkway;
 
 pub use bland_altman::{limits_of_agreement, linregress, LimitsOfAgreement, LinearFit};
 pub use calibrate::{calibrated_params, params_toml, MIN_CALIBRATION_EVENTS};
@@ -70,4 +80,5 @@ pub use reliability_table::{ReliabilityRow, ReliabilityTable};
 pub use results::LdhResults;
 pub use retest::{reliability_table, require_repeated_trials};
 pub use run::{run, AgreementReport, OffsetMode};
+pub use walkway::{read_walkway, WalkwayIds, WalkwayMap};
 pub use write::write_report;

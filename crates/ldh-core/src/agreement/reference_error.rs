@@ -1,6 +1,6 @@
 //! Why a reference file, or its use against an `ldh analyze` output folder, is refused.
 
-use crate::error::{clip, Location};
+use crate::error::{clip, clip_to, Location};
 
 /// A reference file (`ldh agree --reference`) that cannot be used, or a comparison that cannot
 /// be made. Each case names the file and, where there is one, the line (and column): what
@@ -159,6 +159,32 @@ pub enum ReferenceError {
         /// The CSV reader's message.
         reason: String,
     },
+    /// A walkway column map (`--walkway-map`) that cannot be used with its export: the TOML
+    /// itself, or a column it names that the export's header lacks.
+    #[error("{loc}: walkway column map: {}", clip_to(reason, 400))]
+    Map {
+        /// The map file (with the TOML's line and column), or the export's header line.
+        loc: Location,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A cell of a walkway export that its column map cannot read (a side not listed, a
+    /// number that is not one).
+    #[error(
+        "{loc}: column '{}': '{}' is not {expected}",
+        clip(column),
+        clip(value)
+    )]
+    MappedValue {
+        /// File, line, column of the export.
+        loc: Location,
+        /// The export's column name.
+        column: String,
+        /// The cell.
+        value: String,
+        /// What the map expects.
+        expected: String,
+    },
     /// A row of an output table of `ldh analyze` that cannot be read.
     #[error("{loc}: not an ldh {table} row: {}", clip(reason))]
     ResultsRow {
@@ -169,6 +195,51 @@ pub enum ReferenceError {
         /// What is wrong.
         reason: String,
     },
+}
+
+impl ReferenceError {
+    /// Move the error's line and column (and the earlier line it cites) through `line` and
+    /// `column` (1-based; `column` may drop it): a walkway export read through its column map
+    /// is checked as long-form text, whose lines and columns are moved back to the export's
+    /// (`walkway.rs`).
+    pub(crate) fn relocate(
+        &mut self,
+        line: impl Fn(u64) -> u64,
+        column: impl Fn(u32) -> Option<u32>,
+    ) {
+        use std::num::{NonZeroU32, NonZeroU64};
+        use ReferenceError::*;
+        let cited = match self {
+            OutOfOrder { previous_line, .. } => Some(previous_line),
+            Duplicate { first_line, .. } | OffsetConflict { first_line, .. } => Some(first_line),
+            _ => None,
+        };
+        if let Some(l) = cited {
+            *l = line(*l);
+        }
+        let loc = match self {
+            Empty { loc }
+            | MissingColumn { loc, .. }
+            | UnknownColumn { loc, .. }
+            | BadValue { loc, .. }
+            | UnknownSubject { loc, .. }
+            | AmbiguousTrial { loc, .. }
+            | OutOfRange { loc, .. }
+            | OutOfOrder { loc, .. }
+            | Duplicate { loc, .. }
+            | OffsetConflict { loc, .. }
+            | SeveralModels { loc, .. }
+            | Unreadable { loc, .. }
+            | ResultsRow { loc, .. }
+            | Map { loc, .. }
+            | MappedValue { loc, .. } => loc,
+            Offset { .. } => return,
+        };
+        loc.line = loc.line.and_then(|l| NonZeroU64::new(line(l.get())));
+        loc.column = loc
+            .column
+            .and_then(|c| column(c.get()).and_then(NonZeroU32::new));
+    }
 }
 
 fn trial_note(trial_id: &str) -> String {

@@ -10,7 +10,8 @@
 //! 2. **Events** per subject, trial, side and event kind: ldh's events inside the span the
 //!    reference covers (its first event − tolerance to its last + tolerance: a walkway sees a
 //!    few strides of a long walk) matched one-to-one ([`super::match_events`]); rates and
-//!    timing errors per event kind and side, and pooled over both sides.
+//!    timing errors per event kind and side, and pooled over both sides; per group too when
+//!    the subjects the reference covers are in two groups or more (`run_events.rs`).
 //! 3. **Strides**: a reference stride with `time_s` is matched to the ldh stride whose first
 //!    heel strike is its mutual nearest within the tolerance (and, when the reference gives
 //!    `end_time_s`, whose ending heel strike lies within the tolerance of it); with only a
@@ -32,10 +33,13 @@ use crate::Side;
 
 use super::reference::{Reference, ReferenceValues};
 use super::results::{boxed, LdhResults, LdhStride, STRIDE_PARAMETERS};
+use super::run_events::{event_train, group_counts};
+pub use super::run_events::{
+    EventAgreement, GroupCount, MatchedEvent, UnmatchedEvent, ALL_GROUPS, UNLABELLED,
+};
 use super::{
-    agreement, estimate_clock_offset, match_events, polish_offset, summarize, AgreementParams,
-    ClockOffset, EventMatch, MatchSummary, ParameterAgreement, ReferenceError,
-    ValidAgreementParams,
+    agreement, estimate_clock_offset, match_events, polish_offset, AgreementParams, ClockOffset,
+    ParameterAgreement, ReferenceError, ValidAgreementParams,
 };
 
 /// The clock offset of the trials whose reference file gives none.
@@ -103,34 +107,6 @@ pub struct TrialOffset {
     pub estimate: Option<ClockOffset>,
 }
 
-/// Detection rates and timing errors of one event kind on one side (or both).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct EventAgreement {
-    /// `HS` or `TO`.
-    pub event: String,
-    /// `left`, `right` or `both`.
-    pub side: String,
-    /// Rates and errors (ldh − reference, s).
-    pub summary: MatchSummary,
-}
-
-/// An event without a partner.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct UnmatchedEvent {
-    /// `ldh` (a false positive) or `reference` (a missed event).
-    pub system: String,
-    /// Subject.
-    pub subject_id: String,
-    /// Trial.
-    pub trial_id: String,
-    /// Leg.
-    pub side: String,
-    /// `HS` or `TO`.
-    pub event: String,
-    /// Time on the reference clock, s (ldh's with the offset removed).
-    pub time_s: f64,
-}
-
 /// One pair of values (NaN: missing on that side, dropped from the statistics).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PairedValue {
@@ -172,8 +148,19 @@ pub struct AgreementReport {
     pub reference_files: Vec<String>,
     /// The clock offset of each trial the reference covers.
     pub offsets: Vec<TrialOffset>,
-    /// Per event kind: left, right, both.
+    /// The groups of the subjects the reference covers (the manifest's `group`), in order of
+    /// first appearance.
+    #[serde(default)]
+    pub groups: Vec<GroupCount>,
+    /// Per event kind: left, right, both (every subject: group `all`).
     pub events: Vec<EventAgreement>,
+    /// The same per group, when [`Self::groups`] has two or more (else empty: the one group's
+    /// rows are [`Self::events`]).
+    #[serde(default)]
+    pub events_by_group: Vec<EventAgreement>,
+    /// Matched events with their timing errors, in the order matched.
+    #[serde(default)]
+    pub event_pairs: Vec<MatchedEvent>,
     /// Unmatched events (ldh's only inside the span the reference covers).
     pub unmatched_events: Vec<UnmatchedEvent>,
     /// Reference strides (with a time or a number).
@@ -184,7 +171,8 @@ pub struct AgreementReport {
     pub parameters: Vec<ParameterResult>,
 }
 
-type Trial = (String, String);
+/// (subject, trial).
+pub(crate) type Trial = (String, String);
 
 /// Compare `results` with `reference` (see the module docs).
 ///
@@ -209,13 +197,16 @@ pub fn run(
             .map(|f| f.display().to_string())
             .collect(),
         offsets,
+        groups: group_counts(results, &trials),
         events: Vec::new(),
+        events_by_group: Vec::new(),
+        event_pairs: Vec::new(),
         unmatched_events: Vec::new(),
         reference_strides: reference.strides.len(),
         strides_matched: 0,
         parameters: Vec::new(),
     };
-    events(results, reference, params, &trials, &mut report)?;
+    super::run_events::events(results, reference, params, &trials, &mut report)?;
     strides(results, reference, params, &trials, &mut report)?;
     recordings(results, reference, params, &trials, &mut report);
     Ok(report)
@@ -240,36 +231,6 @@ fn reference_trials(results: &LdhResults, reference: &Reference) -> Vec<Trial> {
         .filter(|(s, t)| covered(s, t))
         .map(|(s, t)| (s.to_string(), t.to_string()))
         .collect()
-}
-
-fn in_trial<'a>(s: &'a str, t: &'a str) -> impl Fn(&(&str, &str)) -> bool + 'a {
-    move |k| k.0 == s && k.1 == t
-}
-
-/// ldh's and the reference's sorted times of one trial, side and event kind.
-fn event_train(
-    results: &LdhResults,
-    reference: &Reference,
-    (s, t): (&str, &str),
-    side: Side,
-    kind: EventKind,
-) -> (Vec<f64>, Vec<f64>) {
-    let f = in_trial(s, t);
-    let mut l: Vec<f64> = results
-        .events
-        .iter()
-        .filter(|e| f(&(&e.subject_id, &e.trial_id)) && e.side == side && e.event == kind)
-        .map(|e| e.time_s)
-        .collect();
-    let mut r: Vec<f64> = reference
-        .events
-        .iter()
-        .filter(|e| f(&(&e.subject_id, &e.trial_id)) && e.side == side && e.event == kind)
-        .map(|e| e.time_s)
-        .collect();
-    l.sort_by(f64::total_cmp);
-    r.sort_by(f64::total_cmp);
-    (l, r)
 }
 
 /// ldh's strides (sorted by start) and the reference's timed strides of one trial and side.
@@ -298,8 +259,8 @@ fn stride_train<'a>(
     (l, r)
 }
 
-const KINDS: [EventKind; 2] = [EventKind::HeelStrike, EventKind::ToeOff];
-const SIDES: [Side; 2] = [Side::Left, Side::Right];
+pub(crate) const KINDS: [EventKind; 2] = [EventKind::HeelStrike, EventKind::ToeOff];
+pub(crate) const SIDES: [Side; 2] = [Side::Left, Side::Right];
 
 /// The offset of one trial: the file's, else by `mode`.
 fn trial_offset(
@@ -378,75 +339,12 @@ fn trial_offset(
     Ok(out)
 }
 
-fn offset_of(report: &AgreementReport, (s, t): &Trial) -> f64 {
+pub(crate) fn offset_of(report: &AgreementReport, (s, t): &Trial) -> f64 {
     report
         .offsets
         .iter()
         .find(|o| &o.subject_id == s && &o.trial_id == t)
         .map_or(0.0, |o| o.offset_s)
-}
-
-/// Match every trial's events and summarise per event kind and side.
-fn events(
-    results: &LdhResults,
-    reference: &Reference,
-    params: &ValidAgreementParams,
-    trials: &[Trial],
-    report: &mut AgreementReport,
-) -> Result<()> {
-    if reference.events.is_empty() {
-        return Ok(());
-    }
-    let tol = params.params().tolerance_s;
-    for kind in KINDS {
-        let mut per_side: [Vec<EventMatch>; 2] = [Vec::new(), Vec::new()];
-        // Pooled: each trial's left then right, as `ldh evaluate` pools them.
-        let mut both: Vec<EventMatch> = Vec::new();
-        for trial in trials {
-            let offset = offset_of(report, trial);
-            for (k, side) in SIDES.into_iter().enumerate() {
-                let (l, r) = event_train(results, reference, (&trial.0, &trial.1), side, kind);
-                let (Some(first), Some(last)) = (r.first(), r.last()) else {
-                    continue;
-                };
-                let l: Vec<f64> = l
-                    .iter()
-                    .map(|x| x - offset)
-                    .filter(|x| *x >= first - tol && *x <= last + tol)
-                    .collect();
-                let m = match_events(&l, &r, params)?;
-                let mut miss = |system: &str, time_s: f64| {
-                    report.unmatched_events.push(UnmatchedEvent {
-                        system: system.into(),
-                        subject_id: trial.0.clone(),
-                        trial_id: trial.1.clone(),
-                        side: side.to_string(),
-                        event: kind.to_string(),
-                        time_s,
-                    })
-                };
-                m.unmatched_ldh.iter().for_each(|&i| miss("ldh", l[i]));
-                m.unmatched_reference
-                    .iter()
-                    .for_each(|&j| miss("reference", r[j]));
-                both.push(m.clone());
-                per_side[k].push(m);
-            }
-        }
-        for (k, side) in SIDES.into_iter().enumerate() {
-            report.events.push(EventAgreement {
-                event: kind.to_string(),
-                side: side.to_string(),
-                summary: summarize(&per_side[k]),
-            });
-        }
-        report.events.push(EventAgreement {
-            event: kind.to_string(),
-            side: "both".into(),
-            summary: summarize(&both),
-        });
-    }
-    Ok(())
 }
 
 /// The pairs of one level, per parameter, in first-seen order of the parameters.

@@ -12,7 +12,7 @@ use crate::LdhError;
 
 /// Results of subjects whose legs failed (no events or strides): enough for the reader's
 /// subject, trial and range checks. `trials`: (subject, trial, duration s).
-fn fake_results(trials: &[(&str, &str, f64)]) -> LdhResults {
+pub(super) fn fake_results(trials: &[(&str, &str, f64)]) -> LdhResults {
     let results: Vec<SubjectResult> = trials
         .iter()
         .map(|(s, t, _)| SubjectResult {
@@ -190,7 +190,7 @@ fn a_file_that_fails_adds_nothing() {
 }
 
 /// A small simulated cohort analysed in memory, and its truth.
-fn simulated() -> (Vec<SubjectResult>, Vec<crate::simulate::SubjectTruth>) {
+pub(super) fn simulated() -> (Vec<SubjectResult>, Vec<crate::simulate::SubjectTruth>) {
     use crate::io::{FormatSpec, ReadParams};
     let dir = tempfile::tempdir().unwrap();
     let c = crate::simulate::CohortParams {
@@ -214,7 +214,7 @@ fn simulated() -> (Vec<SubjectResult>, Vec<crate::simulate::SubjectTruth>) {
     (results, truths)
 }
 
-fn agree_with(
+pub(super) fn agree_with(
     results: &LdhResults,
     events: &str,
     strides: &str,
@@ -310,11 +310,11 @@ fn agreement_with_the_exported_truth_reproduces_evaluate() {
 
     let dir = tempfile::tempdir().unwrap();
     let files = super::write_report(dir.path(), &rep).unwrap();
-    assert_eq!(files.len(), 3);
+    assert_eq!(files.len(), 4);
     let csv = std::fs::read_to_string(dir.path().join("agreement.csv")).unwrap();
     assert_eq!(
         csv.lines().count(),
-        1 + rep.events.len() + rep.parameters.len()
+        1 + rep.events.len() + rep.events_by_group.len() + rep.parameters.len()
     );
     assert!(
         csv.lines().any(|l| l.starts_with("events,HS,both,")),
@@ -447,4 +447,83 @@ fn the_offset_mode_is_read_once() {
         assert!(e.contains("offset_s"), "{bad}: {e}");
     }
     assert!(OffsetMode::fixed(f64::INFINITY, "offset_s").is_err());
+}
+
+/// A cohort of two groups (2 healthy, 2 LDH): the event rows per group are the rows of a run
+/// whose reference holds that group's subjects alone (equal, not merely close: the same
+/// matchings summarised in the same order), their counts add up to the pooled rows, and the
+/// CSV and Markdown carry them.
+#[test]
+fn event_agreement_is_summarised_per_group() {
+    let (results, truths) = simulated();
+    let ldh = LdhResults::from_results(&results);
+    let (ev, st) = crate::evaluate::truth_reference(&truths, TruthScope::Steady, 0.0);
+    let rep = agree_with(&ldh, &ev, &st, OffsetMode::None);
+    let groups: Vec<(&str, usize, usize)> = rep
+        .groups
+        .iter()
+        .map(|g| (g.group.as_str(), g.subjects, g.trials))
+        .collect();
+    assert_eq!(groups, [("healthy", 2, 2), ("ldh", 2, 2)]);
+    assert_eq!(
+        rep.events_by_group.len(),
+        2 * 2 * 3,
+        "groups × kinds × sides"
+    );
+    for e in &rep.events {
+        assert_eq!(e.group, "all");
+        let parts: Vec<_> = rep
+            .events_by_group
+            .iter()
+            .filter(|g| g.event == e.event && g.side == e.side)
+            .collect();
+        assert_eq!(parts.len(), 2);
+        let sum = |f: fn(&super::MatchSummary) -> usize| -> usize {
+            parts.iter().map(|g| f(&g.summary)).sum()
+        };
+        assert_eq!(sum(|s| s.n_matched), e.summary.n_matched);
+        assert_eq!(sum(|s| s.n_reference), e.summary.n_reference);
+        assert_eq!(sum(|s| s.n_ldh), e.summary.n_ldh);
+    }
+    for group in ["healthy", "ldh"] {
+        let of_group: Vec<_> = truths
+            .iter()
+            .filter(|t| {
+                results.iter().any(|r| {
+                    r.subject_id == t.subject_id
+                        && r.group.as_ref().map(|g| g.as_str()) == Some(group)
+                })
+            })
+            .cloned()
+            .collect();
+        assert_eq!(of_group.len(), 2);
+        let (ev, st) = crate::evaluate::truth_reference(&of_group, TruthScope::Steady, 0.0);
+        let alone = agree_with(&ldh, &ev, &st, OffsetMode::None);
+        assert_eq!(alone.groups.len(), 1);
+        assert!(alone.events_by_group.is_empty(), "one group: no group rows");
+        let mine: Vec<_> = rep
+            .events_by_group
+            .iter()
+            .filter(|e| e.group == group)
+            .map(|e| (e.event.clone(), e.side.clone(), e.summary))
+            .collect();
+        let theirs: Vec<_> = alone
+            .events
+            .iter()
+            .map(|e| (e.event.clone(), e.side.clone(), e.summary))
+            .collect();
+        assert_eq!(mine, theirs, "{group}");
+    }
+    assert!(rep
+        .unmatched_events
+        .iter()
+        .all(|u| u.group == "healthy" || u.group == "ldh"));
+    let csv = super::write::rows(&rep);
+    assert_eq!(csv.iter().filter(|r| r.level == "events").count(), 6 + 12);
+    assert!(csv
+        .iter()
+        .any(|r| r.level == "events" && r.group == "ldh" && r.side == "both"));
+    let md = super::write::markdown(&rep);
+    assert!(md.contains("## Events per group"), "{md}");
+    assert!(md.contains("| ldh | HS | both |"), "{md}");
 }

@@ -1,6 +1,7 @@
 //! The files of `ldh agree`: `agreement.csv` (one row per event kind and side, and per
 //! parameter and level), `agreement.json` (the whole [`AgreementReport`], pairs and unmatched
-//! events included) and `agreement.md` (the same tables for reading). All three are rendered
+//! events included), `agreement.md` (the same tables for reading) and `agreement.html` (the
+//! page with the figures, [`super::page`]). All three are rendered
 //! before the first is written, and each is written atomically.
 
 use std::path::{Path, PathBuf};
@@ -21,6 +22,8 @@ pub struct AgreementRow {
     pub quantity: String,
     /// `left`, `right` or `both`.
     pub side: String,
+    /// `all`, or the subjects' group (event rows per group, when there are two or more).
+    pub group: String,
     /// ldh events (events).
     pub n_ldh: Option<usize>,
     /// Reference events (events).
@@ -86,12 +89,13 @@ pub struct AgreementRow {
 /// The rows of `agreement.csv`.
 pub fn rows(report: &AgreementReport) -> Vec<AgreementRow> {
     let mut out = Vec::new();
-    for e in &report.events {
+    for e in report.events.iter().chain(&report.events_by_group) {
         let s = &e.summary;
         out.push(AgreementRow {
             level: "events".into(),
             quantity: e.event.clone(),
             side: e.side.clone(),
+            group: e.group.clone(),
             n_ldh: Some(s.n_ldh),
             n_reference: Some(s.n_reference),
             n_matched: Some(s.n_matched),
@@ -110,6 +114,7 @@ pub fn rows(report: &AgreementReport) -> Vec<AgreementRow> {
             level: p.level.clone(),
             quantity: p.parameter.clone(),
             side: "both".into(),
+            group: super::run::ALL_GROUPS.into(),
             note: p.not_computed.clone().unwrap_or_default(),
             ..Default::default()
         };
@@ -168,28 +173,23 @@ pub fn markdown(report: &AgreementReport) -> String {
     }
     if !report.events.is_empty() {
         s.push_str("## Events (errors ldh − reference, ms)\n\n");
-        s.push_str("| event | side | ldh / reference / matched | recall | precision | F1 | bias | SD | MAE | P95 |\n");
-        s.push_str("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-        for e in &report.events {
-            let m = &e.summary;
-            let ms = |x: Option<f64>| f(x.map(|v| v * 1e3), 1);
+        if let [g] = report.groups.as_slice() {
             s.push_str(&format!(
-                "| {} | {} | {} / {} / {} | {} | {} | {} | {} | {} | {} | {} |\n",
-                e.event,
-                e.side,
-                m.n_ldh,
-                m.n_reference,
-                m.n_matched,
-                f(m.recall, 3),
-                f(m.precision, 3),
-                f(m.f1, 3),
-                ms(m.bias_s),
-                ms(m.sd_s),
-                ms(m.mae_s),
-                ms(m.p95_abs_s)
+                "Every subject is in group {} ({} subjects).\n\n",
+                g.group, g.subjects
             ));
         }
-        s.push('\n');
+        event_table(&mut s, &report.events, false);
+    }
+    if !report.events_by_group.is_empty() {
+        s.push_str("## Events per group (errors ldh − reference, ms)\n\n");
+        let n: Vec<String> = report
+            .groups
+            .iter()
+            .map(|g| format!("{} {} subjects", g.group, g.subjects))
+            .collect();
+        s.push_str(&format!("Groups: {}.\n\n", n.join(", ")));
+        event_table(&mut s, &report.events_by_group, true);
     }
     if !report.parameters.is_empty() {
         s.push_str(&format!(
@@ -222,12 +222,53 @@ pub fn markdown(report: &AgreementReport) -> String {
     s
 }
 
-/// Write `agreement.csv`, `agreement.json` and `agreement.md` into `dir` (created when
-/// missing). Every file is rendered first; each is then written atomically. Returns the paths.
+/// One Markdown table of event rows (with a group column when `by_group`).
+fn event_table(s: &mut String, rows: &[super::run::EventAgreement], by_group: bool) {
+    let (gh, gl) = if by_group {
+        ("group | ", "---|")
+    } else {
+        ("", "")
+    };
+    s.push_str(&format!(
+        "| {gh}event | side | ldh / reference / matched | recall | precision | F1 | bias | SD | MAE | P95 |\n"
+    ));
+    s.push_str(&format!(
+        "|{gl}---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n"
+    ));
+    for e in rows {
+        let m = &e.summary;
+        let ms = |x: Option<f64>| f(x.map(|v| v * 1e3), 1);
+        let g = if by_group {
+            format!("{} | ", e.group.replace('|', "/"))
+        } else {
+            String::new()
+        };
+        s.push_str(&format!(
+            "| {g}{} | {} | {} / {} / {} | {} | {} | {} | {} | {} | {} | {} |\n",
+            e.event,
+            e.side,
+            m.n_ldh,
+            m.n_reference,
+            m.n_matched,
+            f(m.recall, 3),
+            f(m.precision, 3),
+            f(m.f1, 3),
+            ms(m.bias_s),
+            ms(m.sd_s),
+            ms(m.mae_s),
+            ms(m.p95_abs_s)
+        ));
+    }
+    s.push('\n');
+}
+
+/// Write `agreement.csv`, `agreement.json`, `agreement.md` and `agreement.html` (the page,
+/// [`super::page`]) into `dir` (created when missing). Every file is rendered first; each is then written atomically. Returns the paths.
 pub fn write_report(dir: &Path, report: &AgreementReport) -> Result<Vec<PathBuf>> {
     let csv = crate::output::to_csv(&rows(report), &["level"])?;
     let json = serde_json::to_string_pretty(report)?;
     let md = markdown(report);
+    let page = super::page::agreement_html(report)?;
     std::fs::create_dir_all(dir).map_err(|e| crate::LdhError::Write {
         path: dir.to_path_buf(),
         reason: e.to_string(),
@@ -237,6 +278,7 @@ pub fn write_report(dir: &Path, report: &AgreementReport) -> Result<Vec<PathBuf>
         ("agreement.csv", csv.as_bytes()),
         ("agreement.json", json.as_bytes()),
         ("agreement.md", md.as_bytes()),
+        ("agreement.html", page.as_bytes()),
     ] {
         let p = dir.join(name);
         crate::io::write_atomic(&p, bytes)?;

@@ -76,7 +76,7 @@ fn clipping_counts_values_beyond_the_range() {
 
 /// The smallest text of an SVG drawn by plotters, in pt, when it prints `print` wide: every
 /// `font-size` × printed width / viewBox width.
-fn smallest_printed_pt(svg: &str, print: PrintWidth) -> f64 {
+pub(crate) fn smallest_printed_pt(svg: &str, print: PrintWidth) -> f64 {
     let attr = |name: &str, from: &str| -> Vec<f64> {
         from.match_indices(&format!(" {name}=\""))
             .map(|(i, m)| {
@@ -167,6 +167,30 @@ fn every_figure_prints_text_of_at_least_8_pt() {
             confusion_svg("RF", &["H".into(), "LDH".into()], &[vec![5, 1], vec![2, 4]]).unwrap(),
             CONFUSION_PRINT,
         ),
+        (
+            timing_histogram_svg("Timing error of the heel strikes", &[-3.0, 1.0, 2.0, 8.0])
+                .unwrap(),
+            TIMING_PRINT,
+        ),
+        (
+            bland_altman_svg(
+                "stride length, per stride",
+                "mean of ldh and reference (m)",
+                "ldh − reference (m)",
+                &[("left".into(), vec![(1.2, 0.01), (1.3, -0.02), (1.25, 0.0)])],
+                &crate::agreement::LimitsOfAgreement {
+                    bias: 0.0,
+                    sd_diff: 0.015,
+                    lower: -0.03,
+                    upper: 0.03,
+                    bias_ci: (-0.01, 0.01),
+                    lower_ci: (-0.05, -0.01),
+                    upper_ci: (0.01, 0.05),
+                },
+            )
+            .unwrap(),
+            BLAND_ALTMAN_PRINT,
+        ),
     ];
     for (svg, print) in &figures {
         let pt = smallest_printed_pt(svg, *print);
@@ -180,4 +204,70 @@ fn every_figure_prints_text_of_at_least_8_pt() {
     assert!(3.0 * PrintWidth::Third.pt() + 8.0 <= A4_TEXT_WIDTH_PT);
     assert!(5.0 * PrintWidth::Fifth.pt() + 16.0 <= A4_TEXT_WIDTH_PT);
     assert!(PrintWidth::Full.pt() <= A4_TEXT_WIDTH_PT);
+}
+
+/// Bins of 1, 2 or 5 × 10ᵏ, at most 24 over the range, starting at a multiple of the width;
+/// empty bins kept; the histogram draws one bar per non-empty bin.
+#[test]
+fn histogram_bins_and_bars() {
+    let v = [-12.0, -3.0, 0.0, 4.0, 4.5, 31.0, f64::NAN];
+    let (w, bins) = histogram_bins(&v, 1.0);
+    assert_eq!(w, 2.0, "43 / 24 = 1.8 → 2");
+    assert_eq!(bins.len(), 22, "-12 … 30");
+    assert_eq!(bins[0], (-12.0, 1));
+    assert_eq!(bins[4], (-4.0, 1));
+    assert_eq!(bins[6], (0.0, 1));
+    assert_eq!(bins[8], (4.0, 2));
+    assert_eq!(bins[21], (30.0, 1));
+    assert_eq!(bins.iter().map(|b| b.1).sum::<usize>(), 6);
+    let (w, bins) = histogram_bins(&[1.0, 1.2], 1.0);
+    assert_eq!(
+        (w, bins),
+        (1.0, vec![(1.0, 2)]),
+        "at least the minimum width"
+    );
+    assert!(histogram_bins(&[], 1.0).1.is_empty());
+    let svg = timing_histogram_svg("HS", &v).unwrap();
+    let c = TIMING_BAR_COLOUR;
+    let fill = format!("fill=\"#{:02X}{:02X}{:02X}\"", c.0, c.1, c.2);
+    assert_eq!(svg.matches(&fill).count(), 5, "five non-empty bins");
+    assert!(svg.contains(TIMING_X_LABEL) && svg.contains("bias +4.1 ms"));
+    assert!(timing_histogram_svg("HS", &[f64::NAN]).is_err());
+}
+
+/// A Bland–Altman plot: one dot per finite pair; the bias and the limits are written in the
+/// legend.
+#[test]
+fn bland_altman_draws_every_pair() {
+    let limits = crate::agreement::LimitsOfAgreement {
+        bias: 0.01,
+        sd_diff: 0.02,
+        lower: -0.0292,
+        upper: 0.0492,
+        bias_ci: (0.0, 0.02),
+        lower_ci: (-0.04, -0.02),
+        upper_ci: (0.04, 0.06),
+    };
+    let series = [
+        (
+            "left".to_string(),
+            vec![(1.0, 0.01), (1.1, 0.03), (1.2, -0.01)],
+        ),
+        ("right".to_string(), vec![(1.05, 0.02), (f64::NAN, 0.0)]),
+    ];
+    let svg = bland_altman_svg(
+        "stride time",
+        "mean of ldh and reference (s)",
+        "ldh − reference (s)",
+        &series,
+        &limits,
+    )
+    .unwrap();
+    assert_eq!(
+        svg.matches("<circle").count(),
+        4,
+        "no legend dots: the caption names the sides"
+    );
+    assert!(svg.contains("bias +0.010") && svg.contains("limits -0.029 to +0.049"));
+    assert!(bland_altman_svg("x", "a (s)", "b (s)", &[], &limits).is_err());
 }

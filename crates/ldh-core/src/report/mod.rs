@@ -28,7 +28,7 @@ mod build;
 mod cohort;
 pub mod cycle;
 mod headline;
-mod html;
+pub(crate) mod html;
 pub mod reference;
 mod subject;
 mod summary;
