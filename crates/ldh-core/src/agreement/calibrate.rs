@@ -114,6 +114,7 @@ mod tests {
         let ev = |event: &str, side: &str, bias: f64| EventAgreement {
             event: event.into(),
             side: side.into(),
+            group: "all".into(),
             summary: MatchSummary {
                 n_ldh: n,
                 n_reference: n,
@@ -140,6 +141,9 @@ mod tests {
             reference_strides: 0,
             strides_matched: 0,
             parameters: vec![],
+            groups: vec![],
+            events_by_group: vec![],
+            event_pairs: vec![],
         }
     }
 

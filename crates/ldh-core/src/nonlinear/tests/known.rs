@@ -136,7 +136,7 @@ fn white_noise_divergence_is_flat_after_the_embedding_window() {
     // the curve rises while the noisy coordinates leave the embedding window
     // (k < emb_dim) and is flat after it: no exponential divergence
     let tail: Vec<f64> = (5..30).map(|k| k as f64).collect();
-    let (slope, _) = crate::nonlinear::rosenstein::line_fit(&tail, &r.divergence[5..]);
+    let (slope, _) = crate::nonlinear::linalg::line_fit(&tail, &r.divergence[5..]);
     assert!(slope.abs() < 0.005, "tail slope {slope}");
     assert!(r.divergence[4] - r.divergence[0] > 1.0);
 }
