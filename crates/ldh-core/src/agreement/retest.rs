@@ -8,7 +8,7 @@
 //! valid strides) and both with a value; else the trial is missing. Each person's trials are
 //! those of their first visit (the visit of their first row): a change between visits is what
 //! the MDC95 is for, so it must not enter the trial-to-trial noise. k is the most common number
-//! of trials per person (ties: the smaller); a person with more trials uses the first k, in the
+//! of trials among the people with two or more (ties: the smaller); a person with more trials uses the first k, in the
 //! order of the results; a person with fewer, or with a missing value in the first k, is left
 //! out by [`super::test_retest`]'s listwise rule. The statistics are Weir (2005)'s SEM and
 //! MDC95 and Shrout & Fleiss (1979)'s ICCs; `docs/agreement.md`, "Reliability table".
@@ -69,10 +69,12 @@ fn trials_by_person(rows: &[RecordingRow]) -> Vec<Vec<Trial<'_>>> {
     people.into_iter().map(|p| p.2).collect()
 }
 
-/// The most common number of trials per person (ties: the smaller); 0 without people.
+/// The most common number of trials among the people with two or more (ties: the smaller); 0
+/// when nobody has two. People with one trial say nothing of the trial-to-trial noise, so a
+/// cohort of mostly single walks with a few repeated ones is judged on the repeated ones.
 fn common_trial_count(people: &[Vec<Trial>]) -> usize {
     let mut counts: BTreeMap<usize, usize> = BTreeMap::new();
-    for p in people {
+    for p in people.iter().filter(|p| p.len() >= 2) {
         *counts.entry(p.len()).or_default() += 1;
     }
     // max_by_key keeps the last of equal keys: iterate from the largest count down.
@@ -96,7 +98,8 @@ pub fn reliability_table(rows: &[RecordingRow], params: &ValidAgreementParams) -
                 p,
                 0,
                 k,
-                "no repeated trials: most people have one trial (manifest column trial_id)".into(),
+                "no repeated trials: no person has two or more trials (manifest column trial_id)"
+                    .into(),
             ));
             continue;
         }
@@ -329,6 +332,11 @@ mod tests {
         trial(&mut rows, "E", "", "0", 1.0);
         trial(&mut rows, "E", "", "1", 1.0);
         trial(&mut rows, "E", "", "2", 1.0);
+        assert_eq!(common_trial_count(&trials_by_person(&rows)), 3);
+        // Single walks say nothing of the noise: ten of them do not make k = 1.
+        for person in ["F", "G", "H", "I", "J", "K", "L", "M", "N", "O"] {
+            trial(&mut rows, person, "", "0", 1.0);
+        }
         assert_eq!(common_trial_count(&trials_by_person(&rows)), 3);
         assert_eq!(sig3(0.012345), "0.0123");
         assert_eq!(sig3(123.45), "123");
