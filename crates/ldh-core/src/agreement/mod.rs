@@ -37,6 +37,7 @@ mod error;
 pub mod events;
 pub mod icc;
 pub mod offset;
+mod outcome;
 pub mod page;
 mod paired;
 mod params;

@@ -135,7 +135,7 @@ impl LdhResults {
                 ));
             }
         }
-        let recordings = crate::report::read_recordings(dir)?;
+        let recordings = crate::output::read_recordings(dir)?;
         let mut models: Vec<String> = recordings.iter().map(|r| r.model.to_string()).collect();
         models.sort();
         models.dedup();

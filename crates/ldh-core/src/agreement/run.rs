@@ -28,18 +28,19 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{LdhError, Result};
 use crate::output::Parameter;
-use crate::pipeline::EventKind;
 use crate::Side;
 
+pub(crate) use super::outcome::{offset_of, Trial, KINDS, SIDES};
+pub use super::outcome::{
+    AgreementReport, EventAgreement, GroupCount, MatchedEvent, PairedValue, ParameterResult,
+    TrialOffset, UnmatchedEvent, ALL_GROUPS, UNLABELLED,
+};
 use super::reference::{Reference, ReferenceValues};
 use super::results::{boxed, LdhResults, LdhStride, STRIDE_PARAMETERS};
 use super::run_events::{event_train, group_counts};
-pub use super::run_events::{
-    EventAgreement, GroupCount, MatchedEvent, UnmatchedEvent, ALL_GROUPS, UNLABELLED,
-};
 use super::{
-    agreement, estimate_clock_offset, match_events, polish_offset, AgreementParams, ClockOffset,
-    ParameterAgreement, ReferenceError, ValidAgreementParams,
+    agreement, estimate_clock_offset, match_events, polish_offset, ReferenceError,
+    ValidAgreementParams,
 };
 
 /// The clock offset of the trials whose reference file gives none.
@@ -91,88 +92,6 @@ impl std::str::FromStr for OffsetMode {
         }
     }
 }
-
-/// The clock offset used for one trial.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct TrialOffset {
-    /// Subject.
-    pub subject_id: String,
-    /// Trial (empty without one).
-    pub trial_id: String,
-    /// ldh clock − reference clock, s (subtracted from ldh's times).
-    pub offset_s: f64,
-    /// `file` (an `offset_s` column), `given` (`--offset-s X`), `estimated` or `none`.
-    pub source: String,
-    /// The estimate, when estimated (`offset_s` is its best offset polished).
-    pub estimate: Option<ClockOffset>,
-}
-
-/// One pair of values (NaN: missing on that side, dropped from the statistics).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct PairedValue {
-    /// Subject.
-    pub subject_id: String,
-    /// Trial.
-    pub trial_id: String,
-    /// Leg.
-    pub side: String,
-    /// ldh's stride number (per-stride pairs).
-    pub stride_index: Option<usize>,
-    /// ldh's value (`None`: withheld or missing).
-    pub ldh: Option<f64>,
-    /// The reference value (`None`: empty cell).
-    pub reference: Option<f64>,
-}
-
-/// The agreement of one parameter at one level.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct ParameterResult {
-    /// `stride` or `recording`.
-    pub level: String,
-    /// The column, e.g. `stride_time_s`.
-    pub parameter: String,
-    /// The statistics, when they could be computed.
-    pub agreement: Option<ParameterAgreement>,
-    /// Why not, otherwise.
-    pub not_computed: Option<String>,
-    /// The pairs, in the order of the results.
-    pub pairs: Vec<PairedValue>,
-}
-
-/// Everything `ldh agree` found (what `agreement.json` holds).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct AgreementReport {
-    /// The parameters used.
-    pub params: AgreementParams,
-    /// The reference files.
-    pub reference_files: Vec<String>,
-    /// The clock offset of each trial the reference covers.
-    pub offsets: Vec<TrialOffset>,
-    /// The groups of the subjects the reference covers (the manifest's `group`), in order of
-    /// first appearance.
-    #[serde(default)]
-    pub groups: Vec<GroupCount>,
-    /// Per event kind: left, right, both (every subject: group `all`).
-    pub events: Vec<EventAgreement>,
-    /// The same per group, when [`Self::groups`] has two or more (else empty: the one group's
-    /// rows are [`Self::events`]).
-    #[serde(default)]
-    pub events_by_group: Vec<EventAgreement>,
-    /// Matched events with their timing errors, in the order matched.
-    #[serde(default)]
-    pub event_pairs: Vec<MatchedEvent>,
-    /// Unmatched events (ldh's only inside the span the reference covers).
-    pub unmatched_events: Vec<UnmatchedEvent>,
-    /// Reference strides (with a time or a number).
-    pub reference_strides: usize,
-    /// Of those, matched to an ldh stride.
-    pub strides_matched: usize,
-    /// Per parameter: stride level first, then recording level.
-    pub parameters: Vec<ParameterResult>,
-}
-
-/// (subject, trial).
-pub(crate) type Trial = (String, String);
 
 /// Compare `results` with `reference` (see the module docs).
 ///
@@ -259,9 +178,6 @@ fn stride_train<'a>(
     (l, r)
 }
 
-pub(crate) const KINDS: [EventKind; 2] = [EventKind::HeelStrike, EventKind::ToeOff];
-pub(crate) const SIDES: [Side; 2] = [Side::Left, Side::Right];
-
 /// The offset of one trial: the file's, else by `mode`.
 fn trial_offset(
     results: &LdhResults,
@@ -337,14 +253,6 @@ fn trial_offset(
     out.source = "estimated".into();
     out.estimate = Some(est);
     Ok(out)
-}
-
-pub(crate) fn offset_of(report: &AgreementReport, (s, t): &Trial) -> f64 {
-    report
-        .offsets
-        .iter()
-        .find(|o| &o.subject_id == s && &o.trial_id == t)
-        .map_or(0.0, |o| o.offset_s)
 }
 
 /// The pairs of one level, per parameter, in first-seen order of the parameters.

@@ -6,91 +6,17 @@
 //! `unlabelled`). ldh's events are taken inside the span the reference covers (its first event
 //! − tolerance to its last + tolerance).
 
-use serde::{Deserialize, Serialize};
-
 use crate::error::Result;
 use crate::pipeline::EventKind;
 use crate::Side;
 
+use super::outcome::{
+    offset_of, AgreementReport, EventAgreement, GroupCount, MatchedEvent, Trial, UnmatchedEvent,
+    ALL_GROUPS, KINDS, SIDES, UNLABELLED,
+};
 use super::reference::Reference;
 use super::results::LdhResults;
-use super::run::{AgreementReport, Trial, KINDS, SIDES};
-use super::{match_events, summarize, EventMatch, MatchSummary, ValidAgreementParams};
-
-/// The group of the pooled rows (every subject).
-pub const ALL_GROUPS: &str = "all";
-
-/// The group of a subject whose manifest gives none.
-pub const UNLABELLED: &str = "unlabelled";
-
-/// Detection rates and timing errors of one event kind on one side (or both), in one group
-/// (or all).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct EventAgreement {
-    /// `HS` or `TO`.
-    pub event: String,
-    /// `left`, `right` or `both`.
-    pub side: String,
-    /// `all`, or the subjects' group (`healthy`, `ldh`, another label, `unlabelled`).
-    #[serde(default = "all_groups")]
-    pub group: String,
-    /// Rates and errors (ldh − reference, s).
-    pub summary: MatchSummary,
-}
-
-fn all_groups() -> String {
-    ALL_GROUPS.into()
-}
-
-/// An event without a partner.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct UnmatchedEvent {
-    /// `ldh` (a false positive) or `reference` (a missed event).
-    pub system: String,
-    /// Subject.
-    pub subject_id: String,
-    /// Trial.
-    pub trial_id: String,
-    /// The subject's group (`unlabelled` without one).
-    #[serde(default)]
-    pub group: String,
-    /// Leg.
-    pub side: String,
-    /// `HS` or `TO`.
-    pub event: String,
-    /// Time on the reference clock, s (ldh's with the offset removed).
-    pub time_s: f64,
-}
-
-/// A matched pair of events.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct MatchedEvent {
-    /// Subject.
-    pub subject_id: String,
-    /// Trial.
-    pub trial_id: String,
-    /// The subject's group.
-    pub group: String,
-    /// Leg.
-    pub side: String,
-    /// `HS` or `TO`.
-    pub event: String,
-    /// The reference's time, s.
-    pub reference_time_s: f64,
-    /// ldh − reference, s (ldh's time with the offset removed).
-    pub error_s: f64,
-}
-
-/// One group of the trials the reference covers.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct GroupCount {
-    /// `healthy`, `ldh`, another label, or `unlabelled`.
-    pub group: String,
-    /// Subjects of the group the reference covers.
-    pub subjects: usize,
-    /// Their trials the reference covers.
-    pub trials: usize,
-}
+use super::{match_events, summarize, EventMatch, ValidAgreementParams};
 
 /// The group of a trial: its recordings' `group` (the manifest's), else `unlabelled`.
 pub(crate) fn trial_group(results: &LdhResults, (s, t): &Trial) -> String {
@@ -213,7 +139,7 @@ pub(crate) fn events(
     for kind in KINDS {
         let mut matches = KindMatches { all: Vec::new() };
         for (trial, group) in trials.iter().zip(&groups) {
-            let offset = super::run::offset_of(report, trial);
+            let offset = offset_of(report, trial);
             for (k, side) in SIDES.into_iter().enumerate() {
                 let (l, r) = event_train(results, reference, (&trial.0, &trial.1), side, kind);
                 let (Some(first), Some(last)) = (r.first(), r.last()) else {
