@@ -24,6 +24,7 @@ pub mod names;
 mod parameter;
 pub mod run;
 mod sink;
+pub mod trace;
 
 use labels::empty_is_none;
 pub use labels::{AffectedSide, Known, Label, SideRole, Status};
@@ -511,4 +512,14 @@ pub fn stride_groups(
         }
         Some(Ok((id, rows)))
     }))
+}
+
+/// The per-recording table (`recordings.json`) of an `ldh analyze` output folder.
+pub fn read_recordings(results: &std::path::Path) -> Result<Vec<RecordingRow>> {
+    let path = results.join("recordings.json");
+    let text = crate::io::read_text_limited(&path, crate::io::MAX_TABLE_MB, "an output table")?;
+    serde_json::from_str(&text).map_err(|e| LdhError::Format {
+        name: path.display().to_string(),
+        reason: format!("not an ldh recordings table: {e}"),
+    })
 }

@@ -362,6 +362,27 @@ fn first_unflagged(mask: &[bool], flags: &[bool]) -> Option<usize> {
         })
 }
 
+/// A subject's group in the simulator and the paper's two-group design (the manifest's
+/// [`crate::pipeline::GroupLabel`] admits any other label too).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Group {
+    /// Healthy control.
+    Healthy,
+    /// Lumbar disc herniation, one affected side.
+    Ldh,
+}
+
+impl Group {
+    /// `"healthy"` or `"ldh"`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Group::Healthy => "healthy",
+            Group::Ldh => "ldh",
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
 

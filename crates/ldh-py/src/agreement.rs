@@ -138,7 +138,7 @@ pub(crate) fn reliability<'py>(
             }
             let params = p.check()?;
             let rows = match (&results_dir, &columns) {
-                (Some(d), None) => ldh_core::report::read_recordings(d)?,
+                (Some(d), None) => ldh_core::output::read_recordings(d)?,
                 (None, Some(c)) => rows_of(c)?,
                 _ => {
                     return Err(LdhError::param(

@@ -163,7 +163,7 @@ pub fn rows_from(
     pool: &rayon::ThreadPool,
 ) -> Result<Vec<RecordingRow>> {
     match results {
-        Some(d) => Ok(ldh_core::report::read_recordings(d)?),
+        Some(d) => Ok(ldh_core::output::read_recordings(d)?),
         None => rows_for(inputs, model, pool),
     }
 }

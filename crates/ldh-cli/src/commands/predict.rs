@@ -12,7 +12,7 @@ pub fn run(a: PredictArgs) -> Result<ExitCode> {
     super::check_out_dir(&a.out)?;
     let model = ldh_core::ml::read_model(&a.model)?;
     let rows = match &a.results {
-        Some(d) => ldh_core::report::read_recordings(d)?,
+        Some(d) => ldh_core::output::read_recordings(d)?,
         None => rows_for(
             &a.inputs,
             model.attitude_model.parse()?,

@@ -12,8 +12,8 @@ use super::{
 };
 use crate::error::Result;
 use crate::io::{FormatSpec, ValidReadParams};
+use crate::output::trace::{SubjectTraces, ValidTraceParams};
 use crate::output::{self, OutputRun, RecordingRow, RenderedRows, TableSink};
-use crate::report::{SubjectTraces, ValidTraceParams};
 use crate::timings::{Stage, StageTimings};
 
 /// Analyse every subject (in parallel, results in input order).

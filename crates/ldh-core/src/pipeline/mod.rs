@@ -45,8 +45,8 @@ pub use quality::{
     withhold, LegChecks, Severity, Warning, WarningList, WithheldList, RUNNING_STRIDE_TIME_S,
 };
 pub use subject::{
-    analyze_pair, analyze_pair_checked, analyze_simulated, analyze_subject,
-    analyze_subject_checked, LoadedLeg, SubjectResult,
+    analyze_pair, analyze_pair_checked, analyze_subject, analyze_subject_checked, LoadedLeg,
+    SubjectResult,
 };
 
 use serde::{Deserialize, Serialize};

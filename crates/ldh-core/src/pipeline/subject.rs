@@ -426,28 +426,3 @@ fn resegment(
         leg.strides = st;
     }
 }
-
-/// Analyse a simulated subject in memory (for evaluation and tests).
-pub fn analyze_simulated(
-    s: &crate::simulate::SimSubject,
-    params: &AnalysisParams,
-) -> SubjectResult {
-    let input = SubjectInput {
-        setting: s.family_b.as_ref().map(|p| p.setting),
-        subject_id: s.params.subject_id.clone(),
-        group: Some(s.params.group.into()),
-        affected_side: s.params.affected_side,
-        sensor_height_m: Some((s.left.truth.sensor_height_m + s.right.truth.sensor_height_m) / 2.0),
-        ..SubjectInput::default()
-    };
-    let leg = |l: &crate::simulate::SimLeg| -> LoadedLeg {
-        let rec = l.recording.clone();
-        let report = memory_report(&rec);
-        Ok((
-            rec,
-            report,
-            format!("{}/{}", s.params.subject_id, l.truth.side),
-        ))
-    };
-    analyze_pair(&input, leg(&s.left), leg(&s.right), params)
-}

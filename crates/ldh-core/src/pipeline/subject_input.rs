@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 use super::heights::SensorHeights;
 use crate::error::{LdhError, Result};
 use crate::io::{read_recording, read_recording_bytes, FormatSpec, ReadReport, ValidReadParams};
+use crate::recording::Group;
 use crate::recording::{Recording, Side};
-use crate::simulate::Group;
 
 /// Where a recording comes from.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

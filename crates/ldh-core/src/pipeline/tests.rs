@@ -1,6 +1,6 @@
 use super::*;
 use crate::recording::Side;
-use crate::simulate::CohortParams;
+use crate::simulate::{analyze_simulated, CohortParams};
 use proptest::prelude::*;
 
 proptest! {

@@ -4,7 +4,7 @@
 
 use super::*;
 use crate::gait::STEADY_REASON;
-use crate::simulate::{CohortParams, SimSubject, StrideTruth};
+use crate::simulate::{analyze_simulated, CohortParams, SimSubject, StrideTruth};
 
 /// Stride-time CV (SD with n − 1 / mean) of the truth's steady strides.
 fn steady_truth_cv(strides: &[StrideTruth]) -> f64 {

@@ -45,11 +45,6 @@ fn read_json<T: serde::de::DeserializeOwned>(path: &Path, what: &str) -> Result<
     })
 }
 
-/// The per-recording table (`recordings.json`) of an `ldh analyze` output folder.
-pub fn read_recordings(results: &Path) -> Result<Vec<RecordingRow>> {
-    read_json(&results.join("recordings.json"), "an ldh recordings table")
-}
-
 /// What [`build`] did.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct BuildSummary {
@@ -92,7 +87,7 @@ fn results_run(results: &Path, warnings: &mut Vec<String>) -> Result<Option<RunM
 /// checked, `strides.csv` checked by size (it is streamed later).
 fn checked_rows(results: &Path, marker: Option<&RunMarker>) -> Result<Vec<RecordingRow>> {
     let Some(m) = marker else {
-        return read_recordings(results);
+        return crate::output::read_recordings(results);
     };
     let path = results.join("recordings.json");
     let text = read_text(&path)?;

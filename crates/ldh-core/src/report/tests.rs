@@ -175,7 +175,7 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
         compute_sta: false,
         ..Default::default()
     };
-    let res = crate::pipeline::analyze_simulated(&sub, &params);
+    let res = crate::simulate::analyze_simulated(&sub, &params);
     let tables = crate::output::Tables::of(std::slice::from_ref(&res));
     let left = tables
         .recordings

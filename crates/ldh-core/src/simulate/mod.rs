@@ -18,6 +18,8 @@
 //! cohort ([`retest`], `--trials N`) walks each person N times with a known day-to-day
 //! variation, each trial from a stream of its own.
 
+mod analyze;
+pub use analyze::analyze_simulated;
 mod cohort;
 pub mod curves;
 pub mod family_b;
@@ -28,8 +30,6 @@ pub mod retest;
 mod sensor;
 mod truth;
 mod write;
-
-use serde::{Deserialize, Serialize};
 
 use crate::error::{LdhError, Result};
 pub use cohort::CohortParams;
@@ -90,25 +90,8 @@ pub fn check_samples(duration_s: f64, fs_hz: f64) -> Result<()> {
     ))
 }
 
-/// Subject group.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Group {
-    /// Healthy control.
-    Healthy,
-    /// Lumbar disc herniation, one affected side.
-    Ldh,
-}
-
-impl Group {
-    /// `"healthy"` or `"ldh"`.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Group::Healthy => "healthy",
-            Group::Ldh => "ldh",
-        }
-    }
-}
+/// Subject group (defined with the recordings' other labels: the analysis reads it too).
+pub use crate::recording::Group;
 
 #[cfg(test)]
 mod tests;

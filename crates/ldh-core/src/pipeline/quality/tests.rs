@@ -36,7 +36,7 @@ fn sensors_rotated_about_the_shank_never_look_swapped() {
         let deg = 30.0 * k as f64;
         sub.left.recording = rotated_about_shank(&l0, deg);
         sub.right.recording = rotated_about_shank(&r0, deg);
-        let res = crate::pipeline::analyze_simulated(&sub, &params);
+        let res = crate::simulate::analyze_simulated(&sub, &params);
         let mut all: Vec<Warning> = res.warnings.clone();
         for (side, leg) in res.legs() {
             let Ok(leg) = leg else {

@@ -4,8 +4,9 @@
 
 use super::tests_hugadb::{hugadb_dir, read_hugadb};
 use super::*;
-use crate::pipeline::{analyze_simulated, AnalysisParams, LegResult, Source};
+use crate::pipeline::{AnalysisParams, LegResult, Source};
 use crate::recording::Recording;
+use crate::simulate::analyze_simulated;
 use crate::simulate::{CohortParams, SimSubject};
 
 /// A 30 s simulated walk (one healthy subject).
