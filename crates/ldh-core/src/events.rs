@@ -246,14 +246,6 @@ impl ValidEventParams {
     pub fn params(&self) -> &EventParams {
         &self.p
     }
-
-    /// Add the calibration's shifts, if any, to the events of a recording of `duration_s`
-    /// seconds ([`EventCalibration::apply`]).
-    pub fn calibrate(&self, ev: &mut Events, duration_s: f64) {
-        if let Some(c) = &self.p.calibration {
-            c.apply(ev, duration_s);
-        }
-    }
 }
 
 /// Find the impact after each heel strike of `ev` in the raw acceleration `acc_g` (g, sampled

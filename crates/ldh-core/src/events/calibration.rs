@@ -119,6 +119,16 @@ impl EventCalibration {
     }
 }
 
+impl super::ValidEventParams {
+    /// Add the calibration's shifts, if any, to the events of a recording of `duration_s`
+    /// seconds ([`EventCalibration::apply`]).
+    pub fn calibrate(&self, ev: &mut Events, duration_s: f64) {
+        if let Some(c) = &self.p.calibration {
+            c.apply(ev, duration_s);
+        }
+    }
+}
+
 /// `+12 ms` / `−31 ms`.
 fn signed_ms(s: f64) -> String {
     let ms = (s * 1000.0).round();
