@@ -27,6 +27,7 @@ pub mod model;
 pub mod model_check;
 pub mod model_plausible;
 mod model_plausible_fit;
+mod model_types;
 mod predict;
 pub mod svm;
 mod task;

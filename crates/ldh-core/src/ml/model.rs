@@ -9,33 +9,16 @@
 use ndarray::{Array2, Axis};
 use serde::{Deserialize, Serialize};
 
-use super::dataset::{Dataset, MinMax, Task};
+use super::dataset::{Dataset, MinMax};
 use super::forest::{Forest, ForestParams};
 use super::mlp::{Mlp, MlpParams};
-pub use super::model_check::ModelError;
-use super::model_plausible::{probe_output, TrainingSummary, MODEL_MAX_MB};
+use super::model_plausible::probe_output;
+pub use super::model_types::{Classifier, FittedModel, ModelError, ModelFile, MODEL_SCHEMA};
+use super::model_types::{TrainingSummary, MODEL_MAX_MB};
 use super::svm::{SvmModel, SvmParams};
 use crate::error::{LdhError, Result};
 use crate::output::Parameter;
 use serde_json::Value;
-
-/// Version tag of the model file (2: with a checksum, validated on load; 3: with the training
-/// summary and probes of [`super::model_plausible`], an exact checksum). Files of an older schema
-/// are refused with a request to retrain: without a training summary their content cannot be
-/// checked for plausibility.
-pub const MODEL_SCHEMA: &str = "ldh-model/3";
-
-/// A classifier and its parameters.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "kebab-case")]
-pub enum Classifier {
-    /// Random forest.
-    RandomForest(ForestParams),
-    /// RBF SVM.
-    Svm(SvmParams),
-    /// Multi-layer perceptron.
-    Mlp(MlpParams),
-}
 
 impl Classifier {
     /// Short name (`rf`, `svm`).
@@ -86,18 +69,6 @@ impl Classifier {
     }
 }
 
-/// A fitted classifier.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "kebab-case")]
-pub enum FittedModel {
-    /// Random forest.
-    RandomForest(Forest),
-    /// SVM.
-    Svm(SvmModel),
-    /// MLP.
-    Mlp(Mlp),
-}
-
 impl FittedModel {
     /// Predicted classes for (scaled) rows.
     pub fn predict(&self, x: &Array2<f64>) -> Result<Vec<usize>> {
@@ -138,37 +109,6 @@ pub fn argmax_rows(p: &Array2<f64>) -> Vec<usize> {
                 .0
         })
         .collect()
-}
-
-/// A saved, trained model.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct ModelFile {
-    /// [`MODEL_SCHEMA`].
-    pub schema: String,
-    /// ldh version that trained it.
-    pub ldh_version: String,
-    /// Task.
-    pub task: Task,
-    /// Feature names (columns of the per-recording table, units in the names).
-    pub feature_names: Vec<String>,
-    /// Class names in label order.
-    pub class_names: Vec<String>,
-    /// Scaling fitted on the training rows.
-    pub scaling: MinMax,
-    /// The classifier's parameters.
-    pub classifier: Classifier,
-    /// The fitted model.
-    pub model: FittedModel,
-    /// Training rows per class.
-    pub trained_rows_per_class: Vec<usize>,
-    /// Attitude model of the features (`fusion` or `acc`).
-    pub attitude_model: String,
-    /// What the training rows looked like, and the model's output at every class mean
-    /// (checked on load, [`super::model_plausible`]).
-    pub training: TrainingSummary,
-    /// Where the model was read from (named in every error; not saved). Empty: `<model>`.
-    #[serde(skip)]
-    pub origin: String,
 }
 
 impl ModelFile {

@@ -37,102 +37,13 @@
 //!   labels increasing and each with training rows, at most `max_iter` epochs.
 
 use ndarray::Array2;
-use serde::{Deserialize, Serialize};
 
-use super::model::{FittedModel, ModelFile};
-use super::model_check::ModelError;
+use super::model_types::{FittedModel, ModelError, ModelFile};
+pub use super::model_types::{
+    Probe, TrainingSummary, MAX_FEATURES, MAX_HIDDEN_UNITS, MAX_TRAINING_ROWS, MAX_TREES,
+    MAX_WEIGHT, MIN_RANGE, MODEL_MAX_MB, VALUE_BOUND,
+};
 use crate::output::Parameter;
-
-/// Largest model file read, MB: [`crate::io::MAX_MODEL_MB`] (its measurement is there).
-pub const MODEL_MAX_MB: f64 = crate::io::MAX_MODEL_MB;
-/// Most features of a model.
-pub const MAX_FEATURES: usize = 256;
-/// Most training rows of a model.
-pub const MAX_TRAINING_ROWS: usize = 100_000;
-/// Most trees of a forest.
-pub const MAX_TREES: usize = 1000;
-/// Most units of an MLP hidden layer.
-pub const MAX_HIDDEN_UNITS: usize = 1024;
-/// Largest |weight| or |bias| of an MLP.
-pub const MAX_WEIGHT: f64 = 1e3;
-/// Largest |value| of a feature in the training summary (any feature; the 13 parameters have
-/// narrower ranges, [`physical_range`]).
-pub const VALUE_BOUND: f64 = 1e9;
-/// Smallest range of a non-constant feature.
-pub const MIN_RANGE: f64 = 1e-9;
-
-/// What the training rows looked like, stored in the model file.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct TrainingSummary {
-    /// Training rows (the sum of the rows per class).
-    pub rows: usize,
-    /// Mean of every feature, in its units.
-    pub mean: Vec<f64>,
-    /// Standard deviation (population) of every feature.
-    pub sd: Vec<f64>,
-    /// Smallest value of every feature.
-    pub min: Vec<f64>,
-    /// Largest value of every feature.
-    pub max: Vec<f64>,
-    /// The mean of every class with training rows, and the model's output there.
-    pub probes: Vec<Probe>,
-}
-
-/// A class mean and the fitted model's output at it.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Probe {
-    /// Class label.
-    pub class: usize,
-    /// Mean of the class's training rows, per feature, unscaled.
-    pub x: Vec<f64>,
-    /// The model's output there: class probabilities (forest, MLP) or decision values (SVM).
-    pub output: Vec<f64>,
-}
-
-impl TrainingSummary {
-    /// The summary of training rows `x` (unscaled) with labels `y`; probes without outputs.
-    pub fn of(x: &Array2<f64>, y: &[usize], n_classes: usize) -> TrainingSummary {
-        let n = x.nrows().max(1) as f64;
-        let (mut mean, mut sd, mut min, mut max) = (vec![], vec![], vec![], vec![]);
-        for col in x.columns() {
-            let lo = col.iter().copied().fold(f64::INFINITY, f64::min);
-            let hi = col.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-            // Rounding can put the mean of equal values an ulp outside them: clamped, so the
-            // summary's own rules hold exactly.
-            let m = (col.sum() / n).clamp(lo, hi);
-            mean.push(m);
-            let var = col.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / n;
-            sd.push(var.sqrt().min(0.5 * (hi - lo)));
-            min.push(lo);
-            max.push(hi);
-        }
-        let probes = (0..n_classes)
-            .filter_map(|c| {
-                let rows: Vec<usize> = (0..y.len()).filter(|&i| y[i] == c).collect();
-                (!rows.is_empty()).then(|| Probe {
-                    class: c,
-                    x: x.columns()
-                        .into_iter()
-                        .zip(min.iter().zip(&max))
-                        .map(|(col, (&lo, &hi))| {
-                            let s: f64 = rows.iter().map(|&i| col[i]).sum();
-                            (s / rows.len() as f64).clamp(lo, hi)
-                        })
-                        .collect(),
-                    output: vec![],
-                })
-            })
-            .collect();
-        TrainingSummary {
-            rows: x.nrows(),
-            mean,
-            sd,
-            min,
-            max,
-            probes,
-        }
-    }
-}
 
 /// The output a probe records: probabilities where the model has them, else decision values.
 pub fn probe_output(m: &ModelFile, x: &[f64]) -> Option<Vec<f64>> {

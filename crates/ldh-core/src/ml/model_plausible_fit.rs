@@ -5,9 +5,9 @@ use serde_json::Value;
 
 use super::forest::Forest;
 use super::mlp::Mlp;
-use super::model::{Classifier, ModelFile};
-use super::model_check::ModelError;
-use super::model_plausible::{MAX_HIDDEN_UNITS, MAX_TREES, MAX_WEIGHT};
+use super::model_types::{
+    Classifier, ModelError, ModelFile, MAX_HIDDEN_UNITS, MAX_TREES, MAX_WEIGHT,
+};
 use super::svm::SvmModel;
 use super::tree::Node;
 
