@@ -4,7 +4,7 @@
 Run from the repository root: python3 fuzz/make_seeds.py. The seeds are committed; this
 script only documents how they were made. Each CSV seed is a real recording of just over 4 s
 (the reader's minimum) in one format, padded with trailing newlines so that its length selects
-that format for the target's second, explicit-format read (ldh_core::fuzz_targets::read_csv:
+that format for the target's second, explicit-format read (ldh_fuzz::read_csv:
 format = len % 7, reader parameters = (len / 7) % 4).
 """
 import math
@@ -13,7 +13,7 @@ import struct
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 G = 9.80665
-# Order of ldh_core::fuzz_targets::read_formats(): built-ins, then the fuzz-only formats.
+# Order of ldh_fuzz::read_formats(): built-ins, then the fuzz-only formats.
 FORMATS = ["ldh", "xsens-mtmanager", "shimmer-consensys", "raw-counts", "fuzz-iso", "fuzz-ms", "fuzz-us"]
 
 

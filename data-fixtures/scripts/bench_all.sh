@@ -32,10 +32,10 @@ say "== $(date -u +%FT%TZ) $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg)
 say "   $("$py" -c 'import numpy, scipy, sklearn, nolds, importlib.metadata as m; print("numpy", numpy.__version__, "scipy", scipy.__version__, "scikit-learn", sklearn.__version__, "nolds", m.version("nolds"))')"
 
 say "== criterion: per stage and end to end (cargo bench)"
-for b in preprocess pipeline lyapunov; do
-    cargo bench -q -p ldh-core --bench "$b" -- --warm-up-time 1 --measurement-time 3 \
-        >"$logs/criterion-$b.txt" 2>&1
-    grep -E "time:" -B1 "$logs/criterion-$b.txt" | sed 's/^/   /' | tee -a "$summary" || true
+for b in ldh-core:preprocess ldh-sim:pipeline ldh-core:lyapunov; do
+    cargo bench -q -p "${b%%:*}" --bench "${b#*:}" -- --warm-up-time 1 --measurement-time 3 \
+        >"$logs/criterion-${b#*:}.txt" 2>&1
+    grep -E "time:" -B1 "$logs/criterion-${b#*:}.txt" | sed 's/^/   /' | tee -a "$summary" || true
 done
 RAYON_NUM_THREADS=1 cargo bench -q -p ldh-core --bench lyapunov -- --warm-up-time 1 \
     --measurement-time 3 lyap_r_n10000 >"$logs/criterion-lyapunov-1thread.txt" 2>&1

@@ -7,6 +7,7 @@ cycle is a strongly connected set of two or more files. Test files (`tests*.rs`,
 are left out: they sit beside what they test and name it, and nothing names them.
 
 Usage: python3 data-fixtures/scripts/file_cycles.py crates/ldh-core/src [more src dirs]
+       (every library: crates/ldh-core/src crates/ldh-sim/src crates/ldh-report/src)
 Prints each cycle's files; exit status 1 when there is one.
 """
 import pathlib

@@ -4,7 +4,7 @@
 Run from the repository root:  python3 data-fixtures/scripts/gen_preprocess_golden.py
 Writes data-fixtures/golden/preprocess/{input.csv,expected.json}. Deterministic.
 
-Steps reproduced (see crates/ldh-core/src/preprocess.rs):
+Steps reproduced (see crates/ldh-core/src/preprocess/):
   1. magnitude of the acceleration (eq. 1);
   2. outliers: |norm - mean| > 3 * std (numpy std, ddof=0); those samples are replaced by
      numpy.interp over the remaining samples, on all six channels ("filtered", the paper read

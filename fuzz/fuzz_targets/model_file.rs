@@ -1,8 +1,8 @@
-//! Arbitrary bytes as a model file (`ldh_core::fuzz_targets::model_file`).
+//! Arbitrary bytes as a model file (`ldh_fuzz::model_file`).
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
-    ldh_core::fuzz_targets::model_file(data);
+    ldh_fuzz::model_file(data);
 });

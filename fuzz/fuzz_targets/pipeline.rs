@@ -1,9 +1,9 @@
 //! A recording decoded from arbitrary bytes through the per-recording pipeline
-//! (`ldh_core::fuzz_targets::pipeline`).
+//! (`ldh_fuzz::pipeline`).
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
-    ldh_core::fuzz_targets::pipeline(data);
+    ldh_fuzz::pipeline(data);
 });

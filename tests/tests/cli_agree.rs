@@ -5,7 +5,7 @@ mod common;
 use common::html::check_page;
 use common::{json, ldh, ldh_ok, simulate_cohort, text};
 
-use ldh_core::evaluate::{truth_reference, TruthScope};
+use ldh_sim::evaluate::{truth_reference, TruthScope};
 
 #[test]
 fn agree_reads_an_analyze_folder_estimates_the_offset_and_refuses_a_bad_reference() {
@@ -21,7 +21,7 @@ fn agree_reads_an_analyze_folder_estimates_the_offset_and_refuses_a_bad_referenc
     ]);
     let truths: Vec<_> = ["H01", "H02", "L01", "L02"]
         .iter()
-        .map(|s| ldh_core::simulate::read_truth(sim.join(s).join("truth.json")).unwrap())
+        .map(|s| ldh_sim::read_truth(sim.join(s).join("truth.json")).unwrap())
         .collect();
     let (ev, st) = truth_reference(&truths, TruthScope::All, 0.75);
     let (evp, stp) = (d.path().join("ev.csv"), d.path().join("st.csv"));
@@ -191,7 +191,7 @@ fn a_calibration_written_by_agree_removes_the_bias_and_the_report_says_so() {
     ]);
     let truths: Vec<_> = ["H01", "H02", "L01", "L02"]
         .iter()
-        .map(|s| ldh_core::simulate::read_truth(sim.join(s).join("truth.json")).unwrap())
+        .map(|s| ldh_sim::read_truth(sim.join(s).join("truth.json")).unwrap())
         .collect();
     let (ev, _) = truth_reference(&truths, TruthScope::All, 0.0);
     // The lab's reference: heel strikes 40 ms later, toe offs 25 ms earlier than the truth.

@@ -36,7 +36,7 @@ fn similar_subject_ids_get_distinct_reports_with_their_own_data() {
     assert_eq!(std::fs::read_dir(out.join("traces")).unwrap().count(), 3);
     let index = std::fs::read_to_string(out.join("reports").join("index.html")).unwrap();
     for id in ids.iter() {
-        let stem = ldh_core::report::file_stem(id);
+        let stem = ldh_core::output::names::file_stem(id);
         let html = std::fs::read_to_string(subjects.join(format!("{stem}.html"))).unwrap();
         assert!(html.contains(&format!("Gait report — {id}")), "{stem}");
         // The files by name only, no folders (issue 36 item 5): that the page shows this

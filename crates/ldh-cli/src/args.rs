@@ -7,8 +7,8 @@ use clap::{Args, Parser, Subcommand};
 use ldh_core::attitude::AttitudeModel;
 use ldh_core::events::EventDetector;
 use ldh_core::ml::{ClassifierKind, Task};
-use ldh_core::simulate::family_b::Family;
 use ldh_core::Setting;
+use ldh_sim::family_b::Family;
 
 /// Gait assessment for lumbar disc herniation from two shank-worn IMUs.
 ///

@@ -159,10 +159,10 @@ impl Alignment {
     }
 }
 
-#[cfg(test)]
 impl Alignment {
-    /// The device frame is F: no rotation, no bias, nothing found (for tests).
-    pub(crate) fn identity() -> Self {
+    /// The device frame is F: no rotation, no bias, nothing found (a recording already in the
+    /// shank frame, as the simulator's truth and the tests build them).
+    pub fn identity() -> Self {
         Alignment {
             r_f_from_device: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
             gyro_bias_dps: [0.0; 3],

@@ -32,7 +32,7 @@ mod outcome;
 mod table3;
 pub use offsets::{offsets, table4_markdown, ModelOffsets};
 pub use outcome::{stats, StatsOutcome};
-pub(crate) use table3::{any_partial, fmt_ms_n, fmt_p, PARTIAL_NOTE};
+pub use table3::{any_partial, fmt_ms_n, fmt_p, PARTIAL_NOTE};
 pub use table3::{
     table3, table3_markdown, table3_rows, ParameterStats, Summary, Table3Row, TestResult,
 };

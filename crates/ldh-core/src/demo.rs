@@ -3,14 +3,14 @@
 //! Four simulated subjects (two healthy, two LDH, affected sides left and right), 25 s each at
 //! 100 Hz with a 180° turn, as written by
 //! `ldh simulate --out data-fixtures/cohort --healthy 2 --ldh 2 --seconds 25 --seed 2`
-//! ([`demo_cohort_params`]). The files are compiled into the library so the binary and the wheel
-//! can analyse them anywhere; a test checks they are byte-identical to a fresh simulation.
+//! (`ldh_sim::demo::demo_cohort_params`). The files are compiled into the library so the binary
+//! and the wheel can analyse them anywhere; a test in `ldh-sim` checks they are byte-identical to
+//! a fresh simulation.
 
 use std::path::Path;
 
 use crate::error::Result;
 use crate::io::write_atomic;
-use crate::simulate::CohortParams;
 
 /// The files of the demo cohort: (path relative to the cohort folder, content).
 pub const FILES: [(&str, &str); 14] = [
@@ -75,21 +75,24 @@ pub const FILES: [(&str, &str); 14] = [
 /// The subject identifiers of the demo cohort.
 pub const SUBJECTS: [&str; 4] = ["H01", "H02", "L01", "L02"];
 
-/// The parameters that generate the demo cohort.
-pub fn demo_cohort_params() -> CohortParams {
-    CohortParams {
-        healthy: 2,
-        ldh: 2,
-        duration_s: 25.0,
-        fs_hz: 100.0,
-        seed: 2,
-        ..CohortParams::default()
-    }
-}
-
 /// The content of one demo file, by relative path (e.g. `"H01/left.csv"`).
 pub fn file(rel: &str) -> Option<&'static str> {
     FILES.iter().find(|(p, _)| *p == rel).map(|(_, c)| *c)
+}
+
+/// One leg of the demo cohort read as `ldh analyze` reads a file (default format and reading),
+/// by relative path (e.g. `"H01/left.csv"`); an unknown path is a "not found" read error.
+pub fn recording(rel: &str) -> Result<crate::Recording> {
+    let path = Path::new(rel);
+    let text = file(rel).ok_or_else(|| crate::LdhError::Io {
+        path: path.to_path_buf(),
+        source: std::io::Error::new(
+            std::io::ErrorKind::NotFound,
+            "not a file of the embedded demo cohort",
+        ),
+    })?;
+    let read = crate::io::ReadParams::default().check()?;
+    Ok(crate::io::read_recording_bytes(text.as_bytes(), path, None, &read)?.0)
 }
 
 /// Write the demo cohort into `dir` (created if missing); returns the number of files.
@@ -103,29 +106,17 @@ pub fn write_to(dir: &Path) -> Result<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::io::FormatSpec;
 
     #[test]
-    fn the_shipped_cohort_is_what_the_simulator_writes() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = demo_cohort_params();
-        crate::simulate::write_cohort(&p, dir.path(), &FormatSpec::default(), &|| {}).unwrap();
-        let manifest = std::fs::read_to_string(dir.path().join("manifest.csv")).unwrap();
-        assert_eq!(manifest, file("manifest.csv").unwrap());
-        for (rel, content) in FILES.iter().filter(|(r, _)| r.contains('/')) {
-            let fresh = std::fs::read_to_string(dir.path().join(rel)).unwrap();
-            assert!(
-                fresh == *content,
-                "{rel} differs from a fresh simulation: regenerate data-fixtures/cohort"
-            );
+    fn every_leg_reads_and_an_unknown_one_is_named() {
+        for id in SUBJECTS {
+            for side in ["left", "right"] {
+                let r = recording(&format!("{id}/{side}.csv")).unwrap();
+                assert_eq!((r.fs_hz, r.len()), (100.0, 2501));
+            }
         }
-        let sides: Vec<&str> = file("manifest.csv")
-            .unwrap()
-            .lines()
-            .skip(1)
-            .map(|l| l.split(',').nth(2).unwrap())
-            .collect();
-        assert_eq!(sides, ["none", "none", "left", "right"]);
+        let e = recording("H09/left.csv").unwrap_err().to_string();
+        assert!(e.contains("H09/left.csv"), "{e}");
     }
 
     #[test]

@@ -1,15 +1,11 @@
-//! # ldh-core
+#![doc = include_str!("../README.md")]
 //!
-//! All computation of **ldh**, a gait assessment for lumbar disc herniation (LDH) from two
-//! shank-worn IMUs, after Wang et al., "A wearable gait assessment method for lumbar disc
-//! herniation based on adaptive Kalman filtering" (the paper; see `shared/paper`), and the
-//! project's specification (SPEC.md).
+//! ## Stages
 //!
 //! Pipeline stages are modules with a data type between them:
 //! recording ([`recording::Recording`], read by [`io`]) → preprocessed
 //! ([`preprocess::Preprocessed`]) → attitude → events → strides → features.
-//! [`simulate`] is the deterministic two-shank gait simulator that produces the demo data and
-//! the ground truth the accuracy tests score against.
+//! The specification is the project's SPEC.md; the paper is in `shared/paper`.
 //!
 //! Every algorithm takes a parameter type with serde, `Default` and setters, validated once
 //! into the type the algorithm accepts (`params.check(...)`). All errors are [`LdhError`].
@@ -20,21 +16,15 @@ pub mod attitude;
 pub mod cohort;
 pub mod demo;
 pub mod error;
-pub mod evaluate;
 pub mod events;
-#[doc(hidden)]
-pub mod fuzz_targets;
 pub mod gait;
 pub mod io;
 pub mod ml;
 pub mod nonlinear;
 pub mod output;
 pub mod pipeline;
-pub mod plots;
 pub mod preprocess;
 pub mod recording;
-pub mod report;
-pub mod simulate;
 pub mod stats;
 pub mod timings;
 

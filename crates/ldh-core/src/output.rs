@@ -24,6 +24,8 @@ pub mod names;
 mod parameter;
 pub mod run;
 mod sink;
+#[cfg(test)]
+pub(crate) mod test_rows;
 pub mod trace;
 
 use labels::empty_is_none;

@@ -201,13 +201,13 @@ pub(crate) fn simulate_cohort(
         ))
     };
     let (healthy, ldh, seed, slow_ldh, trials) = counts().or_raise(py)?;
-    let d = ldh_core::simulate::CohortParams::default();
+    let d = ldh_sim::CohortParams::default();
     let trials = trials.unwrap_or(d.trials);
     let sensor = match acc_range_g {
         Some(g) => d.sensor.clone().acc_range_g(g),
         None => d.sensor.clone(),
     };
-    let params = ldh_core::simulate::CohortParams {
+    let params = ldh_sim::CohortParams {
         healthy: healthy.unwrap_or(d.healthy),
         ldh: ldh.unwrap_or(d.ldh),
         duration_s: seconds.unwrap_or(d.duration_s),
@@ -217,7 +217,7 @@ pub(crate) fn simulate_cohort(
         slow_ldh: slow_ldh.unwrap_or(d.slow_ldh),
         ramp_s: ramp_s.unwrap_or(d.ramp_s),
         trials,
-        day_to_day_sd_fraction: ldh_core::simulate::retest::day_to_day_sd_fraction_or_default(
+        day_to_day_sd_fraction: ldh_sim::retest::day_to_day_sd_fraction_or_default(
             trials,
             day_to_day_sd_fraction,
         ),
@@ -225,8 +225,8 @@ pub(crate) fn simulate_cohort(
         ..d
     };
     py.detach(move || -> Result<String, LdhError> {
-        let rows = ldh_core::simulate::write_cohort(&params, &out, &FormatSpec::default(), &|| {})?;
-        Ok(ldh_core::simulate::manifest_csv(&rows))
+        let rows = ldh_sim::write_cohort(&params, &out, &FormatSpec::default(), &|| {})?;
+        Ok(ldh_sim::manifest_csv(&rows))
     })
     .or_raise(py)
 }
@@ -259,7 +259,7 @@ pub(crate) fn defaults(py: Python<'_>, d: &Bound<'_, PyDict>) -> PyResult<()> {
     let bf = PyDict::new(py);
     bf.set_item("order", p.filter_order)?;
     d.set_item("butter_filtfilt", bf)?;
-    let c = ldh_core::simulate::CohortParams::default();
+    let c = ldh_sim::CohortParams::default();
     let sim = PyDict::new(py);
     sim.set_item("healthy", c.healthy)?;
     sim.set_item("ldh", c.ldh)?;

@@ -50,7 +50,8 @@ pub fn run(a: AgreeArgs) -> Result<ExitCode> {
         }
         None => None,
     };
-    let files = agreement::write_report(&a.out, &report)?;
+    let page = ldh_report::agreement_page::agreement_html(&report)?;
+    let files = agreement::write_report(&a.out, &report, &[("agreement.html", &page)])?;
     println!("{}", agreement::write::markdown(&report));
     for f in files {
         note!("wrote {}", f.display());

@@ -1,5 +1,5 @@
 //! `ldh analyze`: analyse inputs into an output folder ([`ldh_core::pipeline::analyze_to_folder`])
-//! and, with `--report`, write the reports ([`ldh_core::report::build`]).
+//! and, with `--report`, write the reports ([`ldh_report::build`]).
 
 use std::process::ExitCode;
 
@@ -9,7 +9,7 @@ use ldh_core::output::{OutputRun, RecordingRow, RunKind};
 use ldh_core::pipeline::{
     analyze_to_folder, discover_with, FolderOptions, FolderSummary, InputOptions, SensorHeights,
 };
-use ldh_core::report::{BuildSources, ReportParams};
+use ldh_report::{BuildSources, ReportParams};
 
 use super::{analysis_params, progress, resolve_format, thread_pool};
 use crate::args::AnalyzeArgs;
@@ -114,7 +114,7 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
         };
         let pb = progress(0, "report");
         let built = pool.install(|| {
-            ldh_core::report::build(&a.out, &dir, src, &report_params, &|n| {
+            ldh_report::build(&a.out, &dir, src, &report_params, &|n| {
                 pb.set_length(n as u64);
                 pb.inc(1)
             })

@@ -1,5 +1,5 @@
 //! `ldh evaluate`: score the pipeline against simulator ground truth
-//! ([`ldh_core::evaluate::evaluate`]).
+//! ([`ldh_sim::evaluate::evaluate`]).
 
 use std::process::ExitCode;
 
@@ -14,9 +14,9 @@ use crate::args::EvaluateArgs;
 /// Run `ldh evaluate`.
 pub fn run(a: EvaluateArgs) -> Result<ExitCode> {
     let mut subjects = discover(std::slice::from_ref(&a.truth))?;
-    let truths: Vec<ldh_core::simulate::SubjectTruth> = subjects
+    let truths: Vec<ldh_sim::SubjectTruth> = subjects
         .iter()
-        .map(|s| ldh_core::simulate::read_truth(a.truth.join(&s.subject_id).join("truth.json")))
+        .map(|s| ldh_sim::read_truth(a.truth.join(&s.subject_id).join("truth.json")))
         .collect::<ldh_core::Result<_>>()?;
     // A family B truth knows its setting (treadmill: no turns) when the manifest does not say.
     for (s, t) in subjects.iter_mut().zip(&truths) {
@@ -29,9 +29,9 @@ pub fn run(a: EvaluateArgs) -> Result<ExitCode> {
     for model in [AttitudeModel::Fusion, AttitudeModel::Acc] {
         let params = analysis_params(None, Some(model), Some(a.detector), None, true)?;
         let results = pool.install(|| analyze_many(&subjects, &params, None, &read));
-        accs.push(ldh_core::evaluate::evaluate(&results, &truths));
+        accs.push(ldh_sim::evaluate::evaluate(&results, &truths));
         if a.strides_csv.is_some() {
-            scores.extend(ldh_core::evaluate::stride_scores(&results, &truths));
+            scores.extend(ldh_sim::evaluate::stride_scores(&results, &truths));
         }
     }
     println!(
@@ -40,12 +40,12 @@ pub fn run(a: EvaluateArgs) -> Result<ExitCode> {
         a.truth.display(),
         a.detector.as_str()
     );
-    println!("{}", ldh_core::evaluate::markdown(&accs));
+    println!("{}", ldh_sim::evaluate::markdown(&accs));
     if let Some(j) = a.json {
         ldh_core::io::write_atomic(&j, serde_json::to_string_pretty(&accs)?.as_bytes())?;
     }
     if let Some(p) = a.strides_csv {
-        ldh_core::evaluate::write_stride_scores(&p, &scores)?;
+        ldh_sim::evaluate::write_stride_scores(&p, &scores)?;
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -1,9 +1,9 @@
-//! `ldh report`: HTML reports of an `ldh analyze` output folder ([`ldh_core::report::build`]).
+//! `ldh report`: HTML reports of an `ldh analyze` output folder ([`ldh_report::build`]).
 
 use std::process::ExitCode;
 
 use anyhow::Result;
-use ldh_core::report::{BuildSources, ReportParams};
+use ldh_report::{BuildSources, ReportParams};
 
 use super::{progress, read_toml, thread_pool};
 use crate::args::ReportArgs;
@@ -32,7 +32,7 @@ pub fn run(a: ReportArgs) -> Result<ExitCode> {
     };
     let pb = progress(0, "report");
     let built = pool.install(|| {
-        ldh_core::report::build(&a.results, &out, src, &params, &|n| {
+        ldh_report::build(&a.results, &out, src, &params, &|n| {
             pb.set_length(n as u64);
             pb.inc(1)
         })

@@ -1,11 +1,11 @@
-//! `ldh simulate`: a cohort with exact ground truth ([`ldh_core::simulate::write_cohort`]),
+//! `ldh simulate`: a cohort with exact ground truth ([`ldh_sim::write_cohort`]),
 //! from simulator family a (default) or the independent family b.
 
 use std::process::ExitCode;
 
 use anyhow::Result;
-use ldh_core::simulate::family_b::{CohortParamsB, Family, SensorModelB};
-use ldh_core::simulate::{write_cohort, Cohort, CohortParams, SensorModel};
+use ldh_sim::family_b::{CohortParamsB, Family, SensorModelB};
+use ldh_sim::{write_cohort, Cohort, CohortParams, SensorModel};
 
 use super::{progress, resolve_format, thread_pool};
 use crate::args::SimulateArgs;
@@ -31,11 +31,10 @@ pub fn run(a: SimulateArgs) -> Result<ExitCode> {
                 ldh_severity_min: a.ldh_severity_min,
                 ramp_s: a.ramp_s,
                 trials: a.trials,
-                day_to_day_sd_fraction:
-                    ldh_core::simulate::retest::day_to_day_sd_fraction_or_default(
-                        a.trials,
-                        a.day_to_day_sd_fraction,
-                    ),
+                day_to_day_sd_fraction: ldh_sim::retest::day_to_day_sd_fraction_or_default(
+                    a.trials,
+                    a.day_to_day_sd_fraction,
+                ),
                 sensor: family_a_sensor(&a),
             };
             let ldh = if a.slow_ldh > 0 {
@@ -110,7 +109,7 @@ fn write<C: Cohort>(
     let rows = pool.install(|| write_cohort(params, &a.out, format, &|| pb.inc(1)))?;
     pb.finish_and_clear();
     if a.reference {
-        let [e, st] = ldh_core::evaluate::write_cohort_reference(&a.out)?;
+        let [e, st] = ldh_sim::evaluate::write_cohort_reference(&a.out)?;
         super::note!(
             "wrote the true events and strides as {} and {}",
             e.display(),

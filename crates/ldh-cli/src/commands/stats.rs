@@ -27,7 +27,9 @@ pub fn run(a: StatsArgs) -> Result<ExitCode> {
         models.push(rows_for(&a.inputs, m.into(), &pool)?);
     }
     let outcome = ldh_core::cohort::stats(&models)?;
+    let figures = ldh_report::figures::stats_figures(&outcome)?;
     write_files(&a.out, &outcome.files)?;
+    write_files(&a.out, &figures)?;
     println!("{}", outcome.markdown);
     super::note!("tables and figures in {}", a.out.display());
     Ok(ExitCode::SUCCESS)

@@ -43,7 +43,9 @@ pub fn run(a: TrainArgs) -> Result<ExitCode> {
     for n in &outcome.notes {
         super::note!("note: {n}");
     }
+    let figures = ldh_report::figures::train_figures(&outcome)?;
     write_files(&a.out, &outcome.files)?;
+    write_files(&a.out, &figures)?;
     println!("{}", outcome.markdown);
     super::note!("report, models and figures in {}", a.out.display());
     Ok(ExitCode::SUCCESS)

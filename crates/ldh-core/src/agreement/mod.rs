@@ -19,7 +19,7 @@
 //! - [`run`]: `ldh agree` — an `ldh analyze` run ([`LdhResults`]) against a laboratory's
 //!   reference files ([`read_reference`]): clock offsets, event matching, per-stride and
 //!   per-recording agreement ([`AgreementReport`], written by [`write_report`]; the page
-//!   with the Bland–Altman plots and timing histograms: [`page`]); per-step walkway exports
+//!   with the Bland–Altman plots and timing histograms is `ldh_report::agreement_page`'s); per-step walkway exports
 //!   (GAITRite-like) read through a column map ([`walkway`]).
 //!
 //! Every formula, the pingouin / scipy function it reproduces, and the decisions where they are
@@ -38,7 +38,6 @@ pub mod events;
 pub mod icc;
 pub mod offset;
 mod outcome;
-pub mod page;
 mod paired;
 mod params;
 pub mod reference;
@@ -57,10 +56,6 @@ pub mod write;
 mod tests;
 #[cfg(test)]
 mod tests_events;
-#[cfg(test)]
-mod tests_page;
-#[cfg(test)]
-mod tests_retest;
 #[cfg(test)]
 mod tests_run;
 #[cfg(test)]

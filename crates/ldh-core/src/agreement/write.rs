@@ -1,8 +1,8 @@
 //! The files of `ldh agree`: `agreement.csv` (one row per event kind and side, and per
 //! parameter and level), `agreement.json` (the whole [`AgreementReport`], pairs and unmatched
-//! events included), `agreement.md` (the same tables for reading) and `agreement.html` (the
-//! page with the figures, [`super::page`]). All three are rendered
-//! before the first is written, and each is written atomically.
+//! events included), `agreement.md` (the same tables for reading) and the pages the caller rendered
+//! (`agreement.html`, the page with the figures, is `ldh_report::agreement_page`'s). All are
+//! rendered before the first is written, and each is written atomically.
 
 use std::path::{Path, PathBuf};
 
@@ -262,26 +262,31 @@ fn event_table(s: &mut String, rows: &[super::run::EventAgreement], by_group: bo
     s.push('\n');
 }
 
-/// Write `agreement.csv`, `agreement.json`, `agreement.md` and `agreement.html` (the page,
-/// [`super::page`]) into `dir` (created when missing). Every file is rendered first; each is then written atomically. Returns the paths.
-pub fn write_report(dir: &Path, report: &AgreementReport) -> Result<Vec<PathBuf>> {
+/// Write `agreement.csv`, `agreement.json`, `agreement.md` and then `pages` (`(file name,
+/// content)`, rendered by the caller: `agreement.html` from `ldh_report::agreement_page`) into
+/// `dir` (created when missing). Every file is rendered first; each is then written atomically.
+/// Returns the paths.
+pub fn write_report(
+    dir: &Path,
+    report: &AgreementReport,
+    pages: &[(&str, &str)],
+) -> Result<Vec<PathBuf>> {
     let csv = crate::output::to_csv(&rows(report), &["level"])?;
     let json = serde_json::to_string_pretty(report)?;
     let md = markdown(report);
-    let page = super::page::agreement_html(report)?;
     std::fs::create_dir_all(dir).map_err(|e| crate::LdhError::Write {
         path: dir.to_path_buf(),
         reason: e.to_string(),
     })?;
     let mut out = Vec::new();
-    for (name, bytes) in [
-        ("agreement.csv", csv.as_bytes()),
-        ("agreement.json", json.as_bytes()),
-        ("agreement.md", md.as_bytes()),
-        ("agreement.html", page.as_bytes()),
-    ] {
+    let tables = [
+        ("agreement.csv", csv.as_str()),
+        ("agreement.json", json.as_str()),
+        ("agreement.md", md.as_str()),
+    ];
+    for (name, text) in tables.iter().chain(pages) {
         let p = dir.join(name);
-        crate::io::write_atomic(&p, bytes)?;
+        crate::io::write_atomic(&p, text.as_bytes())?;
         out.push(p);
     }
     Ok(out)

@@ -1,11 +1,10 @@
-//! `ldh stats` as one call: Table 3 per attitude model, the radar charts, the box plots of the
-//! primary (fusion) model and Table 4 comparing the models.
+//! `ldh stats` as one call: Table 3 per attitude model and Table 4 comparing the models. The
+//! radar charts and box plots are drawn from [`StatsOutcome::cohorts`] and
+//! [`StatsOutcome::offsets`] by `ldh_report::figures::stats_figures`.
 
-use super::{offsets, table3, table3_markdown, table3_rows, table4_markdown, Cohort, PARAMETERS};
-use crate::attitude::AttitudeModel;
+use super::{offsets, table3, table3_markdown, table3_rows, table4_markdown, Cohort};
 use crate::error::Result;
 use crate::output::{self, RecordingRow};
-use crate::plots;
 
 /// What [`stats`] produced: the Markdown tables and every file of `ldh stats`' output folder.
 #[derive(Debug, Clone)]
@@ -14,17 +13,21 @@ pub struct StatsOutcome {
     pub markdown: String,
     /// Table 4 offsets, one per model.
     pub offsets: Vec<super::ModelOffsets>,
-    /// `(file name, content)` of every output file, in writing order.
+    /// The cohort of every model, in the order of the tables.
+    pub cohorts: Vec<Cohort>,
+    /// `(file name, content)` of every table file, in writing order (the figures are
+    /// `ldh_report::figures::stats_figures`').
     pub files: Vec<(String, String)>,
 }
 
 /// Cohort statistics of per-recording tables, one table per attitude model (the first is the
-/// primary one; box plots are drawn for the fusion model).
+/// primary one).
 pub fn stats(models: &[Vec<RecordingRow>]) -> Result<StatsOutcome> {
     let mut files: Vec<(String, String)> = Vec::new();
     let mut md = String::from("# Cohort statistics (ldh stats)\n\n");
     let mut all_rows = Vec::new();
     let mut offs = Vec::new();
+    let mut cohorts = Vec::new();
     for rows in models {
         let cohort = Cohort::from_rows(rows)?;
         let t3 = table3(&cohort);
@@ -35,21 +38,8 @@ pub fn stats(models: &[Vec<RecordingRow>]) -> Result<StatsOutcome> {
         ));
         all_rows.extend(table3_rows(cohort.model.as_str(), &t3));
         let off = offsets(&cohort);
-        let series = [
-            ("LDHH".to_string(), off.z_ldhh.clone()),
-            ("LDHE".to_string(), off.z_ldhe.clone()),
-            ("H".to_string(), off.z_h.clone()),
-        ];
-        let radar = plots::radar_svg(
-            &format!("Gait parameters, {} model (z vs healthy)", cohort.model),
-            &off.codes,
-            &series,
-        )?;
-        files.push((format!("radar_{}.svg", cohort.model), radar));
-        if cohort.model == AttitudeModel::Fusion {
-            files.extend(box_plots(&cohort)?);
-        }
         offs.push(off);
+        cohorts.push(cohort);
     }
     md.push_str(&format!(
         "## Table 4 — model comparison\n\n{}",
@@ -65,28 +55,7 @@ pub fn stats(models: &[Vec<RecordingRow>]) -> Result<StatsOutcome> {
     Ok(StatsOutcome {
         markdown: md,
         offsets: offs,
+        cohorts,
         files,
     })
-}
-
-/// One box plot per parameter with healthy values (LDHH, LDHE, H).
-fn box_plots(cohort: &Cohort) -> Result<Vec<(String, String)>> {
-    let mut files = Vec::new();
-    for p in PARAMETERS {
-        let g = cohort.groups(p);
-        if g.h.is_empty() {
-            continue;
-        }
-        let svg = plots::boxplot_svg(
-            &format!("{} ({})", p.code(), p.unit()),
-            &[
-                ("LDHH".into(), g.ldhh),
-                ("LDHE".into(), g.ldhe),
-                ("H".into(), g.h),
-            ],
-            true,
-        )?;
-        files.push((format!("box_{}.svg", p.code()), svg));
-    }
-    Ok(files)
 }

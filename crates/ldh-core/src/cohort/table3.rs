@@ -184,7 +184,8 @@ pub fn table3(c: &Cohort) -> Vec<ParameterStats> {
     rows
 }
 
-pub(crate) fn fmt_p(p: Option<f64>) -> String {
+/// A p-value as the tables print it.
+pub fn fmt_p(p: Option<f64>) -> String {
     match p {
         Some(p) if p < 0.001 => "<0.001".into(),
         Some(p) => format!("{p:.3}"),
@@ -202,7 +203,7 @@ pub(crate) fn fmt_ms(s: &Summary) -> String {
 
 /// [`fmt_ms`] with the number of subjects when fewer than the group's `group_n` have the value
 /// (the others' withheld: recordings.csv `withheld` says why).
-pub(crate) fn fmt_ms_n(s: &Summary, group_n: usize) -> String {
+pub fn fmt_ms_n(s: &Summary, group_n: usize) -> String {
     if s.n < group_n {
         format!("{} (n = {})", fmt_ms(s), s.n)
     } else {
@@ -211,14 +212,14 @@ pub(crate) fn fmt_ms_n(s: &Summary, group_n: usize) -> String {
 }
 
 /// Whether some cell of `rows` has fewer subjects than its group ([`fmt_ms_n`]).
-pub(crate) fn any_partial(rows: &[ParameterStats], c: &Cohort) -> bool {
+pub fn any_partial(rows: &[ParameterStats], c: &Cohort) -> bool {
     let (l, h) = (c.ldh.len(), c.healthy.len());
     rows.iter()
         .any(|r| r.ldhh.n < l || r.ldhe.n < l || r.h.n < h)
 }
 
 /// The sentence under a table with partial cells.
-pub(crate) const PARTIAL_NOTE: &str = "A cell with its own n has fewer subjects than its group: the others' values were not measured (recordings.csv `withheld` says why; e.g. the ACC-only model reports no stride length, and stride length variability is withheld on walks under ≈ 25 s).";
+pub const PARTIAL_NOTE: &str = "A cell with its own n has fewer subjects than its group: the others' values were not measured (recordings.csv `withheld` says why; e.g. the ACC-only model reports no stride length, and stride length variability is withheld on walks under ≈ 25 s).";
 
 /// Table 3 as Markdown, laid out like the paper's (HE is the paired test; Holm in brackets).
 pub fn table3_markdown(rows: &[ParameterStats], c: &Cohort) -> String {

@@ -109,7 +109,7 @@ fn short_walk_cohort() -> Vec<RecordingRow> {
                     } else {
                         0.0
                     };
-                let mut r = crate::report::tests::row(&format!("{n}{i}"), g, side, 1.0 + x);
+                let mut r = crate::output::test_rows::row(&format!("{n}{i}"), g, side, 1.0 + x);
                 r.affected_side = (g == "ldh").then(|| crate::output::Label::parse("left"));
                 for p in Parameter::ALL {
                     if p.column() != "stride_length_cv" {

@@ -270,7 +270,7 @@ fn feature_names_become_parameters_once_with_a_typed_error() {
 #[test]
 fn a_missing_feature_is_named_with_the_reason_it_was_withheld() {
     let (m, _, _) = trained("rf");
-    let mut r = crate::report::tests::row("S1", "", "left", 1.0);
+    let mut r = crate::output::test_rows::row("S1", "", "left", 1.0);
     for name in &m.feature_names {
         let p = crate::output::Parameter::from_column(name).unwrap();
         r.set_value(p, Some(1.0));

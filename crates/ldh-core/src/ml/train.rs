@@ -128,7 +128,8 @@ pub struct TrainOutcome {
     pub markdown: String,
     /// Cross-validation reports: grouped then stratified, classifiers in order.
     pub reports: Vec<CvReport>,
-    /// `(file name, content)` of every output file, in writing order.
+    /// `(file name, content)` of every output file but the figures, in writing order (the
+    /// confusion matrices are `ldh_report::figures::train_figures`').
     pub files: Vec<(String, String)>,
     /// What was changed from what was asked (features or rows left out, fewer folds), in order;
     /// also at the top of the report.
@@ -179,15 +180,6 @@ pub fn train_with_progress(
         ("folds.csv".to_string(), folds_csv(&ds, p)?),
     ];
     let markdown = markdown(&ds, p, &attitude_model, &clfs, &reports, &notes);
-    for r in &reports {
-        let kind = r.kind.as_str();
-        let svg = crate::plots::confusion_svg(
-            &format!("{} — {kind} {}-fold × {}", r.classifier, r.k, r.repeats),
-            &r.class_names,
-            &r.confusion,
-        )?;
-        files.push((format!("confusion_{}_{kind}.svg", r.classifier), svg));
-    }
     // The saved model is the cross-validated pipeline: with top_k, the top features ranked on
     // all rows.
     let final_ds = match p.top_k {

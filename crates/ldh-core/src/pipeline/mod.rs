@@ -17,12 +17,6 @@ pub mod pairing;
 pub mod quality;
 mod subject;
 mod subject_input;
-#[cfg(test)]
-mod tests;
-#[cfg(test)]
-mod tests_inputs;
-#[cfg(test)]
-mod tests_steady;
 
 pub use batch::{analyze_many_on, bare_subject, leg_from_arrays};
 pub use bilateral::{bilateral_events, bilateral_events_on_clock, BilateralEvent, EventKind};
@@ -232,3 +226,8 @@ impl ValidAnalysisParams {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;
+#[cfg(test)]
+mod tests_inputs;

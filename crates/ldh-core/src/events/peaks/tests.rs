@@ -1,6 +1,6 @@
 //! The linear peak finder against the `find_peaks` crate it replaces: the same peaks on random
-//! signals with plateaus, ties and NaNs, on repeated identical strides, on simulated legs of both
-//! families and on the HuGaDB recordings when present.
+//! signals with plateaus, ties and NaNs, on repeated identical strides, on the demo cohort's legs
+//! (simulated, family A) and on the HuGaDB recordings when present.
 
 use super::peaks;
 use crate::events::{midswing_threshold_dps, EventParams};
@@ -90,33 +90,6 @@ fn all_channels(rec: &Recording, what: &str) -> usize {
     found
 }
 
-/// Family A (healthy, LDH and the slow LDH walkers) and family B.
-#[test]
-fn simulated_legs_of_both_families() {
-    let a = crate::simulate::CohortParams {
-        healthy: 2,
-        ldh: 2,
-        slow_ldh: 2,
-        duration_s: 40.0,
-        seed: 7,
-        ..Default::default()
-    };
-    let b = crate::simulate::family_b::CohortParamsB {
-        seed: 7,
-        ..Default::default()
-    };
-    let mut found = 0;
-    for s in (0..a.len())
-        .map(|i| a.simulate(i).unwrap())
-        .chain((0..b.len()).map(|i| b.simulate(i).unwrap()))
-    {
-        for leg in [&s.left, &s.right] {
-            found += all_channels(&leg.recording, &s.params.subject_id);
-        }
-    }
-    assert!(found > 10 * 6 * 10, "{found} peaks");
-}
-
 #[test]
 fn hugadb_recordings() {
     let Some(dir) = crate::pipeline::quality::tests_hugadb::hugadb_dir() else {
@@ -136,4 +109,18 @@ fn hugadb_recordings() {
         all_channels(&right, &format!("{name} right"));
         all_channels(&left, &format!("{name} left"));
     }
+}
+
+/// The embedded demo cohort's legs (four simulated subjects, family A; the simulator itself is
+/// `ldh-sim`'s, which `ldh-core` does not depend on).
+#[test]
+fn demo_legs() {
+    let mut found = 0;
+    for id in crate::demo::SUBJECTS {
+        for side in ["left", "right"] {
+            let rec = crate::demo::recording(&format!("{id}/{side}.csv")).unwrap();
+            found += all_channels(&rec, &format!("{id} {side}"));
+        }
+    }
+    assert!(found > 4 * 2 * 10, "{found} peaks");
 }

@@ -26,19 +26,16 @@ mod noise;
 mod pair;
 mod sensor;
 mod steady;
-#[cfg(test)]
-mod tests;
-#[cfg(test)]
-mod tests_faults;
-#[cfg(test)]
-mod tests_height;
+mod warning;
+
 #[cfg(test)]
 pub(crate) mod tests_hugadb;
+#[cfg(test)]
+mod tests_hugadb_faults;
 #[cfg(test)]
 mod tests_hugadb_feet;
 #[cfg(test)]
 mod tests_stride_length;
-mod warning;
 
 pub use agreement::{withhold_disagreeing_lengths, MAX_LEG_DISAGREEMENT};
 pub use attitude::{
@@ -325,3 +322,8 @@ pub fn all_leg_warnings(l: &LegResult) -> Vec<Warning> {
     v.sort_by_key(|x| std::cmp::Reverse(x.severity));
     v
 }
+
+#[cfg(test)]
+mod tests;
+#[cfg(test)]
+mod tests_height;

@@ -283,7 +283,7 @@ fn a_shank_almost_still_at_mid_stance_reports_the_length_with_a_note() {
 
 /// The pipeline measures the lengths at the ends of the height range during the segmentation
 /// (`strides_at_heights`) instead of integrating the final strides again: the same bits, on the
-/// synthetic walks and on a simulated leg with some strides invalidated after the
+/// synthetic walks and on a demo leg (simulated) with some strides invalidated after the
 /// segmentation (as the leg's checks do), and nothing measured with a height given.
 #[test]
 fn lengths_measured_during_the_segmentation_are_those_recomputed_bit_for_bit() {
@@ -292,16 +292,8 @@ fn lengths_measured_during_the_segmentation_are_those_recomputed_bit_for_bit() {
     use crate::events::{detect, EventParams};
     use crate::preprocess::{preprocess, PreprocessParams};
     let assumed = StrideParams::default().check().unwrap();
-    let sim = crate::simulate::CohortParams {
-        healthy: 0,
-        ldh: 1,
-        seed: 7,
-        duration_s: 40.0,
-        ..Default::default()
-    }
-    .simulate(0)
-    .unwrap();
-    let rec = &sim.left.recording;
+    // An LDH walker's leg of the embedded demo cohort (simulated, family A).
+    let rec = &crate::demo::recording("L01/left.csv").unwrap();
     let pre = preprocess(rec, &PreprocessParams::default().check(rec.fs_hz).unwrap()).unwrap();
     let al = align(&pre, &AlignParams::default().check().unwrap()).unwrap();
     let att = estimate(&al, &AttitudeParams::default().check().unwrap()).unwrap();

@@ -1,0 +1,320 @@
+//! The clinical headline at the top of a subject's page, in a clinician's words: the findings
+//! that matter (asymmetry first), what could not be measured, and the one thing to do about
+//! it. Rendered from the page's [`Verdicts`], so it never disagrees with the summary or
+//! section 2 (docs/reports.md "The headline").
+
+use maud::{html, Markup};
+
+use super::verdict::{Asymmetry, Cell, Judgement, Row, Scope, Verdicts};
+use super::Reference;
+use ldh_core::output::RecordingRow;
+use ldh_core::pipeline::quality::codes;
+use ldh_core::pipeline::{GroupLabel, Severity};
+
+/// At most this many findings are named; the rest are counted.
+pub(crate) const MAX_FINDINGS: usize = 4;
+
+/// What the headline says, as plain sentences (rendered by [`headline`]).
+#[derive(Debug, Default, PartialEq)]
+pub(crate) struct Headline {
+    /// What the values are (e.g. the mean of two trials), when worth saying.
+    pub context: Option<String>,
+    /// The person's visits, when the recordings come from two or more (manifest `visit`).
+    pub visits: Option<String>,
+    /// On a treadmill with a given belt speed: the belt's speed is the walking speed.
+    pub belt: Option<String>,
+    /// The findings, asymmetry first, then the whole walk, then each side (at most
+    /// [`MAX_FINDINGS`], then one sentence counting the rest).
+    pub findings: Vec<String>,
+    /// What could not be measured, one sentence.
+    pub not_measured: Option<String>,
+    /// The one thing to do about it.
+    pub to_do: Option<String>,
+}
+
+/// `v` with its decimals and unit.
+fn val(row: &Row, v: f64) -> String {
+    let d = row.q.decimals;
+    match row.q.unit {
+        "% of gait cycle" => format!("{v:.d$} %"),
+        "deg" => format!("{v:.d$}°"),
+        u => format!("{v:.d$} {u}"),
+    }
+}
+
+/// The range of a row in clinical units ("96–126 steps/min").
+fn range(row: &Row, reference: &Reference) -> String {
+    let q = row.q;
+    match reference.range(q.parameter) {
+        Some(r) => match (r.low, r.high) {
+            (Some(l), Some(h)) => {
+                let d = q.decimals;
+                let (l, h) = (l * q.scale, h * q.scale);
+                format!("normal {l:.d$}–{}", val(row, h))
+            }
+            _ => String::new(),
+        },
+        None => String::new(),
+    }
+}
+
+/// The sentence of an asymmetry beyond the threshold: how much longer one side is, from the
+/// symmetry index `si` (L/R = (1 + SI/200)/(1 − SI/200), so the shown values' rounding does
+/// not enter), and the two sides' shown values.
+fn asymmetry_sentence(row: &Row, si: f64) -> Option<String> {
+    let (Cell::Value { v: l, .. }, Cell::Value { v: r, .. }) = (&row.cells[0], &row.cells[1])
+    else {
+        return None;
+    };
+    let (big, small, side, other) = if l >= r {
+        (*l, *r, "left", "right")
+    } else {
+        (*r, *l, "right", "left")
+    };
+    let h = si.abs() / 200.0;
+    if small <= 0.0 || h >= 1.0 {
+        return None;
+    }
+    let pct = (100.0 * ((1.0 + h) / (1.0 - h) - 1.0)).round();
+    let vs = format!("{} against {}", val(row, big), val(row, small));
+    Some(match row.q.label {
+        "Step time" => format!(
+            "Steps are uneven: the {side} step takes {pct:.0} % longer than the {other} ({vs})."
+        ),
+        "Stance" => format!(
+            "Stance is uneven: the {side} leg stays on the ground {pct:.0} % longer than the {other} ({vs} of the gait cycle)."
+        ),
+        "Stride length" => format!(
+            "Strides are uneven: the {side} stride is {pct:.0} % longer than the {other} ({vs})."
+        ),
+        label => format!(
+            "{label} is uneven: {pct:.0} % larger on the {side} than on the {other} ({vs})."
+        ),
+    })
+}
+
+/// The sentence of a quantity outside its range (the walk's, or a side's or both sides').
+fn outside_sentence(row: &Row, reference: &Reference) -> Option<String> {
+    let rng = range(row, reference);
+    let out: Vec<(usize, f64, Judgement)> = row
+        .cells
+        .iter()
+        .enumerate()
+        .filter_map(|(i, c)| match c {
+            Cell::Value { v, judgement, .. } if judgement.mark().is_some() => {
+                Some((i, *v, *judgement))
+            }
+            _ => None,
+        })
+        .collect();
+    let first = out.first()?;
+    let label = row.q.label;
+    Some(match row.q.scope {
+        Scope::Walk => format!(
+            "{label} is {}: {} ({rng}).",
+            first.2.words(),
+            val(row, first.1)
+        ),
+        Scope::Side if out.len() == 2 && out[0].2 == out[1].2 => format!(
+            "{label} is {} on both legs: {} left, {} right ({rng}).",
+            first.2.words(),
+            val(row, out[0].1),
+            val(row, out[1].1)
+        ),
+        Scope::Side => {
+            let parts: Vec<String> = out
+                .iter()
+                .map(|(i, v, j)| {
+                    let side = if *i == 0 { "left" } else { "right" };
+                    format!("{} on the {side}: {}", j.words(), val(row, *v))
+                })
+                .collect();
+            format!("{label} is {} ({rng}).", parts.join("; "))
+        }
+    })
+}
+
+/// The findings: flagged asymmetries (largest first), then the walk's and each side's values
+/// outside their range, at most [`MAX_FINDINGS`] and a count of the rest.
+fn findings(v: &Verdicts, reference: &Reference) -> Vec<String> {
+    let mut asym: Vec<(f64, String)> = v
+        .rows
+        .iter()
+        .filter_map(|r| match r.asymmetry {
+            Some(Asymmetry::Value(si, Some(true))) => Some((si.abs(), asymmetry_sentence(r, si)?)),
+            _ => None,
+        })
+        .collect();
+    asym.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let mut all: Vec<String> = asym.into_iter().map(|x| x.1).collect();
+    for scope in [Scope::Walk, Scope::Side] {
+        all.extend(
+            v.rows
+                .iter()
+                .filter(|r| r.q.scope == scope)
+                .filter_map(|r| outside_sentence(r, reference)),
+        );
+    }
+    if all.len() > MAX_FINDINGS + 1 {
+        let rest = all.len() - MAX_FINDINGS;
+        all.truncate(MAX_FINDINGS);
+        all.push(format!(
+            "{rest} more findings outside the normal range are marked in the tables below."
+        ));
+    }
+    all
+}
+
+/// What was not measured: the summary's quantities, named once each with the legs concerned.
+fn not_measured(v: &Verdicts, sides: &[&RecordingRow]) -> Option<String> {
+    let failed: Vec<&str> = sides
+        .iter()
+        .filter(|r| !r.is_ok())
+        .map(|r| r.side.as_str())
+        .collect();
+    let mut parts: Vec<String> = failed
+        .iter()
+        .map(|s| format!("anything of the {s} leg (its recording could not be analysed)"))
+        .collect();
+    for row in v.rows.iter().filter(|r| r.q.in_summary) {
+        let missing: Vec<usize> = (0..row.cells.len())
+            .filter(|i| matches!(row.cells[*i], Cell::NotMeasured(_)))
+            .filter(|i| row.q.scope == Scope::Walk || !failed.contains(&["left", "right"][*i]))
+            .collect();
+        let name = row.q.label.to_lowercase();
+        match (row.q.scope, missing.len()) {
+            (_, 0) => {}
+            (Scope::Walk, _) if failed.len() < 2 => parts.push(name),
+            (Scope::Side, 1) => parts.push(format!("{name} ({})", ["left", "right"][missing[0]])),
+            (Scope::Side, _) => parts.push(name),
+            _ => {}
+        }
+    }
+    (!parts.is_empty()).then(|| format!("Could not be measured: {}.", parts.join(", ")))
+}
+
+/// The one thing to do, the first that applies: a leg that failed, a sensor fault, the
+/// sensor's height, quiet standing, a longer walk, the affected side.
+fn to_do(sides: &[&RecordingRow], anything_missing: bool) -> Option<String> {
+    let has = |code: &str| {
+        sides
+            .iter()
+            .any(|r| r.warnings.iter().any(|w| w.code == code))
+    };
+    if anything_missing {
+        if let Some(r) = sides.iter().find(|r| !r.is_ok()) {
+            return Some(format!(
+                "Check the {} recording (the reason is in the box below) and analyse it again.",
+                r.side
+            ));
+        }
+        if let Some(r) = sides
+            .iter()
+            .find(|r| r.warnings.at_least(Severity::Fault).next().is_some())
+        {
+            return Some(format!(
+                "Check the {} sensor (it recorded faulty signals) and record the walk again.",
+                r.side
+            ));
+        }
+        if has(codes::SENSOR_HEIGHT_UNKNOWN) {
+            return Some(
+                "Measure the sensor's height above the ankle and re-run the analysis with it."
+                    .into(),
+            );
+        }
+        if has(codes::NO_QUIET_STANDING) {
+            return Some(
+                "Next time, have the person stand still for 2 s before walking, then re-run."
+                    .into(),
+            );
+        }
+        if has(codes::FEW_STRIDES)
+            || has(codes::SV_UNCHECKED)
+            || has(codes::SV_NOISE)
+            || has(codes::TOO_LITTLE_STEADY)
+        {
+            return Some("Record a longer walk (at least 30 s of straight walking).".into());
+        }
+    }
+    let ldh = sides
+        .iter()
+        .any(|r| matches!(r.group, Some(GroupLabel::Ldh)));
+    if ldh && sides.iter().all(|r| r.affected_side.is_none()) {
+        return Some(
+            "The affected side is not given: add it to the manifest so the legs are compared as affected and unaffected."
+                .into(),
+        );
+    }
+    None
+}
+
+/// On a treadmill with a belt speed given (manifest `belt_speed_mps`, the same for every
+/// recording of the page): the belt speed is the walking speed, the sensors' estimate beside it.
+fn belt_sentence(v: &Verdicts, recordings: &[RecordingRow]) -> Option<String> {
+    let belt = recordings.first()?.belt_speed_mps?;
+    if recordings.iter().any(|r| r.belt_speed_mps != Some(belt)) {
+        return None;
+    }
+    let imu = v
+        .rows
+        .iter()
+        .find(|r| r.q.parameter == ldh_core::output::Parameter::Speed)
+        .and_then(|r| match r.cells.first() {
+            Some(Cell::Value { v, .. }) => Some(val(r, *v)),
+            _ => None,
+        });
+    Some(match imu {
+        Some(x) => format!(
+            "On a treadmill, belt at {belt:.2} m/s: the walking speed is the belt's; the speed the sensors estimate is {x}."
+        ),
+        None => format!(
+            "On a treadmill, belt at {belt:.2} m/s: the walking speed is the belt's; the sensors could not estimate it."
+        ),
+    })
+}
+
+/// The headline of a subject's page; `recordings` are the page's own rows (every trial).
+pub(crate) fn make(
+    v: &Verdicts,
+    sides: &[&RecordingRow],
+    recordings: &[RecordingRow],
+    reference: &Reference,
+    ctx: &super::RunContext,
+) -> Headline {
+    let not_measured = not_measured(v, sides);
+    Headline {
+        visits: super::visits::visit_changes(recordings, ctx)
+            .map(|c| super::visits::headline_sentence(&c)),
+        belt: belt_sentence(v, recordings),
+        context: sides
+            .iter()
+            .map(|r| r.trial_id.as_str())
+            .find(|t| t.starts_with("mean of"))
+            .map(|t| format!("The values are the {t} of this person.")),
+        findings: findings(v, reference),
+        to_do: to_do(sides, not_measured.is_some()),
+        not_measured,
+    }
+}
+
+/// The headline as HTML.
+pub(crate) fn headline(h: &Headline) -> Markup {
+    html! {
+        div.headline {
+            "\n"
+            @if let Some(c) = &h.context { p { (c) } "\n" }
+            @if let Some(c) = &h.visits { p { (c) } "\n" }
+            @if let Some(c) = &h.belt { p { (c) } "\n" }
+            @if h.findings.is_empty() {
+                p { b { "No finding: " } "every measured value lies within its normal range and left and right are even." } "\n"
+            } @else {
+                b { "Findings" } "\n"
+                ul { @for f in &h.findings { li { (f) } "\n" } } "\n"
+            }
+            @if let Some(n) = &h.not_measured { p { (n) } "\n" }
+            @if let Some(t) = &h.to_do { p { b { "To do: " } (t) } "\n" }
+        }
+        "\n"
+    }
+}

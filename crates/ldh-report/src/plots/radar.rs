@@ -1,0 +1,258 @@
+//! The radar chart of paper Figure 5: one axis per parameter, one polygon of z-scores
+//! (SD from the healthy mean, eq. 18) per group or side, with missing values as gaps, clipped
+//! values on the rim and abnormal ones marked by shape.
+
+use plotters::prelude::*;
+
+use super::{colour_of, perr, Fonts, PrintWidth};
+use ldh_core::error::Result;
+
+/// The start of the note [`radar_svg`] writes under a chart with clipped values.
+pub const RADAR_CLIPPED: &str = "clipped at ±";
+
+/// The scale label of [`radar_svg`] (drawn under the chart).
+pub const RADAR_SCALE_LABEL: &str = "z-score (SD from the healthy mean)";
+/// z-scores beyond ± this are drawn on the rim of [`radar_svg`] and marked as clipped.
+pub const RADAR_Z_CLIP: f64 = 4.0;
+/// |z| above which a radar point is marked abnormal (outside mean ± 1.96 SD).
+pub const RADAR_Z_ABNORMAL: f64 = 1.96;
+
+/// The canvas width of [`radar_svg`], px.
+const RADAR_W: u32 = 800;
+/// How wide [`radar_svg`] prints.
+pub const RADAR_PRINT: PrintWidth = PrintWidth::Chart;
+/// The most characters of a note line under the chart (at the chart's label font).
+const NOTE_LINE_CHARS: usize = 60;
+
+/// A radar chart: one axis per parameter (`codes`), one polygon per series of z-scores, its
+/// colour by series (left/right by hue). The scale runs from −zmax (centre) to +zmax (rim),
+/// zmax the largest |z| rounded up, between 2 and [`RADAR_Z_CLIP`]; rings at −zmax, −zmax/2, 0,
+/// zmax/2, zmax, the z = 0 ring (the healthy mean) in black. A missing (NaN) value leaves a gap
+/// in its polygon (never drawn as 0); a value beyond the rim is drawn on the rim as an open
+/// triangle (clipped) and named under the chart; |z| > [`RADAR_Z_ABNORMAL`] is marked with a
+/// black-edged dot. The legend sits above the chart, clear of the data.
+pub fn radar_svg(title: &str, codes: &[String], series: &[(String, Vec<f64>)]) -> Result<String> {
+    let f = Fonts::for_canvas(RADAR_W, RADAR_PRINT);
+    let zabs = series
+        .iter()
+        .flat_map(|s| s.1.iter())
+        .filter(|v| v.is_finite())
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    let g = Geometry::new(zabs.ceil().clamp(2.0, RADAR_Z_CLIP), codes.len());
+    let clipped: Vec<String> = series
+        .iter()
+        .flat_map(|(name, z)| {
+            z.iter()
+                .enumerate()
+                .filter(|(_, v)| v.abs() > g.z_max && v.is_finite())
+                .map(move |(i, v)| {
+                    let code = codes.get(i).map(String::as_str).unwrap_or("");
+                    format!("{name} {code} z = {v:+.1}")
+                })
+        })
+        .collect();
+    let notes = note_lines(g.z_max, &clipped);
+    let height = NOTES_TOP as u32 + notes.len() as u32 * (f.label as u32 + 6) + 8;
+    let mut buf = String::new();
+    {
+        let root = SVGBackend::with_string(&mut buf, (RADAR_W, height)).into_drawing_area();
+        root.fill(&WHITE).map_err(perr)?;
+        root.draw(&Text::new(title.to_string(), (20, 12), font(f.title)))
+            .map_err(perr)?;
+        draw_rings(&root, &g, f)?;
+        draw_axes(&root, &g, codes, f)?;
+        let mut x_legend = 20i32;
+        let y_legend = 20 + f.title;
+        for (k, (name, z)) in series.iter().enumerate() {
+            let c = colour_of(name, k);
+            draw_polygon(&root, &g, z, c)?;
+            for (i, &v) in z.iter().enumerate().filter(|(_, v)| v.is_finite()) {
+                draw_point(&root, &g, i, v, c)?;
+            }
+            root.draw(&Rectangle::new(
+                [
+                    (x_legend, y_legend + 2),
+                    (x_legend + 24, y_legend + f.label * 3 / 4),
+                ],
+                c.filled(),
+            ))
+            .map_err(perr)?;
+            root.draw(&Text::new(
+                name.clone(),
+                (x_legend + 32, y_legend),
+                font(f.label),
+            ))
+            .map_err(perr)?;
+            x_legend += 64 + f.label * 6 / 10 * name.chars().count() as i32;
+        }
+        for (k, line) in notes.iter().enumerate() {
+            let y = NOTES_TOP + k as i32 * (f.label + 6);
+            root.draw(&Text::new(line.clone(), (20, y), font(f.label)))
+                .map_err(perr)?;
+        }
+        root.present().map_err(perr)?;
+    }
+    Ok(buf)
+}
+
+/// Where the notes under a radar chart start, px from the top.
+const NOTES_TOP: i32 = 660;
+
+/// The lines under the chart: the scale and, when values were clipped, which ones (wrapped
+/// at [`NOTE_LINE_CHARS`]). The key to the marks is in the figure's caption.
+fn note_lines(z_max: f64, clipped: &[String]) -> Vec<String> {
+    let mut lines = vec![RADAR_SCALE_LABEL.to_string()];
+    if clipped.is_empty() {
+        return lines;
+    }
+    let mut line = format!("{RADAR_CLIPPED}{z_max:.0} SD:");
+    for c in clipped {
+        if line.chars().count() + c.chars().count() + 2 > NOTE_LINE_CHARS {
+            lines.push(std::mem::take(&mut line) + ",");
+        }
+        if !line.is_empty() && !line.ends_with(':') {
+            line.push(',');
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(c);
+    }
+    lines.push(line);
+    lines
+}
+
+/// The drawing area of a radar chart.
+type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
+
+/// The radar's text font at size `s`.
+fn font(s: i32) -> FontDesc<'static> {
+    ("sans-serif", s).into_font()
+}
+
+/// Where a radar chart puts things: centre, radius and the z scale from −`z_max` (centre) to
+/// `z_max` (rim) over `n` axes.
+struct Geometry {
+    cx: f64,
+    cy: f64,
+    rad: f64,
+    z_min: f64,
+    z_max: f64,
+    n: usize,
+}
+
+impl Geometry {
+    /// The chart's geometry (centre, radius) for a scale of ± `z_max` and `n_codes` axes.
+    fn new(z_max: f64, n_codes: usize) -> Self {
+        Geometry {
+            cx: f64::from(RADAR_W) / 2.0,
+            cy: 372.0,
+            rad: 230.0,
+            z_min: -z_max,
+            z_max,
+            n: n_codes.max(1),
+        }
+    }
+
+    /// The radius of z (clamped to the scale), px.
+    fn to_r(&self, z: f64) -> f64 {
+        (z.clamp(self.z_min, self.z_max) - self.z_min) / (self.z_max - self.z_min) * self.rad
+    }
+
+    /// The pixel at radius `r` on axis `i` (axis 0 points up, clockwise).
+    fn pt(&self, i: usize, r: f64) -> (i32, i32) {
+        let a = std::f64::consts::FRAC_PI_2 - i as f64 / self.n as f64 * std::f64::consts::TAU;
+        (
+            (self.cx + r * a.cos()) as i32,
+            (self.cy - r * a.sin()) as i32,
+        )
+    }
+}
+
+/// The rings at −zmax, −zmax/2, 0 (black: the healthy mean), zmax/2 and zmax, labelled on axis 0.
+fn draw_rings(root: &Area, g: &Geometry, f: Fonts) -> Result<()> {
+    let z_max = g.z_max;
+    for z in [-z_max, -z_max / 2.0, 0.0, z_max / 2.0, z_max] {
+        let ring: Vec<(i32, i32)> = (0..=g.n).map(|i| g.pt(i % g.n, g.to_r(z))).collect();
+        let style = if z == 0.0 {
+            BLACK.stroke_width(2)
+        } else {
+            RGBColor(180, 180, 180).stroke_width(1)
+        };
+        root.draw(&PathElement::new(ring, style)).map_err(perr)?;
+        let (x, y) = g.pt(0, g.to_r(z));
+        let label = if z == 0.0 {
+            "z = 0 (healthy mean)".to_string()
+        } else {
+            format!("z = {z:+.1}")
+        };
+        root.draw(&Text::new(label, (x + 6, y + 2), font(f.label)))
+            .map_err(perr)?;
+    }
+    Ok(())
+}
+
+/// One spoke per parameter, its code beyond the rim.
+fn draw_axes(root: &Area, g: &Geometry, codes: &[String], f: Fonts) -> Result<()> {
+    for (i, c) in codes.iter().enumerate() {
+        root.draw(&PathElement::new(
+            vec![(g.cx as i32, g.cy as i32), g.pt(i, g.rad)],
+            RGBColor(200, 200, 200),
+        ))
+        .map_err(perr)?;
+        let (x, y) = g.pt(i, g.rad + f64::from(f.label));
+        let half = f.label * 3 / 10 * c.chars().count() as i32;
+        root.draw(&Text::new(
+            c.clone(),
+            (x - half, y - f.label / 2),
+            font(f.label),
+        ))
+        .map_err(perr)?;
+    }
+    Ok(())
+}
+
+/// A series' polygon: segments between neighbouring axes that both have a value, a gap where
+/// one is missing (a missing value is never drawn as 0).
+fn draw_polygon(root: &Area, g: &Geometry, z: &[f64], c: RGBColor) -> Result<()> {
+    let m = z.len();
+    for i in 0..m {
+        let j = (i + 1) % m;
+        if m > 1 && z[i].is_finite() && z[j].is_finite() {
+            root.draw(&PathElement::new(
+                vec![g.pt(i, g.to_r(z[i])), g.pt(j, g.to_r(z[j]))],
+                c.stroke_width(3),
+            ))
+            .map_err(perr)?;
+        }
+    }
+    Ok(())
+}
+
+/// The point of value `v` on axis `i`: an open triangle on the rim when clipped (returns true),
+/// a black-edged dot when abnormal, a plain dot otherwise.
+fn draw_point(root: &Area, g: &Geometry, i: usize, v: f64, c: RGBColor) -> Result<bool> {
+    let p = g.pt(i, g.to_r(v));
+    if v.abs() > g.z_max {
+        let (x, y) = p;
+        root.draw(&Polygon::new(
+            vec![(x, y - 9), (x - 8, y + 6), (x + 8, y + 6)],
+            WHITE.filled(),
+        ))
+        .map_err(perr)?;
+        root.draw(&PathElement::new(
+            vec![(x, y - 9), (x - 8, y + 6), (x + 8, y + 6), (x, y - 9)],
+            c.stroke_width(2),
+        ))
+        .map_err(perr)?;
+        return Ok(true);
+    }
+    if v.abs() > RADAR_Z_ABNORMAL {
+        root.draw(&Circle::new(p, 6, BLACK.filled()))
+            .map_err(perr)?;
+        root.draw(&Circle::new(p, 4, c.filled())).map_err(perr)?;
+    } else {
+        root.draw(&Circle::new(p, 3, c.filled())).map_err(perr)?;
+    }
+    Ok(false)
+}

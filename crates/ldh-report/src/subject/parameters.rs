@@ -1,0 +1,190 @@
+//! Section 2 of the per-subject page: the parameter table (each side against the reference
+//! range, ▲/▼ marks, the symmetry index, withheld values as "not measured: reason") and the
+//! radar of the subject's z-scores.
+
+use maud::{html, Markup};
+
+use super::Citations;
+use crate::html::{figure, fmt, side_label};
+use crate::plots;
+use crate::reference::no_published_reason;
+use crate::summary::{asymmetry_cell, value_cells, WhyNotes};
+use crate::verdict::{Quantity, Verdicts};
+use crate::{Reference, ReferenceRange, ReferenceSource};
+use crate::{SubjectReport, ValidReportParams};
+use ldh_core::cohort::Parameter;
+use ldh_core::error::Result;
+use ldh_core::output::RecordingRow;
+
+/// The reference range as the table shows it, with its source; without one, how many healthy
+/// subjects the cohort had for it (`min_n` needed).
+fn range_text(
+    rr: Option<&ReferenceRange>,
+    q: &Quantity,
+    citations: &Citations,
+    min_n: usize,
+) -> String {
+    let dec = q.decimals;
+    match rr {
+        Some(ReferenceRange {
+            low: Some(l),
+            high: Some(h),
+            source,
+            ..
+        }) => {
+            let src = match source {
+                ReferenceSource::Cohort { n_subjects } => {
+                    format!("cohort healthy, n = {n_subjects}")
+                }
+                ReferenceSource::Published(c) => format!("published [{}]", citations.number(c)),
+                ReferenceSource::None => String::new(),
+            };
+            format!(
+                "{}–{} ({src})",
+                fmt(Some(l * q.scale), dec),
+                fmt(Some(h * q.scale), dec)
+            )
+        }
+        Some(r) => format!(
+            "no reference (n = {} healthy subjects passing every check; {min_n} needed)",
+            r.n_reference
+        ),
+        None => "no reference".into(),
+    }
+}
+
+/// A side's companion value (the inverse or complement shown beside a quantity), in its own
+/// unit, never judged.
+fn companion(r: &RecordingRow, p: Parameter) -> Option<String> {
+    let v = r
+        .value(p)
+        .filter(|_| r.is_ok() && r.withheld.reason(p.column()).is_none())?;
+    Some(match p {
+        Parameter::StepFrequency => format!("{v:.2} steps/s"),
+        _ => format!("{:.1} %", 100.0 * v),
+    })
+}
+
+/// Section 2: every quantity, each side against the reference range, and the symmetry index,
+/// rendered from the page's verdicts (the same as the summary's).
+pub(super) fn parameter_table(
+    v: &Verdicts,
+    sides: &[&RecordingRow],
+    reference: &Reference,
+    citations: &Citations,
+    p: &ValidReportParams,
+    notes: &WhyNotes,
+) -> Markup {
+    let first_note = notes.len();
+    let find = |s: ldh_core::Side| sides.iter().find(|r| r.side == s);
+    let (left, right) = (find(ldh_core::Side::Left), find(ldh_core::Side::Right));
+    let label = |s: ldh_core::Side| match find(s) {
+        Some(r) => side_label(r),
+        None => s.to_string(),
+    };
+    html! {
+        h2 { "2. Gait parameters" } "\n"
+        p.meta {
+            "Reference: " (reference.description) " Values outside the reference range are marked ▲ (above) or ▼ (below) and shaded (bounds included, compared as shown). Cadence, walking speed and stride time are one value per walk, from both legs; step frequency (the inverse of step time) and swing (the complement of stance) are shown beside them and judged with them. Symmetry index SI = 100·(L − R)/((L + R)/2) %; |SI| > "
+            (format!("{:.0}", p.0.asymmetry_flag_pct)) " % is shaded when the quantity has a reference range."
+        }
+        "\n"
+        table {
+            "\n"
+            tr { th { "parameter" } th { "unit" } th { (label(ldh_core::Side::Left)) } th { (label(ldh_core::Side::Right)) } th { "reference range" } th { "SI (%)" } } "\n"
+            @for row in &v.rows {
+                @let q = row.q;
+                tr {
+                    td {
+                        (q.parameter.code()) " — " (q.label)
+                        @if let Some(c) = q.companion {
+                            " (with " (c.code()) ": "
+                            (left.and_then(|r| companion(r, c)).unwrap_or("–".into())) " / "
+                            (right.and_then(|r| companion(r, c)).unwrap_or("–".into())) ")"
+                        }
+                    }
+                    td { (q.unit) }
+                    (value_cells(row, notes))
+                    td { (range_text(reference.range(q.parameter), q, citations, p.0.min_healthy_subjects)) }
+                    @match &row.asymmetry {
+                        Some(a) => (asymmetry_cell(a, 1, notes)),
+                        None => td.num { "–" },
+                    }
+                }
+                "\n"
+            }
+        }
+        "\n"
+        (notes.list_from(first_note))
+        p { (v.outside()) " value(s) lie outside the reference range; " (v.asymmetric()) " asymmetry(ies) beyond the threshold." (no_published_note(reference)) } "\n"
+    }
+}
+
+/// One sentence on why the parameters without a range here have no published range (none when
+/// every parameter has a range).
+fn no_published_note(reference: &Reference) -> String {
+    let mut why: Vec<(&str, Vec<&str>)> = Vec::new();
+    for r in reference.ranges.iter().filter(|r| r.low.is_none()) {
+        if let Some(w) = no_published_reason(&r.column) {
+            match why.iter_mut().find(|(x, _)| *x == w) {
+                Some((_, codes)) => codes.push(&r.code),
+                None => why.push((w, vec![&r.code])),
+            }
+        }
+    }
+    if why.is_empty() {
+        return String::new();
+    }
+    let parts: Vec<String> = why
+        .iter()
+        .map(|(w, codes)| format!("{}: {w}", codes.join(", ")))
+        .collect();
+    format!(" No published range stands in for {}.", parts.join("; "))
+}
+
+/// Radar of the subject's z-scores against the reference.
+pub(super) fn subject_radar(
+    s: &SubjectReport,
+    sides: &[&RecordingRow],
+    reference: &Reference,
+) -> Result<Markup> {
+    let ranges: Vec<&ReferenceRange> = reference.ranges.iter().filter(|r| r.sd.is_some()).collect();
+    let series: Vec<(String, Vec<f64>)> = sides
+        .iter()
+        .filter(|r| r.is_ok())
+        .map(|r| {
+            (
+                side_label(r),
+                ranges
+                    .iter()
+                    .map(|rr| {
+                        Parameter::from_column(&rr.column)
+                            .ok()
+                            .and_then(|p| r.value(p))
+                            .filter(|_| r.withheld.reason(&rr.column).is_none())
+                            .and_then(|v| rr.z(v))
+                            .unwrap_or(f64::NAN)
+                    })
+                    .collect(),
+            )
+        })
+        .collect();
+    if series.is_empty() || ranges.len() < 3 {
+        return Ok(html! {});
+    }
+    let names: Vec<String> = ranges.iter().map(|r| r.code.clone()).collect();
+    let svg = plots::radar_svg(
+        &format!(
+            "Subject {}: z-scores against the healthy reference",
+            s.subject_id
+        ),
+        &names,
+        &series,
+    )?;
+    Ok(figure(
+        &svg,
+        &format!("Radar chart of the subject's parameters as z-scores against the reference of section 2 (0 = the reference mean, the black ring); left blue, right orange. A dot with a black edge lies beyond ±{:.2} SD (abnormal); a gap in a polygon is a parameter not measured on that side (never drawn as 0). The scale stops at ±{:.0} SD: a value beyond it is an open triangle on the rim{}.", plots::RADAR_Z_ABNORMAL, plots::RADAR_Z_CLIP, if svg.contains(plots::RADAR_CLIPPED) { " — clipped here, the values are named under the chart" } else { " (none here)" }),
+        &[plots::RADAR_SCALE_LABEL],
+        plots::RADAR_PRINT,
+    ))
+}

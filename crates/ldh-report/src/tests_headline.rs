@@ -1,0 +1,352 @@
+//! The headline and the verdicts made once (issue 36): a walk with a 30 % step-time
+//! asymmetry and a normal cadence, the inclusive rounded bounds, and the headline's wording
+//! for the usual gaps (no sensor height, no affected side, no quiet standing, two trials).
+
+use super::headline::{make, Headline};
+use super::tests::row;
+use super::verdict::{judge, verdicts, Asymmetry, Cell, Judgement, Verdicts};
+use super::*;
+use ldh_core::pipeline::{Severity, Warning, WarningList, WithheldList};
+
+/// A normal walk of `id`'s `side`: stride 1.05 s (114 steps/min), step time `step_s`, stance
+/// 62 %, stride 1.30 m at 1.24 m/s.
+fn leg(id: &str, side: &str, step_s: f64) -> RecordingRow {
+    let mut r = row(id, "ldh", side, 1.24);
+    r.stride_time_s = Some(1.05);
+    r.step_time_s = Some(step_s);
+    // The pipeline's per-leg step frequency: 1 / step time (never the page's cadence).
+    r.step_frequency_steps_per_s = Some(1.0 / step_s);
+    r.stance_ratio = Some(0.62);
+    r.swing_ratio = Some(0.38);
+    r.stride_length_m = Some(1.30);
+    r.stride_time_cv = Some(0.02);
+    r.stride_length_cv = Some(0.03);
+    r
+}
+
+/// Left step 30 % longer than the right, the stride (and cadence) normal.
+fn uneven(id: &str) -> Vec<RecordingRow> {
+    // 0.5935 / 0.4565 = 1.300; the two steps make the 1.05 s stride.
+    vec![leg(id, "left", 0.5935), leg(id, "right", 0.4565)]
+}
+
+fn page_parts(recs: Vec<RecordingRow>) -> (String, Verdicts, Headline) {
+    let p = ReportParams::default().check().unwrap();
+    let reference = Reference::published(&p);
+    let s = SubjectReport {
+        subject_id: recs[0].subject_id.clone(),
+        recordings: recs,
+        ..Default::default()
+    };
+    let html = subject_html(&s, &reference, &p).unwrap();
+    let own = super::subject::person_sides(&s.recordings);
+    let sides: Vec<&RecordingRow> = own.iter().collect();
+    let v = verdicts(&sides, &reference, p.0.asymmetry_flag_pct);
+    let h = make(&v, &sides, &s.recordings, &reference, &s.context);
+    (html, v, h)
+}
+
+/// The marks (▲/▼/◆) of a table row of `html` whose first cell starts with `start`.
+fn marks(html: &str, start: &str) -> String {
+    let at = html.find(start).unwrap_or_else(|| panic!("no row {start}"));
+    let row = &html[at..];
+    row[..row.find("</tr>").unwrap()]
+        .chars()
+        .filter(|c| matches!(c, '▲' | '▼' | '◆'))
+        .collect()
+}
+
+#[test]
+fn a_30_pct_step_asymmetry_with_normal_cadence_is_the_headline_and_one_verdict_everywhere() {
+    let (html, v, h) = page_parts(uneven("A1"));
+    // The headline names the asymmetry first, in a clinician's words.
+    assert_eq!(
+        h.findings[0],
+        "Steps are uneven: the left step takes 30 % longer than the right (0.59 s against 0.46 s)."
+    );
+    assert!(html.contains(&h.findings[0]));
+    // One cadence per walk, from both legs' strides: 60·2/1.05 = 114, within 96–126.
+    let cadence = v.rows.iter().find(|r| r.q.label == "Cadence").unwrap();
+    assert_eq!(cadence.cells.len(), 1);
+    assert!(matches!(
+        cadence.cells[0],
+        Cell::Value { v, judgement: Judgement::Within, .. } if v == 114.0
+    ));
+    assert!(!h.findings.iter().any(|f| f.contains("Cadence")), "{h:?}");
+    // Step frequency is no row of its own, so the step asymmetry is said once.
+    assert_eq!(v.asymmetric(), 1);
+    assert_eq!(
+        html.matches('◆').count() - html.matches("◆ asymmetry").count(),
+        2
+    );
+    // The same marks in the summary and in section 2, quantity by quantity.
+    let summary = &html[html.find("<table class=\"summary\"").unwrap()..];
+    let summary = &summary[..summary.find("</table>").unwrap()];
+    let section2 = &html[html.find("2. Gait parameters").unwrap()..];
+    let section2 = &section2[..section2.find("</table>").unwrap()];
+    for row in v.rows.iter().filter(|r| r.q.in_summary) {
+        let in_summary = marks(summary, &format!("<b>{}</b>", row.q.label));
+        let in_table = marks(
+            section2,
+            &format!("<td>{} — {}", row.q.parameter.code(), row.q.label),
+        );
+        let asym = match &row.asymmetry {
+            Some(_) => marks(summary, &format!("<b>{} asymmetry</b>", row.q.label)),
+            None => String::new(),
+        };
+        assert_eq!(format!("{in_summary}{asym}"), in_table, "{}", row.q.label);
+    }
+    assert!(!marks(summary, "<b>Cadence</b>").contains(['▲', '▼']));
+    // The cohort page counts the same verdicts.
+    let mut recs = uneven("A1");
+    recs.extend(uneven("A2"));
+    let c = cohort_html(&CohortReport {
+        recordings: recs,
+        reference: Some(Reference::published(
+            &ReportParams::default().check().unwrap(),
+        )),
+        ..Default::default()
+    })
+    .unwrap();
+    let expect = format!(
+        "<td class=\"num bad\">{} of {}</td><td class=\"num bad\">1</td>",
+        v.outside(),
+        v.judged()
+    );
+    assert!(c.contains(&expect), "{expect} not in {c}");
+}
+
+#[test]
+fn bounds_are_inclusive_and_compared_as_shown() {
+    let p = ReportParams::default().check().unwrap();
+    let reference = Reference::published(&p);
+    let sf = reference.range(ldh_core::output::Parameter::StepFrequency);
+    // 96–126 steps/min: 126.3 shows as "126" and is within; 126.6 shows as "127".
+    assert_eq!(judge(126.3, sf, 60.0, 0), Judgement::Within);
+    assert_eq!(judge(126.6, sf, 60.0, 0), Judgement::Above);
+    assert_eq!(judge(95.5, sf, 60.0, 0), Judgement::Within);
+    assert_eq!(judge(95.4, sf, 60.0, 0), Judgement::Below);
+    // Stance has no published range: no verdict, and its asymmetry is not flagged.
+    let mut recs = uneven("S");
+    recs[0].stance_ratio = Some(0.70);
+    let (_, v, _) = page_parts(recs);
+    let stance = v.rows.iter().find(|r| r.q.label == "Stance").unwrap();
+    assert!(matches!(
+        stance.cells[0],
+        Cell::Value {
+            judgement: Judgement::NoReference,
+            ..
+        }
+    ));
+    assert!(matches!(stance.asymmetry, Some(Asymmetry::Value(_, None))));
+}
+
+fn warn(r: &mut RecordingRow, code: &str, cols: &[&str]) {
+    let w = Warning::new(code, Severity::Warning, format!("{code} message")).withholding(cols);
+    for c in cols {
+        if let Ok(p) = ldh_core::output::Parameter::from_column(c) {
+            r.set_value(p, None);
+        }
+    }
+    r.withheld = WithheldList(cols.iter().map(|c| (c.to_string(), w.reason())).collect());
+    r.warnings = WarningList(vec![w]);
+}
+
+#[test]
+fn headline_without_the_sensor_height() {
+    let mut recs = vec![leg("H", "left", 0.525), leg("H", "right", 0.525)];
+    for r in recs.iter_mut() {
+        warn(
+            r,
+            "sensor_height_unknown",
+            &["stride_length_m", "speed_mps", "stride_length_cv"],
+        );
+    }
+    let (html, _, h) = page_parts(recs);
+    assert_eq!(
+        h,
+        Headline {
+            context: None,
+            visits: None,
+            belt: None,
+            findings: vec![],
+            not_measured: Some(
+                "Could not be measured: walking speed, stride length, stride length variability."
+                    .into()
+            ),
+            to_do: Some(
+                "Measure the sensor's height above the ankle and re-run the analysis with it."
+                    .into()
+            ),
+        }
+    );
+    // Only withholding: not a reason to distrust the other numbers.
+    assert!(!html.contains("Check before reading"));
+    assert_eq!(html.matches("sensor_height_unknown [warning]").count(), 1);
+}
+
+#[test]
+fn headline_without_the_affected_side() {
+    let (_, _, h) = page_parts(vec![leg("U", "left", 0.525), leg("U", "right", 0.525)]);
+    assert_eq!(h.findings, Vec::<String>::new());
+    assert_eq!(h.not_measured, None);
+    assert_eq!(
+        h.to_do.as_deref(),
+        Some("The affected side is not given: add it to the manifest so the legs are compared as affected and unaffected.")
+    );
+}
+
+#[test]
+fn headline_when_the_gyroscope_bias_was_not_removed() {
+    let mut recs = vec![leg("B", "left", 0.525), leg("B", "right", 0.525)];
+    for r in recs.iter_mut() {
+        r.wqk_deg = Some(40.0);
+        warn(r, "no_quiet_standing", &["wqk_deg", "pbi_deg"]);
+        r.affected_side = Some(ldh_core::output::AffectedSide::from(ldh_core::Side::Left).into());
+    }
+    let (html, _, h) = page_parts(recs);
+    assert_eq!(h.findings, Vec::<String>::new());
+    // WQK and PBI are not in the summary: nothing of the summary is missing.
+    assert_eq!(h.not_measured, None);
+    assert_eq!(h.to_do, None);
+    // It changes the numbers: it is in "Check before reading", once for both legs.
+    let bx = &html[html.find("Check before reading").unwrap()..];
+    let bx = &bx[..bx.find("</div>").unwrap()];
+    assert!(bx.contains("both legs: no_quiet_standing message"), "{bx}");
+    assert_eq!(bx.matches("no_quiet_standing message").count(), 1, "{bx}");
+    assert!(!bx.contains("[warning]"), "no codes in the box: {bx}");
+}
+
+#[test]
+fn headline_of_two_trials_of_one_person() {
+    let mut recs = uneven("T");
+    for r in recs.iter_mut() {
+        r.trial_id = "t1".into();
+    }
+    for mut r in uneven("T") {
+        r.trial_id = "t2".into();
+        recs.push(r);
+    }
+    let (html, _, h) = page_parts(recs);
+    assert_eq!(
+        h.context.as_deref(),
+        Some("The values are the mean of 2 trials (t1, t2) of this person.")
+    );
+    assert_eq!(
+        h.findings,
+        vec![
+            "Steps are uneven: the left step takes 30 % longer than the right (0.59 s against 0.46 s).",
+            "Step time is below normal on the right: 0.46 s (normal 0.48–0.63 s).",
+        ]
+    );
+    assert!(html.contains(h.context.as_deref().unwrap()));
+}
+
+/// `id`'s uneven walk as trial `trial` of visit `visit`.
+fn visit(id: &str, trial: &str, visit: &str) -> Vec<RecordingRow> {
+    let mut recs = uneven(id);
+    for r in recs.iter_mut() {
+        r.trial_id = trial.into();
+        r.visit = visit.into();
+    }
+    recs
+}
+
+#[test]
+fn headline_of_two_visits_of_one_person() {
+    let mut recs = visit("V", "1", "pre");
+    recs.extend(visit("V", "2", "post"));
+    let (html, _, h) = page_parts(recs);
+    assert_eq!(
+        h.context.as_deref(),
+        Some("The values are the mean of 2 trials (1, 2) of this person.")
+    );
+    assert_eq!(
+        h.visits.as_deref(),
+        Some(
+            "Recorded at 2 visits (pre, post): the values on this page are the mean of all of \
+             them. The changes between the visits are listed under \"Change between visits\" \
+             and none is judged: without a reliability table (ldh report --reliability) the \
+             measurement's own noise is not known, so no change can be told apart from it."
+        )
+    );
+    assert!(html.contains("<h2 id=\"visits\">Change between visits</h2>"));
+    let section = &html[html.find("id=\"visits\"").unwrap()..];
+    let section = &section[..section.find("</table>").unwrap()];
+    assert!(
+        !section.contains('▲') && !section.contains('▼'),
+        "{section}"
+    );
+    // Two trials of one visit say no visits.
+    let mut recs = visit("W", "1", "pre");
+    recs.extend(visit("W", "2", "pre"));
+    assert_eq!(page_parts(recs).2.visits, None);
+}
+
+#[test]
+fn headline_on_a_treadmill_with_a_belt_speed() {
+    let mut recs = uneven("B");
+    for r in recs.iter_mut() {
+        r.setting = Some(ldh_core::Setting::Treadmill.into());
+        r.belt_speed_mps = Some(1.1);
+    }
+    let (html, _, h) = page_parts(recs);
+    assert_eq!(
+        h.belt.as_deref(),
+        Some("On a treadmill, belt at 1.10 m/s: the walking speed is the belt's; the speed the sensors estimate is 1.24 m/s.")
+    );
+    assert!(html.contains("treadmill, belt 1.10 m/s"));
+    assert_eq!(page_parts(uneven("C")).2.belt, None);
+}
+
+/// Issue 36 item 7, done when: the wording of a frozen gyroscope segment. The fault is named
+/// with its span once, in "Check before reading"; its strides are left out but every parameter
+/// is still measured (from the other strides), so the headline itself has nothing to add.
+#[test]
+fn headline_with_a_frozen_gyroscope_segment() {
+    use ldh_core::pipeline::quality::{fault_warning, ChannelFault, FaultKind};
+    let mut recs = vec![leg("F", "left", 0.525), leg("F", "right", 0.525)];
+    let fault = ChannelFault {
+        channel: 5,
+        kind: FaultKind::Frozen,
+        start_s: 12.3,
+        end_s: 15.8,
+        samples: 351,
+    };
+    let w = fault_warning(&fault);
+    for c in &w.affects {
+        if let Ok(p) = ldh_core::output::Parameter::from_column(c) {
+            recs[0].set_value(p, None);
+        }
+    }
+    recs[0].withheld = WithheldList(w.affects.iter().map(|c| (c.clone(), w.reason())).collect());
+    recs[0].warnings = WarningList(vec![w]);
+    let (html, _, h) = page_parts(recs);
+    assert_eq!(
+        h,
+        Headline {
+            context: None,
+            visits: None,
+            belt: None,
+            findings: vec![],
+            not_measured: Some(
+                "Could not be measured: stride length (left), stride length variability (left)."
+                    .into()
+            ),
+            to_do: Some("The affected side is not given: add it to the manifest so the legs are compared as affected and unaffected.".into()),
+        }
+    );
+    let at = html
+        .find("<div class=\"missing\"><b>Check before reading")
+        .unwrap();
+    let bx = &html[at..];
+    let bx = &bx[..bx.find("</div>").unwrap() + 6];
+    assert_eq!(
+        bx,
+        "<div class=\"missing\"><b>Check before reading the numbers.</b><ul><li>left: shank gyroscope z frozen from 12.3 s to 15.8 s: it repeated one value for 3.5 s while the other channels moved, so the strides in this span are left out and, as the attitude carries the lost rotation on, the shank angles and stride length of this leg are not measured</li></ul></div>"
+    );
+    // Once in the box, once (with its code) in the technical appendix; the withheld cells
+    // give it as their reason.
+    assert_eq!(bx.matches("frozen from 12.3 s to 15.8 s").count(), 1);
+    assert_eq!(html.matches("channel_fault [warning]").count(), 1);
+}

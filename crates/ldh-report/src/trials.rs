@@ -1,0 +1,223 @@
+//! The cohort page's people and trials: the header's counts (people apart from trials, people
+//! with both legs analysed) and "Trials of one person", a person's trials side by side (grouped
+//! by visit) with their difference (docs/reports.md "Cohort report").
+
+use maud::{html, Markup};
+
+use super::html::fmt;
+use ldh_core::cohort::{person_row, PARAMETERS};
+use ldh_core::output::{rows_by_subject, Parameter, RecordingRow};
+use ldh_core::Side;
+
+/// What the cohort page's header counts.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub(crate) struct Counts {
+    /// People (distinct `subject_id`).
+    pub people: usize,
+    /// Trials: distinct (`subject_id`, `trial_id`) pairs (a person without trial ids has one).
+    pub trials: usize,
+    /// Recordings (one per leg and trial).
+    pub recordings: usize,
+    /// Recordings analysed (status ok or no valid strides).
+    pub analysed: usize,
+    /// People with both legs analysed (in at least one trial each).
+    pub both_legs: usize,
+}
+
+impl Counts {
+    /// The counts of `rows`.
+    pub(crate) fn of(rows: &[RecordingRow]) -> Counts {
+        let mut trials: Vec<(&str, &str)> = rows
+            .iter()
+            .map(|r| (r.subject_id.as_str(), r.trial_id.as_str()))
+            .collect();
+        trials.sort_unstable();
+        trials.dedup();
+        let people = rows_by_subject(rows);
+        let both_legs = people
+            .iter()
+            .filter(|(_, recs)| {
+                [Side::Left, Side::Right]
+                    .into_iter()
+                    .all(|s| person_row(recs, s).is_some_and(|r| r.is_ok()))
+            })
+            .count();
+        Counts {
+            people: people.len(),
+            trials: trials.len(),
+            recordings: rows.len(),
+            analysed: rows.iter().filter(|r| r.is_ok()).count(),
+            both_legs,
+        }
+    }
+}
+
+/// One column of a person's comparison: a trial (its visit, its id) and its walk's values.
+pub(super) struct Trial<'a> {
+    pub(super) visit: &'a str,
+    pub(super) id: &'a str,
+    legs: Vec<&'a RecordingRow>,
+}
+
+impl Trial<'_> {
+    /// The walk's value of `p`: the mean of both legs, `None` unless both legs have one.
+    pub(super) fn value(&self, p: Parameter) -> Option<f64> {
+        let side = |s: Side| {
+            self.legs
+                .iter()
+                .find(|r| r.side == s && r.is_ok())
+                .and_then(|r| r.value(p))
+        };
+        Some((side(Side::Left)? + side(Side::Right)?) / 2.0)
+    }
+}
+
+/// The analysed trials of a person in column order: visits in time order when every visit is a
+/// date (`2024-03-05`, or a date and time), else in order of first appearance; then trials in
+/// order of appearance.
+pub(super) fn trials_of<'a>(recs: &[&'a RecordingRow]) -> Vec<Trial<'a>> {
+    let mut visits: Vec<&str> = Vec::new();
+    let mut out: Vec<Trial> = Vec::new();
+    for r in recs.iter().filter(|r| r.is_ok()) {
+        if !visits.contains(&r.visit.as_str()) {
+            visits.push(&r.visit);
+        }
+        match out.iter_mut().find(|t| t.id == r.trial_id) {
+            Some(t) => t.legs.push(r),
+            None => out.push(Trial {
+                visit: &r.visit,
+                id: &r.trial_id,
+                legs: vec![r],
+            }),
+        }
+    }
+    let dates: Option<Vec<ldh_core::io::DateTime>> = visits.iter().map(|v| visit_date(v)).collect();
+    if let Some(d) = dates {
+        let mut by_date: Vec<(ldh_core::io::DateTime, &str)> = d.into_iter().zip(visits).collect();
+        by_date.sort_by_key(|a| a.0);
+        visits = by_date.into_iter().map(|(_, v)| v).collect();
+    }
+    out.sort_by_key(|t| visits.iter().position(|v| *v == t.visit));
+    out
+}
+
+/// A visit label as a date (`2024-03-05`, `2024/03/05`) or date and time, when it is one.
+fn visit_date(v: &str) -> Option<ldh_core::io::DateTime> {
+    v.parse()
+        .ok()
+        .or_else(|| format!("{} 00:00", v.trim()).parse().ok())
+}
+
+/// The visits of `trials` in column order, each with its number of trials.
+pub(super) fn visits_of<'a>(trials: &[Trial<'a>]) -> Vec<(&'a str, usize)> {
+    let mut v: Vec<(&str, usize)> = Vec::new();
+    for t in trials {
+        match v.last_mut() {
+            Some((name, n)) if *name == t.visit => *n += 1,
+            _ => v.push((t.visit, 1)),
+        }
+    }
+    v
+}
+
+/// The mean of the walk values of `p` over the trials of `visit` (`None` when none has one).
+pub(super) fn visit_mean(trials: &[Trial], visit: &str, p: Parameter) -> Option<f64> {
+    let v: Vec<f64> = trials
+        .iter()
+        .filter(|t| t.visit == visit)
+        .filter_map(|t| t.value(p))
+        .collect();
+    (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+}
+
+/// Decimals of a parameter in the comparison.
+pub(super) fn decimals(p: Parameter) -> usize {
+    if p.unit() == "deg" {
+        1
+    } else {
+        3
+    }
+}
+
+/// The difference column: with two or more visits, the last visit's mean minus the first's;
+/// otherwise the last trial minus the first. Its header and the values.
+fn difference(trials: &[Trial], p: Parameter) -> Option<f64> {
+    let visits = visits_of(trials);
+    let mean_of = |visit: &str| visit_mean(trials, visit, p);
+    if visits.len() >= 2 {
+        Some(mean_of(visits.last()?.0)? - mean_of(visits[0].0)?)
+    } else {
+        Some(trials.last()?.value(p)? - trials.first()?.value(p)?)
+    }
+}
+
+fn difference_header(trials: &[Trial]) -> String {
+    let visits = visits_of(trials);
+    match (visits.first(), visits.last(), trials.first(), trials.last()) {
+        (Some(a), Some(b), _, _) if visits.len() >= 2 => {
+            format!("{} − {} (visit means)", b.0, a.0)
+        }
+        (_, _, Some(a), Some(b)) => format!("{} − {}", b.id, a.id),
+        _ => String::new(),
+    }
+}
+
+/// "Trials of one person": for each person with two or more analysed trials, per parameter
+/// the walk's value (mean of both legs) of each trial side by side, grouped by visit, and
+/// their difference. No change is marked here: the subject page's "Change between visits"
+/// (`visits.rs`) marks those beyond a reliability table's MDC95. `title` makes the numbered heading
+/// (called only when the section is shown, so an absent section takes no number).
+pub(crate) fn trials_of_people(
+    rows: &[RecordingRow],
+    links: &std::collections::HashMap<&str, &str>,
+    title: impl FnOnce() -> Markup,
+) -> Markup {
+    let people: Vec<(&str, Vec<Trial>)> = rows_by_subject(rows)
+        .into_iter()
+        .map(|(id, recs)| (id, trials_of(&recs)))
+        .filter(|(_, t)| t.len() >= 2)
+        .collect();
+    if people.is_empty() {
+        return html! {};
+    }
+    html! {
+        (title())
+        p.meta { "Each person with two or more analysed trials: per parameter the value of each trial (the mean of both legs; a dash when a leg has none), trials grouped by visit, and their difference (with two visits, the difference of the visits' means). No change is marked here: each person's page (\"Change between visits\") marks the changes beyond the measurement's own noise when a reliability table is given." } "\n"
+        @for (id, trials) in &people {
+            @let visits = visits_of(trials);
+            @let several_visits = visits.len() >= 2;
+            h3 {
+                "Trials of this person: "
+                @if let Some(href) = links.get(id) { a href=(href) { (id) } } @else { (id) }
+            } "\n"
+            table.trials {
+                @if several_visits {
+                    tr { th colspan="2" {} @for (v, n) in &visits { th colspan=(n) { "visit " (v) } } th {} } "\n"
+                }
+                tr {
+                    th { "parameter" } th { "unit" }
+                    @for t in trials { th { "trial " (t.id) } }
+                    th { (difference_header(trials)) }
+                }
+                "\n"
+                @for p in PARAMETERS {
+                    tr {
+                        td { (p.code()) " — " (p.name()) } td { (p.unit()) }
+                        @for t in trials { td.num { (fmt(t.value(p), decimals(p))) } }
+                        td.num { (signed(difference(trials, p), decimals(p))) }
+                    }
+                    "\n"
+                }
+            }
+            "\n"
+        }
+    }
+}
+
+/// `v` with its sign (`+0.012`), an en dash when missing.
+pub(super) fn signed(v: Option<f64>, dec: usize) -> String {
+    match v {
+        Some(x) if x.is_finite() => format!("{x:+.dec$}"),
+        _ => "–".into(),
+    }
+}

@@ -1,0 +1,477 @@
+//! The verdicts of a subject's page, made once: each quantity judged against its range and
+//! its left–right asymmetry judged against the threshold, in one place that the clinical
+//! summary, section 2 and the cohort page's triage table all render from.
+//!
+//! Rules (docs/reports.md "Verdicts"):
+//! - **Whole-walk quantities are one value per walk from both legs**: cadence is every heel
+//!   strike of both legs per minute of walking, 60·(1/ST_left + 1/ST_right) (each leg strikes
+//!   once per stride), never 60 / one side's step time; walking speed and stride time are the
+//!   mean of the legs that have them (one leg alone is named).
+//! - **Per-side quantities** (step time, stance, stride length, variability, shank angles, STA)
+//!   are judged per side; those with [`Quantity::asymmetry`] also get one symmetry index.
+//! - **A parameter and its inverse or complement are one quantity**: step frequency is the
+//!   inverse of step time and swing the complement of stance; they are shown beside it and
+//!   never judged on their own.
+//! - **One rounding for display and comparison**: the value and the range's bounds are rounded
+//!   to the decimals shown, and the bounds are inclusive ("126" lies within "96–126").
+//! - **No verdict without a reference range**: a quantity without one reads "no reference", and
+//!   its asymmetry is shown but not flagged.
+
+use super::measured::not_measured;
+use super::{symmetry_index_pct, Reference, ReferenceRange};
+use ldh_core::output::{Parameter, RecordingRow};
+use ldh_core::Side;
+
+/// Whether a quantity is one value per walk or one per side.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Scope {
+    /// One value per walk, from both legs.
+    Walk,
+    /// One value per side.
+    Side,
+}
+
+/// One quantity of the page, in clinical units.
+#[derive(Debug)]
+pub(crate) struct Quantity {
+    /// What a clinician calls it.
+    pub label: &'static str,
+    /// The clinical unit.
+    pub unit: &'static str,
+    /// The parameter whose reference range judges it.
+    pub parameter: Parameter,
+    /// Factor from the table's unit to the clinical unit.
+    pub scale: f64,
+    /// Decimals shown (and compared).
+    pub decimals: usize,
+    /// One per walk or one per side.
+    pub scope: Scope,
+    /// The parameter shown beside it as its inverse or complement (never judged on its own).
+    pub companion: Option<Parameter>,
+    /// Whether its left–right asymmetry is shown.
+    pub asymmetry: bool,
+    /// In the clinical summary (the rest only in section 2).
+    pub in_summary: bool,
+}
+
+#[allow(clippy::too_many_arguments)]
+const fn q(
+    label: &'static str,
+    unit: &'static str,
+    parameter: Parameter,
+    scale: f64,
+    decimals: usize,
+    scope: Scope,
+    companion: Option<Parameter>,
+    asymmetry: bool,
+    in_summary: bool,
+) -> Quantity {
+    Quantity {
+        label,
+        unit,
+        parameter,
+        scale,
+        decimals,
+        scope,
+        companion,
+        asymmetry,
+        in_summary,
+    }
+}
+
+use Parameter as P;
+use Scope::{Side as S, Walk as W};
+
+/// Every quantity of the page, in page order; the cadence is judged against the step
+/// frequency's range (in steps/min).
+pub(crate) const QUANTITIES: [Quantity; 12] = [
+    q(
+        "Cadence",
+        "steps/min",
+        P::StepFrequency,
+        60.0,
+        0,
+        W,
+        None,
+        false,
+        true,
+    ),
+    q(
+        "Walking speed",
+        "m/s",
+        P::Speed,
+        1.0,
+        2,
+        W,
+        None,
+        false,
+        true,
+    ),
+    q(
+        "Stride time",
+        "s",
+        P::StrideTime,
+        1.0,
+        2,
+        W,
+        None,
+        false,
+        true,
+    ),
+    q(
+        "Step time",
+        "s",
+        P::StepTime,
+        1.0,
+        2,
+        S,
+        Some(P::StepFrequency),
+        true,
+        true,
+    ),
+    q(
+        "Stance",
+        "% of gait cycle",
+        P::StanceRatio,
+        100.0,
+        1,
+        S,
+        Some(P::SwingRatio),
+        true,
+        true,
+    ),
+    q(
+        "Stride length",
+        "m",
+        P::StrideLength,
+        1.0,
+        2,
+        S,
+        None,
+        true,
+        true,
+    ),
+    q(
+        "Stride time variability",
+        "CV %",
+        P::StrideTimeCv,
+        100.0,
+        1,
+        S,
+        None,
+        false,
+        true,
+    ),
+    q(
+        "Stride length variability",
+        "CV %",
+        P::StrideLengthCv,
+        100.0,
+        1,
+        S,
+        None,
+        false,
+        true,
+    ),
+    q(
+        "Shank swing (WQK, peak forward pitch)",
+        "deg",
+        P::Wqk,
+        1.0,
+        1,
+        S,
+        None,
+        true,
+        false,
+    ),
+    q(
+        "Shank pitch back (PBI)",
+        "deg",
+        P::Pbi,
+        1.0,
+        1,
+        S,
+        None,
+        true,
+        false,
+    ),
+    q(
+        "Shank roll in swing (BDK)",
+        "deg",
+        P::Bdk,
+        1.0,
+        1,
+        S,
+        None,
+        true,
+        false,
+    ),
+    q(
+        "Gait stability (STA, Lyapunov exponent)",
+        "1/s",
+        P::Sta,
+        1.0,
+        3,
+        S,
+        None,
+        false,
+        false,
+    ),
+];
+
+/// A value against its range.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Judgement {
+    /// Below the range.
+    Below,
+    /// Inside the range (bounds included).
+    Within,
+    /// Above the range.
+    Above,
+    /// No range to judge against.
+    NoReference,
+}
+
+impl Judgement {
+    /// ▲/▼ for a value outside its range.
+    pub(crate) fn mark(self) -> Option<&'static str> {
+        match self {
+            Judgement::Below => Some("▼"),
+            Judgement::Above => Some("▲"),
+            _ => None,
+        }
+    }
+    /// The plain words.
+    pub(crate) fn words(self) -> &'static str {
+        match self {
+            Judgement::Below => "below normal",
+            Judgement::Within => "within normal",
+            Judgement::Above => "above normal",
+            Judgement::NoReference => "no reference",
+        }
+    }
+    /// Judged against a range (whether or not inside it).
+    pub(crate) fn judged(self) -> bool {
+        self != Judgement::NoReference
+    }
+}
+
+/// Round `x` to `d` decimals, as it is shown.
+fn round(x: f64, d: usize) -> f64 {
+    format!("{x:.d$}").parse().unwrap_or(x)
+}
+
+/// `v` (clinical units, rounded) against `rr` (rounded the same way), bounds inclusive.
+pub(crate) fn judge(v: f64, rr: Option<&ReferenceRange>, scale: f64, d: usize) -> Judgement {
+    match rr.map(|r| (r.low, r.high)) {
+        Some((Some(l), Some(h))) => {
+            let (v, l, h) = (round(v, d), round(l * scale, d), round(h * scale, d));
+            if v < l {
+                Judgement::Below
+            } else if v > h {
+                Judgement::Above
+            } else {
+                Judgement::Within
+            }
+        }
+        _ => Judgement::NoReference,
+    }
+}
+
+/// One cell: a value with its verdict, or why it was not measured.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Cell {
+    /// Measured: the value in clinical units (rounded as shown) and its verdict; `note` names
+    /// a whole-walk value that comes from one leg only.
+    Value {
+        /// The value shown.
+        v: f64,
+        /// Its verdict.
+        judgement: Judgement,
+        /// e.g. "from the right leg only".
+        note: Option<String>,
+    },
+    /// Not measured, with the reason.
+    NotMeasured(String),
+}
+
+impl Cell {
+    /// The verdict, when measured.
+    pub(crate) fn judgement(&self) -> Option<Judgement> {
+        match self {
+            Cell::Value { judgement, .. } => Some(*judgement),
+            Cell::NotMeasured(_) => None,
+        }
+    }
+}
+
+/// The left–right asymmetry of a quantity.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Asymmetry {
+    /// The symmetry index (%, rounded to 0.1) and whether it is beyond the threshold; `None`:
+    /// not judged (the quantity has no reference range).
+    Value(f64, Option<bool>),
+    /// Not measured, with the reason.
+    NotMeasured(String),
+}
+
+/// The verdicts of one quantity.
+#[derive(Debug)]
+pub(crate) struct Row {
+    /// The quantity.
+    pub q: &'static Quantity,
+    /// One cell per walk ([`Scope::Walk`]) or `[left, right]`.
+    pub cells: Vec<Cell>,
+    /// The left–right asymmetry (quantities with [`Quantity::asymmetry`]).
+    pub asymmetry: Option<Asymmetry>,
+}
+
+/// Every verdict of a subject's page, in [`QUANTITIES`] order.
+#[derive(Debug)]
+pub(crate) struct Verdicts {
+    /// One row per quantity.
+    pub rows: Vec<Row>,
+    /// Why no asymmetry can be computed at all (a side missing or not analysed).
+    pub no_pair: Option<String>,
+}
+
+impl Verdicts {
+    /// Values outside their range (each side counted once, a walk value once).
+    pub(crate) fn outside(&self) -> usize {
+        self.cells().filter(|c| c.mark().is_some()).count()
+    }
+    /// Values judged against a range.
+    pub(crate) fn judged(&self) -> usize {
+        self.cells().filter(|c| c.judged()).count()
+    }
+    /// Values not measured.
+    pub(crate) fn not_measured(&self) -> usize {
+        self.rows
+            .iter()
+            .flat_map(|r| &r.cells)
+            .filter(|c| matches!(c, Cell::NotMeasured(_)))
+            .count()
+    }
+    /// Asymmetries beyond the threshold.
+    pub(crate) fn asymmetric(&self) -> usize {
+        self.rows
+            .iter()
+            .filter(|r| matches!(r.asymmetry, Some(Asymmetry::Value(_, Some(true)))))
+            .count()
+    }
+    fn cells(&self) -> impl Iterator<Item = Judgement> + '_ {
+        self.rows
+            .iter()
+            .flat_map(|r| &r.cells)
+            .filter_map(Cell::judgement)
+    }
+}
+
+/// A side's value of `p` in the table's unit, or why there is none (`None` side: no
+/// recording).
+fn side_value(r: Option<&RecordingRow>, p: Parameter) -> Result<f64, String> {
+    let r = r.ok_or("no recording")?;
+    match not_measured(r, p) {
+        Some(why) => Err(why),
+        None => r.value(p).ok_or_else(|| "not computable".into()),
+    }
+}
+
+/// The whole-walk value of `q` in the table's unit: (value, which leg alone gave it).
+fn walk_value(
+    q: &Quantity,
+    l: Option<&RecordingRow>,
+    r: Option<&RecordingRow>,
+) -> Result<(f64, Option<Side>), String> {
+    // The cadence comes from the stride times: each leg strikes once per stride.
+    let cadence = q.parameter == P::StepFrequency;
+    let p = if cadence { P::StrideTime } else { q.parameter };
+    // One leg alone: the other leg walks as many strides (cadence = 2 / its stride time).
+    let one = |x: f64| if cadence { 2.0 / x } else { x };
+    match (side_value(l, p), side_value(r, p)) {
+        (Ok(a), Ok(b)) if cadence => Ok((1.0 / a + 1.0 / b, None)),
+        (Ok(a), Ok(b)) => Ok((0.5 * (a + b), None)),
+        (Ok(a), Err(_)) => Ok((one(a), Some(Side::Left))),
+        (Err(_), Ok(b)) => Ok((one(b), Some(Side::Right))),
+        (Err(a), Err(b)) if a == b => Err(a),
+        (Err(a), Err(b)) => Err(format!("left {a}; right {b}")),
+    }
+}
+
+/// A cell from a value in the table's unit.
+fn cell(v: Result<f64, String>, q: &Quantity, rr: Option<&ReferenceRange>) -> Cell {
+    match v {
+        Ok(v) if v.is_finite() => Cell::Value {
+            v: round(v * q.scale, q.decimals),
+            judgement: judge(v * q.scale, rr, q.scale, q.decimals),
+            note: None,
+        },
+        Ok(_) => Cell::NotMeasured("not computable".into()),
+        Err(why) => Cell::NotMeasured(why),
+    }
+}
+
+/// Judge every quantity of a subject (its person rows, one per side) once.
+pub(crate) fn verdicts(sides: &[&RecordingRow], reference: &Reference, limit_pct: f64) -> Verdicts {
+    let find = |s: Side| sides.iter().copied().find(|r| r.side == s);
+    let (left, right) = (find(Side::Left), find(Side::Right));
+    let no_pair = match (left, right) {
+        (None, None) => Some("no recording".to_string()),
+        (Some(l), Some(r)) if !l.is_ok() && !r.is_ok() => {
+            Some("neither leg was analysed (see above)".into())
+        }
+        (None, _) => Some("no left recording".to_string()),
+        (_, None) => Some("no right recording".to_string()),
+        (Some(l), _) if !l.is_ok() => Some("the left leg was not analysed (see above)".into()),
+        (_, Some(r)) if !r.is_ok() => Some("the right leg was not analysed (see above)".into()),
+        _ => None,
+    };
+    let rows = QUANTITIES
+        .iter()
+        .map(|q| {
+            let rr = reference.range(q.parameter);
+            let cells = match q.scope {
+                Scope::Walk => vec![match walk_value(q, left, right) {
+                    Ok((v, one)) => {
+                        let mut c = cell(Ok(v), q, rr);
+                        if let (Cell::Value { note, .. }, Some(s)) = (&mut c, one) {
+                            *note = Some(format!("from the {s} leg only"));
+                        }
+                        c
+                    }
+                    Err(why) => Cell::NotMeasured(why),
+                }],
+                Scope::Side => [left, right]
+                    .into_iter()
+                    .map(|r| cell(side_value(r, q.parameter), q, rr))
+                    .collect(),
+            };
+            let asymmetry = q.asymmetry.then(|| {
+                if let Some(why) = &no_pair {
+                    return Asymmetry::NotMeasured(why.clone());
+                }
+                let judged = rr.is_some_and(|r| r.low.is_some() && r.high.is_some());
+                match (
+                    side_value(left, q.parameter),
+                    side_value(right, q.parameter),
+                ) {
+                    (Err(w), _) => Asymmetry::NotMeasured(format!("left {w}")),
+                    (_, Err(w)) => Asymmetry::NotMeasured(format!("right {w}")),
+                    (Ok(a), Ok(b)) => match symmetry_index_pct(a, b) {
+                        Some(si) => {
+                            let si = round(si, 1);
+                            Asymmetry::Value(si, judged.then_some(si.abs() > limit_pct))
+                        }
+                        None => Asymmetry::NotMeasured("not defined for these values".into()),
+                    },
+                }
+            });
+            Row {
+                q,
+                cells,
+                asymmetry,
+            }
+        })
+        .collect();
+    Verdicts { rows, no_pair }
+}

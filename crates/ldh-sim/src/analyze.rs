@@ -1,0 +1,50 @@
+//! A simulated subject through the pipeline in memory, as a read pair of files would go (for
+//! evaluation and tests): the simulator's side of the analysis, which the analysis does not know.
+
+use super::{SimLeg, SimSubject};
+use ldh_core::pipeline::{
+    analyze_pair, memory_report, AnalysisParams, LoadedLeg, SubjectInput, SubjectResult,
+};
+
+/// Analyse a simulated subject in memory (for evaluation and tests).
+pub fn analyze_simulated(s: &SimSubject, params: &AnalysisParams) -> SubjectResult {
+    let input = SubjectInput {
+        setting: s.family_b.as_ref().map(|p| p.setting),
+        subject_id: s.params.subject_id.clone(),
+        group: Some(s.params.group.into()),
+        affected_side: s.params.affected_side,
+        sensor_height_m: Some((s.left.truth.sensor_height_m + s.right.truth.sensor_height_m) / 2.0),
+        ..SubjectInput::default()
+    };
+    let leg = |l: &SimLeg| -> LoadedLeg {
+        let rec = l.recording.clone();
+        let report = memory_report(&rec);
+        Ok((
+            rec,
+            report,
+            format!("{}/{}", s.params.subject_id, l.truth.side),
+        ))
+    };
+    analyze_pair(&input, leg(&s.left), leg(&s.right), params)
+}
+
+/// Write the cohort `c` into `dir` as `ldh simulate` does, analyse the files as `ldh analyze`
+/// does (every subject of the folder, default reading) with `params`, and read each subject's
+/// truth: `(results, truths)` in the same subject order. For evaluation and tests of what needs
+/// a whole analysed cohort (agreement, reports).
+pub fn analyze_cohort(
+    c: &crate::CohortParams,
+    dir: &std::path::Path,
+    params: &AnalysisParams,
+) -> ldh_core::Result<(Vec<SubjectResult>, Vec<crate::SubjectTruth>)> {
+    use ldh_core::io::{FormatSpec, ReadParams};
+    crate::write_cohort(c, dir, &FormatSpec::default(), &|| {})?;
+    let subjects = ldh_core::pipeline::discover(&[dir.to_path_buf()])?;
+    let truths = subjects
+        .iter()
+        .map(|s| crate::read_truth(dir.join(&s.subject_id).join("truth.json")))
+        .collect::<ldh_core::Result<Vec<_>>>()?;
+    let read = ReadParams::default().check()?;
+    let results = ldh_core::pipeline::analyze_many(&subjects, params, None, &read);
+    Ok((results, truths))
+}

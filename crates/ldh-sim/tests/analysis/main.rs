@@ -1,0 +1,17 @@
+//! The analysis of `ldh-core` on simulated walks with exact ground truth: the tests of the stages that need the simulator (reading, quality checks, events,
+//! attitude, the pipeline, agreement). They live in `ldh-sim` because `ldh-core` must not depend
+//! on its simulator; they use `ldh-core`'s public API only.
+
+mod agreement_retest;
+mod agreement_run;
+mod fusion;
+mod io_columns;
+mod io_read;
+mod io_start;
+mod io_stream;
+mod io_units;
+mod pipeline;
+mod pipeline_inputs;
+mod pipeline_steady;
+mod quality;
+mod quality_faults;
