@@ -1,3 +1,7 @@
+#![doc = include_str!("../README.md")]
+//!
+//! ## Layout
+//!
 //! The `ldh` command line: argument parsing ([`args`]), one adapter per command
 //! ([`commands`]), files, parallelism, progress, output and exit codes. No signal processing
 //! happens here; every computation is a call into `ldh_core`.

@@ -1,3 +1,7 @@
+#![doc = include_str!("../README.md")]
+//!
+//! ## Layout
+//!
 //! Python bindings of ldh-core: the native module `ldh._ldh`, laid out like tokenizers'
 //! `bindings/python` — one file per area of the core:
 //!
