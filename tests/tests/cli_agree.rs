@@ -5,13 +5,21 @@ mod common;
 use common::html::check_page;
 use common::{json, ldh, ldh_ok, simulate_cohort, text};
 
+use std::path::{Path, PathBuf};
+
 use ldh_sim::evaluate::{truth_reference, TruthScope};
 
-#[test]
-fn agree_reads_an_analyze_folder_estimates_the_offset_and_refuses_a_bad_reference() {
-    let d = tempfile::tempdir().unwrap();
-    let (sim, res) = (d.path().join("sim"), d.path().join("res"));
-    simulate_cohort(&sim, 2, 2, 25, 38);
+/// A simulated cohort (`healthy` + `ldh` subjects of `seconds` s, `seed`) written to `dir/sim`
+/// and analysed into `dir/res` with `ldh analyze`: the results folder and every subject's truth.
+fn analysed(
+    dir: &Path,
+    healthy: u32,
+    ldh_n: u32,
+    seconds: u32,
+    seed: u64,
+) -> (PathBuf, Vec<ldh_sim::SubjectTruth>) {
+    let (sim, res) = (dir.join("sim"), dir.join("res"));
+    simulate_cohort(&sim, healthy, ldh_n, seconds, seed);
     ldh_ok(&[
         "analyze",
         sim.to_str().unwrap(),
@@ -19,10 +27,21 @@ fn agree_reads_an_analyze_folder_estimates_the_offset_and_refuses_a_bad_referenc
         res.to_str().unwrap(),
         "-q",
     ]);
-    let truths: Vec<_> = ["H01", "H02", "L01", "L02"]
-        .iter()
-        .map(|s| ldh_sim::read_truth(sim.join(s).join("truth.json")).unwrap())
-        .collect();
+    let mut truths = Vec::new();
+    for e in std::fs::read_dir(&sim).unwrap() {
+        let t = e.unwrap().path().join("truth.json");
+        if t.is_file() {
+            truths.push(ldh_sim::read_truth(&t).unwrap());
+        }
+    }
+    truths.sort_by(|a, b| a.subject_id.cmp(&b.subject_id));
+    (res, truths)
+}
+
+#[test]
+fn agree_reads_an_analyze_folder_estimates_the_offset_and_refuses_a_bad_reference() {
+    let d = tempfile::tempdir().unwrap();
+    let (res, truths) = analysed(d.path(), 2, 2, 25, 38);
     let (ev, st) = truth_reference(&truths, TruthScope::All, 0.75);
     let (evp, stp) = (d.path().join("ev.csv"), d.path().join("st.csv"));
     std::fs::write(&evp, ev).unwrap();
@@ -112,15 +131,7 @@ fn agree_reads_an_analyze_folder_estimates_the_offset_and_refuses_a_bad_referenc
 #[test]
 fn agree_reads_a_walkway_export_through_its_column_map() {
     let d = tempfile::tempdir().unwrap();
-    let (sim, res) = (d.path().join("sim"), d.path().join("res"));
-    simulate_cohort(&sim, 1, 1, 20, 7);
-    ldh_ok(&[
-        "analyze",
-        sim.to_str().unwrap(),
-        "-o",
-        res.to_str().unwrap(),
-        "-q",
-    ]);
+    let (res, _) = analysed(d.path(), 1, 1, 20, 7);
     let fixtures =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../data-fixtures/agreement");
     let export = std::fs::read_to_string(fixtures.join("gaitrite-footfalls.csv"))
@@ -180,19 +191,7 @@ fn agree_reads_a_walkway_export_through_its_column_map() {
 #[test]
 fn a_calibration_written_by_agree_removes_the_bias_and_the_report_says_so() {
     let d = tempfile::tempdir().unwrap();
-    let (sim, res) = (d.path().join("sim"), d.path().join("res"));
-    simulate_cohort(&sim, 2, 2, 25, 38);
-    ldh_ok(&[
-        "analyze",
-        sim.to_str().unwrap(),
-        "-o",
-        res.to_str().unwrap(),
-        "-q",
-    ]);
-    let truths: Vec<_> = ["H01", "H02", "L01", "L02"]
-        .iter()
-        .map(|s| ldh_sim::read_truth(sim.join(s).join("truth.json")).unwrap())
-        .collect();
+    let (res, truths) = analysed(d.path(), 2, 2, 25, 38);
     let (ev, _) = truth_reference(&truths, TruthScope::All, 0.0);
     // The lab's reference: heel strikes 40 ms later, toe offs 25 ms earlier than the truth.
     let mut lines = ev.lines();
@@ -244,7 +243,7 @@ fn a_calibration_written_by_agree_removes_the_bias_and_the_report_says_so() {
     let res2 = d.path().join("res2");
     ldh_ok(&[
         "analyze",
-        sim.to_str().unwrap(),
+        d.path().join("sim").to_str().unwrap(),
         "-o",
         res2.to_str().unwrap(),
         "--params",
