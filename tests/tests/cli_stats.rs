@@ -175,7 +175,7 @@ fn stats_reliability_on_a_simulated_retest_cohort_writes_the_table() {
     assert!(o.status.success(), "{}", text(&o));
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(out.contains("| stride time (ST, s) | 4 × 3 | "), "{out}");
-    let t = ldh_core::agreement::ReliabilityTable::read(&s.join("reliability.csv")).unwrap();
+    let t = ldh_core::cohort::ReliabilityTable::read(&s.join("reliability.csv")).unwrap();
     assert_eq!(t.rows.len(), 13);
     let st = t.row(ldh_core::output::Parameter::StrideTime).unwrap();
     assert_eq!(

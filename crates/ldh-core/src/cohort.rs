@@ -18,6 +18,11 @@
 //! and SD (eq. 18, healthy subjects as the baseline); OFF0 = mean over parameters of the
 //! |mean z| of LDHH, OFF1 the same for LDHE (eq. 19). A larger offset separates LDH from
 //! healthy gait better.
+//!
+//! **Test–retest reliability** (`ldh stats --reliability`): the reliability of every parameter
+//! from a cohort's repeated trials ([`fn@reliability_table`], `cohort/retest.rs`), the table
+//! `reliability.csv` ([`ReliabilityTable`], `cohort/reliability_table.rs`) and its statistics
+//! ([`crate::stats::agreement::test_retest`]).
 
 use serde::{Deserialize, Serialize};
 
@@ -29,9 +34,13 @@ use crate::Side;
 
 mod offsets;
 mod outcome;
+pub mod reliability_table;
+mod retest;
 mod table3;
 pub use offsets::{offsets, table4_markdown, ModelOffsets};
 pub use outcome::{stats, StatsOutcome};
+pub use reliability_table::{ReliabilityRow, ReliabilityTable};
+pub use retest::{reliability_table, require_repeated_trials};
 pub use table3::{any_partial, fmt_ms_n, fmt_p, PARTIAL_NOTE};
 pub use table3::{
     table3, table3_markdown, table3_rows, ParameterStats, Summary, Table3Row, TestResult,

@@ -450,9 +450,9 @@ pub enum LdhError {
     #[error(transparent)]
     Stats(#[from] crate::stats::StatsError),
     /// An agreement or reliability statistic, or an event matching, is undefined for its input
-    /// (see [`crate::agreement`]).
+    /// (see [`crate::stats::agreement`]).
     #[error(transparent)]
-    Agreement(#[from] crate::agreement::AgreementError),
+    Agreement(#[from] crate::stats::agreement::AgreementError),
     /// A unit in a recording's header that ldh cannot use (unknown, of another quantity,
     /// missing or mixed; [`crate::io::UnitError`]), with its file, line and column.
     #[error(transparent)]
@@ -494,9 +494,9 @@ impl LdhError {
             LdhError::Param { .. }
             | LdhError::Nonlinear(crate::nonlinear::NonlinearError::InvalidParameter { .. })
             | LdhError::Stats(crate::stats::StatsError::InvalidArgument { .. })
-            | LdhError::Agreement(crate::agreement::AgreementError::InvalidParam { .. }) => {
-                ErrorKind::Param
-            }
+            | LdhError::Agreement(crate::stats::agreement::AgreementError::InvalidParam {
+                ..
+            }) => ErrorKind::Param,
             _ => ErrorKind::Data,
         }
     }

@@ -39,7 +39,11 @@
 mod bracket;
 mod calibration;
 mod impact;
+pub mod matching;
+pub mod offset;
 mod peaks;
+#[cfg(test)]
+mod tests_matching;
 
 pub use bracket::{
     bracket_fraction, bracket_toe_off_s, landmark_geometry, place_bilateral, LegGeometry,
@@ -49,6 +53,8 @@ pub use calibration::{EventCalibration, MAX_CALIBRATION_SHIFT_S};
 pub use impact::{
     impact_delays_s, shift_to_impacts, IMPACT_MIN_G, IMPACT_MIN_STRIKES, IMPACT_RATIO, IMPACT_SHARE,
 };
+pub use matching::{match_events, match_groups, summarize, EventMatch, MatchSummary};
+pub use offset::{estimate_clock_offset, polish_offset, ClockOffset, OffsetCandidate};
 
 use serde::{Deserialize, Serialize};
 

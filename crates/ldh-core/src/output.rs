@@ -22,6 +22,7 @@ pub mod columns;
 pub mod labels;
 pub mod names;
 mod parameter;
+pub mod results;
 pub mod run;
 mod sink;
 #[cfg(test)]
@@ -31,6 +32,7 @@ pub mod trace;
 use labels::empty_is_none;
 pub use labels::{AffectedSide, Known, Label, SideRole, Status};
 pub use parameter::{Parameter, UnknownParameter};
+pub use results::{GaitEvent, LdhResults, LdhStride, STRIDE_PARAMETERS};
 pub use run::{read_marker, OutputRun, RunKind, RunMarker, RunWriter, MARKER};
 pub use sink::{finish_tables, RenderedRows, TableSink};
 
@@ -494,15 +496,12 @@ pub const EVENT_COLUMNS: [&str; 6] = ["subject_id", "time_s", "side", "event", "
 pub fn stride_groups(
     path: &std::path::Path,
 ) -> Result<impl Iterator<Item = Result<(String, Vec<StrideRow>)>>> {
-    // Streamed (no size limit), but opened as every input is: a FIFO or device is refused.
-    let (file, _) = crate::io::open_regular(path, "a stride table")?;
-    let rdr = csv::Reader::from_reader(std::io::BufReader::new(file));
-    let origin = path.display().to_string();
-    let mut it = rdr.into_deserialize::<StrideRow>().peekable();
+    let mut it =
+        crate::io::table::deserialize_stream::<StrideRow>(path, "a stride table")?.peekable();
     Ok(std::iter::from_fn(move || {
         let first = match it.next()? {
             Ok(r) => r,
-            Err(e) => return Some(Err(LdhError::signal(origin.clone(), e.to_string()))),
+            Err(e) => return Some(Err(e)),
         };
         let id = first.subject_id.clone();
         let mut rows = vec![first];

@@ -8,9 +8,10 @@ use std::path::PathBuf;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use ldh_core::agreement::reliability_table::COLUMNS;
-use ldh_core::agreement::{self, AgreementParams, LdhResults, OffsetMode, ReliabilityTable};
-use ldh_core::output::{Parameter, RecordingRow};
+use ldh_core::agreement::{self, AgreementParams, OffsetMode};
+use ldh_core::cohort::reliability_table::COLUMNS;
+use ldh_core::cohort::{self, ReliabilityTable};
+use ldh_core::output::{LdhResults, Parameter, RecordingRow};
 use ldh_core::LdhError;
 
 use crate::convert::{columns as columns_of, from_py, to_py, value_of, Opts};
@@ -148,8 +149,8 @@ pub(crate) fn reliability<'py>(
                     ))
                 }
             };
-            agreement::require_repeated_trials(&rows)?;
-            Ok(agreement::reliability_table(&rows, &params))
+            cohort::require_repeated_trials(&rows)?;
+            Ok(cohort::reliability_table(&rows, &params))
         })
         .or_raise(py)?;
     columns_of(py, &table.rows, &COLUMNS)

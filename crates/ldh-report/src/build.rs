@@ -139,7 +139,7 @@ pub fn build(
         calibration: run_calibration(results, &ctx)?,
         reliability: src
             .reliability
-            .map(ldh_core::agreement::reliability_table::ReliabilityTable::read)
+            .map(ldh_core::cohort::ReliabilityTable::read)
             .transpose()?,
         reliability_source: src.reliability.map(|p| {
             p.file_name().map_or(p.display().to_string(), |n| {

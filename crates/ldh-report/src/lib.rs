@@ -161,7 +161,7 @@ pub struct RunContext {
     /// The test–retest reliability table given with `--reliability` (`ldh stats
     /// --reliability`'s `reliability.csv`): its MDC95 decide which changes between visits are
     /// marked (`visits.rs`); `None`: no change is marked.
-    pub reliability: Option<ldh_core::agreement::reliability_table::ReliabilityTable>,
+    pub reliability: Option<ldh_core::cohort::ReliabilityTable>,
     /// Where that table comes from (its file name), for the pages.
     pub reliability_source: Option<String>,
 }

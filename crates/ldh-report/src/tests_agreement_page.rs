@@ -4,7 +4,8 @@
 use crate::agreement_page::{agreement_html, bland_altman_points, GOOD_ICC};
 use crate::plots::tests::smallest_printed_pt;
 use crate::plots::{self, PrintWidth, MIN_PRINT_TEXT_PT, TIMING_BAR_COLOUR};
-use ldh_core::agreement::{AgreementParams, LdhResults, OffsetMode, Reference};
+use ldh_core::agreement::{AgreementParams, OffsetMode, Reference};
+use ldh_core::output::LdhResults;
 use ldh_core::pipeline::SubjectResult;
 use ldh_sim::evaluate::TruthScope;
 use std::path::Path;

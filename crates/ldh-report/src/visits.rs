@@ -200,7 +200,7 @@ pub(crate) fn visits_section(c: &VisitChanges, title: Markup) -> Markup {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use ldh_core::agreement::reliability_table::{ReliabilityRow, ReliabilityTable};
+    use ldh_core::cohort::{ReliabilityRow, ReliabilityTable};
 
     fn walk(id: &str, trial: &str, visit: &str, speed: f64, length: f64) -> Vec<RecordingRow> {
         ["left", "right"]

@@ -4,7 +4,8 @@
 use std::process::ExitCode;
 
 use anyhow::Result;
-use ldh_core::agreement::{self, AgreementParams, LdhResults};
+use ldh_core::agreement::{self, AgreementParams};
+use ldh_core::output::LdhResults;
 
 use super::{check_out_dir, read_toml};
 use crate::args::AgreeArgs;

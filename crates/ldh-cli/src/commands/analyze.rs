@@ -28,7 +28,7 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
     let format = a.format.as_deref().map(resolve_format).transpose()?;
     // The report's reliability table is read now, so a bad one stops the run before the analysis.
     if let Some(f) = &a.reliability {
-        ldh_core::agreement::reliability_table::ReliabilityTable::read(f)?;
+        ldh_core::cohort::ReliabilityTable::read(f)?;
     }
     let defaults = ReadParams::default();
     let read = ReadParams {

@@ -39,9 +39,9 @@ pub fn run(a: StatsArgs) -> Result<ExitCode> {
 /// ([`ldh_core::agreement::reliability_table`]), written as reliability.csv, .json and .md.
 fn reliability(a: &StatsArgs, pool: &rayon::ThreadPool) -> Result<ExitCode> {
     let rows = rows_from(a.results.as_deref(), &a.inputs, AttitudeModel::Fusion, pool)?;
-    ldh_core::agreement::require_repeated_trials(&rows)?;
+    ldh_core::cohort::require_repeated_trials(&rows)?;
     let params = ldh_core::agreement::AgreementParams::default().check()?;
-    let table = ldh_core::agreement::reliability_table(&rows, &params);
+    let table = ldh_core::cohort::reliability_table(&rows, &params);
     let level = params.params().confidence_level;
     write_files(&a.out, &table.files(level)?)?;
     println!("{}", table.to_markdown(level));

@@ -22,12 +22,14 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use crate::error::{Location, Result};
+use crate::io::table::{CsvFault, Row, Table, TableFormat};
 use crate::output::Parameter;
 use crate::pipeline::EventKind;
 use crate::Side;
 
-use super::results::{boxed, GaitEvent, LdhResults, STRIDE_PARAMETERS};
+use super::reference_error::boxed;
 use super::{ReferenceError, ValidAgreementParams};
+use crate::output::results::{GaitEvent, LdhResults, STRIDE_PARAMETERS};
 
 /// One row of reference parameters: a stride, or a recording (one leg of one trial).
 #[derive(Debug, Clone, PartialEq)]
@@ -131,29 +133,23 @@ pub fn parse_reference(
             loc: Location::file(file),
         }));
     }
-    let mut rdr = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .from_reader(text.as_bytes());
-    let unreadable = |e: csv::Error| {
-        let line = e.position().map_or(1, |p| p.line());
+    let format = TableFormat {
+        trim: true,
+        lowercase_header: true,
+        ..TableFormat::default()
+    };
+    let unreadable = |f: CsvFault| {
         boxed(ReferenceError::Unreadable {
-            loc: Location::line(file, line),
-            reason: e.to_string(),
+            loc: f.loc,
+            reason: f.reason,
         })
     };
-    let header: Vec<String> = rdr
-        .headers()
-        .map_err(unreadable)?
-        .iter()
-        .map(|h| h.trim().trim_start_matches('\u{feff}').to_ascii_lowercase())
-        .collect();
-    let cols = columns(&header, file)?;
+    let table = Table::parse(text, file, &format).map_err(unreadable)?;
+    let cols = columns(&table.header, file)?;
     let mut ctx = Checker::new(file, results, params);
     let mut out = Reference::default();
-    for rec in rdr.records() {
-        let rec = rec.map_err(unreadable)?;
-        let line = rec.position().map_or(0, |p| p.line());
-        ctx.row(&rec, line, &cols, &mut out)?;
+    for row in table.rows() {
+        ctx.row(&row.map_err(unreadable)?, &cols, &mut out)?;
     }
     if ctx.rows == 0 {
         return Err(boxed(ReferenceError::Empty {
@@ -331,21 +327,15 @@ impl<'a> Checker<'a> {
     ) -> crate::LdhError {
         boxed(ReferenceError::BadValue {
             loc: Location::cell(self.file, line, col + 1),
-            column,
+            column: column.to_string(),
             value: value.to_string(),
-            expected,
+            expected: expected.to_string(),
         })
     }
 
     /// A finite number, `None` for an empty cell.
-    fn number(
-        &self,
-        rec: &csv::StringRecord,
-        line: u64,
-        col: usize,
-        column: &'static str,
-    ) -> Result<Option<f64>> {
-        let s = rec.get(col).unwrap_or("");
+    fn number(&self, row: &Row, col: usize, column: &'static str) -> Result<Option<f64>> {
+        let (s, line) = (row.at(col), row.line);
         if s.is_empty() {
             return Ok(None);
         }
@@ -358,13 +348,13 @@ impl<'a> Checker<'a> {
     /// A time inside the trial's recording (± the largest clock offset).
     fn time(
         &self,
-        rec: &csv::StringRecord,
-        line: u64,
+        row: &Row,
         col: usize,
         column: &'static str,
         key: (&str, &str),
     ) -> Result<Option<f64>> {
-        let Some(v) = self.number(rec, line, col, column)? else {
+        let line = row.line;
+        let Some(v) = self.number(row, col, column)? else {
             return Ok(None);
         };
         let (low, high) = self
@@ -385,12 +375,13 @@ impl<'a> Checker<'a> {
     }
 
     /// The subject and trial of a row, as the results name them.
-    fn who(&self, rec: &csv::StringRecord, line: u64, cols: &Columns) -> Result<(String, String)> {
-        let subject = rec.get(cols.subject).unwrap_or("");
+    fn who(&self, row: &Row, cols: &Columns) -> Result<(String, String)> {
+        let line = row.line;
+        let subject = row.at(cols.subject);
         if subject.is_empty() {
             return Err(self.bad(line, cols.subject, "subject_id", subject, "a subject id"));
         }
-        let trial = cols.trial.and_then(|c| rec.get(c)).unwrap_or("");
+        let trial = cols.trial.map_or("", |c| row.at(c));
         let known = || {
             let mut ids: Vec<&str> = self.trials.keys().copied().collect();
             ids.sort_unstable();
@@ -466,16 +457,11 @@ impl<'a> Checker<'a> {
         Ok(())
     }
 
-    fn row(
-        &mut self,
-        rec: &csv::StringRecord,
-        line: u64,
-        cols: &Columns,
-        out: &mut Reference,
-    ) -> Result<()> {
+    fn row(&mut self, row: &Row, cols: &Columns, out: &mut Reference) -> Result<()> {
         self.rows += 1;
-        let (subject_id, trial_id) = self.who(rec, line, cols)?;
-        let side_text = rec.get(cols.side).unwrap_or("");
+        let line = row.line;
+        let (subject_id, trial_id) = self.who(row, cols)?;
+        let side_text = row.at(cols.side);
         let side: Side = side_text
             .parse()
             .map_err(|_| self.bad(line, cols.side, "side", side_text, "left or right"))?;
@@ -486,7 +472,7 @@ impl<'a> Checker<'a> {
             format!("{subject_id} trial {trial_id} {side}")
         };
         if let Some(c) = cols.offset {
-            if let Some(v) = self.number(rec, line, c, "offset_s")? {
+            if let Some(v) = self.number(row, c, "offset_s")? {
                 let k = (subject_id.clone(), trial_id.clone());
                 match self.offsets.get(&k) {
                     Some(&(first, first_line)) if first != v => {
@@ -511,13 +497,13 @@ impl<'a> Checker<'a> {
             }
         }
         if let Some(ec) = cols.event {
-            let text = rec.get(ec).unwrap_or("");
+            let text = row.at(ec);
             let event: EventKind = text
                 .parse()
                 .map_err(|_| self.bad(line, ec, "event", text, "HS or TO"))?;
             let tc = cols.time.expect("checked with the header");
             let time_s = self
-                .time(rec, line, tc, "time_s", key)?
+                .time(row, tc, "time_s", key)?
                 .ok_or_else(|| self.bad(line, tc, "time_s", "", "a finite number"))?;
             self.ascending(format!("{label} {event}"), time_s, line, tc)?;
             out.events.push(GaitEvent {
@@ -531,15 +517,12 @@ impl<'a> Checker<'a> {
         }
         let mut values = Vec::with_capacity(cols.params.len());
         for &(p, c) in &cols.params {
-            values.push((
-                p,
-                self.number(rec, line, c, p.column())?.unwrap_or(f64::NAN),
-            ));
+            values.push((p, self.number(row, c, p.column())?.unwrap_or(f64::NAN)));
         }
         let stride =
             match cols.stride {
                 Some(c) => {
-                    let s = rec.get(c).unwrap_or("");
+                    let s = row.at(c);
                     Some(s.parse::<usize>().map_err(|_| {
                         self.bad(line, c, "stride", s, "a stride number (0, 1, 2, …)")
                     })?)
@@ -548,7 +531,7 @@ impl<'a> Checker<'a> {
             };
         let time_s = match cols.time {
             Some(c) => {
-                let t = self.time(rec, line, c, "time_s", key)?;
+                let t = self.time(row, c, "time_s", key)?;
                 let t = t.ok_or_else(|| self.bad(line, c, "time_s", "", "a finite number"))?;
                 self.ascending(format!("{label} strides"), t, line, c)?;
                 Some(t)
@@ -556,7 +539,7 @@ impl<'a> Checker<'a> {
             None => None,
         };
         let end_time_s = match cols.end_time {
-            Some(c) => self.time(rec, line, c, "end_time_s", key)?,
+            Some(c) => self.time(row, c, "end_time_s", key)?,
             None => None,
         };
         if let Some(s) = stride {

@@ -1,6 +1,6 @@
 //! Why a reference file, or its use against an `ldh analyze` output folder, is refused.
 
-use crate::error::{clip, clip_to, Location};
+use crate::error::{clip, clip_to, LdhError, Location};
 
 /// A reference file (`ldh agree --reference`) that cannot be used, or a comparison that cannot
 /// be made. Each case names the file and, where there is one, the line (and column): what
@@ -37,17 +37,23 @@ pub enum ReferenceError {
         /// The columns a reference file may have.
         known: String,
     },
-    /// A cell that is not what its column holds (an unknown side or event, not a number).
-    #[error("{loc}: column '{column}': '{}' is not {expected}", clip(value))]
+    /// A cell that is not what its column holds (an unknown side or event, not a number), or
+    /// a cell of a walkway export that its column map cannot read (a side not listed, a number
+    /// that is not one).
+    #[error(
+        "{loc}: column '{}': '{}' is not {expected}",
+        clip(column),
+        clip(value)
+    )]
     BadValue {
-        /// File, line, column.
+        /// File, line, column (of the export, for a walkway export).
         loc: Location,
-        /// The column.
-        column: &'static str,
+        /// The column (the export's name, for a walkway export).
+        column: String,
         /// The cell.
         value: String,
         /// What the column holds.
-        expected: &'static str,
+        expected: String,
     },
     /// A subject (or subject and trial) the results do not have.
     #[error(
@@ -142,14 +148,6 @@ pub enum ReferenceError {
         /// Why.
         reason: String,
     },
-    /// The output folder holds several attitude models' results.
-    #[error("{loc}: the results hold several attitude models ({models}); agree one model's results at a time")]
-    SeveralModels {
-        /// The table.
-        loc: Location,
-        /// The models found.
-        models: String,
-    },
     /// The file is not a well-formed CSV table (e.g. a row with more or fewer cells than the
     /// header).
     #[error("{loc}: not a CSV table: {}", clip(reason))]
@@ -165,33 +163,6 @@ pub enum ReferenceError {
     Map {
         /// The map file (with the TOML's line and column), or the export's header line.
         loc: Location,
-        /// What is wrong.
-        reason: String,
-    },
-    /// A cell of a walkway export that its column map cannot read (a side not listed, a
-    /// number that is not one).
-    #[error(
-        "{loc}: column '{}': '{}' is not {expected}",
-        clip(column),
-        clip(value)
-    )]
-    MappedValue {
-        /// File, line, column of the export.
-        loc: Location,
-        /// The export's column name.
-        column: String,
-        /// The cell.
-        value: String,
-        /// What the map expects.
-        expected: String,
-    },
-    /// A row of an output table of `ldh analyze` that cannot be read.
-    #[error("{loc}: not an ldh {table} row: {}", clip(reason))]
-    ResultsRow {
-        /// File and line.
-        loc: Location,
-        /// The table.
-        table: &'static str,
         /// What is wrong.
         reason: String,
     },
@@ -228,11 +199,8 @@ impl ReferenceError {
             | OutOfOrder { loc, .. }
             | Duplicate { loc, .. }
             | OffsetConflict { loc, .. }
-            | SeveralModels { loc, .. }
             | Unreadable { loc, .. }
-            | ResultsRow { loc, .. }
-            | Map { loc, .. }
-            | MappedValue { loc, .. } => loc,
+            | Map { loc, .. } => loc,
             Offset { .. } => return,
         };
         loc.line = loc.line.and_then(|l| NonZeroU64::new(line(l.get())));
@@ -248,4 +216,9 @@ fn trial_note(trial_id: &str) -> String {
     } else {
         format!(", trial '{}'", clip(trial_id))
     }
+}
+
+/// A [`ReferenceError`] as an [`LdhError`].
+pub(crate) fn boxed(e: ReferenceError) -> LdhError {
+    LdhError::Reference(Box::new(e))
 }

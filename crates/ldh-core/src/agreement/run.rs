@@ -36,12 +36,13 @@ pub use super::outcome::{
     TrialOffset, UnmatchedEvent, ALL_GROUPS, UNLABELLED,
 };
 use super::reference::{Reference, ReferenceValues};
-use super::results::{boxed, LdhResults, LdhStride, STRIDE_PARAMETERS};
+use super::reference_error::boxed;
 use super::run_events::{event_train, group_counts};
 use super::{
     agreement, estimate_clock_offset, match_events, polish_offset, ReferenceError,
     ValidAgreementParams,
 };
+use crate::output::results::{LdhResults, LdhStride, STRIDE_PARAMETERS};
 
 /// The clock offset of the trials whose reference file gives none.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]

@@ -15,8 +15,8 @@ use super::outcome::{
     ALL_GROUPS, KINDS, SIDES, UNLABELLED,
 };
 use super::reference::Reference;
-use super::results::LdhResults;
 use super::{match_events, summarize, EventMatch, ValidAgreementParams};
+use crate::output::results::LdhResults;
 
 /// The group of a trial: its recordings' `group` (the manifest's), else `unlabelled`.
 pub(crate) fn trial_group(results: &LdhResults, (s, t): &Trial) -> String {

@@ -4,8 +4,9 @@
 use std::path::Path;
 
 use super::reference::parse_reference;
-use super::{LdhResults, OffsetMode, Reference, ReferenceError};
+use super::{OffsetMode, Reference, ReferenceError};
 use crate::agreement::ValidAgreementParams;
+use crate::output::LdhResults;
 use crate::pipeline::SubjectResult;
 use crate::LdhError;
 
@@ -121,27 +122,21 @@ fn each_bad_reference_is_refused_naming_file_line_and_column() {
     assert!(
         matches!(
             e,
-            ReferenceError::BadValue {
-                column: "event",
-                ..
-            }
+            ReferenceError::BadValue { ref column, .. } if column == "event"
         ),
         "{e}"
     );
     assert!(m.starts_with("ref.csv:2:3") && m.contains("'IC'"), "{m}");
     let (e, _) = refused(&format!("{h}S01,middle,HS,2\n"), 2);
     assert!(
-        matches!(e, ReferenceError::BadValue { column: "side", .. }),
+        matches!(e, ReferenceError::BadValue { ref column, .. } if column == "side"),
         "{e}"
     );
     let (e, m) = refused(&format!("{h}S01,left,HS,1.2s\n"), 2);
     assert!(
         matches!(
             e,
-            ReferenceError::BadValue {
-                column: "time_s",
-                ..
-            }
+            ReferenceError::BadValue { ref column, .. } if column == "time_s"
         ),
         "{e}"
     );

@@ -6,7 +6,8 @@ use std::path::{Path, PathBuf};
 
 use super::reference::{parse_reference, Reference};
 use super::walkway::{parse_walkway, WalkwayIds, WalkwayMap};
-use super::{LdhResults, ReferenceError, ValidAgreementParams};
+use super::{ReferenceError, ValidAgreementParams};
+use crate::output::LdhResults;
 use crate::LdhError;
 
 fn fixture(name: &str) -> PathBuf {
@@ -130,7 +131,7 @@ fn walkway_refusals_name_file_line_and_column() {
     let ids = WalkwayIds::default();
     let head = "title\ntitle\nID,Left/Right,First Contact (sec.),Last Contact (sec.),Stride Length (cm.),Stride Time (sec.),Velocity (cm./sec.),Stance %\n";
     let (e, msg) = refused(&format!("{head}S01,X,1.0,1.6,,,,\n"), &m, &ids);
-    assert!(matches!(e, ReferenceError::MappedValue { .. }), "{msg}");
+    assert!(matches!(e, ReferenceError::BadValue { .. }), "{msg}");
     assert!(
         msg.starts_with("walk.csv:4:2") && msg.contains("Left/Right") && msg.contains("'X'"),
         "{msg}"

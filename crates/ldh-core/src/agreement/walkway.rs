@@ -24,12 +24,14 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use crate::error::{LdhError, Location, Result};
+use crate::io::table::{CsvFault, Row, Table as CsvTable, TableFormat};
 
 pub use super::walkway_map::{MappedColumn, SideColumn, StrideAnchor, WalkwayMap, WalkwayUnit};
 
 use super::reference::{parse_reference, Reference};
-use super::results::{boxed, LdhResults, STRIDE_PARAMETERS};
+use super::reference_error::boxed;
 use super::{ReferenceError, ValidAgreementParams};
+use crate::output::results::{LdhResults, STRIDE_PARAMETERS};
 
 /// The subject and trial of an export whose map has no column for them.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -150,31 +152,28 @@ fn convert(
     map: &WalkwayMap,
     ids: &WalkwayIds,
 ) -> Result<(Vec<Table>, u64)> {
-    let mut rdr = csv::ReaderBuilder::new()
-        .has_headers(false)
-        .flexible(true)
-        .trim(csv::Trim::All)
-        .delimiter(map.delimiter_byte().unwrap_or(b','))
-        .from_reader(text.trim_start_matches('\u{feff}').as_bytes());
-    let unreadable = |e: csv::Error| {
+    let format = TableFormat {
+        delimiter: map.delimiter_byte().unwrap_or(b','),
+        trim: true,
+        skip_rows_before_header: map.skip_rows_before_header,
+        flexible: true,
+        ..TableFormat::default()
+    };
+    let unreadable = |f: CsvFault| {
         boxed(ReferenceError::Unreadable {
-            loc: Location::line(file, e.position().map_or(1, |p| p.line())),
-            reason: e.to_string(),
+            loc: f.loc,
+            reason: f.reason,
         })
     };
-    let mut records = rdr.records();
-    let mut header = None;
-    for _ in 0..=map.skip_rows_before_header {
-        header = records.next().transpose().map_err(unreadable)?;
-    }
-    let Some(header) = header else {
+    let table = CsvTable::parse(text, file, &format).map_err(unreadable)?;
+    if table.header.is_empty() {
         return Err(boxed(ReferenceError::Empty {
             loc: Location::file(file),
         }));
-    };
-    let mut c = Converter::new(file, map, ids, header)?;
-    for rec in records {
-        c.row(&rec.map_err(unreadable)?)?;
+    }
+    let mut c = Converter::new(file, map, ids, &table)?;
+    for row in table.rows() {
+        c.row(&row.map_err(unreadable)?)?;
     }
     let line = c.header_line;
     Ok((vec![c.heel, c.toe, c.strides], line))
@@ -185,7 +184,7 @@ struct Converter<'a> {
     file: &'a Path,
     map: &'a WalkwayMap,
     ids: &'a WalkwayIds,
-    header: csv::StringRecord,
+    header: &'a [String],
     header_line: u64,
     subject: Option<usize>,
     trial: Option<usize>,
@@ -208,9 +207,9 @@ impl<'a> Converter<'a> {
         file: &'a Path,
         map: &'a WalkwayMap,
         ids: &'a WalkwayIds,
-        header: csv::StringRecord,
+        table: &'a CsvTable,
     ) -> Result<Self> {
-        let header_line = header.position().map_or(1, |p| p.line());
+        let (header, header_line) = (&table.header, table.header_line);
         let find = |name: &str| -> Result<usize> {
             header
                 .iter()
@@ -220,7 +219,7 @@ impl<'a> Converter<'a> {
                         loc: Location::line(file, header_line),
                         reason: format!(
                             "the map's column '{name}' is not in the header ({})",
-                            header.iter().collect::<Vec<_>>().join(", ")
+                            header.join(", ")
                         ),
                     })
                 })
@@ -281,35 +280,30 @@ impl<'a> Converter<'a> {
     }
 
     /// A cell that the map cannot read.
-    fn bad(&self, rec: &csv::StringRecord, line: u64, c: usize, expected: String) -> LdhError {
-        boxed(ReferenceError::MappedValue {
-            loc: Location::cell(self.file, line, c + 1),
-            column: self.header.get(c).unwrap_or("").to_string(),
-            value: rec.get(c).unwrap_or("").to_string(),
+    fn bad(&self, row: &Row, c: usize, expected: String) -> LdhError {
+        boxed(ReferenceError::BadValue {
+            loc: row.loc_at(c),
+            column: self.header.get(c).map_or("", String::as_str).to_string(),
+            value: row.at(c).to_string(),
             expected,
         })
     }
 
     /// A number in ldh's unit, written back as text (`None`: an empty cell).
-    fn number(
-        &self,
-        rec: &csv::StringRecord,
-        line: u64,
-        (c, divisor): (usize, f64),
-    ) -> Result<Option<String>> {
-        let s = rec.get(c).unwrap_or("");
+    fn number(&self, row: &Row, (c, divisor): (usize, f64)) -> Result<Option<String>> {
+        let s = row.at(c);
         if s.is_empty() {
             return Ok(None);
         }
         match s.parse::<f64>() {
             Ok(v) if v.is_finite() => Ok(Some(format!("{}", v / divisor))),
-            _ => Err(self.bad(rec, line, c, "a finite number".into())),
+            _ => Err(self.bad(row, c, "a finite number".into())),
         }
     }
 
     /// The foot of a row, `left` or `right`.
-    fn foot(&self, rec: &csv::StringRecord, line: u64) -> Result<&'static str> {
-        let foot = rec.get(self.side).unwrap_or("");
+    fn foot(&self, row: &Row) -> Result<&'static str> {
+        let foot = row.at(self.side);
         let is = |list: &[String]| list.iter().any(|v| v.eq_ignore_ascii_case(foot));
         if is(&self.map.side.left) {
             Ok("left")
@@ -325,13 +319,13 @@ impl<'a> Converter<'a> {
                 .map(String::as_str)
                 .collect();
             let expected = format!("a foot the map lists ({})", listed.join(", "));
-            Err(self.bad(rec, line, self.side, expected))
+            Err(self.bad(row, self.side, expected))
         }
     }
 
     /// One footfall: its heel strike, toe off and stride rows.
-    fn row(&mut self, rec: &csv::StringRecord) -> Result<()> {
-        let line = rec.position().map_or(0, |p| p.line());
+    fn row(&mut self, row: &Row) -> Result<()> {
+        let (rec, line) = (row.record, row.line);
         if rec.len() != self.header.len() {
             return Err(boxed(ReferenceError::Unreadable {
                 loc: Location::line(self.file, line),
@@ -343,28 +337,20 @@ impl<'a> Converter<'a> {
             }));
         }
         let id = |col: Option<usize>, given: &Option<String>| match col {
-            Some(c) => rec.get(c).unwrap_or("").to_string(),
+            Some(c) => row.at(c).to_string(),
             None => given.clone().unwrap_or_default(),
         };
         let subject = id(self.subject, &self.ids.subject_id);
         let trial = id(self.trial, &self.ids.trial_id);
-        let side = self.foot(rec, line)?;
+        let side = self.foot(row)?;
         let keys = vec![subject.clone(), trial.clone(), side.to_string()];
-        let hs_time = self
-            .hs
-            .map(|c| self.number(rec, line, c))
-            .transpose()?
-            .flatten();
-        let to_time = self
-            .to
-            .map(|c| self.number(rec, line, c))
-            .transpose()?
-            .flatten();
+        let hs_time = self.hs.map(|c| self.number(row, c)).transpose()?.flatten();
+        let to_time = self.to.map(|c| self.number(row, c)).transpose()?.flatten();
         // Every mapped cell is read, used or not: a typo is refused wherever it is.
         let values = self
             .params
             .iter()
-            .map(|&(_, c, f)| Ok(self.number(rec, line, (c, f))?.unwrap_or_default()))
+            .map(|&(_, c, f)| Ok(self.number(row, (c, f))?.unwrap_or_default()))
             .collect::<Result<Vec<String>>>()?;
         for (table, time, event) in [
             (&mut self.heel, &hs_time, "HS"),

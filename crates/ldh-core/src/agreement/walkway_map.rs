@@ -9,8 +9,9 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Location, Result};
 use crate::output::Parameter;
 
-use super::results::{boxed, STRIDE_PARAMETERS};
+use super::reference_error::boxed;
 use super::ReferenceError;
+use crate::output::results::STRIDE_PARAMETERS;
 
 /// A unit of a walkway column, converted to ldh's unit of the key by a factor.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

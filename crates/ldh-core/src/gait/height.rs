@@ -93,8 +93,7 @@ fn median_of(strides: &[Stride], lengths: impl Iterator<Item = f64>) -> Option<f
         .filter(|(s, l)| s.valid && l.is_finite())
         .map(|(_, l)| l)
         .collect();
-    v.sort_by(f64::total_cmp);
-    (!v.is_empty()).then(|| v[v.len() / 2])
+    crate::stats::median(&mut v, crate::stats::EvenMedian::Upper)
 }
 
 /// How much the leg's stride length depends on the sensor height, when the height was assumed

@@ -36,6 +36,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{append_reason, Stride};
 use crate::error::{LdhError, Result};
+use crate::stats::{median, EvenMedian};
 
 /// The reason given on a stride outside the steady window.
 pub const STEADY_REASON: &str = "not steady walking (acceleration or deceleration)";
@@ -266,26 +267,16 @@ pub fn exclude_unsteady(strides: &mut [Stride], p: &ValidSteadyParams) -> Option
 
 /// Median and band half-width of the stride times (`None` for fewer than 3).
 fn band(t: &[f64], p: &SteadyParams) -> Option<(f64, f64)> {
-    let med = median(t.to_vec())?;
-    let mad = median(t.iter().map(|x| (x - med).abs()).collect())?;
+    if t.len() < 3 {
+        return None;
+    }
+    let med = median(&mut t.to_vec(), EvenMedian::Mean)?;
+    let mut deviations: Vec<f64> = t.iter().map(|x| (x - med).abs()).collect();
+    let mad = median(&mut deviations, EvenMedian::Mean)?;
     Some((
         med,
         (p.band_mads * 1.4826 * mad).max(p.min_band_share * med),
     ))
-}
-
-/// Median of at least 3 values (`None` otherwise).
-fn median(mut v: Vec<f64>) -> Option<f64> {
-    if v.len() < 3 {
-        return None;
-    }
-    v.sort_by(f64::total_cmp);
-    let m = v.len() / 2;
-    Some(if v.len() % 2 == 1 {
-        v[m]
-    } else {
-        0.5 * (v[m - 1] + v[m])
-    })
 }
 
 /// The first index of `order` that begins `run` consecutive in-band entries.

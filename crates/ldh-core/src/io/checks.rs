@@ -7,6 +7,7 @@ use std::path::Path;
 use super::format::{AccUnit, FormatSpec, GyroUnit};
 use crate::error::{LdhError, Result};
 use crate::recording::{Recording, STANDARD_GRAVITY_MPS2};
+use crate::stats::{median, EvenMedian};
 
 /// Refuse data whose magnitudes contradict the declared units.
 ///
@@ -23,7 +24,7 @@ pub fn check_units_plausible(rec: &Recording, spec: &FormatSpec, path: &Path) ->
         .collect();
     let mean = mag.iter().sum::<f64>() / n as f64;
     let sd = (mag.iter().map(|m| (m - mean).powi(2)).sum::<f64>() / n as f64).sqrt();
-    let median = super::timebase::median_of(&mut mag);
+    let median = median(&mut mag, EvenMedian::Upper).unwrap_or(f64::NAN);
     let declared_acc = match spec.acc.unit {
         AccUnit::G => "g",
         AccUnit::Mps2 => "m/s2",

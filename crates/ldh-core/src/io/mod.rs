@@ -15,6 +15,7 @@ mod number;
 pub mod reader;
 mod rows;
 mod start_time;
+pub mod table;
 mod text;
 mod timebase;
 pub mod units;

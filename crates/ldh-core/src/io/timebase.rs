@@ -14,6 +14,7 @@ use std::path::Path;
 use super::format::{FormatSpec, TimeUnit};
 use super::rows::RowLines;
 use crate::error::{LdhError, Location, Result};
+use crate::stats::{median, EvenMedian};
 
 /// A gap found in the timestamps.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -119,7 +120,7 @@ pub(super) fn check_median_rate(
 ) -> Result<()> {
     if times.len() >= 3 {
         let mut dts: Vec<f64> = times.windows(2).map(|w| w[1] - w[0]).collect();
-        let median_dt = median_of(&mut dts);
+        let median_dt = median(&mut dts, EvenMedian::Upper).unwrap_or(f64::NAN);
         let rate = 1.0 / median_dt;
         if !bounds.contains(rate) {
             return Err(LdhError::SamplingRate {
@@ -135,16 +136,6 @@ pub(super) fn check_median_rate(
         }
     }
     Ok(())
-}
-
-/// The element at `v.len() / 2` of `v` sorted (the upper median), in linear time; `v` is
-/// reordered. The values are finite: the same number as after a full sort.
-pub(super) fn median_of(v: &mut [f64]) -> f64 {
-    let k = v.len() / 2;
-    *v.select_nth_unstable_by(k, |a, b| {
-        a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal)
-    })
-    .1
 }
 
 /// The recording split at gaps: the kept segment (rows `start..end`) and what was not kept.
@@ -263,7 +254,7 @@ fn rate_and_index(seg_t: &[f64], spec: &FormatSpec) -> (f64, Vec<f64>) {
         }
         _ => {
             let mut dts: Vec<f64> = seg_t.windows(2).map(|w| w[1] - w[0]).collect();
-            let median_dt = median_of(&mut dts);
+            let median_dt = median(&mut dts, EvenMedian::Upper).unwrap_or(f64::NAN);
             let mut index = Vec::with_capacity(n_seg);
             let mut k = 0.0;
             index.push(0.0);

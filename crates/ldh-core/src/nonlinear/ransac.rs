@@ -16,6 +16,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
 use super::linalg::line_fit;
+use crate::stats::{median, EvenMedian};
 
 /// Seeded repetitions of scikit-learn's random search; the most frequent line wins.
 pub const RUNS: u64 = 101;
@@ -23,18 +24,6 @@ pub const RUNS: u64 = 101;
 const MAX_TRIALS: usize = 100;
 /// scikit-learn's `stop_probability` default.
 const STOP_PROBABILITY: f64 = 0.99;
-
-/// Median as `np.median` (mean of the two middle values for an even count).
-fn median(v: &[f64]) -> f64 {
-    let mut s = v.to_vec();
-    s.sort_by(f64::total_cmp);
-    let n = s.len();
-    if n % 2 == 1 {
-        s[n / 2]
-    } else {
-        0.5 * (s[n / 2 - 1] + s[n / 2])
-    }
-}
 
 /// R² of the line on the points (`sklearn.metrics.r2_score`: 1 for a perfect fit of a constant,
 /// 0 for an imperfect one).
@@ -126,9 +115,10 @@ pub(crate) fn ransac_line_fit(x: &[f64], y: &[f64]) -> (f64, f64) {
     if x.len() < 4 {
         return line_fit(x, y);
     }
-    let med = median(y);
-    let dev: Vec<f64> = y.iter().map(|v| (v - med).abs()).collect();
-    let threshold = median(&dev);
+    // As `np.median`: the mean of the two middle values for an even count.
+    let med = median(&mut y.to_vec(), EvenMedian::Mean).expect("4 points or more");
+    let mut dev: Vec<f64> = y.iter().map(|v| (v - med).abs()).collect();
+    let threshold = median(&mut dev, EvenMedian::Mean).expect("4 points or more");
     // The most frequent winning inlier set over the seeded runs (first found on a tie).
     let mut found: Vec<(Vec<usize>, usize)> = Vec::new();
     for seed in 0..RUNS {

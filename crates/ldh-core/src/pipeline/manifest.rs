@@ -23,6 +23,7 @@ use super::heights::SensorHeights;
 pub use super::subject_input::GroupLabel;
 use super::subject_input::{Source, SubjectInput};
 use crate::error::{LdhError, Location, Result};
+use crate::io::table::{Row, Table, TableFormat};
 use crate::io::FormatSpec;
 use crate::recording::{Setting, Side};
 
@@ -55,16 +56,23 @@ fn header_of(text: &str) -> Option<Vec<String>> {
         .lines()
         .map(|l| l.trim_start_matches('\u{feff}'))
         .find(|l| !l.trim().is_empty() && !l.trim_start().starts_with('#'))?;
-    let mut rdr = csv::ReaderBuilder::new()
-        .has_headers(false)
-        .trim(csv::Trim::All)
-        .from_reader(line.as_bytes());
-    let rec = rdr.records().next()?.ok()?;
+    let t = Table::parse(line, Path::new(""), &manifest_format()).ok()?;
     Some(
-        rec.iter()
-            .map(|c| c.trim().trim_matches('"').to_ascii_lowercase())
+        t.header
+            .iter()
+            .map(|c| c.trim_matches('"').to_string())
             .collect(),
     )
+}
+
+/// How a manifest is split: fields trimmed, `#` comment lines, header names in lower case.
+fn manifest_format() -> TableFormat {
+    TableFormat {
+        trim: true,
+        comment: Some(b'#'),
+        lowercase_header: true,
+        ..TableFormat::default()
+    }
 }
 
 /// Whether `text` is a manifest: its header holds `subject_id` and `left` or `right`.
@@ -72,34 +80,6 @@ pub fn is_manifest_text(text: &str) -> bool {
     header_of(text).is_some_and(|h| {
         h.iter().any(|c| c == "subject_id") && h.iter().any(|c| c == "left" || c == "right")
     })
-}
-
-/// One manifest row's fields by column name, with their locations for messages.
-struct Row<'a> {
-    rec: &'a csv::StringRecord,
-    cols: &'a [String],
-    path: &'a Path,
-    line: u64,
-}
-
-impl Row<'_> {
-    fn col(&self, name: &str) -> Option<usize> {
-        self.cols.iter().position(|c| c == name)
-    }
-    fn get(&self, name: &str) -> &str {
-        self.col(name)
-            .and_then(|i| self.rec.get(i))
-            .unwrap_or("")
-            .trim()
-    }
-    fn invalid(&self, name: &str, value: &str, expected: &str) -> LdhError {
-        LdhError::InvalidValue {
-            loc: Location::cell(self.path, self.line, self.col(name).map_or(1, |c| c + 1)),
-            column: name.into(),
-            value: value.into(),
-            expected: expected.into(),
-        }
-    }
 }
 
 /// Parse a cohort manifest; `source` turns a path cell into a [`Source`], `format` a format
@@ -122,53 +102,26 @@ pub(crate) fn parse_manifest(
             limit_bytes: crate::io::MAX_LINE_BYTES,
         });
     }
-    let mut rdr = csv::ReaderBuilder::new()
-        .has_headers(true)
-        .trim(csv::Trim::All)
-        .comment(Some(b'#'))
-        .from_reader(text.as_bytes());
-    let csv_err = |e: csv::Error| {
-        let line = e.position().map_or(0, |p| p.line());
-        match e.kind() {
-            csv::ErrorKind::UnequalLengths {
-                expected_len, len, ..
-            } => LdhError::FieldCount {
-                loc: Location::line(path, line),
-                found: *len as usize,
-                expected: *expected_len as usize,
-                hint: "; a path or label holding a comma must be in double quotes".into(),
-            },
-            _ => LdhError::signal(path.display().to_string(), e.to_string()),
-        }
-    };
-    let header = rdr.headers().map_err(csv_err)?.clone();
-    let header_line = text
-        .lines()
-        .position(|l| !l.trim().is_empty() && !l.trim_start().starts_with('#'))
-        .map_or(1, |i| i as u64 + 1);
-    if header.is_empty() || header.iter().all(|c| c.is_empty()) {
+    const QUOTE_HINT: &str = "; a path or label holding a comma must be in double quotes";
+    let table =
+        Table::parse(text, path, &manifest_format()).map_err(|f| f.into_error(QUOTE_HINT))?;
+    if table.header.iter().all(|c| c.is_empty()) {
         return Err(LdhError::EmptyFile {
             path: path.to_path_buf(),
         });
     }
-    let cols: Vec<String> = header.iter().map(|c| c.to_ascii_lowercase()).collect();
-    check_header(&cols, path, header_line)?;
+    let cols = &table.header;
+    check_header(cols, path, table.header_line)?;
     let trial_col = ["trial_id", "trial"]
         .into_iter()
         .find(|c| cols.iter().any(|x| x == c));
     let mut formats: HashMap<String, FormatSpec> = HashMap::new();
     let mut out: Vec<SubjectInput> = Vec::new();
     let mut seen: HashMap<(String, String), u64> = HashMap::new();
-    for rec in rdr.records() {
-        let rec = rec.map_err(csv_err)?;
-        let line = rec.position().map_or(0, |p| p.line());
-        let row = Row {
-            rec: &rec,
-            cols: &cols,
-            path,
-            line,
-        };
-        if rec.iter().all(|f| f.is_empty()) {
+    for row in table.rows() {
+        let row = row.map_err(|f| f.into_error(QUOTE_HINT))?;
+        let line = row.line;
+        if row.record.iter().all(|f| f.is_empty()) {
             continue;
         }
         let mut s = parse_row(&row, &mut formats, source, format)?;
@@ -181,7 +134,7 @@ pub(crate) fn parse_manifest(
                 None => format!("a subject id not used on line {first}; several trials of one person need a trial_id column"),
                 Some(c) => format!("a ({}, {c}) pair not used on line {first}", "subject_id"),
             };
-            return Err(row.invalid("subject_id", &s.subject_id, &expected));
+            return Err(row.invalid_value("subject_id", &s.subject_id, expected));
         }
         if let Some(prev) = out.iter().find(|p| p.subject_id == s.subject_id) {
             if prev.group != s.group || prev.affected_side != s.affected_side {
@@ -191,12 +144,7 @@ pub(crate) fn parse_manifest(
                     } else {
                         "affected_side"
                     },
-                    row.get(if prev.group != s.group {
-                        "group"
-                    } else {
-                        "affected_side"
-                    }),
-                    &format!(
+                    format!(
                         "the same group and affected side as the earlier trials of '{}'",
                         s.subject_id
                     ),
@@ -285,7 +233,7 @@ fn parse_row(
 ) -> Result<SubjectInput> {
     let id = row.get("subject_id");
     if id.is_empty() {
-        return Err(row.invalid("subject_id", "", "a non-empty subject id"));
+        return Err(row.invalid_value("subject_id", "", "a non-empty subject id"));
     }
     let group = Some(row.get("group"))
         .filter(|g| !g.is_empty())
@@ -298,7 +246,7 @@ fn parse_row(
         // Healthy controls have no affected side: empty is not "unknown" for them.
         "" => (None, group != Some(GroupLabel::Healthy)),
         other => {
-            return Err(row.invalid(
+            return Err(row.invalid_value(
                 "affected_side",
                 other,
                 "'left', 'right', 'none' or empty (unknown)",
@@ -312,7 +260,7 @@ fn parse_row(
         }
         match h.parse::<f64>() {
             Ok(v) if v.is_finite() && v > 0.0 => Ok(Some(v)),
-            _ => Err(row.invalid(name, h, "a height in metres > 0")),
+            _ => Err(row.invalid_value(name, h, "a height in metres > 0")),
         }
     };
     let heights = SensorHeights {
@@ -322,7 +270,7 @@ fn parse_row(
     };
     if let Some(c) = heights.conflict() {
         let v = row.get(c.column());
-        return Err(row.invalid(
+        return Err(row.invalid_value(
             c.column(),
             v,
             &format!(
@@ -333,14 +281,14 @@ fn parse_row(
         ));
     }
     let st = row.get("setting");
-    let setting = if st.is_empty() {
-        None
-    } else {
-        Some(
-            st.parse::<Setting>()
-                .map_err(|_| row.invalid("setting", st, "'overground', 'treadmill' or empty"))?,
-        )
-    };
+    let setting =
+        if st.is_empty() {
+            None
+        } else {
+            Some(st.parse::<Setting>().map_err(|_| {
+                row.invalid_value("setting", st, "'overground', 'treadmill' or empty")
+            })?)
+        };
     let mut spec = |name: &str| -> Result<Option<FormatSpec>> {
         let v = row.get(name);
         if v.is_empty() {
@@ -350,7 +298,7 @@ fn parse_row(
             return Ok(Some(f.clone()));
         }
         let f = format(v).map_err(|e| {
-            row.invalid(
+            row.invalid_value(
                 name,
                 v,
                 &format!("a built-in format name or a TOML column map ({e})"),
@@ -396,7 +344,7 @@ fn belt_speed(row: &Row, setting: Option<Setting>) -> Result<Option<f64>> {
     let speed = match v.parse::<f64>() {
         Ok(x) if x.is_finite() && x > 0.0 && x <= MAX_BELT_SPEED_MPS => x,
         _ => {
-            return Err(row.invalid(
+            return Err(row.invalid_value(
                 "belt_speed_mps",
                 v,
                 &format!("a belt speed in m/s, > 0 and at most {MAX_BELT_SPEED_MPS}"),
@@ -404,7 +352,7 @@ fn belt_speed(row: &Row, setting: Option<Setting>) -> Result<Option<f64>> {
         }
     };
     if setting != Some(Setting::Treadmill) {
-        return Err(row.invalid(
+        return Err(row.invalid_value(
             "belt_speed_mps",
             v,
             "empty unless the row's setting is 'treadmill' (a belt speed is a treadmill's)",

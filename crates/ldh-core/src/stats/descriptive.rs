@@ -37,6 +37,35 @@ pub fn std_dev(x: &[f64]) -> Result<f64, StatsError> {
     Ok(var_unchecked(x, 1.0).sqrt())
 }
 
+/// Which middle the [`median`] of an even count of values is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EvenMedian {
+    /// The mean of the two middle values (`numpy.median`).
+    Mean,
+    /// The upper of the two (the value at `len / 2` of the sorted values): always one of the
+    /// values.
+    Upper,
+}
+
+/// The median of `values` in the order of [`f64::total_cmp`] (NaN sorts last); `None` when
+/// empty. `values` is reordered: a selection in linear time, not a full sort. ldh's one median
+/// (time bases, stride times, quality checks, clock offsets, RANSAC thresholds).
+pub fn median(values: &mut [f64], even: EvenMedian) -> Option<f64> {
+    let n = values.len();
+    if n == 0 {
+        return None;
+    }
+    let (below, mid, _) = values.select_nth_unstable_by(n / 2, f64::total_cmp);
+    let mid = *mid;
+    Some(match even {
+        EvenMedian::Mean if n % 2 == 0 => {
+            let low = below.iter().copied().max_by(f64::total_cmp);
+            0.5 * (low.expect("an even count of at least 2") + mid)
+        }
+        _ => mid,
+    })
+}
+
 /// Mean of finite, non-empty input. Centred two-pass correction keeps it
 /// accurate for large offsets.
 pub(crate) fn mean_unchecked(x: &[f64]) -> f64 {

@@ -23,6 +23,9 @@
 //! NaN in the data, ...), these functions return a typed [`StatsError`]
 //! instead; no function here ever returns a NaN statistic or p-value.
 //!
+//! [`agreement`] holds the statistics of method agreement and test–retest reliability (Bland–
+//! Altman limits, ICC, SEM, MDC95) with pingouin parity; [`median`] is the crate's one median.
+//!
 //! Distributions (normal, Student t, F, chi-squared, beta) come from
 //! `statrs`. statrs 0.19 also ships `mannwhitneyu`, `f_oneway` and
 //! `ttest_onesample`, but they are not used, for the reasons given at each
@@ -30,6 +33,7 @@
 //! Mann-Whitney enumeration, and an `f_oneway` that rejects inputs scipy
 //! accepts).
 
+pub mod agreement;
 mod anova;
 mod correlation;
 mod descriptive;
@@ -50,7 +54,7 @@ mod tests;
 
 pub use anova::{f_oneway, kruskal, FOnewayResult, KruskalResult};
 pub use correlation::{pearsonr, PearsonRResult};
-pub use descriptive::{mean, std_dev};
+pub use descriptive::{mean, median, std_dev, EvenMedian};
 pub use error::StatsError;
 pub use mannwhitney::{mannwhitneyu, mannwhitneyu_with, MannWhitneyUResult, MwuMethod};
 pub use multitest::holm;

@@ -2,7 +2,8 @@
 //! cohort of 10 people × 3 trials with a known day-to-day variation, analysed, tabled by
 //! [`reliability_table`]; the variance components must recover the simulator's.
 
-use ldh_core::agreement::{reliability_table, test_retest, ValidAgreementParams};
+use ldh_core::agreement::{test_retest, ValidAgreementParams};
+use ldh_core::cohort::reliability_table;
 use ldh_core::output::Parameter;
 use ldh_sim::CohortParams;
 

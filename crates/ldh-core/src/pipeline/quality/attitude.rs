@@ -9,7 +9,7 @@
 //! ±90° in the sagittal plane or 45° of frontal excursion within a stride.
 
 use super::warning::{codes, params, Severity, Warning};
-use super::{add_reason, median};
+use super::{add_reason, finite_median};
 use crate::align::Aligned;
 use crate::attitude::Attitude;
 use crate::gait::Stride;
@@ -72,7 +72,7 @@ pub fn attitude_checks(al: &Aligned, att: &Attitude, st: &mut [Stride]) -> Vec<W
     let sp = stance_pitch(al, att, st);
     if sp.len() >= 3 {
         let spread = quantile(&sp, 0.9) - quantile(&sp, 0.1);
-        let med = median(sp.clone()).unwrap_or(f64::NAN);
+        let med = finite_median(sp.clone()).unwrap_or(f64::NAN);
         if spread > STANCE_PITCH_SPREAD_DEG || med.abs() > STANCE_PITCH_MAX_DEG {
             w.push(
                 Warning::new(

@@ -73,11 +73,13 @@ pub const RUNNING_STANCE_MAX: f64 = 0.45;
 /// the time base is wrong.
 pub const WALKING_STANCE_MIN: f64 = 0.55;
 
-/// Median of the finite values (`None` for fewer than 3).
-pub(crate) fn median(mut v: Vec<f64>) -> Option<f64> {
+/// The (upper) median of the finite values (`None` for fewer than 3).
+pub(crate) fn finite_median(mut v: Vec<f64>) -> Option<f64> {
     v.retain(|x| x.is_finite());
-    v.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
-    (v.len() >= 3).then(|| v[v.len() / 2])
+    if v.len() < 3 {
+        return None;
+    }
+    crate::stats::median(&mut v, crate::stats::EvenMedian::Upper)
 }
 
 /// Add a reason to a stride's `reason` ("; "-joined).
@@ -102,8 +104,8 @@ pub fn leg_warnings(al: &Alignment, st: &[Stride], p: &SideParameters, fs_hz: f6
             al.shank_axis_tilt_deg
         )));
     }
-    let stride_time = median(st.iter().map(|s| s.stride_time_s).collect());
-    let stance = median(st.iter().map(|s| s.stance_ratio).collect());
+    let stride_time = finite_median(st.iter().map(|s| s.stride_time_s).collect());
+    let stance = finite_median(st.iter().map(|s| s.stance_ratio).collect());
     if let (Some(t), Some(stance)) = (stride_time, stance) {
         if t < RUNNING_STRIDE_TIME_S && stance >= WALKING_STANCE_MIN {
             w.push(

@@ -2,7 +2,7 @@
 //! come from one walk, stride lengths that disagree, and a possible left/right swap.
 
 use super::warning::{codes, params, Severity, Warning};
-use super::{median, LegResult};
+use super::{finite_median, LegResult};
 
 /// Largest relative difference of the two legs' median stride times in one walk (0.05): both
 /// legs take the same number of strides, so their stride times agree within event-timing noise
@@ -101,7 +101,7 @@ fn identical(l: &LegResult, r: &LegResult) -> Option<Warning> {
 fn disagreement(l: &LegResult, r: &LegResult) -> Vec<Warning> {
     let mut w = Vec::new();
     let med = |leg: &LegResult, f: fn(&crate::gait::Stride) -> f64| {
-        median(leg.strides.iter().filter(|s| s.valid).map(f).collect())
+        finite_median(leg.strides.iter().filter(|s| s.valid).map(f).collect())
     };
     let rel = |a: f64, b: f64| (a - b).abs() / a.max(b);
     if let (Some(a), Some(b)) = (med(l, |s| s.stride_time_s), med(r, |s| s.stride_time_s)) {

@@ -393,7 +393,7 @@ fn hugadb_format_maps_and_raw_reading_agree_on_the_attitude() {
                     failures.push(format!("{f} {side}: WQK {:.1} not withheld", p.wqk_deg));
                 }
             }
-            let med = |v: Vec<f64>| crate::pipeline::quality::median(v).unwrap_or(f64::NAN);
+            let med = |v: Vec<f64>| crate::pipeline::quality::finite_median(v).unwrap_or(f64::NAN);
             let peak = |l: &crate::pipeline::LegResult| {
                 let att = l.attitude.as_ref().expect("attitude kept");
                 let n = att.pitch_deg.len();

@@ -2,7 +2,7 @@
 //! `reliability.csv` that `ldh stats --reliability` writes and that marking changes between
 //! visits reads back ([`ReliabilityTable::read`], [`ReliabilityTable::mdc95`]).
 //!
-//! Each row carries what [`super::test_retest`] computes for one parameter (ICC(2,1) and
+//! Each row carries what [`crate::stats::agreement::test_retest`] computes for one parameter (ICC(2,1) and
 //! ICC(3,1) with their intervals after Shrout & Fleiss 1979 / McGraw & Wong 1996, the SEM and
 //! MDC95 after Weir 2005, the root-mean-square within-subject CV after Glüer et al. 1995, and
 //! the one-way variance components), or, when it cannot be computed, the reason in plain words
@@ -15,6 +15,7 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{LdhError, Location, Result};
+use crate::io::table::{Row, Table, TableFormat};
 use crate::output::Parameter;
 
 /// The columns of `reliability.csv`, in order.
@@ -114,7 +115,7 @@ impl ReliabilityRow {
     }
 
     /// A computed row for `p`.
-    pub fn computed(p: Parameter, r: &super::Reliability) -> Self {
+    pub fn computed(p: Parameter, r: &crate::stats::agreement::Reliability) -> Self {
         ReliabilityRow {
             icc_2_1: Some(r.icc.icc_2_1.value),
             icc_2_1_ci_low: Some(r.icc.icc_2_1.ci_low),
@@ -200,25 +201,16 @@ impl ReliabilityTable {
                 path: path.to_path_buf(),
             });
         }
-        let mut rdr = csv::ReaderBuilder::new()
-            .flexible(false)
-            .from_reader(text.as_bytes());
-        let header = rdr.headers()?.clone();
-        let col = header_columns(&header, path)?;
+        let table =
+            Table::parse(&text, path, &TableFormat::default()).map_err(|f| f.into_error(""))?;
+        check_header(&table)?;
         let mut rows = Vec::new();
         let mut seen: HashMap<Parameter, u64> = HashMap::new();
-        for rec in rdr.records() {
-            let rec = rec.map_err(|e| csv_error(e, path))?;
-            let line = rec.position().map_or(0, |p| p.line());
-            let cell = Cell {
-                rec: &rec,
-                col: &col,
-                path,
-                line,
-            };
-            let row = cell.row()?;
-            let p = Parameter::from_column(&row.parameter).expect("checked by Cell::row");
-            if let Some(first) = seen.insert(p, line) {
+        for cell in table.rows() {
+            let cell = cell.map_err(|f| f.into_error(""))?;
+            let row = row_of(&cell)?;
+            let p = Parameter::from_column(&row.parameter).expect("checked by row_of");
+            if let Some(first) = seen.insert(p, cell.line) {
                 return Err(cell.invalid(
                     "parameter",
                     format!("a parameter not listed before (it is on line {first})"),
@@ -238,20 +230,19 @@ impl ReliabilityTable {
     }
 }
 
-/// The 0-based position of each of [`COLUMNS`] in `header`.
-fn header_columns(header: &csv::StringRecord, path: &Path) -> Result<HashMap<&'static str, usize>> {
-    let line = header.position().map_or(1, |p| p.line());
-    let mut col = HashMap::new();
-    for (i, name) in header.iter().enumerate() {
-        let Some(&known) = COLUMNS.iter().find(|c| **c == name) else {
+/// Refuse an unknown, repeated or missing column of [`COLUMNS`].
+fn check_header(table: &Table) -> Result<()> {
+    let (path, line) = (&table.path, table.header_line);
+    for (i, name) in table.header.iter().enumerate() {
+        if !COLUMNS.contains(&name.as_str()) {
             return Err(LdhError::UnknownColumn {
-                loc: Location::cell(path, line, i + 1),
+                loc: table.header_cell(i),
                 column: name.to_string(),
                 what: "a reliability table".into(),
                 accepted: COLUMNS.join(", "),
             });
         };
-        if let Some(first) = col.insert(known, i) {
+        if let Some(first) = table.column(name).filter(|&first| first < i) {
             return Err(LdhError::DuplicateColumn {
                 loc: Location::line(path, line),
                 column: name.to_string(),
@@ -261,7 +252,7 @@ fn header_columns(header: &csv::StringRecord, path: &Path) -> Result<HashMap<&'s
     }
     let missing: Vec<String> = COLUMNS
         .iter()
-        .filter(|c| !col.contains_key(*c))
+        .filter(|c| table.column(c).is_none())
         .map(|c| c.to_string())
         .collect();
     if !missing.is_empty() {
@@ -271,125 +262,60 @@ fn header_columns(header: &csv::StringRecord, path: &Path) -> Result<HashMap<&'s
             by: "a reliability table (ldh stats --reliability)".into(),
         });
     }
-    Ok(col)
+    Ok(())
 }
 
-/// A csv error with the file and line.
-fn csv_error(e: csv::Error, path: &Path) -> LdhError {
-    let line = e.position().map_or(0, |p| p.line());
-    match e.kind() {
-        csv::ErrorKind::UnequalLengths {
-            expected_len, len, ..
-        } => LdhError::FieldCount {
-            loc: Location::line(path, line),
-            found: *len as usize,
-            expected: *expected_len as usize,
-            hint: String::new(),
-        },
-        _ => LdhError::signal(format!("{}:{line}", path.display()), e.to_string()),
-    }
-}
-
-/// One record of the table being read, with where it is.
-struct Cell<'a> {
-    rec: &'a csv::StringRecord,
-    col: &'a HashMap<&'static str, usize>,
-    path: &'a Path,
-    line: u64,
-}
-
-impl Cell<'_> {
-    fn get(&self, name: &'static str) -> &str {
-        self.rec.get(self.col[name]).unwrap_or("").trim()
-    }
-
-    fn loc(&self, name: &'static str) -> Location {
-        Location::cell(self.path, self.line, self.col[name] + 1)
-    }
-
-    fn invalid(&self, name: &'static str, expected: String) -> LdhError {
-        LdhError::InvalidValue {
-            loc: self.loc(name),
-            column: name.into(),
-            value: self.get(name).to_string(),
-            expected,
+/// One row of the table, checked.
+fn row_of(cell: &Row) -> Result<ReliabilityRow> {
+    let p = Parameter::from_column(cell.get("parameter")).map_err(|_| {
+        cell.invalid(
+            "parameter",
+            format!(
+                "a parameter column, one of {}",
+                Parameter::columns().join(", ")
+            ),
+        )
+    })?;
+    for (name, want) in [("code", p.code()), ("unit", p.unit())] {
+        if cell.get(name) != want {
+            return Err(cell.invalid(name, format!("'{want}', the {name} of {}", p.column())));
         }
     }
-
-    fn count(&self, name: &'static str) -> Result<usize> {
-        self.get(name)
+    let count = |name: &str| {
+        cell.get(name)
             .parse::<usize>()
-            .map_err(|_| self.invalid(name, "a whole number ≥ 0".into()))
+            .map_err(|_| cell.invalid(name, "a whole number ≥ 0"))
+    };
+    let mut row = ReliabilityRow::withheld(
+        p,
+        count("n_subjects")?,
+        count("k_trials")?,
+        cell.get("withheld").to_string(),
+    );
+    for (slot, name) in row.numbers_mut().into_iter().zip(&COLUMNS[5..18]) {
+        *slot = cell.number(name)?;
     }
-
-    fn number(&self, name: &'static str) -> Result<Option<f64>> {
-        let s = self.get(name);
-        if s.is_empty() {
-            return Ok(None);
+    for name in [
+        "sd_all",
+        "sem",
+        "sem_from_mse",
+        "mdc95",
+        "within_subject_cv",
+        "within_subject_var",
+    ] {
+        if cell.number(name)?.is_some_and(|v| v < 0.0) {
+            return Err(cell.invalid(name, "a number ≥ 0"));
         }
-        let v = s.parse::<f64>().map_err(|_| LdhError::NotANumber {
-            loc: self.loc(name),
-            column: name.into(),
-            value: s.to_string(),
-            hint: String::new(),
-        })?;
-        if !v.is_finite() {
-            return Err(LdhError::NonFinite {
-                loc: self.loc(name),
-                column: name.into(),
-                value: s.to_string(),
-            });
-        }
-        Ok(Some(v))
     }
-
-    fn row(&self) -> Result<ReliabilityRow> {
-        let p = Parameter::from_column(self.get("parameter")).map_err(|_| {
-            self.invalid(
-                "parameter",
-                format!(
-                    "a parameter column, one of {}",
-                    Parameter::columns().join(", ")
-                ),
-            )
-        })?;
-        for (name, want) in [("code", p.code()), ("unit", p.unit())] {
-            if self.get(name) != want {
-                return Err(self.invalid(name, format!("'{want}', the {name} of {}", p.column())));
-            }
+    if !row.withheld.is_empty() {
+        if let Some(name) = COLUMNS[5..18].iter().find(|n| !cell.get(n).is_empty()) {
+            return Err(cell.invalid(
+                name,
+                "an empty cell: the row is withheld (its withheld column gives a reason)",
+            ));
         }
-        let mut row = ReliabilityRow::withheld(
-            p,
-            self.count("n_subjects")?,
-            self.count("k_trials")?,
-            self.get("withheld").to_string(),
-        );
-        for (slot, name) in row.numbers_mut().into_iter().zip(&COLUMNS[5..18]) {
-            *slot = self.number(name)?;
-        }
-        for name in [
-            "sd_all",
-            "sem",
-            "sem_from_mse",
-            "mdc95",
-            "within_subject_cv",
-            "within_subject_var",
-        ] {
-            if self.number(name)?.is_some_and(|v| v < 0.0) {
-                return Err(self.invalid(name, "a number ≥ 0".into()));
-            }
-        }
-        if !row.withheld.is_empty() {
-            if let Some(name) = COLUMNS[5..18].iter().find(|n| !self.get(n).is_empty()) {
-                return Err(self.invalid(
-                    name,
-                    "an empty cell: the row is withheld (its withheld column gives a reason)"
-                        .into(),
-                ));
-            }
-        }
-        Ok(row)
     }
+    Ok(row)
 }
 
 #[cfg(test)]

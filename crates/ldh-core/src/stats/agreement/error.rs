@@ -3,7 +3,7 @@
 /// Why an agreement or reliability statistic, or an event matching, could not be computed.
 ///
 /// Every case where pingouin or scipy return NaN, ±inf or raise is an error here (see
-/// `docs/agreement.md`, "Statistics"); no function of [`crate::agreement`] returns a NaN.
+/// `docs/agreement.md`, "Statistics"); no function of [`crate::stats::agreement`] or [`crate::events::matching`] returns a NaN.
 /// [`crate::LdhError`] wraps it with `#[from]`.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]

@@ -16,8 +16,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::dist::{f_isf, f_sf};
 use super::AgreementError;
+use crate::stats::dist::{f_isf, f_sf};
 
 /// One intraclass correlation coefficient with its F test and confidence interval.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -10,15 +10,15 @@
 //! the MDC95 is for, so it must not enter the trial-to-trial noise. k is the most common number
 //! of trials among the people with two or more (ties: the smaller); a person with more trials uses the first k, in the
 //! order of the results; a person with fewer, or with a missing value in the first k, is left
-//! out by [`super::test_retest`]'s listwise rule. The statistics are Weir (2005)'s SEM and
+//! out by [`test_retest`]'s listwise rule. The statistics are Weir (2005)'s SEM and
 //! MDC95 and Shrout & Fleiss (1979)'s ICCs; `docs/agreement.md`, "Reliability table".
 
 use std::collections::BTreeMap;
 
 use super::reliability_table::{ReliabilityRow, ReliabilityTable};
-use super::{test_retest, AgreementError, ValidAgreementParams};
 use crate::error::{LdhError, Result};
 use crate::output::{Parameter, RecordingRow};
+use crate::stats::agreement::{test_retest, AgreementError, ValidAgreementParams};
 use crate::Side;
 
 /// The legs of one trial of a person.

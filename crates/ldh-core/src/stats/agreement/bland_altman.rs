@@ -17,9 +17,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::dist::{t_isf, t_pvalue_two_sided};
 use super::AgreementError;
-use crate::stats::{mean, std_dev};
+use crate::stats::dist::{t_isf, t_pvalue};
+use crate::stats::{mean, std_dev, Alternative};
 
 /// Spread, relative to the largest |value|, below which values count as equal: rounding, not
 /// data (scipy tests exact equality and returns meaningless numbers for 1e-16 spreads).
@@ -160,7 +160,7 @@ pub fn linregress(x: &[f64], y: &[f64]) -> Result<LinearFit, AgreementError> {
     let df = nf - 2.0;
     const TINY: f64 = 1.0e-20;
     let t = r * (df / ((1.0 - r + TINY) * (1.0 + r + TINY))).sqrt();
-    let pvalue = t_pvalue_two_sided(t, df);
+    let pvalue = t_pvalue(t, df, Alternative::TwoSided);
     let stderr = ((1.0 - r * r) * ssym / ssxm / df).sqrt();
     Ok(LinearFit {
         slope,

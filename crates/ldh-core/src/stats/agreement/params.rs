@@ -4,8 +4,8 @@ use serde::{Deserialize, Serialize};
 
 use super::AgreementError;
 
-/// Parameters of [`super::agreement`], [`super::test_retest`], [`super::match_events`] and
-/// [`super::estimate_clock_offset`] (unchecked; [`AgreementParams::check`] validates them once).
+/// Parameters of [`super::agreement`], [`super::test_retest`], [`crate::events::match_events`] and
+/// [`crate::events::estimate_clock_offset`] (unchecked; [`AgreementParams::check`] validates them once).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct AgreementParams {

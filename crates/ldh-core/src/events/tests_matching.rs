@@ -5,7 +5,9 @@
 
 use proptest::prelude::*;
 
-use super::*;
+use super::matching::*;
+use super::offset::*;
+use crate::stats::agreement::{AgreementError, AgreementParams, ValidAgreementParams};
 
 fn params(tolerance_s: f64) -> ValidAgreementParams {
     AgreementParams {

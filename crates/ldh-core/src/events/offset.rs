@@ -1,9 +1,9 @@
 //! The clock offset between the ldh and the reference event trains of one recording (the two
 //! systems' clocks were started apart), found as the offset that matches the most events.
 //!
-//! 1. Grid: every offset d = g·step in [−max, +max] ([`super::AgreementParams`]
+//! 1. Grid: every offset d = g·step in [−max, +max] ([`AgreementParams`](crate::stats::agreement::AgreementParams)
 //!    `clock_offset_step_s`, `max_clock_offset_s`) is scored by the number of matches of
-//!    (ldh − d) with the reference under the rule of [`super::match_events`], summed over all
+//!    (ldh − d) with the reference under the rule of [`super::matching::match_events`], summed over all
 //!    trains (sides, event kinds) of the recording, which share one clock.
 //! 2. Peaks: each maximal run of grid offsets with the same count, higher than its neighbours on
 //!    both sides, is one candidate; its middle grid offset is matched and refined to the
@@ -22,8 +22,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::events::{check_train, for_each_match};
-use super::{AgreementError, ValidAgreementParams};
+use super::matching::{check_train, for_each_match};
+use crate::stats::agreement::{AgreementError, ValidAgreementParams};
+use crate::stats::{median, EvenMedian};
 
 /// One offset and how well it matches.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -159,7 +160,7 @@ fn refine(trains: &[(&[f64], &[f64])], d: f64, tol: f64) -> OffsetCandidate {
         n_matched: raw.len(),
         mae_s: mae,
     };
-    let Some(m) = median(&mut raw) else {
+    let Some(m) = median(&mut raw, EvenMedian::Mean) else {
         return on_grid;
     };
     let (raw_m, mae_m) = matches_at(trains, m, tol);
@@ -172,20 +173,6 @@ fn refine(trains: &[(&[f64], &[f64])], d: f64, tol: f64) -> OffsetCandidate {
     } else {
         on_grid
     }
-}
-
-/// Median (mean of the middle two for an even count); `None` when empty.
-fn median(v: &mut [f64]) -> Option<f64> {
-    if v.is_empty() {
-        return None;
-    }
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    Some(if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        (v[n / 2 - 1] + v[n / 2]) / 2.0
-    })
 }
 
 /// Half the median interval between consecutive reference events (ldh events when the
@@ -203,7 +190,7 @@ fn separation(trains: &[(&[f64], &[f64])], tol: f64) -> f64 {
     if iv.is_empty() {
         iv = intervals(false);
     }
-    median(&mut iv).map_or(2.0 * tol, |m| (0.5 * m).max(2.0 * tol))
+    median(&mut iv, EvenMedian::Mean).map_or(2.0 * tol, |m| (0.5 * m).max(2.0 * tol))
 }
 
 /// Polish an offset `d` (e.g. [`estimate_clock_offset`]'s): match the trains at `d`, move `d` to
@@ -221,7 +208,7 @@ pub fn polish_offset(
     let mut d = d;
     for _ in 0..20 {
         let (mut raw, _) = matches_at(trains, d, tol);
-        match median(&mut raw) {
+        match median(&mut raw, EvenMedian::Mean) {
             Some(m) if m != d => d = m,
             _ => break,
         }

@@ -9,9 +9,10 @@ use serde_json::Value;
 
 use super::*;
 
-const AGREEMENT: &str = include_str!("../../../../data-fixtures/golden/agreement/agreement.json");
+const AGREEMENT: &str =
+    include_str!("../../../../../data-fixtures/golden/agreement/agreement.json");
 const RELIABILITY: &str =
-    include_str!("../../../../data-fixtures/golden/agreement/reliability.json");
+    include_str!("../../../../../data-fixtures/golden/agreement/reliability.json");
 
 const TOL: f64 = 1e-9;
 

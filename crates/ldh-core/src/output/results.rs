@@ -1,15 +1,15 @@
-//! What `ldh agree` compares with the reference: the events, strides and per-recording values
+//! ldh's own results read back (issue 48: through the one table reader, `io/table.rs`): what
+//! `ldh agree` compares with the reference, the events, strides and per-recording values
 //! of one `ldh analyze` run, read back from its output folder ([`LdhResults::read`]) or taken
 //! from results in memory ([`LdhResults::from_results`], unrounded).
 
 use std::path::Path;
 
 use crate::error::{LdhError, Location, Result};
+use crate::io::table::{Table, TableFormat};
 use crate::output::{Parameter, RecordingRow, StrideRow};
 use crate::pipeline::{EventKind, SubjectResult};
 use crate::Side;
-
-use super::ReferenceError;
 
 /// The parameters a stride has (columns of `strides.csv`), in this order.
 pub const STRIDE_PARAMETERS: [Parameter; 7] = [
@@ -68,7 +68,7 @@ pub struct LdhResults {
     /// Per-recording rows (one per subject, trial and side).
     pub recordings: Vec<RecordingRow>,
     /// The analysis parameters of the run (`params.json` of its folder), when known: what
-    /// `ldh agree --write-params` starts from ([`super::calibrate::calibrated_params`]).
+    /// `ldh agree --write-params` starts from ([`crate::agreement::calibrated_params`]).
     pub analysis_params: Option<crate::pipeline::AnalysisParams>,
 }
 
@@ -140,10 +140,13 @@ impl LdhResults {
         models.sort();
         models.dedup();
         if models.len() > 1 {
-            return Err(boxed(ReferenceError::SeveralModels {
-                loc: Location::file(dir.join("recordings.json")),
-                models: models.join(", "),
-            }));
+            return Err(LdhError::signal(
+                dir.join("recordings.json").display().to_string(),
+                format!(
+                    "the results hold several attitude models ({}); agree one model's results at a time",
+                    models.join(", ")
+                ),
+            ));
         }
         let strides = read_rows::<StrideRow>(&dir.join("strides.csv"), "strides.csv")?
             .into_iter()
@@ -212,9 +215,12 @@ impl LdhResults {
     }
 }
 
-/// A [`ReferenceError`] as an [`LdhError`].
-pub(crate) fn boxed(e: ReferenceError) -> LdhError {
-    LdhError::Reference(Box::new(e))
+/// A row of an output table that is not an ldh row (`reason` cut as a message echoes a value).
+fn not_a_row(loc: Location, table: &str, reason: &str) -> LdhError {
+    LdhError::signal(
+        loc.to_string(),
+        format!("not an ldh {table} row: {}", crate::error::clip(reason)),
+    )
 }
 
 /// The rows of an output table with their line numbers.
@@ -222,23 +228,16 @@ fn read_rows<T: serde::de::DeserializeOwned>(
     path: &Path,
     table: &'static str,
 ) -> Result<Vec<(u64, T)>> {
-    let text = crate::io::read_text_limited(path, crate::io::MAX_TABLE_MB, "an output table")?;
-    let mut rdr = csv::Reader::from_reader(text.as_bytes());
-    let headers = rdr.headers()?.clone();
-    let mut out = Vec::new();
-    for rec in rdr.records() {
-        let rec = rec?;
-        let line = rec.position().map_or(0, |p| p.line());
-        let row = rec.deserialize(Some(&headers)).map_err(|e| {
-            boxed(ReferenceError::ResultsRow {
-                loc: Location::line(path, line),
-                table,
-                reason: e.to_string(),
-            })
-        })?;
-        out.push((line, row));
-    }
-    Ok(out)
+    let t = Table::read(path, "an output table", &TableFormat::default())?;
+    t.rows()
+        .map(|row| {
+            let row = row.map_err(|f| f.into_error(""))?;
+            let r = row
+                .deserialize()
+                .map_err(|e| not_a_row(row.loc_line(), table, &e.to_string()))?;
+            Ok((row.line, r))
+        })
+        .collect()
 }
 
 fn known_side(
@@ -248,11 +247,11 @@ fn known_side(
     table: &'static str,
 ) -> Result<Side> {
     side.known().ok_or_else(|| {
-        boxed(ReferenceError::ResultsRow {
-            loc: Location::line(path, line),
+        not_a_row(
+            Location::line(path, line),
             table,
-            reason: format!("side '{side}' is not left or right"),
-        })
+            &format!("side '{side}' is not left or right"),
+        )
     })
 }
 
@@ -279,11 +278,11 @@ fn stride_from_row(r: StrideRow, path: &Path, line: u64) -> Result<LdhStride> {
 
 fn event_from_row(r: crate::output::EventRow, path: &Path, line: u64) -> Result<GaitEvent> {
     let event = r.event.parse::<EventKind>().map_err(|_| {
-        boxed(ReferenceError::ResultsRow {
-            loc: Location::line(path, line),
-            table: "events.csv",
-            reason: format!("event '{}' is not HS or TO", r.event),
-        })
+        not_a_row(
+            Location::line(path, line),
+            "events.csv",
+            &format!("event '{}' is not HS or TO", r.event),
+        )
     })?;
     Ok(GaitEvent {
         side: known_side(&r.side, path, line, "events.csv")?,

@@ -24,7 +24,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{AgreementError, ValidAgreementParams};
+use crate::stats::agreement::{AgreementError, ValidAgreementParams};
 
 /// The matching of one pair of event trains. Indices point into the inputs.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -147,7 +147,7 @@ pub(crate) fn for_each_match(
 
 /// Match two sorted event trains one-to-one within `params.tolerance_s` (see the module docs
 /// for the rule). Times in s, both on the same clock (remove an offset first:
-/// [`super::estimate_clock_offset`]).
+/// [`super::offset::estimate_clock_offset`]).
 ///
 /// Errors: a non-finite time; a train not sorted ascending.
 pub fn match_events(
