@@ -14,7 +14,7 @@ use ldh_core::attitude::AttitudeModel;
 use ldh_core::error::{LdhError, Result};
 use ldh_core::events::EventDetector;
 use ldh_core::io::{read_recording_bytes, FormatSpec, GapPolicy, ReadParams, ReadReport};
-use ldh_core::pipeline::{analyze_leg, AnalysisParams};
+use ldh_core::pipeline::{Analysis, AnalysisParams};
 use ldh_core::recording::{Recording, Side};
 use ldh_sim::CohortParams;
 
@@ -234,7 +234,7 @@ pub struct PipelineCase {
     pub params: AnalysisParams,
     /// The leg.
     pub side: Side,
-    /// The sensor height passed to [`analyze_leg`].
+    /// The sensor height passed to [`Analysis::leg`].
     pub sensor_height_m: Option<f64>,
 }
 
@@ -489,21 +489,22 @@ fn hand_built_recording(
 }
 
 /// Target `pipeline`: a recording decoded from arbitrary bytes ([`decode_pipeline`]) through
-/// [`analyze_leg`]. A hand-built recording that breaks the invariants must be refused.
+/// [`Analysis::leg`] (parameters the guard refuses are an error too). A hand-built recording
+/// that breaks the invariants must be refused.
 pub fn pipeline(data: &[u8]) {
     let Some(case) = decode_pipeline(data) else {
         return;
     };
     let valid = case.recording.validate().is_ok();
-    match analyze_leg(
-        &case.recording,
-        case.side,
-        &case.params,
-        case.sensor_height_m,
-    ) {
-        Ok((leg, hs)) => {
-            assert!(valid, "analyze_leg accepted an invalid recording");
-            assert_eq!(hs, leg.events.hs_s, "returned heel strikes differ");
+    let analysed = case
+        .params
+        .check()
+        .and_then(|v| Analysis::new(v).leg(&case.recording, case.side, case.sensor_height_m));
+    match analysed {
+        Ok(a) => {
+            let (leg, hs) = (a.leg, a.lent.hs_s);
+            assert!(valid, "Analysis::leg accepted an invalid recording");
+            assert_eq!(hs, leg.events.hs_s, "lent heel strikes differ");
             let _ = serde_json::to_string(&leg).expect("a leg result serialises");
         }
         Err(e) => check_error(&e),

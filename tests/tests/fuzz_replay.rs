@@ -108,14 +108,16 @@ fn pipeline_seeds_reach_strides() {
             continue;
         }
         let case = fuzz_targets::decode_pipeline(&bytes).expect("a valid recording");
-        let r = ldh_core::pipeline::analyze_leg(
+        let r = ldh_core::pipeline::Analysis::new(case.params.check().unwrap()).leg(
             &case.recording,
             case.side,
-            &case.params,
             case.sensor_height_m,
         );
         match r {
-            Ok((leg, _)) => assert!(!leg.strides.is_empty(), "{name}: no strides"),
+            Ok(a) => {
+                let leg = a.leg;
+                assert!(!leg.strides.is_empty(), "{name}: no strides");
+            }
             Err(e) => panic!("{name}: {e}"),
         }
     }
@@ -134,14 +136,18 @@ fn regression_butterworth_huge_rate() {
             "{name}: {}",
             case.recording.fs_hz
         );
-        let e = ldh_core::pipeline::analyze_leg(
-            &case.recording,
-            case.side,
-            &case.params,
-            case.sensor_height_m,
-        )
-        .unwrap_err()
-        .to_string();
+        let e = case
+            .params
+            .check()
+            .and_then(|v| {
+                ldh_core::pipeline::Analysis::new(v).leg(
+                    &case.recording,
+                    case.side,
+                    case.sensor_height_m,
+                )
+            })
+            .unwrap_err()
+            .to_string();
         assert!(
             e.contains("cutoff_hz") && e.contains("Nyquist"),
             "{name}: {e}"

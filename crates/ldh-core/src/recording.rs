@@ -206,7 +206,7 @@ impl Recording {
     /// been set directly: `fs_hz` finite and > 0, `t0_s` finite, six channels of one length ≥ 2,
     /// every value finite, and a saturation mask of the same length.
     ///
-    /// The pipeline ([`crate::pipeline::analyze_leg`]) calls this first, so a hand-built
+    /// The pipeline ([`crate::pipeline::Analysis::leg`]) calls this first, so a hand-built
     /// recording that breaks them is refused with an error rather than reaching the algorithms.
     pub fn validate(&self) -> Result<()> {
         let fs_hz = self.fs_hz;
@@ -415,7 +415,7 @@ mod tests {
         }
     }
     use super::*;
-    use crate::pipeline::{analyze_leg, AnalysisParams};
+    use crate::pipeline::{Analysis, AnalysisParams};
 
     fn ok() -> Recording {
         let n = 500;
@@ -446,9 +446,8 @@ mod tests {
         for (r, msg) in bad {
             let e = r.validate().unwrap_err().to_string();
             assert!(e.contains(msg), "{e}");
-            let e = analyze_leg(&r, Side::Left, &AnalysisParams::default(), None)
-                .unwrap_err()
-                .to_string();
+            let analysis = Analysis::new(AnalysisParams::default().check().unwrap());
+            let e = analysis.leg(&r, Side::Left, None).unwrap_err().to_string();
             assert!(e.contains(msg), "{e}");
         }
         assert!(ok().validate().is_ok());

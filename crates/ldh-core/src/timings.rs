@@ -1,5 +1,5 @@
 //! Wall time per pipeline stage (issue 17): read, preprocess, align, attitude, events, strides,
-//! STA and write, accumulated per leg by the pipeline ([`crate::pipeline::analyze_leg_timed`]),
+//! STA and write, accumulated per leg by the pipeline ([`crate::pipeline::Analysis`]),
 //! per subject ([`crate::pipeline::SubjectResult::timings`]) and summed over a run
 //! ([`crate::pipeline::FolderSummary::timings`]), for `ldh analyze --timings` and the
 //! `timings` of the Python result (docs/benchmarks.md).

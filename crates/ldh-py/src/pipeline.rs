@@ -155,7 +155,12 @@ pub(crate) fn analyze<'py>(
                 right_sensor_height_m: heights.right_m,
             };
             let subjects = core::discover_with(&inputs, &opts)?;
-            core::analyze_many_on(&subjects, &p, f.as_ref(), &read, jobs)
+            core::Analysis::new(p.check()?)
+                .read(read)
+                .format(f)
+                .jobs(jobs)
+                .many(&subjects)
+                .results()
         })
         .or_raise(py)?;
     let d = tables(py, &results, start.elapsed().as_secs_f64())?;
@@ -202,11 +207,10 @@ pub(crate) fn analyze_pair<'py>(
                 let [a, b, cc, d, e, f] = c;
                 core::leg_from_arrays(fs, [a, b, cc], [d, e, f], side)
             };
-            Ok(core::analyze_pair(
+            Ok(core::Analysis::new(p.check()?).pair(
                 &subject,
                 leg(l, left_fs_hz, Side::Left),
                 leg(r, right_fs_hz, Side::Right),
-                &p,
             ))
         })
         .or_raise(py)?;
@@ -243,7 +247,8 @@ pub(crate) fn analyze_recording<'py>(
                 _ => o.params()?,
             };
             let rec = Recording::new(fs_hz, acc, gyro, vec![])?.with_side(side);
-            core::analyze_leg_alone(&rec, side, &p, None)
+            let one_leg = core::Analysis::new(p.check()?).one_leg();
+            Ok(one_leg.leg(&rec, side, None)?.leg)
         })
         .or_raise(py)?;
     let d = PyDict::new(py);
@@ -269,7 +274,7 @@ pub(crate) fn analyze_recording<'py>(
         "warnings",
         to_py(py, &value_of(&leg.warnings).or_raise(py)?, Opts::default())?,
     )?;
-    let att = leg.attitude.expect("analyze_leg keeps the attitude");
+    let att = leg.attitude.expect("Analysis::leg keeps the attitude");
     let a = PyDict::new(py);
     a.set_item("pitch_deg", vec1(py, att.pitch_deg))?;
     a.set_item("roll_deg", vec1(py, att.roll_deg))?;

@@ -39,6 +39,7 @@ pub(crate) mod html;
 mod measured;
 pub mod plots;
 pub mod reference;
+mod results;
 mod subject;
 mod summary;
 /// The signal traces `ldh analyze --report` keeps (written by the analysis, read by the pages).
@@ -57,6 +58,7 @@ use ldh_core::ml::{CvReport, Prediction};
 pub use ldh_core::output::read_recordings;
 use ldh_core::output::{RecordingRow, StrideRow};
 pub use reference::{Reference, ReferenceRange, ReferenceSource};
+pub use results::RunResults;
 pub use subject::subject_html;
 pub use trace::{LegTrace, SubjectTraces, TraceParams, ValidTraceParams};
 

@@ -15,7 +15,7 @@ use ldh_core::align::{align, AlignParams};
 use ldh_core::attitude::{estimate, AttitudeParams};
 use ldh_core::io::{read_recording_bytes, ReadParams};
 use ldh_core::nonlinear::{gait_sta, GaitStaParams};
-use ldh_core::pipeline::{analyze_leg, AnalysisParams};
+use ldh_core::pipeline::{Analysis, AnalysisParams};
 use ldh_core::preprocess::{preprocess, PreprocessParams};
 use ldh_core::Side;
 use std::hint::black_box;
@@ -123,10 +123,11 @@ fn main() {
         ("leg_with_sta", &with_sta, None),
         ("leg_with_sta_height_given", &with_sta, Some(0.1)),
     ] {
+        let analysis = Analysis::new(params.check().unwrap());
         measure(name, &only, rounds, calls, || {
             let (r, _) =
                 read_recording_bytes(black_box(&bytes), Path::new("left.csv"), None, &rp).unwrap();
-            black_box(analyze_leg(&r, Side::Left, params, height).unwrap());
+            black_box(analysis.leg(&r, Side::Left, height).unwrap());
         });
     }
 }

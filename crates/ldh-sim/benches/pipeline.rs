@@ -15,7 +15,7 @@ use ldh_core::events::{detect, EventParams};
 use ldh_core::gait::{side_parameters, strides, StrideParams};
 use ldh_core::io::{read_recording_bytes, ReadParams};
 use ldh_core::nonlinear::{gait_sta, GaitStaParams};
-use ldh_core::pipeline::{analyze_leg, AnalysisParams};
+use ldh_core::pipeline::{Analysis, AnalysisParams};
 use ldh_core::preprocess::{preprocess, PreprocessParams};
 use ldh_core::Side;
 use std::hint::black_box;
@@ -94,17 +94,21 @@ fn bench(c: &mut Criterion) {
     g.finish();
 
     let mut g = c.benchmark_group("end_to_end");
-    let no_sta = AnalysisParams {
-        compute_sta: false,
-        ..AnalysisParams::default()
-    };
-    let with_sta = AnalysisParams::default();
+    let no_sta = Analysis::new(
+        AnalysisParams {
+            compute_sta: false,
+            ..AnalysisParams::default()
+        }
+        .check()
+        .unwrap(),
+    );
+    let with_sta = Analysis::new(AnalysisParams::default().check().unwrap());
     g.bench_function("recording_without_sta", |b| {
         b.iter(|| {
             let (r, _) =
                 read_recording_bytes(black_box(text.as_bytes()), Path::new("x.csv"), None, &rp)
                     .unwrap();
-            analyze_leg(&r, Side::Left, &no_sta, None).unwrap()
+            no_sta.leg(&r, Side::Left, None).unwrap()
         })
     });
     g.bench_function("recording_with_sta", |b| {
@@ -112,7 +116,7 @@ fn bench(c: &mut Criterion) {
             let (r, _) =
                 read_recording_bytes(black_box(text.as_bytes()), Path::new("x.csv"), None, &rp)
                     .unwrap();
-            analyze_leg(&r, Side::Left, &with_sta, None).unwrap()
+            with_sta.leg(&r, Side::Left, None).unwrap()
         })
     });
     g.finish();
@@ -147,12 +151,13 @@ fn bench_leg_30s(c: &mut Criterion) {
     };
     let with_sta = AnalysisParams::default();
     for (name, params) in [("leg_without_sta", &no_sta), ("leg_with_sta", &with_sta)] {
+        let analysis = Analysis::new(params.check().unwrap());
         g.bench_function(name, |b| {
             b.iter(|| {
                 let (r, _) =
                     read_recording_bytes(black_box(&bytes), Path::new("left.csv"), None, &rp)
                         .unwrap();
-                analyze_leg(&r, Side::Left, params, None).unwrap()
+                analysis.leg(&r, Side::Left, None).unwrap()
             })
         });
     }

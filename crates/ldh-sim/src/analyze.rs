@@ -3,10 +3,13 @@
 
 use super::{SimLeg, SimSubject};
 use ldh_core::pipeline::{
-    analyze_pair, memory_report, AnalysisParams, LoadedLeg, SubjectInput, SubjectResult,
+    memory_report, Analysis, AnalysisParams, LoadedLeg, SubjectInput, SubjectResult,
 };
 
 /// Analyse a simulated subject in memory (for evaluation and tests).
+///
+/// # Panics
+/// When `params` fail their check (a test's parameters are valid).
 pub fn analyze_simulated(s: &SimSubject, params: &AnalysisParams) -> SubjectResult {
     let input = SubjectInput {
         setting: s.family_b.as_ref().map(|p| p.setting),
@@ -25,7 +28,8 @@ pub fn analyze_simulated(s: &SimSubject, params: &AnalysisParams) -> SubjectResu
             format!("{}/{}", s.params.subject_id, l.truth.side),
         ))
     };
-    analyze_pair(&input, leg(&s.left), leg(&s.right), params)
+    let analysis = Analysis::new(params.check().expect("valid analysis parameters"));
+    analysis.pair(&input, leg(&s.left), leg(&s.right))
 }
 
 /// Write the cohort `c` into `dir` as `ldh simulate` does, analyse the files as `ldh analyze`
@@ -45,6 +49,7 @@ pub fn analyze_cohort(
         .map(|s| crate::read_truth(dir.join(&s.subject_id).join("truth.json")))
         .collect::<ldh_core::Result<Vec<_>>>()?;
     let read = ReadParams::default().check()?;
-    let results = ldh_core::pipeline::analyze_many(&subjects, params, None, &read);
+    let analysis = Analysis::new(params.check()?).read(read);
+    let results = analysis.many(&subjects).results()?;
     Ok((results, truths))
 }

@@ -1,5 +1,6 @@
-//! `ldh analyze`: analyse inputs into an output folder ([`ldh_core::pipeline::analyze_to_folder`])
-//! and, with `--report`, write the reports ([`ldh_report::build`]).
+//! `ldh analyze`: analyse inputs into an output folder ([`ldh_core::pipeline::Many::to_folder`])
+//! and, with `--report`, write the reports from the run's results in memory
+//! ([`ldh_report::RunResults::of_run`], [`ldh_report::build`]).
 
 use std::process::ExitCode;
 
@@ -7,9 +8,9 @@ use anyhow::Result;
 use ldh_core::io::ReadParams;
 use ldh_core::output::{OutputRun, RecordingRow, RunKind};
 use ldh_core::pipeline::{
-    analyze_to_folder, discover_with, FolderOptions, FolderSummary, InputOptions, SensorHeights,
+    discover_with, Analysis, FolderOptions, FolderSummary, InputOptions, SensorHeights,
 };
-use ldh_report::{BuildSources, ReportParams};
+use ldh_report::{BuildSources, ReportParams, RunResults};
 
 use super::{analysis_params, progress, resolve_format, thread_pool};
 use crate::args::AnalyzeArgs;
@@ -84,28 +85,26 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
             .map(|b| b as usize)
             .unwrap_or((pool.current_num_threads() * 32).max(32)),
         traces: a.report.then(|| report_params.trace()),
+        keep: a.report,
     };
     // One run per folder: an earlier run's outputs are removed (its marker first), other files
     // or a link inside --out refuse the run; the marker is written last (docs/robustness.md).
     let run = OutputRun::begin(&a.out, RunKind::Analyze)?;
-    let sum = pool.install(|| {
-        analyze_to_folder(
-            &subjects,
-            &params,
-            format.as_ref(),
-            &read,
-            &run,
-            opts,
-            &|| pb.inc(1),
-        )
-    })?;
+    let done = || pb.inc(1);
+    let analysis = Analysis::new(params.check()?)
+        .read(read)
+        .format(format)
+        .progress(&done);
+    let mut sum = pool.install(|| analysis.many(&subjects).to_folder(&run, opts))?;
     pb.finish_and_clear();
     run.write(
         "params.json",
         serde_json::to_string_pretty(&params)?.as_bytes(),
     )?;
-    run.finish()?;
-    if a.report {
+    let marker = run.finish()?;
+    if let Some(kept) = sum.kept.take() {
+        // The reports from this run's own results, in memory (nothing read back).
+        let results = RunResults::of_run(&a.out, kept, &marker, &params);
         let dir = a.out.join("reports");
         let src = BuildSources {
             model: classifier.as_ref(),
@@ -114,7 +113,7 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
         };
         let pb = progress(0, "report");
         let built = pool.install(|| {
-            ldh_report::build(&a.out, &dir, src, &report_params, &|n| {
+            ldh_report::build(&results, &dir, src, &report_params, &|n| {
                 pb.set_length(n as u64);
                 pb.inc(1)
             })

@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use anyhow::Result;
 use ldh_core::attitude::AttitudeModel;
 use ldh_core::io::ReadParams;
-use ldh_core::pipeline::{analyze_many, discover};
+use ldh_core::pipeline::{discover, Analysis};
 
 use super::{analysis_params, thread_pool};
 use crate::args::EvaluateArgs;
@@ -28,7 +28,8 @@ pub fn run(a: EvaluateArgs) -> Result<ExitCode> {
     let mut scores = Vec::new();
     for model in [AttitudeModel::Fusion, AttitudeModel::Acc] {
         let params = analysis_params(None, Some(model), Some(a.detector), None, true)?;
-        let results = pool.install(|| analyze_many(&subjects, &params, None, &read));
+        let analysis = Analysis::new(params.check()?).read(read.clone());
+        let results = pool.install(|| analysis.many(&subjects).results())?;
         accs.push(ldh_sim::evaluate::evaluate(&results, &truths));
         if a.strides_csv.is_some() {
             scores.extend(ldh_sim::evaluate::stride_scores(&results, &truths));

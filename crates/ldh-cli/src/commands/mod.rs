@@ -11,7 +11,7 @@ use ldh_core::attitude::AttitudeModel;
 use ldh_core::events::EventDetector;
 use ldh_core::io::{FormatSpec, ReadParams};
 use ldh_core::output::RecordingRow;
-use ldh_core::pipeline::{discover, recording_rows_many_with, AnalysisParams};
+use ldh_core::pipeline::{discover, Analysis, AnalysisParams};
 
 use crate::args::Verbosity;
 
@@ -150,9 +150,11 @@ pub fn rows_for(
         subjects.len() as u64,
         &format!("analyze ({})", model.as_str()),
     );
-    let rows = pool.install(|| recording_rows_many_with(&subjects, &params, &read, &|| pb.inc(1)));
+    let done = || pb.inc(1);
+    let analysis = Analysis::new(params.check()?).read(read).progress(&done);
+    let results = pool.install(|| analysis.many(&subjects).results())?;
     pb.finish_and_clear();
-    Ok(rows)
+    Ok(ldh_core::output::recording_rows(&results))
 }
 
 /// Per-recording rows from `--results` (an `ldh analyze` folder) or else from the inputs.

@@ -1,9 +1,10 @@
-//! `ldh report`: HTML reports of an `ldh analyze` output folder ([`ldh_report::build`]).
+//! `ldh report`: HTML reports of an `ldh analyze` output folder, read once
+//! ([`ldh_report::RunResults::read`], [`ldh_report::build`]).
 
 use std::process::ExitCode;
 
 use anyhow::Result;
-use ldh_report::{BuildSources, ReportParams};
+use ldh_report::{BuildSources, ReportParams, RunResults};
 
 use super::{progress, read_toml, thread_pool};
 use crate::args::ReportArgs;
@@ -24,6 +25,8 @@ pub fn run(a: ReportArgs) -> Result<ExitCode> {
     super::check_out_dir(&out)?;
     let pool = thread_pool(a.jobs)?;
     ldh_core::io::remove_stale_temp_files(&out)?;
+    // The run's tables, traces and calibration, read once.
+    let results = RunResults::read(&a.results)?;
     let src = BuildSources {
         model: model.as_ref(),
         stats: a.stats.as_deref(),
@@ -32,7 +35,7 @@ pub fn run(a: ReportArgs) -> Result<ExitCode> {
     };
     let pb = progress(0, "report");
     let built = pool.install(|| {
-        ldh_report::build(&a.results, &out, src, &params, &|n| {
+        ldh_report::build(&results, &out, src, &params, &|n| {
             pb.set_length(n as u64);
             pb.inc(1)
         })

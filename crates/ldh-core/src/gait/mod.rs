@@ -4,7 +4,7 @@
 //! between them. A stride is kept in the table but flagged invalid, with the reason, when its
 //! toe off is missing, its time is outside [`StrideParams::min_stride_s`, `max_stride_s`], it is
 //! part of a turn (heading change over the stride above `turn_deg`; with both legs, the other
-//! leg must turn too — [`crate::pipeline::analyze_pair`] — and on a treadmill nothing is a
+//! leg must turn too — [`crate::pipeline::Analysis::pair`] — and on a treadmill nothing is a
 //! turn), or it is the first or last
 //! stride of a walking bout (bouts are separated by pauses longer than a stride and by turns).
 //!

@@ -115,6 +115,13 @@ impl Default for ReadParams {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ValidReadParams(ReadParams);
 
+impl Default for ValidReadParams {
+    /// [`ReadParams::default`], which passes its check (a test says so).
+    fn default() -> Self {
+        ValidReadParams(ReadParams::default())
+    }
+}
+
 impl ReadParams {
     /// Set `max_gap_s`.
     pub fn max_gap_s(mut self, v: f64) -> Self {

@@ -243,7 +243,7 @@ const CHUNK: usize = 1024;
 
 /// Fewer rows than this are searched on the calling thread: a 30 s leg's ≈ 3 000 queries take
 /// about a millisecond, and handing them to the rayon pool costs a thread hand-over per call
-/// and the worker's idle spinning; `analyze_many` already runs legs in parallel.
+/// and the worker's idle spinning; `Analysis::many` already runs legs in parallel.
 const PAR_ROWS: usize = 1 << 14;
 
 /// A built neighbour search over rows of [`NeighbourIndex::dims`] coordinates (a

@@ -213,11 +213,8 @@ mod tests {
             compute_sta: false,
             ..Default::default()
         };
-        let read = crate::io::ReadParams::default().check().unwrap();
-        let results: Vec<_> = inputs[..1]
-            .iter()
-            .map(|i| crate::pipeline::analyze_subject(i, &params, None, &read))
-            .collect();
+        let analysis = crate::pipeline::Analysis::new(params.check().unwrap());
+        let results: Vec<_> = inputs[..1].iter().map(|i| analysis.subject(i)).collect();
         for (t, written) in [
             (
                 Table::Recordings,

@@ -1,29 +1,12 @@
-//! Batches for the library front ends (the Python binding, notebooks): subjects analysed on a
-//! thread pool of a chosen size, a subject's two legs given as arrays instead of files. The CLI and the binding only adapt arguments around these.
+//! For the library front ends (the Python binding, notebooks): a subject's two legs given as
+//! arrays instead of files, a subject without a manifest row. The CLI and the binding only
+//! adapt arguments around these and [`Analysis`].
 
 use super::*;
-use crate::error::LdhError;
-use crate::io::{FormatSpec, ValidReadParams};
 use crate::recording::{Recording, Side};
 
-/// Analyse `subjects` on `n_jobs` threads (0 = one per core); the results are in input order
-/// and identical whatever `n_jobs` is. One failed recording never stops the others.
-pub fn analyze_many_on(
-    subjects: &[SubjectInput],
-    params: &AnalysisParams,
-    format: Option<&FormatSpec>,
-    read: &ValidReadParams,
-    n_jobs: usize,
-) -> Result<Vec<SubjectResult>> {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(n_jobs)
-        .build()
-        .map_err(|e| LdhError::param("n_jobs", n_jobs, e.to_string()))?;
-    Ok(pool.install(|| analyze_many(subjects, params, format, read)))
-}
-
 /// One leg given as arrays (acceleration in g, angular velocity in deg/s, sampled at `fs_hz`),
-/// as a [`LoadedLeg`] for [`analyze_pair`]: an invalid recording becomes that leg's error.
+/// as a [`LoadedLeg`] for [`Analysis::pair`]: an invalid recording becomes that leg's error.
 pub fn leg_from_arrays(
     fs_hz: f64,
     acc_g: [Vec<f64>; 3],
@@ -55,10 +38,17 @@ mod tests {
         let p = AnalysisParams {
             compute_sta: false,
             ..Default::default()
+        }
+        .check()
+        .unwrap();
+        let on = |n| {
+            Analysis::new(p.clone())
+                .jobs(n)
+                .many(&subjects[..2])
+                .results()
+                .unwrap()
         };
-        let read = crate::io::ReadParams::default().check().unwrap();
-        let one = analyze_many_on(&subjects[..2], &p, None, &read, 1).unwrap();
-        let two = analyze_many_on(&subjects[..2], &p, None, &read, 2).unwrap();
+        let (one, two) = (on(1), on(2));
         // NaN (STA not computed) is not equal to itself: compare the serialised results.
         let json = |r: &[SubjectResult]| serde_json::to_string(r).unwrap();
         assert_eq!(json(&one), json(&two));

@@ -61,79 +61,6 @@ pub struct LegResult {
     pub steady: Option<crate::gait::SteadySpan>,
 }
 
-/// Analyse one recording up to its strides (no bilateral parameters yet). With no other leg the
-/// default detector places every toe off at k₀ of its bracket (`events::place_bilateral` needs
-/// both legs), so a leg analysed alone may differ from the same leg in
-/// [`crate::pipeline::analyze_pair`].
-pub fn analyze_leg(
-    rec: &Recording,
-    side: Side,
-    params: &AnalysisParams,
-    sensor_height_m: Option<f64>,
-) -> Result<(LegResult, Vec<f64>)> {
-    analyze_leg_timed(
-        rec,
-        side,
-        params,
-        sensor_height_m,
-        &mut StageTimings::default(),
-    )
-}
-
-/// One leg with no other leg to pair it with (Python's `analyze_recording`): [`analyze_leg`],
-/// then what only the other leg could vouch for is withheld with the reason — stride length
-/// variability (`sv_unchecked`, [`quality::check_length_variability`]).
-pub fn analyze_leg_alone(
-    rec: &Recording,
-    side: Side,
-    params: &AnalysisParams,
-    sensor_height_m: Option<f64>,
-) -> Result<LegResult> {
-    let (mut leg, _) = analyze_leg(rec, side, params, sensor_height_m)?;
-    quality::withhold_unchecked(&mut leg, "no other leg was given");
-    Ok(leg)
-}
-
-/// [`analyze_leg`], adding the wall time of each stage to `t` and 1 to `t.recordings`
-/// (timing never changes the result). Checks `params` first (the recording, then the
-/// preprocessing at its rate, then the other stages); a run over many legs checks once and
-/// calls [`analyze_leg_checked`].
-pub fn analyze_leg_timed(
-    rec: &Recording,
-    side: Side,
-    params: &AnalysisParams,
-    sensor_height_m: Option<f64>,
-    t: &mut StageTimings,
-) -> Result<(LegResult, Vec<f64>)> {
-    let checked = rec
-        .validate()
-        .and_then(|_| params.preprocess.check(rec.fs_hz))
-        .and_then(|_| params.check());
-    match checked {
-        Ok(v) => analyze_leg_checked(rec, side, &v, sensor_height_m, t),
-        Err(e) => {
-            t.recordings += 1;
-            Err(e)
-        }
-    }
-}
-
-/// [`analyze_leg_timed`] with parameters checked once per run ([`AnalysisParams::check`]);
-/// only what belongs to the recording (its rate, for preprocessing) and to the subject (its
-/// sensor height) is checked here. [`leg_front`] then [`leg_back`], with no other leg.
-pub fn analyze_leg_checked(
-    rec: &Recording,
-    side: Side,
-    v: &ValidAnalysisParams,
-    sensor_height_m: Option<f64>,
-    t: &mut StageTimings,
-) -> Result<(LegResult, Vec<f64>)> {
-    let mut front = leg_front(rec, v, t)?;
-    // This leg's events by itself (a subject places both legs' together).
-    crate::events::place_bilateral(Some(&mut front.events), None, v.events());
-    leg_back(rec, side, v, sensor_height_m, front, t)
-}
-
 /// One leg up to its events: what [`leg_back`] continues from. A subject places each leg's
 /// events with the other leg's in between (`pipeline::subject`).
 #[derive(Debug, Clone)]
@@ -192,8 +119,8 @@ pub fn leg_front(
     })
 }
 
-/// From a leg's events to its strides, checks, parameters and STA (its result and its heel
-/// strikes for the other leg).
+/// From a leg's events to its strides, checks, parameters and STA: its result and the heel
+/// strikes it lends to the other leg.
 pub fn leg_back(
     rec: &Recording,
     side: Side,
@@ -201,7 +128,7 @@ pub fn leg_back(
     sensor_height_m: Option<f64>,
     front: LegFront,
     t: &mut StageTimings,
-) -> Result<(LegResult, Vec<f64>)> {
+) -> Result<AnalysedLeg> {
     let params = v.params();
     let mut clock = Instant::now();
     let fs = rec.fs_hz;
@@ -277,8 +204,8 @@ pub fn leg_back(
         ));
     }
     t.lap(Stage::Strides, &mut clock);
-    Ok((
-        LegResult {
+    Ok(AnalysedLeg {
+        leg: LegResult {
             side,
             source: rec.label(),
             t0_s: rec.t0_s,
@@ -293,8 +220,8 @@ pub fn leg_back(
             warnings,
             steady,
         },
-        hs,
-    ))
+        lent: LentHeelStrikes { hs_s: hs },
+    })
 }
 
 /// STA over the longest run of consecutive valid strides (its first `max_strides` when that is

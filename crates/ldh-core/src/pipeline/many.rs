@@ -1,70 +1,19 @@
 //! Many subjects at once: the read-inputs-and-analyse loop of `ldh analyze`, `stats`, `train`,
 //! `predict` and `evaluate`, in parallel on the current rayon pool.
 //!
-//! [`analyze_to_folder`] streams: subjects are analysed a chunk at a time and their rows appended
+//! [`Many::to_folder`] streams: subjects are analysed a chunk at a time and their rows appended
 //! to the output tables, so memory stays flat however many subjects there are; chunks keep the
 //! input order, so the files are the same whatever the thread count.
 
 use rayon::prelude::*;
 
-use super::{
-    analyze_subject, analyze_subject_checked, AnalysisParams, SubjectInput, SubjectResult,
-};
+use super::{Many, SubjectInput, SubjectResult};
 use crate::error::Result;
-use crate::io::{FormatSpec, ValidReadParams};
 use crate::output::trace::{SubjectTraces, ValidTraceParams};
-use crate::output::{self, OutputRun, RecordingRow, RenderedRows, TableSink};
+use crate::output::{self, OutputRun, RecordingRow, RenderedRows, StrideRow, TableSink};
 use crate::timings::{Stage, StageTimings};
 
-/// Analyse every subject (in parallel, results in input order).
-pub fn analyze_many(
-    subjects: &[SubjectInput],
-    params: &AnalysisParams,
-    format: Option<&FormatSpec>,
-    read: &ValidReadParams,
-) -> Vec<SubjectResult> {
-    let checked = params.check().ok();
-    subjects
-        .par_iter()
-        .map(|s| match &checked {
-            Some(v) => analyze_subject_checked(s, v, format, read),
-            None => analyze_subject(s, params, format, read),
-        })
-        .collect()
-}
-
-/// The per-recording rows of every subject (see [`analyze_many`]).
-pub fn recording_rows_many(
-    subjects: &[SubjectInput],
-    params: &AnalysisParams,
-    read: &ValidReadParams,
-) -> Vec<RecordingRow> {
-    recording_rows_many_with(subjects, params, read, &|| {})
-}
-
-/// [`recording_rows_many`], calling `done()` after each subject (progress).
-pub fn recording_rows_many_with(
-    subjects: &[SubjectInput],
-    params: &AnalysisParams,
-    read: &ValidReadParams,
-    done: &(dyn Fn() + Sync),
-) -> Vec<RecordingRow> {
-    let checked = params.check().ok();
-    let results: Vec<SubjectResult> = subjects
-        .par_iter()
-        .map(|s| {
-            let r = match &checked {
-                Some(v) => analyze_subject_checked(s, v, None, read),
-                None => analyze_subject(s, params, None, read),
-            };
-            done();
-            r
-        })
-        .collect();
-    output::recording_rows(&results)
-}
-
-/// Options of [`analyze_to_folder`].
+/// Options of [`Many::to_folder`].
 #[derive(Debug, Clone, Copy)]
 pub struct FolderOptions<'a> {
     /// Subjects analysed between two writes of the output (memory grows with it, the output does
@@ -72,9 +21,25 @@ pub struct FolderOptions<'a> {
     pub chunk: usize,
     /// Also write each subject's signal traces to `<out>/traces/<subject>.json` (for reports).
     pub traces: Option<&'a ValidTraceParams>,
+    /// Also keep the per-recording and per-stride rows and the traces in memory
+    /// ([`FolderSummary::kept`]), for reports of this run without reading its tables back.
+    /// The tables grow with the run; the signals are not kept.
+    pub keep: bool,
 }
 
-/// What [`analyze_to_folder`] wrote.
+/// The rows and traces of a run kept in memory ([`FolderOptions::keep`]): what its reports are
+/// built from.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct KeptRun {
+    /// Per-recording rows, in output order.
+    pub recordings: Vec<RecordingRow>,
+    /// Per-stride rows, in output order.
+    pub strides: Vec<StrideRow>,
+    /// Each subject's traces (when [`FolderOptions::traces`]), in output order.
+    pub traces: Vec<SubjectTraces>,
+}
+
+/// What [`Many::to_folder`] wrote.
 #[derive(Debug, Clone, Default)]
 pub struct FolderSummary {
     /// Recordings (rows of `recordings.csv`).
@@ -90,6 +55,8 @@ pub struct FolderSummary {
     /// Wall time per stage summed over the subjects (and threads); `write` is building and
     /// writing the tables (and traces).
     pub timings: StageTimings,
+    /// The rows and traces, with [`FolderOptions::keep`].
+    pub kept: Option<KeptRun>,
 }
 
 /// Refuse, before any work, subjects whose outputs would share a file: one report per subject
@@ -102,50 +69,50 @@ pub fn check_output_names(subjects: &[SubjectInput]) -> Result<()> {
     )
 }
 
-/// Analyse `subjects` and write `strides.csv/.json`, `events.csv` and `recordings.csv/.json`
-/// into the folder of `run` (and traces, see [`FolderOptions`]); `done` is called once per
-/// subject (progress). A recording that fails is a row with its error; only a write failure
-/// stops the run. The caller begins the run ([`OutputRun::begin`], which clears an earlier
-/// run's outputs) after [`check_output_names`], and finishes it (the marker) after its own files.
-pub fn analyze_to_folder(
-    subjects: &[SubjectInput],
-    params: &AnalysisParams,
-    format: Option<&FormatSpec>,
-    read: &ValidReadParams,
+/// [`Many::to_folder`] (on the analysis' pool).
+pub(super) fn to_folder(
+    many: Many<'_, '_>,
     run: &OutputRun,
     opts: FolderOptions<'_>,
-    done: &(dyn Fn() + Sync),
 ) -> Result<FolderSummary> {
+    let (analysis, subjects) = (many.analysis, many.subjects);
     check_output_names(subjects)?;
     let mut strides = TableSink::create(run, "strides", &output::STRIDE_COLUMNS, true)?;
     let mut events = TableSink::create(run, "events", &output::EVENT_COLUMNS, false)?;
     let mut recordings = TableSink::create(run, "recordings", &[], true)?;
-    let mut sum = FolderSummary::default();
-    let checked = params.check().ok();
+    let mut sum = FolderSummary {
+        kept: opts.keep.then(KeptRun::default),
+        ..FolderSummary::default()
+    };
     let json = [strides.has_json(), events.has_json(), recordings.has_json()];
     for part in subjects.chunks(opts.chunk.max(1)) {
         // Each subject's rows are rendered to bytes on the thread that analysed it; the loop
         // below only copies them in input order.
-        let tables: Vec<Result<(Rendered, StageTimings)>> = part
+        type Done = (Rendered, StageTimings, Option<SubjectTraces>);
+        let tables: Vec<Result<Done>> = part
             .par_iter()
             .map(|s| {
-                let r = match &checked {
-                    Some(v) => analyze_subject_checked(s, v, format, read),
-                    None => analyze_subject(s, params, format, read),
-                };
+                let r = analysis.subject(s);
                 let mut spent = r.timings;
-                let rendered = spent.time(Stage::Write, || -> Result<Rendered> {
-                    if let Some(tp) = opts.traces {
-                        write_traces(run, &r, tp)?;
-                    }
-                    Rendered::of(output::Tables::of(std::slice::from_ref(&r)), json)
+                let (rendered, trace) = spent.time(Stage::Write, || -> Result<_> {
+                    let trace = match opts.traces {
+                        Some(tp) => Some(write_traces(run, &r, tp)?),
+                        None => None,
+                    };
+                    let t = output::Tables::of(std::slice::from_ref(&r));
+                    Ok((Rendered::of(t, json, opts.keep)?, trace))
                 })?;
-                done();
-                Ok((rendered, spent))
+                analysis.done();
+                Ok((rendered, spent, trace.filter(|_| opts.keep)))
             })
             .collect();
         for t in tables {
-            let (t, spent) = t?;
+            let (mut t, spent, trace) = t?;
+            if let Some(k) = sum.kept.as_mut() {
+                k.recordings.extend(t.rows.iter().cloned());
+                k.strides.append(&mut t.kept_strides);
+                k.traces.extend(trace);
+            }
             sum.timings.add(&spent);
             let clock = std::time::Instant::now();
             sum.valid_strides += t.valid_strides;
@@ -169,7 +136,7 @@ pub fn analyze_to_folder(
     Ok(sum)
 }
 
-/// One subject's three tables rendered for the sinks of [`analyze_to_folder`], with what the
+/// One subject's three tables rendered for the sinks of [`Many::to_folder`], with what the
 /// summary needs.
 struct Rendered {
     strides: RenderedRows,
@@ -177,17 +144,21 @@ struct Rendered {
     recordings: RenderedRows,
     valid_strides: usize,
     rows: Vec<RecordingRow>,
+    /// The stride rows, when the run keeps them.
+    kept_strides: Vec<StrideRow>,
 }
 
 impl Rendered {
-    /// `json`: whether the strides, events and recordings tables have a JSON file.
-    fn of(t: output::Tables, json: [bool; 3]) -> Result<Rendered> {
+    /// `json`: whether the strides, events and recordings tables have a JSON file; `keep`:
+    /// whether the stride rows are kept.
+    fn of(t: output::Tables, json: [bool; 3], keep: bool) -> Result<Rendered> {
         Ok(Rendered {
             strides: RenderedRows::of(&t.strides, json[0])?,
             events: RenderedRows::of(&t.events, json[1])?,
             recordings: RenderedRows::of(&t.recordings, json[2])?,
             valid_strides: t.strides.iter().filter(|s| s.valid).count(),
             rows: t.recordings,
+            kept_strides: if keep { t.strides } else { Vec::new() },
         })
     }
 }
@@ -203,11 +174,13 @@ impl FolderSummary {
     }
 }
 
-fn write_traces(run: &OutputRun, r: &SubjectResult, p: &ValidTraceParams) -> Result<()> {
+/// Write a subject's traces; they are returned (for a run that keeps them).
+fn write_traces(run: &OutputRun, r: &SubjectResult, p: &ValidTraceParams) -> Result<SubjectTraces> {
     let t = SubjectTraces::of(r, p);
     let json = serde_json::to_string(&t)?;
     let stem = output::names::key_stem(&r.subject_id, r.trial_id.as_deref());
-    run.write(&format!("traces/{stem}.json"), json.as_bytes())
+    run.write(&format!("traces/{stem}.json"), json.as_bytes())?;
+    Ok(t)
 }
 
 /// Worker threads for a requested count: at most the machine's cores (more threads than cores

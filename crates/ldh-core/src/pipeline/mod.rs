@@ -5,6 +5,7 @@
 //! One bad recording never stops the other leg or the other subjects: each side's outcome is a
 //! `Result`, with the error message naming the file.
 
+mod analysis;
 mod batch;
 mod bilateral;
 mod heights;
@@ -18,30 +19,22 @@ pub mod quality;
 mod subject;
 mod subject_input;
 
-pub use batch::{analyze_many_on, bare_subject, leg_from_arrays};
+pub use analysis::{AnalysedLeg, Analysis, LentHeelStrikes, Many};
+pub use batch::{bare_subject, leg_from_arrays};
 pub use bilateral::{bilateral_events, bilateral_events_on_clock, BilateralEvent, EventKind};
 pub use heights::{HeightConflict, SensorHeights, MAX_SENSOR_HEIGHT_M};
 pub use inputs::{
     demo_inputs, discover, discover_with, is_manifest, read_manifest, subject_id_from_files,
     InputOptions, PeopleTrials, Source, SubjectInput,
 };
-pub use leg::{
-    analyze_leg, analyze_leg_alone, analyze_leg_checked, analyze_leg_timed, leg_back, leg_front,
-    memory_report, LegFront, LegResult,
-};
+pub use leg::{leg_back, leg_front, memory_report, LegFront, LegResult};
 pub use manifest::{is_manifest_text, GroupLabel, MANIFEST_COLUMNS};
-pub use many::{
-    analyze_many, analyze_to_folder, bounded_jobs, check_output_names, recording_rows_many,
-    recording_rows_many_with, FolderOptions, FolderSummary,
-};
+pub use many::{bounded_jobs, check_output_names, FolderOptions, FolderSummary, KeptRun};
 pub use quality::{
     all_leg_warnings, codes, leg_checks, leg_warnings, pair_warnings, params as quality_params,
     withhold, LegChecks, Severity, Warning, WarningList, WithheldList, RUNNING_STRIDE_TIME_S,
 };
-pub use subject::{
-    analyze_pair, analyze_pair_checked, analyze_subject, analyze_subject_checked, LoadedLeg,
-    SubjectResult,
-};
+pub use subject::{LoadedLeg, SubjectResult};
 
 use serde::{Deserialize, Serialize};
 
@@ -140,10 +133,10 @@ impl AnalysisParams {
         Ok(self)
     }
 
-    /// Validate every stage's parameters that do not depend on the recording, once per run:
-    /// the checked parameters are what [`analyze_leg_checked`], [`analyze_pair_checked`] and
-    /// [`analyze_subject_checked`] take, so no stage re-checks per leg. Preprocessing needs the
-    /// recording's rate, so it is checked with it at the call ([`PreprocessParams::check`]).
+    /// Validate every stage's parameters that do not depend on the recording, once per run
+    /// ([`crate::ParamGuard`]): the checked parameters are what [`Analysis::new`] takes, so no
+    /// stage re-checks per leg. Preprocessing needs the recording's rate, so it is checked with
+    /// it at the call ([`PreprocessParams::check`]).
     pub fn check(&self) -> Result<ValidAnalysisParams> {
         // The pipeline's low-pass keeps the gait: walking's shank signals carry their events in
         // harmonics up to ~6 Hz, so below 2 Hz the mid-swing peak and the heel strike smear

@@ -66,33 +66,8 @@ impl SubjectResult {
     }
 }
 
-/// Analyse one subject: read both legs, run the pipeline, pair the legs for step time and
-/// frequency. Errors are per leg and name the file.
-pub fn analyze_subject(
-    input: &SubjectInput,
-    params: &AnalysisParams,
-    format: Option<&FormatSpec>,
-    read: &ValidReadParams,
-) -> SubjectResult {
-    load_and_pair(input, format, read, |l, r| {
-        analyze_pair(input, l, r, params)
-    })
-}
-
-/// [`analyze_subject`] with parameters checked once per run ([`AnalysisParams::check`]).
-pub fn analyze_subject_checked(
-    input: &SubjectInput,
-    params: &ValidAnalysisParams,
-    format: Option<&FormatSpec>,
-    read: &ValidReadParams,
-) -> SubjectResult {
-    load_and_pair(input, format, read, |l, r| {
-        analyze_pair_checked(input, l, r, params)
-    })
-}
-
 /// Read both legs of `input`, then `pair` them; the read time is added to the result's.
-fn load_and_pair(
+pub(super) fn load_and_pair(
     input: &SubjectInput,
     format: Option<&FormatSpec>,
     read: &ValidReadParams,
@@ -131,105 +106,39 @@ fn load_and_pair(
 /// The read outcome of one leg: the recording, what the reader found and a label, or the error.
 pub type LoadedLeg = std::result::Result<(Recording, ReadReport, String), String>;
 
-/// Analyse one subject from recordings already read (or their read errors). Parameters that
-/// fail their check are each leg's error, naming its file.
-pub fn analyze_pair(
+/// Analyse both legs and pair them ([`Analysis::pair`]).
+pub(super) fn pair_legs(
     input: &SubjectInput,
     left: LoadedLeg,
     right: LoadedLeg,
-    params: &AnalysisParams,
+    v: &ValidAnalysisParams,
 ) -> SubjectResult {
-    let own;
-    let params = match input.setting {
-        Some(crate::recording::Setting::Treadmill) => {
-            own = params.for_treadmill();
-            &own
-        }
-        _ => params,
-    };
-    match params.check() {
-        Ok(v) => pair_legs(input, left, right, params, Some(&v)),
-        Err(_) => pair_legs(input, left, right, params, None),
-    }
-}
-
-/// [`analyze_pair`] with parameters checked once per run ([`AnalysisParams::check`]).
-pub fn analyze_pair_checked(
-    input: &SubjectInput,
-    left: LoadedLeg,
-    right: LoadedLeg,
-    params: &ValidAnalysisParams,
-) -> SubjectResult {
-    let own;
-    let params = match input.setting {
-        Some(crate::recording::Setting::Treadmill) => {
-            own = params.for_treadmill();
-            &own
-        }
-        _ => params,
-    };
-    pair_legs(input, left, right, params.params(), Some(params))
-}
-
-/// Analyse both legs and pair them: with `checked` parameters (`params` checked), or without
-/// (`params` failed their check: each leg read gets the error, in the order a leg checks them).
-fn pair_legs(
-    input: &SubjectInput,
-    left: LoadedLeg,
-    right: LoadedLeg,
-    params: &AnalysisParams,
-    checked: Option<&ValidAnalysisParams>,
-) -> SubjectResult {
+    let params = v.params();
     let mut timings = StageTimings::default();
     let (hl, hr) = (
         input.sensor_height_m_of(Side::Left),
         input.sensor_height_m_of(Side::Right),
     );
-    let (mut l, mut r) = match checked {
-        Some(v) => {
-            let mut lf = front(left, v, &mut timings);
-            let mut rf = front(right, v, &mut timings);
-            // Each leg's toe offs from both legs' landmarks (the default detector); a faulty
-            // gyroscope's landmarks are not lent to the other leg.
-            crate::events::place_bilateral(sound(&mut lf), sound(&mut rf), v.events());
-            (
-                back(lf, Side::Left, v, hl, &mut timings),
-                back(rf, Side::Right, v, hr, &mut timings),
-            )
-        }
-        None => {
-            let mut run = |loaded: LoadedLeg, side: Side| -> LegRun {
-                let (rec, report, label) = loaded?;
-                let h = input.sensor_height_m_of(side);
-                let (mut leg, hs) = analyze_leg_timed(&rec, side, params, h, &mut timings)
-                    .map_err(|e| format!("{label}: {e}"))?;
-                leg.read = report;
-                leg.source = label;
-                Ok((leg, hs))
-            };
-            (run(left, Side::Left), run(right, Side::Right))
-        }
-    };
+    let mut lf = front(left, v, &mut timings);
+    let mut rf = front(right, v, &mut timings);
+    // Each leg's toe offs from both legs' landmarks (the default detector); a faulty
+    // gyroscope's landmarks are not lent to the other leg.
+    crate::events::place_bilateral(sound(&mut lf), sound(&mut rf), v.events());
+    let (mut l, mut r) = (
+        back(lf, Side::Left, v, hl, &mut timings),
+        back(rf, Side::Right, v, hr, &mut timings),
+    );
     // The pairing below (turns from both legs, step times, the pair's checks) counts as strides.
     let clock = std::time::Instant::now();
-    if let Some(v) = checked {
-        bilateral_turns(&mut l, &mut r, input, v);
-    }
+    bilateral_turns(&mut l, &mut r, input, v);
     // The other leg's heel strikes on this leg's clock: event times count from each file's own
     // first sample, and the two files may start at different times.
-    let t0 = |x: &std::result::Result<(LegResult, Vec<f64>), String>| {
-        x.as_ref().ok().map(|(leg, _)| leg.t0_s)
-    };
-    let shifted = |x: &std::result::Result<(LegResult, Vec<f64>), String>, to: Option<f64>| {
-        x.as_ref().ok().map(|(leg, hs)| {
-            hs.iter()
-                .map(|t| t + leg.t0_s - to.unwrap_or(leg.t0_s))
-                .collect::<Vec<f64>>()
-        })
-    };
+    let t0 = |x: &LegRun| x.as_ref().ok().map(|a| a.leg.t0_s);
+    let shifted =
+        |x: &LegRun, to: Option<f64>| x.as_ref().ok().map(|a| a.lent.on_clock(a.leg.t0_s, to));
     let (lt0, rt0) = (t0(&l), t0(&r));
     let (warnings, overlapping) = match (&l, &r) {
-        (Ok((ll, _)), Ok((rl, _))) => pair_warnings(ll, rl),
+        (Ok(ll), Ok(rl)) => pair_warnings(&ll.leg, &rl.leg),
         _ => (Vec::new(), true),
     };
     let (lhs, rhs) = if overlapping {
@@ -240,16 +149,12 @@ fn pair_legs(
     // The leg's own findings again (the strides may have been re-segmented for turns since the
     // leg checks ran), then the pair's; then the stride lengths the other leg contradicts.
     // Then steady walking only, on the strides as re-segmented.
-    let steady = checked
-        .map(|v| *v.steady())
-        .or_else(|| params.steady.check().ok());
-    for (leg, _) in [l.as_mut(), r.as_mut()].into_iter().flatten() {
+    for a in [l.as_mut(), r.as_mut()].into_iter().flatten() {
+        let leg = &mut a.leg;
         quality::apply_to_strides(&mut leg.strides, &leg.warnings);
         quality::apply_to_strides(&mut leg.strides, &warnings);
         withhold_unvouched_lengths(&mut leg.strides);
-        if let Some(p) = &steady {
-            leg.steady = quality::apply_steady(&mut leg.strides, &mut leg.warnings, p);
-        }
+        leg.steady = quality::apply_steady(&mut leg.strides, &mut leg.warnings, v.steady());
     }
     // Not when the pair's checks doubt they are one walk (what withholds the step time).
     let one_walk = overlapping
@@ -258,15 +163,16 @@ fn pair_legs(
                 .iter()
                 .any(|a| a == crate::output::Parameter::StepTime.column())
         });
-    if let (Ok((ll, _)), Ok((rl, _)), true) = (l.as_mut(), r.as_mut(), one_walk) {
+    if let (Ok(AnalysedLeg { leg: ll, .. }), Ok(AnalysedLeg { leg: rl, .. }), true) =
+        (l.as_mut(), r.as_mut(), one_walk)
+    {
         let shift_s = rl.t0_s - ll.t0_s;
         quality::withhold_disagreeing_lengths(&mut ll.strides, &mut rl.strides, shift_s);
     }
     // The parameters again with the other leg's heel strikes, then what the checks withhold
     // (the leg's own findings and the pair's).
-    let finish = |x: std::result::Result<(LegResult, Vec<f64>), String>,
-                  other: Option<Vec<f64>>| {
-        x.map(|(mut leg, _)| {
+    let finish = |x: LegRun, other: Option<Vec<f64>>| {
+        x.map(|AnalysedLeg { mut leg, .. }| {
             let sta = (
                 leg.parameters.sta_per_s,
                 leg.parameters.sta_per_stride,
@@ -316,8 +222,8 @@ fn pair_legs(
     }
 }
 
-/// One leg's analysis up to its strides (the leg and its heel strikes), or its error.
-type LegRun = std::result::Result<(LegResult, Vec<f64>), String>;
+/// One leg's analysis up to its strides (the leg and the heel strikes it lends), or its error.
+type LegRun = std::result::Result<AnalysedLeg, String>;
 
 /// One leg read and analysed up to its events ([`leg_front`]), or its error naming the file.
 type FrontRun = std::result::Result<(Recording, ReadReport, String, LegFront), String>;
@@ -346,10 +252,10 @@ fn back(
     t: &mut StageTimings,
 ) -> LegRun {
     let (rec, report, label, f) = f?;
-    let (mut leg, hs) = leg_back(&rec, side, v, h, f, t).map_err(|e| format!("{label}: {e}"))?;
-    leg.read = report;
-    leg.source = label;
-    Ok((leg, hs))
+    let mut a = leg_back(&rec, side, v, h, f, t).map_err(|e| format!("{label}: {e}"))?;
+    a.leg.read = report;
+    a.leg.source = label;
+    Ok(a)
 }
 
 /// Heading change of a leg between two times on its own clock, deg (wrapped to ±180).
@@ -380,18 +286,20 @@ fn bilateral_turns(
 ) {
     let treadmill = input.setting == Some(crate::recording::Setting::Treadmill);
     let vouched = |leg: &LegResult| !leg.warnings.iter().any(quality::discredits_attitude);
-    let (Ok((ll, _)), Ok((rl, _))) = (&*l, &*r) else {
-        for (leg, _) in [l, r].into_iter().flatten() {
-            if treadmill || !vouched(leg) {
-                resegment(leg, input, params, &|_, _, _| false);
+    let (Ok(ll), Ok(rl)) = (&*l, &*r) else {
+        for a in [l, r].into_iter().flatten() {
+            if treadmill || !vouched(&a.leg) {
+                resegment(&mut a.leg, input, params, &|_, _, _| false);
             }
         }
         return;
     };
-    let (ll, rl) = (ll.clone(), rl.clone());
+    let (ll, rl) = (ll.leg.clone(), rl.leg.clone());
     let turn_deg = params.params().strides.turn_deg;
     for (x, other) in [(l, &rl), (r, &ll)] {
-        let Ok((leg, _)) = x else { continue };
+        let Ok(AnalysedLeg { leg, .. }) = x else {
+            continue;
+        };
         let shift = leg.t0_s - other.t0_s;
         let (own_ok, other_ok) = (vouched(leg), vouched(other));
         let other_turns = |h0: f64, h1: f64, by: f64| {

@@ -49,12 +49,7 @@ fn manifest_columns_quoting_formats_settings_and_groups() {
     assert_eq!(v[3].right, None);
     assert!(is_manifest(&m));
     // The results carry the label, the unknown side (said), and the setting.
-    let r = analyze_subject(
-        &v[2],
-        &AnalysisParams::default(),
-        None,
-        &crate::io::ReadParams::default().check().unwrap(),
-    );
+    let r = Analysis::new(AnalysisParams::default().check().unwrap()).subject(&v[2]);
     let rows = crate::output::recording_rows(&[r]);
     assert_eq!(rows[0].group, Some(GroupLabel::Other("stroke".into())));
     assert_eq!(rows[0].affected_side, None);
@@ -370,7 +365,9 @@ fn each_leg_uses_its_own_sensor_height() {
     };
     let read = crate::io::ReadParams::default().check().unwrap();
     let lengths = |s: &SubjectInput| {
-        let r = analyze_subject(s, &p, None, &read);
+        let r = Analysis::new(p.check().unwrap())
+            .read(read.clone())
+            .subject(s);
         let leg = |l: &std::result::Result<LegResult, String>| -> Vec<f64> {
             l.as_ref()
                 .unwrap()
@@ -422,12 +419,7 @@ fn belt_speed_and_visit_are_read_checked_and_carried_to_the_rows() {
     assert_eq!(v[1].visit.as_deref(), Some("post"));
     assert_eq!((v[2].belt_speed_mps, v[2].visit.as_deref()), (None, None));
     // The rows carry both (trailing columns of the recordings table).
-    let r = analyze_subject(
-        &v[0],
-        &AnalysisParams::default(),
-        None,
-        &crate::io::ReadParams::default().check().unwrap(),
-    );
+    let r = Analysis::new(AnalysisParams::default().check().unwrap()).subject(&v[0]);
     let rows = crate::output::recording_rows(&[r]);
     assert_eq!(rows[0].belt_speed_mps, Some(1.10));
     assert_eq!(rows[0].visit, "pre");

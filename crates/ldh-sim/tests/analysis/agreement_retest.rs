@@ -117,7 +117,8 @@ fn a_retest_cohort_of_10_people_by_3_trials_recovers_the_simulators_variances() 
         .with_options(None, None, None, Some(false))
         .unwrap();
     let read = ReadParams::default().check().unwrap();
-    let results = ldh_core::pipeline::analyze_many(&subjects, &params, None, &read);
+    let analysis = ldh_core::pipeline::Analysis::new(params.check().unwrap()).read(read);
+    let results = analysis.many(&subjects).results().unwrap();
     let rows = ldh_core::output::recording_rows(&results);
     let p = ValidAgreementParams::default();
     let table = reliability_table(&rows, &p);

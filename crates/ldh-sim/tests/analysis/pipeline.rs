@@ -367,10 +367,12 @@ fn a_faulty_gyroscope_lends_no_landmarks_to_the_other_leg() {
         compute_sta: false,
         ..AnalysisParams::default()
     };
+    let analysis = Analysis::new(params.check().unwrap());
     let alone = |l: &ldh_sim::SimLeg, side| {
-        analyze_leg(&l.recording, side, &params, None)
+        analysis
+            .leg(&l.recording, side, None)
             .unwrap()
-            .0
+            .leg
             .events
             .to_s
     };

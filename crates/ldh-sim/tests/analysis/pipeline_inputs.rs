@@ -94,7 +94,7 @@ fn treadmill_setting_flags_no_stride_as_turning() {
             setting,
             ..SubjectInput::default()
         };
-        let r = analyze_pair(&input, leg(&s.left), leg(&s.right), &params);
+        let r = Analysis::new(params.check().unwrap()).pair(&input, leg(&s.left), leg(&s.right));
         assert_eq!(r.setting, setting);
         r.legs()
             .iter()

@@ -151,9 +151,10 @@ fn a_walk_without_quiet_standing_withholds_its_inclinations() {
     let rec = c.simulate(0).unwrap().left.recording;
     let params = without_sta();
     let side = ldh_core::recording::Side::Left;
-    let full = ldh_core::pipeline::analyze_leg(&rec, side, &params, Some(0.1))
+    let full = ldh_core::pipeline::Analysis::new(params.check().unwrap())
+        .leg(&rec, side, Some(0.1))
         .unwrap()
-        .0;
+        .leg;
     assert!(full.parameters.wqk_deg.is_finite() && full.parameters.pbi_deg.is_finite());
     assert!(full
         .warnings
@@ -163,9 +164,10 @@ fn a_walk_without_quiet_standing_withholds_its_inclinations() {
     let fs = rec.fs_hz as usize;
     let n = rec.acc_g[0].len();
     let walk = samples(&rec, 7 * fs / 2, n - 7 * fs / 2);
-    let cut = ldh_core::pipeline::analyze_leg(&walk, side, &params, Some(0.1))
+    let cut = ldh_core::pipeline::Analysis::new(params.check().unwrap())
+        .leg(&walk, side, Some(0.1))
         .unwrap()
-        .0;
+        .leg;
     let w = cut
         .warnings
         .iter()
@@ -185,9 +187,10 @@ fn a_walk_without_quiet_standing_withholds_its_inclinations() {
     // A standing window longer than the recording finds none, and says which parameter.
     let mut long = params.clone();
     long.align.min_still_s = 30.0;
-    let l = ldh_core::pipeline::analyze_leg(&walk, side, &long, Some(0.1))
+    let l = ldh_core::pipeline::Analysis::new(long.check().unwrap())
+        .leg(&walk, side, Some(0.1))
         .unwrap()
-        .0;
+        .leg;
     let w = l
         .warnings
         .iter()

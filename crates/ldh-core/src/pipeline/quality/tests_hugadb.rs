@@ -2,7 +2,7 @@
 //! attitude through both reading paths, headings of faulty legs, alternation.
 
 use super::*;
-use crate::pipeline::{analyze_pair, memory_report, AnalysisParams, LoadedLeg, SubjectInput};
+use crate::pipeline::{memory_report, Analysis, AnalysisParams, LoadedLeg, SubjectInput};
 use crate::recording::Side;
 use std::path::{Path, PathBuf};
 
@@ -153,7 +153,11 @@ fn hugadb_faulty_gyroscopes_are_flagged_and_clean_legs_analysed() {
             subject_id: name.clone(),
             ..SubjectInput::default()
         };
-        let res = analyze_pair(&input, leg(left, "left"), leg(right, "right"), &params);
+        let res = Analysis::new(params.check().unwrap()).pair(
+            &input,
+            leg(left, "left"),
+            leg(right, "right"),
+        );
         let mut line = format!("{name}:");
         for (side, bad) in [(Side::Left, l_bad), (Side::Right, r_bad)] {
             let l = match if side == Side::Left {
@@ -330,7 +334,11 @@ fn hugadb_format_maps_and_raw_reading_agree_on_the_attitude() {
                 ..SubjectInput::default()
             };
             let p = params.clone().model(m);
-            analyze_pair(&input, leg(l.clone(), "left"), leg(r.clone(), "right"), &p)
+            Analysis::new(p.check().unwrap()).pair(
+                &input,
+                leg(l.clone(), "left"),
+                leg(r.clone(), "right"),
+            )
         };
         let raw = run(&raw_l, &raw_r, AttitudeModel::Fusion);
         let map = run(&map_l, &map_r, AttitudeModel::Fusion);
@@ -458,14 +466,17 @@ fn a_faulty_legs_heading_neither_decides_the_other_legs_turns_nor_is_reported() 
             for g in r.gyro_dps.iter_mut() {
                 g.iter_mut().for_each(|v| *v *= scale);
             }
-            analyze_pair(&input, leg(left.clone(), "left"), leg(r, "right"), &params)
+            Analysis::new(params.check().unwrap()).pair(
+                &input,
+                leg(left.clone(), "left"),
+                leg(r, "right"),
+            )
         };
         let (a, b) = (run(1.0), run(0.999));
-        let alone = analyze_pair(
+        let alone = Analysis::new(params.check().unwrap()).pair(
             &input,
             leg(left.clone(), "left"),
             Err("absent".into()),
-            &params,
         );
         let (ra, rb) = (a.right.as_ref().unwrap(), b.right.as_ref().unwrap());
         assert!(ra.warnings.iter().any(discredits_attitude), "{f}");
@@ -530,7 +541,7 @@ fn hugadb_stride_length_variability_is_withheld_where_the_noise_makes_it() {
             sensor_height_m: Some(0.22),
             ..SubjectInput::default()
         };
-        let res = analyze_pair(&input, leg("left"), leg("right"), &params);
+        let res = Analysis::new(params.check().unwrap()).pair(&input, leg("left"), leg("right"));
         for l in [&res.left, &res.right] {
             let l = l.as_ref().unwrap();
             let w = l.warnings.iter().find(|w| w.code == codes::SV_NOISE);
@@ -559,7 +570,7 @@ fn hugadb_stride_length_variability_is_withheld_where_the_noise_makes_it() {
             format!("06_00/{side}"),
         )
     };
-    let res = analyze_pair(&input, leg("left"), leg("right"), &params);
+    let res = Analysis::new(params.check().unwrap()).pair(&input, leg("left"), leg("right"));
     let right = res.right.as_ref().unwrap();
     let w = right
         .warnings

@@ -8,7 +8,7 @@
 //! toe off inside that bracket on real strides, whatever changes in the events stage.
 
 use super::tests_hugadb::{hugadb_dir, read_hugadb_map, without_sta, HUGADB_CLEAN};
-use crate::pipeline::{analyze_pair, memory_report, SubjectInput};
+use crate::pipeline::{memory_report, Analysis, SubjectInput};
 use nalgebra::{Matrix3, Vector3};
 use std::path::Path;
 
@@ -111,7 +111,7 @@ fn hugadb_toe_off_lies_between_the_foots_push_off_and_its_lift() {
             subject_id: file.into(),
             ..SubjectInput::default()
         };
-        let res = analyze_pair(&input, leg("left"), leg("right"), &params);
+        let res = Analysis::new(params.check().unwrap()).pair(&input, leg("left"), leg("right"));
         for (side, r) in [("left", &res.left), ("right", &res.right)] {
             // the left foot of 11_03 has the x10 gyroscope fault (PROVENANCE.md)
             if file.starts_with("11_03") && side == "left" {

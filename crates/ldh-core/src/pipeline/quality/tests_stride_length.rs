@@ -15,7 +15,7 @@
 use super::codes;
 use super::tests_hugadb::{hugadb_dir, read_hugadb_map, HUGADB_CLEAN};
 use crate::pipeline::{
-    analyze_pair, memory_report, AnalysisParams, LegResult, LoadedLeg, Severity, SubjectInput,
+    memory_report, Analysis, AnalysisParams, LegResult, LoadedLeg, Severity, SubjectInput,
 };
 
 /// HuGaDB's shin sensors sit "around the middle of the shinbone at the level where the calf
@@ -118,7 +118,8 @@ fn hugadb_stride_lengths_are_withheld_or_agree_left_and_right() {
                 sensor_height_m: height,
                 ..SubjectInput::default()
             };
-            let res = analyze_pair(&input, leg("left"), leg("right"), &params);
+            let res =
+                Analysis::new(params.check().unwrap()).pair(&input, leg("left"), leg("right"));
             let mut medians = Vec::new();
             for (side, l) in res.legs() {
                 let name = format!(
