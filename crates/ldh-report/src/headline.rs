@@ -9,7 +9,7 @@ use super::verdict::{Asymmetry, Cell, Judgement, Row, Scope, Verdicts};
 use super::Reference;
 use ldh_core::output::RecordingRow;
 use ldh_core::pipeline::quality::codes;
-use ldh_core::pipeline::{GroupLabel, Severity};
+use ldh_core::pipeline::{Group, Severity};
 
 /// At most this many findings are named; the rest are counted.
 pub(crate) const MAX_FINDINGS: usize = 4;
@@ -239,7 +239,7 @@ fn to_do(sides: &[&RecordingRow], anything_missing: bool) -> Option<String> {
     }
     let ldh = sides
         .iter()
-        .any(|r| matches!(r.group, Some(GroupLabel::Ldh)));
+        .any(|r| matches!(r.group, Some(Group::Ldh)));
     if ldh && sides.iter().all(|r| r.affected_side.is_none()) {
         return Some(
             "The affected side is not given: add it to the manifest so the legs are compared as affected and unaffected."

@@ -20,7 +20,7 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use super::heights::SensorHeights;
-pub use super::subject_input::GroupLabel;
+use crate::domain::Group;
 use super::subject_input::{Source, SubjectInput};
 use crate::error::{LdhError, Location, Result};
 use crate::io::FormatSpec;
@@ -289,14 +289,14 @@ fn parse_row(
     }
     let group = Some(row.get("group"))
         .filter(|g| !g.is_empty())
-        .map(|g| GroupLabel::from(g.to_string()));
+        .map(|g| Group::from(g.to_string()));
     let side_cell = row.get("affected_side");
     let (affected_side, unknown) = match side_cell.to_ascii_lowercase().as_str() {
         "left" => (Some(Side::Left), false),
         "right" => (Some(Side::Right), false),
         "none" => (None, false),
         // Healthy controls have no affected side: empty is not "unknown" for them.
-        "" => (None, group != Some(GroupLabel::Healthy)),
+        "" => (None, group != Some(Group::Healthy)),
         other => {
             return Err(row.invalid(
                 "affected_side",

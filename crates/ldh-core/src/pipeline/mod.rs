@@ -29,7 +29,10 @@ pub use leg::{
     analyze_leg, analyze_leg_alone, analyze_leg_checked, analyze_leg_timed, leg_back, leg_front,
     memory_report, LegFront, LegResult,
 };
-pub use manifest::{is_manifest_text, GroupLabel, MANIFEST_COLUMNS};
+pub use manifest::{is_manifest_text, MANIFEST_COLUMNS};
+pub use crate::domain::Group;
+/// The group's former name (before issue 48 made [`Group`] the one group type); the same type.
+pub type GroupLabel = Group;
 pub use many::{
     analyze_many, analyze_to_folder, bounded_jobs, check_output_names, recording_rows_many,
     recording_rows_many_with, FolderOptions, FolderSummary,

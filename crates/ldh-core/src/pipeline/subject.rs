@@ -28,7 +28,7 @@ pub struct SubjectResult {
     #[serde(default)]
     pub trial_id: Option<String>,
     /// Group (from the manifest).
-    pub group: Option<GroupLabel>,
+    pub group: Option<Group>,
     /// Affected side (from the manifest).
     pub affected_side: Option<Side>,
     /// The manifest left the affected side empty for a subject outside the healthy group.
@@ -254,9 +254,7 @@ fn pair_legs(
     // Not when the pair's checks doubt they are one walk (what withholds the step time).
     let one_walk = overlapping
         && !warnings.iter().any(|w| {
-            w.affects
-                .iter()
-                .any(|a| a == crate::output::Parameter::StepTime.column())
+            w.withholds(crate::domain::Parameter::StepTime)
         });
     if let (Ok((ll, _)), Ok((rl, _)), true) = (l.as_mut(), r.as_mut(), one_walk) {
         let shift_s = rl.t0_s - ll.t0_s;
