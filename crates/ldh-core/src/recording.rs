@@ -9,8 +9,8 @@
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
-use crate::error::{LdhError, Result};
 pub use crate::domain::{Setting, Side};
+use crate::error::{LdhError, Result};
 
 /// Standard gravity in m/s² (the conversion factor between g and m/s²).
 pub const STANDARD_GRAVITY_MPS2: f64 = 9.80665;

@@ -213,9 +213,7 @@ impl Reference {
         let passes = passes_every_check;
         let healthy_legs = rows
             .iter()
-            .filter(|x| {
-                matches!(x.group, Some(ldh_core::pipeline::Group::Healthy)) && x.is_ok()
-            })
+            .filter(|x| matches!(x.group, Some(ldh_core::pipeline::Group::Healthy)) && x.is_ok())
             .count();
         let healthy: Vec<Vec<&RecordingRow>> = ldh_core::output::rows_by_subject(rows)
             .into_iter()

@@ -127,7 +127,11 @@ pub fn evaluate(results: &[SubjectResult], truths: &[SubjectTruth]) -> Accuracy 
         for (leg, truth) in [(&r.left, &t.left), (&r.right, &t.right)] {
             let Ok(leg) = leg else { continue };
             recs += 1;
-            for sc in strides::leg_scores(leg, truth, (r.model.as_str(), &t.subject_id, t.group.clone())) {
+            for sc in strides::leg_scores(
+                leg,
+                truth,
+                (r.model.as_str(), &t.subject_id, t.group.clone()),
+            ) {
                 add_score(&sc, &mut hs, &mut to, &mut missed);
                 if sc.stride_index.is_some() {
                     st.extend(sc.stride_time_error_ms);

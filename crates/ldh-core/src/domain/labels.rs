@@ -217,4 +217,3 @@ impl std::str::FromStr for EventKind {
         }
     }
 }
-

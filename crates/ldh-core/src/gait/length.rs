@@ -54,11 +54,11 @@
 use nalgebra::{Matrix3, Rotation3, Vector3};
 use serde::{Deserialize, Serialize};
 
+use super::{LengthCheck, StrideCode, StrideFinding};
 use crate::align::Aligned;
 use crate::attitude::{rotation_wf, Attitude};
 use crate::error::LdhError;
 use crate::recording::STANDARD_GRAVITY_MPS2;
-use super::{LengthCheck, StrideCode, StrideFinding};
 
 /// How the zero-velocity (mid-stance) instant of each stance is found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
@@ -206,9 +206,10 @@ impl LengthEstimate {
             return Some(f(
                 Drift,
                 format!(
-                "stride length withheld: velocity drift {:.2} m/s over the stride",
-                self.drift_mps
-            )));
+                    "stride length withheld: velocity drift {:.2} m/s over the stride",
+                    self.drift_mps
+                ),
+            ));
         }
         if self.tilt_deg > MAX_TILT_DEG {
             return Some(f(

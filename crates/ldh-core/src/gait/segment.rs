@@ -5,9 +5,8 @@
 
 use super::times::SortedTimes;
 use super::{
-    LengthCheck, StrideCode, StrideFinding,
-    anatomical_roll_deg, pendulum_length_m, stride_lengths, zero_velocity_sample,
-    LengthEstimate, Stride, StrideParams, ValidStrideParams,
+    anatomical_roll_deg, pendulum_length_m, stride_lengths, zero_velocity_sample, LengthCheck,
+    LengthEstimate, Stride, StrideCode, StrideFinding, StrideParams, ValidStrideParams,
 };
 use crate::align::Aligned;
 use crate::attitude::{Attitude, AttitudeModel};
@@ -277,22 +276,22 @@ impl<'a> Leg<'a> {
         let mut lengths = self.lengths(&span, &heights).into_iter();
         let (length, length_note) = lengths.next().unwrap_or((f64::NAN, None));
         let mut stride = Stride {
-                stride_index: k,
-                hs_time_s: h0,
-                to_time_s: to,
-                next_hs_time_s: h1,
-                stride_time_s: st,
-                stance_ratio: (to - h0) / st,
-                stride_length_m: length,
-                speed_mps: length / st,
-                wqk_deg: mx,
-                pbi_deg: -mn,
-                bdk_deg: bdk,
-                heading_change_deg: dpsi,
-                bout: 0,
-                valid: true,
-                reason: String::new(),
-                findings: Vec::new(),
+            stride_index: k,
+            hs_time_s: h0,
+            to_time_s: to,
+            next_hs_time_s: h1,
+            stride_time_s: st,
+            stance_ratio: (to - h0) / st,
+            stride_length_m: length,
+            speed_mps: length / st,
+            wqk_deg: mx,
+            pbi_deg: -mn,
+            bdk_deg: bdk,
+            heading_change_deg: dpsi,
+            bout: 0,
+            valid: true,
+            reason: String::new(),
+            findings: Vec::new(),
         };
         for f in reasons {
             stride.push(f);
@@ -315,7 +314,10 @@ impl<'a> Leg<'a> {
             }
             (Some(t), 1) => t,
             (Some(t), n) => {
-                reasons.push(StrideFinding::new(StrideCode::ToeOff, format!("{n} toe offs")));
+                reasons.push(StrideFinding::new(
+                    StrideCode::ToeOff,
+                    format!("{n} toe offs"),
+                ));
                 t
             }
         }

@@ -109,5 +109,9 @@ fn a_side_length_blanked_by_a_finding_names_the_finding() {
         s.findings.clear();
     }
     let p = side_parameters(&st, None);
-    assert!(p.withheld.reason(Parameter::StrideLength).unwrap().ends_with("(not integrable)"));
+    assert!(p
+        .withheld
+        .reason(Parameter::StrideLength)
+        .unwrap()
+        .ends_with("(not integrable)"));
 }

@@ -20,8 +20,8 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use super::heights::SensorHeights;
-use crate::domain::Group;
 use super::subject_input::{Source, SubjectInput};
+use crate::domain::Group;
 use crate::error::{LdhError, Location, Result};
 use crate::io::FormatSpec;
 use crate::recording::{Setting, Side};

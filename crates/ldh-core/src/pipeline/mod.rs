@@ -7,6 +7,7 @@
 
 mod batch;
 mod bilateral;
+mod finalize;
 mod heights;
 mod inputs;
 mod leg;
@@ -18,6 +19,7 @@ pub mod quality;
 mod subject;
 mod subject_input;
 
+pub use crate::domain::Group;
 pub use batch::{analyze_many_on, bare_subject, leg_from_arrays};
 pub use bilateral::{bilateral_events, bilateral_events_on_clock, BilateralEvent, EventKind};
 pub use heights::{HeightConflict, SensorHeights, MAX_SENSOR_HEIGHT_M};
@@ -30,7 +32,6 @@ pub use leg::{
     memory_report, LegFront, LegResult,
 };
 pub use manifest::{is_manifest_text, MANIFEST_COLUMNS};
-pub use crate::domain::Group;
 /// The group's former name (before issue 48 made [`Group`] the one group type); the same type.
 pub type GroupLabel = Group;
 pub use many::{

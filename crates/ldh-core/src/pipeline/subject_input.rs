@@ -6,9 +6,9 @@ use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 use super::heights::SensorHeights;
+pub use crate::domain::Group;
 use crate::error::{LdhError, Result};
 use crate::io::{read_recording, read_recording_bytes, FormatSpec, ReadReport, ValidReadParams};
-pub use crate::domain::Group;
 use crate::recording::{Recording, Side};
 
 /// Where a recording comes from.

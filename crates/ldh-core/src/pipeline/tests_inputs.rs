@@ -245,27 +245,24 @@ fn a_persons_withheld_values_are_those_no_trial_measured() {
     assert_eq!(legs.len(), 2);
     let sv2 = legs[1].stride_length_cv.unwrap();
     legs[0].stride_length_cv = None;
-    legs[0]
-        .withheld
-        .0
-        .insert(
-            crate::domain::Parameter::StrideLengthCv,
-            crate::domain::Reason::read("sv unchecked (short)"),
-        );
+    legs[0].withheld.0.insert(
+        crate::domain::Parameter::StrideLengthCv,
+        crate::domain::Reason::read("sv unchecked (short)"),
+    );
     for (t, leg) in legs.iter_mut().enumerate() {
         leg.sta_per_s = None;
-        leg.withheld
-            .0
-            .insert(
-                crate::domain::Parameter::Sta,
-                crate::domain::Reason::read(format!("sta not computed {t}")),
-            );
+        leg.withheld.0.insert(
+            crate::domain::Parameter::Sta,
+            crate::domain::Reason::read(format!("sta not computed {t}")),
+        );
     }
     let refs: Vec<&RecordingRow> = legs.iter().collect();
     let p = crate::cohort::person_row(&refs, crate::Side::Left).unwrap();
     assert_eq!(p.stride_length_cv, Some(sv2));
     assert!(
-        !p.withheld.reason(crate::domain::Parameter::StrideLengthCv).is_some(),
+        !p.withheld
+            .reason(crate::domain::Parameter::StrideLengthCv)
+            .is_some(),
         "{}",
         p.withheld
     );

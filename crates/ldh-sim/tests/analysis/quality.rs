@@ -177,7 +177,10 @@ fn a_walk_without_quiet_standing_withholds_its_inclinations() {
     let p = &cut.parameters;
     assert!(p.wqk_deg.is_nan() && p.pbi_deg.is_nan());
     assert!(
-        p.withheld.reason(ldh_core::domain::Parameter::Wqk).unwrap().starts_with("no quiet standing"),
+        p.withheld
+            .reason(ldh_core::domain::Parameter::Wqk)
+            .unwrap()
+            .starts_with("no quiet standing"),
         "{:?}",
         p.withheld
     );

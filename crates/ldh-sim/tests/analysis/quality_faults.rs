@@ -209,7 +209,11 @@ fn strides_over_a_frozen_gyroscope_are_withheld_and_the_others_kept() {
     }
     for p in params::ANGLES {
         assert!(
-            f.parameters.withheld.reason(p).unwrap().starts_with("channel fault"),
+            f.parameters
+                .withheld
+                .reason(p)
+                .unwrap()
+                .starts_with("channel fault"),
             "{p}"
         );
     }

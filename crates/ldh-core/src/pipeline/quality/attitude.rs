@@ -8,12 +8,12 @@
 //! Human Movement, 2009); its frontal excursion in swing is 5-15°. No walking shank passes
 //! ±90° in the sagittal plane or 45° of frontal excursion within a stride.
 
-use super::warning::{codes, params, Severity, Warning};
 use super::median;
-use crate::gait::{StrideCode, StrideFinding};
+use super::warning::{codes, params, Severity, Warning};
 use crate::align::Aligned;
 use crate::attitude::Attitude;
 use crate::gait::Stride;
+use crate::gait::{StrideCode, StrideFinding};
 
 /// Largest sagittal shank angle of walking, either way, deg (WQK and PBI bounds).
 pub const MAX_PITCH_DEG: f64 = 90.0;

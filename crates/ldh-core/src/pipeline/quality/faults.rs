@@ -16,9 +16,9 @@
 //! [`crate::io::flat_channel_warnings`]), flat runs at a channel's extreme (clipping,
 //! `gyro_clipping` / `acc_clipping`), and a gyroscope amplified throughout (`gyro_scale_fault`).
 
-use crate::gait::{StrideCode, StrideFinding};
 use super::warning::{codes, params, Severity, Warning};
 use crate::gait::Stride;
+use crate::gait::{StrideCode, StrideFinding};
 use crate::recording::Recording;
 
 /// Shortest run of one repeated value that makes a channel frozen, s. A walking shank never

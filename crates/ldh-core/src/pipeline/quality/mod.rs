@@ -260,7 +260,10 @@ pub fn apply_to_strides(st: &mut [Stride], warnings: &[Warning]) {
             if discredits_attitude(w) {
                 s.heading_change_deg = f64::NAN;
             }
-            let what = match (angles && has(Parameter::Wqk), length && has(Parameter::StrideLength)) {
+            let what = match (
+                angles && has(Parameter::Wqk),
+                length && has(Parameter::StrideLength),
+            ) {
                 _ if all => None,
                 (true, true) => Some("angles and stride length"),
                 (true, false) => Some("angles"),

@@ -227,7 +227,9 @@ fn a_shank_turning_at_mid_stance_withholds_the_length_without_a_height_and_not_w
     assert!(p.stride_length_m.is_nan() && p.speed_mps.is_nan() && p.stride_length_cv.is_nan());
     // The leg's reason names the finding (its message, with the lengths, is the warning's).
     assert_eq!(
-        p.withheld.reason(crate::domain::Parameter::StrideLength).unwrap(),
+        p.withheld
+            .reason(crate::domain::Parameter::StrideLength)
+            .unwrap(),
         "stride length vouched for on 0 of 10 valid strides (sensor height unknown)"
     );
     assert!(w.reason().starts_with("sensor height unknown (the sensor height was not given and the stride length depends on it)"));

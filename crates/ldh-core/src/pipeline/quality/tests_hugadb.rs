@@ -536,7 +536,11 @@ fn hugadb_stride_length_variability_is_withheld_where_the_noise_makes_it() {
             let w = l.warnings.iter().find(|w| w.code == codes::SV_NOISE);
             assert!(w.is_some(), "{file} {}: {:?}", l.side, l.warnings);
             assert!(l.parameters.stride_length_cv.is_nan());
-            assert!(l.parameters.withheld.reason(crate::domain::Parameter::StrideLengthCv).is_some());
+            assert!(l
+                .parameters
+                .withheld
+                .reason(crate::domain::Parameter::StrideLengthCv)
+                .is_some());
             // the stride length itself stays reported
             assert!(
                 l.parameters.stride_length_m.is_finite(),
