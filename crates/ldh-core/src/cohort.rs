@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
 use crate::attitude::AttitudeModel;
 use crate::error::{LdhError, Result};
 use crate::output::{AffectedSide, Label, RecordingRow};
-use crate::pipeline::GroupLabel;
+use crate::pipeline::Group;
 use crate::Side;
 
 mod offsets;
@@ -96,17 +96,16 @@ pub fn person_row(rows: &[&RecordingRow], side: Side) -> Option<RecordingRow> {
     );
     // A parameter some trial measured is the person's; one none measured keeps every trial's
     // reason (the first trial's list alone would say "not measured" of a value stats then use).
-    let mut withheld = std::collections::BTreeMap::<String, String>::new();
+    let mut withheld = crate::domain::Withheld::default();
     for r in &ok {
-        for (col, why) in &r.withheld.0 {
-            let measured = Parameter::from_column(col).is_ok_and(|p| out.value(p).is_some())
-                || (col == "sta_per_stride" && out.sta_per_stride.is_some());
-            if !measured {
+        for (p, why) in r.withheld.0.iter() {
+            if out.value(p).is_none() {
                 let why = format!("{}: {why}", r.trial_id);
-                withheld
-                    .entry(col.clone())
-                    .and_modify(|w| *w = format!("{w}; {why}"))
-                    .or_insert(why);
+                let merged = match withheld.reason(p) {
+                    Some(w) => format!("{w}; {why}"),
+                    None => why,
+                };
+                withheld.insert(p, crate::domain::Reason::read(merged));
             }
         }
     }
@@ -185,12 +184,12 @@ impl Cohort {
             let (l, r) = (l.expect("checked").clone(), r.expect("checked").clone());
             let affected = l.affected_side.as_ref();
             match group {
-                Some(GroupLabel::Healthy) => c.healthy.push(SubjectValues {
+                Some(Group::Healthy) => c.healthy.push(SubjectValues {
                     subject_id: id.into(),
                     a: l,
                     b: r,
                 }),
-                Some(GroupLabel::Ldh) => match affected.and_then(Label::known) {
+                Some(Group::Ldh) => match affected.and_then(Label::known) {
                     Some(AffectedSide::Left) => c.ldh.push(SubjectValues {
                         subject_id: id.into(),
                         a: r,
@@ -206,7 +205,7 @@ impl Cohort {
                         affected.map_or("", Label::as_str)
                     )),
                 },
-                Some(GroupLabel::Other(other)) if !other.is_empty() => c.excluded.push(format!(
+                Some(Group::Other(other)) if !other.is_empty() => c.excluded.push(format!(
                     "{id}: group '{other}' is not compared (the statistics compare ldh with healthy)"
                 )),
                 _ => c.excluded.push(format!(

@@ -31,6 +31,7 @@ pub mod align;
 pub mod attitude;
 pub mod cohort;
 pub mod demo;
+pub mod domain;
 pub mod error;
 pub mod events;
 pub mod gait;

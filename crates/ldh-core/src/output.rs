@@ -108,7 +108,7 @@ pub struct RecordingRow {
     pub model: Label<crate::attitude::AttitudeModel>,
     /// `healthy`, `ldh`, another label, or empty (`None`).
     #[serde(with = "empty_is_none")]
-    pub group: Option<crate::pipeline::GroupLabel>,
+    pub group: Option<crate::pipeline::Group>,
     /// `left`, `right`, `none` or empty.
     #[serde(with = "empty_is_none")]
     pub affected_side: Option<Label<AffectedSide>>,
@@ -260,11 +260,11 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
     let mut out = Vec::new();
     for r in results {
         for (side, leg) in r.legs() {
-            use crate::pipeline::GroupLabel;
+            use crate::pipeline::Group;
             let role = match (&r.group, r.affected_side) {
-                (Some(GroupLabel::Healthy), _) => Some(SideRole::Healthy),
-                (Some(GroupLabel::Ldh), Some(a)) if a == side => Some(SideRole::Affected),
-                (Some(GroupLabel::Ldh), Some(_)) => Some(SideRole::Unaffected),
+                (Some(Group::Healthy), _) => Some(SideRole::Healthy),
+                (Some(Group::Ldh), Some(a)) if a == side => Some(SideRole::Affected),
+                (Some(Group::Ldh), Some(_)) => Some(SideRole::Unaffected),
                 _ => None,
             };
             let mut row = RecordingRow {

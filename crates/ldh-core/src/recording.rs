@@ -9,97 +9,11 @@
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
+pub use crate::domain::{Setting, Side};
 use crate::error::{LdhError, Result};
 
 /// Standard gravity in m/s² (the conversion factor between g and m/s²).
 pub const STANDARD_GRAVITY_MPS2: f64 = 9.80665;
-
-/// Which leg a sensor is on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Side {
-    /// Left shank.
-    Left,
-    /// Right shank.
-    Right,
-}
-
-impl Side {
-    /// `"left"` or `"right"`.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Side::Left => "left",
-            Side::Right => "right",
-        }
-    }
-    /// The other leg.
-    pub fn other(self) -> Side {
-        match self {
-            Side::Left => Side::Right,
-            Side::Right => Side::Left,
-        }
-    }
-}
-
-impl std::fmt::Display for Side {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
-
-impl std::str::FromStr for Side {
-    type Err = LdhError;
-    fn from_str(s: &str) -> Result<Self> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "left" | "l" => Ok(Side::Left),
-            "right" | "r" => Ok(Side::Right),
-            other => Err(LdhError::param("side", other, "expected 'left' or 'right'")),
-        }
-    }
-}
-
-/// Where the walk happened. It decides whether a stride can be a turn: on a treadmill no stride
-/// is (yaw drift is not a turn). Default overground.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Setting {
-    /// Walking over the ground: turns happen and are detected.
-    #[default]
-    Overground,
-    /// Walking on a treadmill: no turns.
-    Treadmill,
-}
-
-impl Setting {
-    /// `"overground"` or `"treadmill"`.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Setting::Overground => "overground",
-            Setting::Treadmill => "treadmill",
-        }
-    }
-}
-
-impl std::fmt::Display for Setting {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
-
-impl std::str::FromStr for Setting {
-    type Err = LdhError;
-    fn from_str(s: &str) -> Result<Self> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "overground" => Ok(Setting::Overground),
-            "treadmill" => Ok(Setting::Treadmill),
-            other => Err(LdhError::param(
-                "setting",
-                other,
-                "expected 'overground' or 'treadmill'",
-            )),
-        }
-    }
-}
 
 /// One shank IMU recording on a uniform time grid.
 ///
@@ -360,27 +274,6 @@ fn first_unflagged(mask: &[bool], flags: &[bool]) -> Option<usize> {
             let any = m.iter().zip(f).fold(false, |a, (m, f)| a | (*m & !*f));
             any.then(|| b * BLOCK + m.iter().zip(f).position(|(m, f)| *m && !*f).unwrap_or(0))
         })
-}
-
-/// A subject's group in the simulator and the paper's two-group design (the manifest's
-/// [`crate::pipeline::GroupLabel`] admits any other label too).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Group {
-    /// Healthy control.
-    Healthy,
-    /// Lumbar disc herniation, one affected side.
-    Ldh,
-}
-
-impl Group {
-    /// `"healthy"` or `"ldh"`.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Group::Healthy => "healthy",
-            Group::Ldh => "ldh",
-        }
-    }
 }
 
 #[cfg(test)]

@@ -141,7 +141,7 @@ fn no_angles(row: Option<&&RecordingRow>) -> Option<String> {
     let r = row?;
     let wqk = ldh_core::output::Parameter::Wqk;
     not_measured(r, wqk)
-        .filter(|_| !r.is_ok() || r.withheld.reason(wqk.column()).is_some())
+        .filter(|_| !r.is_ok() || r.withheld.reason(wqk).is_some())
         .map(|why| format!("shank angles not measured: {why}"))
 }
 

@@ -7,9 +7,9 @@ use maud::{html, Markup};
 
 use super::verdict::{Asymmetry, Cell, Judgement, Row, Scope, Verdicts};
 use super::Reference;
-use ldh_core::output::RecordingRow;
+use ldh_core::output::{Parameter, RecordingRow};
 use ldh_core::pipeline::quality::codes;
-use ldh_core::pipeline::{GroupLabel, Severity};
+use ldh_core::pipeline::{Group, Severity};
 
 /// At most this many findings are named; the rest are counted.
 pub(crate) const MAX_FINDINGS: usize = 4;
@@ -35,10 +35,10 @@ pub(crate) struct Headline {
 /// `v` with its decimals and unit.
 fn val(row: &Row, v: f64) -> String {
     let d = row.q.decimals;
-    match row.q.unit {
-        "% of gait cycle" => format!("{v:.d$} %"),
-        "deg" => format!("{v:.d$}°"),
-        u => format!("{v:.d$} {u}"),
+    match row.q.parameter {
+        Parameter::StanceRatio => format!("{v:.d$} %"),
+        Parameter::Wqk | Parameter::Pbi | Parameter::Bdk => format!("{v:.d$}°"),
+        _ => format!("{v:.d$} {}", row.q.unit),
     }
 }
 
@@ -77,18 +77,19 @@ fn asymmetry_sentence(row: &Row, si: f64) -> Option<String> {
     }
     let pct = (100.0 * ((1.0 + h) / (1.0 - h) - 1.0)).round();
     let vs = format!("{} against {}", val(row, big), val(row, small));
-    Some(match row.q.label {
-        "Step time" => format!(
+    Some(match row.q.parameter {
+        Parameter::StepTime => format!(
             "Steps are uneven: the {side} step takes {pct:.0} % longer than the {other} ({vs})."
         ),
-        "Stance" => format!(
+        Parameter::StanceRatio => format!(
             "Stance is uneven: the {side} leg stays on the ground {pct:.0} % longer than the {other} ({vs} of the gait cycle)."
         ),
-        "Stride length" => format!(
+        Parameter::StrideLength => format!(
             "Strides are uneven: the {side} stride is {pct:.0} % longer than the {other} ({vs})."
         ),
-        label => format!(
-            "{label} is uneven: {pct:.0} % larger on the {side} than on the {other} ({vs})."
+        _ => format!(
+            "{} is uneven: {pct:.0} % larger on the {side} than on the {other} ({vs}).",
+            row.q.label
         ),
     })
 }
@@ -237,9 +238,7 @@ fn to_do(sides: &[&RecordingRow], anything_missing: bool) -> Option<String> {
             return Some("Record a longer walk (at least 30 s of straight walking).".into());
         }
     }
-    let ldh = sides
-        .iter()
-        .any(|r| matches!(r.group, Some(GroupLabel::Ldh)));
+    let ldh = sides.iter().any(|r| matches!(r.group, Some(Group::Ldh)));
     if ldh && sides.iter().all(|r| r.affected_side.is_none()) {
         return Some(
             "The affected side is not given: add it to the manifest so the legs are compared as affected and unaffected."

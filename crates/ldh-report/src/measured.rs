@@ -9,7 +9,7 @@ pub(crate) fn not_measured(r: &RecordingRow, p: Parameter) -> Option<String> {
     if !r.is_ok() {
         return Some("not analysed (see above)".into());
     }
-    if let Some(why) = r.withheld.reason(p.column()) {
+    if let Some(why) = r.withheld.reason(p) {
         return Some(why.to_string());
     }
     if r.value(p).is_some() {

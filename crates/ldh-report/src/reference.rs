@@ -96,13 +96,13 @@ pub struct Reference {
 /// withheld, gives the SV range no value.
 pub(crate) fn passes_every_check(x: &RecordingRow) -> bool {
     use ldh_core::pipeline::Severity;
-    const SV: &str = "stride_length_cv";
+    const SV: Parameter = Parameter::StrideLengthCv;
     let sv_only = |w: &ldh_core::pipeline::Warning| {
         w.severity == Severity::Warning
             && !w.affects.is_empty()
-            && w.affects.iter().all(|a| a == SV)
+            && w.affects.iter().all(|a| *a == SV)
     };
-    x.withheld.0.keys().all(|k| k == SV) && x.warnings.at_least(Severity::Warning).all(sv_only)
+    x.withheld.0.iter().all(|(p, _)| p == SV) && x.warnings.at_least(Severity::Warning).all(sv_only)
 }
 
 /// Published ranges: (column, low, high, citation). Approximate ranges for healthy adults
@@ -213,16 +213,14 @@ impl Reference {
         let passes = passes_every_check;
         let healthy_legs = rows
             .iter()
-            .filter(|x| {
-                matches!(x.group, Some(ldh_core::pipeline::GroupLabel::Healthy)) && x.is_ok()
-            })
+            .filter(|x| matches!(x.group, Some(ldh_core::pipeline::Group::Healthy)) && x.is_ok())
             .count();
         let healthy: Vec<Vec<&RecordingRow>> = ldh_core::output::rows_by_subject(rows)
             .into_iter()
             .map(|(_, v)| {
                 v.into_iter()
                     .filter(|x| {
-                        matches!(x.group, Some(ldh_core::pipeline::GroupLabel::Healthy))
+                        matches!(x.group, Some(ldh_core::pipeline::Group::Healthy))
                             && x.is_ok()
                             && passes(x)
                     })

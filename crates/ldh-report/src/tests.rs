@@ -354,8 +354,9 @@ fn a_finding_about_sv_alone_keeps_the_leg_in_the_reference() {
             if i == 3 {
                 let w = ldh_core::pipeline::quality::unchecked_warning(0.03, "too few strides");
                 r.stride_length_cv = None;
-                r.withheld = ldh_core::pipeline::WithheldList(
-                    [("stride_length_cv".to_string(), w.reason())].into(),
+                r.withheld.0.insert(
+                    ldh_core::domain::Parameter::StrideLengthCv,
+                    w.withheld_reason(),
                 );
                 r.warnings = ldh_core::pipeline::WarningList(vec![w]);
             }
@@ -371,7 +372,9 @@ fn a_finding_about_sv_alone_keeps_the_leg_in_the_reference() {
     assert_eq!(range("stride_length_cv").n_reference, 3);
     assert!(r.description.contains("8 of 8"), "{}", r.description);
     // Any other warning still keeps the leg out.
-    rows[7].warnings.0[0].affects.push("speed_mps".into());
+    rows[7].warnings.0[0]
+        .affects
+        .push(ldh_core::domain::Parameter::Speed);
     let r = Reference::from_rows(&rows, &p);
     assert!(r.description.contains("7 of 8"), "{}", r.description);
 }

@@ -142,13 +142,18 @@ fn bounds_are_inclusive_and_compared_as_shown() {
 }
 
 fn warn(r: &mut RecordingRow, code: &str, cols: &[&str]) {
-    let w = Warning::new(code, Severity::Warning, format!("{code} message")).withholding(cols);
-    for c in cols {
-        if let Ok(p) = ldh_core::output::Parameter::from_column(c) {
-            r.set_value(p, None);
-        }
+    let ps: Vec<ldh_core::domain::Parameter> = cols
+        .iter()
+        .filter_map(|c| ldh_core::domain::Parameter::from_column(c).ok())
+        .collect();
+    let w = Warning::new(code, Severity::Warning, format!("{code} message")).withholding(&ps);
+    for &p in &ps {
+        r.set_value(p, None);
     }
-    r.withheld = WithheldList(cols.iter().map(|c| (c.to_string(), w.reason())).collect());
+    r.withheld = WithheldList(Default::default());
+    for &p in &ps {
+        r.withheld.0.insert(p, w.withheld_reason());
+    }
     r.warnings = WarningList(vec![w]);
 }
 
@@ -314,12 +319,10 @@ fn headline_with_a_frozen_gyroscope_segment() {
         samples: 351,
     };
     let w = fault_warning(&fault);
-    for c in &w.affects {
-        if let Ok(p) = ldh_core::output::Parameter::from_column(c) {
-            recs[0].set_value(p, None);
-        }
+    for &p in &w.affects {
+        recs[0].set_value(p, None);
+        recs[0].withheld.0.insert(p, w.withheld_reason());
     }
-    recs[0].withheld = WithheldList(w.affects.iter().map(|c| (c.clone(), w.reason())).collect());
     recs[0].warnings = WarningList(vec![w]);
     let (html, _, h) = page_parts(recs);
     assert_eq!(

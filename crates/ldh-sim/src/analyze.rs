@@ -14,7 +14,7 @@ pub fn analyze_simulated(s: &SimSubject, params: &AnalysisParams) -> SubjectResu
     let input = SubjectInput {
         setting: s.family_b.as_ref().map(|p| p.setting),
         subject_id: s.params.subject_id.clone(),
-        group: Some(s.params.group.into()),
+        group: Some(s.params.group.clone()),
         affected_side: s.params.affected_side,
         sensor_height_m: Some((s.left.truth.sensor_height_m + s.right.truth.sensor_height_m) / 2.0),
         ..SubjectInput::default()

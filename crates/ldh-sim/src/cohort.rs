@@ -194,7 +194,7 @@ impl CohortParams {
         };
         let mut p = SubjectParams::draw(
             self.subject_id(i),
-            group,
+            group.clone(),
             self.fs_hz,
             self.duration_s,
             &mut rng,

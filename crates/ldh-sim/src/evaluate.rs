@@ -127,7 +127,11 @@ pub fn evaluate(results: &[SubjectResult], truths: &[SubjectTruth]) -> Accuracy 
         for (leg, truth) in [(&r.left, &t.left), (&r.right, &t.right)] {
             let Ok(leg) = leg else { continue };
             recs += 1;
-            for sc in strides::leg_scores(leg, truth, (r.model.as_str(), &t.subject_id, t.group)) {
+            for sc in strides::leg_scores(
+                leg,
+                truth,
+                (r.model.as_str(), &t.subject_id, t.group.clone()),
+            ) {
                 add_score(&sc, &mut hs, &mut to, &mut missed);
                 if sc.stride_index.is_some() {
                     st.extend(sc.stride_time_error_ms);
@@ -154,7 +158,7 @@ pub fn evaluate(results: &[SubjectResult], truths: &[SubjectTruth]) -> Accuracy 
                 roll_all.push(er.sqrt());
                 let withheld = ldh_core::pipeline::quality::params::ANGLES
                     .iter()
-                    .any(|k| leg.parameters.withheld.contains_key(*k));
+                    .any(|k| leg.parameters.withheld.contains(*k));
                 if withheld {
                     angles_withheld += 1;
                 } else {

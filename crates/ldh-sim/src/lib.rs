@@ -96,7 +96,7 @@ pub fn check_samples(duration_s: f64, fs_hz: f64) -> Result<()> {
 }
 
 /// Subject group (defined with the recordings' other labels: the analysis reads it too).
-pub use ldh_core::recording::Group;
+pub use ldh_core::domain::Group;
 
 #[cfg(test)]
 mod tests;

@@ -163,7 +163,7 @@ impl SubjectParams {
     ) -> Self {
         use rand::Rng;
         let mut p = SubjectParams::healthy(subject_id);
-        p.group = group;
+        p.group = group.clone();
         p.fs_hz = fs_hz;
         p.duration_s = duration_s;
         let h = normal_clamped(rng, 0.10, 0.015, 0.06, 0.16);
@@ -174,7 +174,8 @@ impl SubjectParams {
             l.roll_stance_deg = normal_clamped(rng, 2.0, 1.0, -1.0, 5.0);
         }
         match group {
-            Group::Healthy => {
+            // Any other label walks as the healthy group (the simulator models two groups).
+            Group::Healthy | Group::Other(_) => {
                 p.stride_time_s = normal_clamped(rng, 1.05, 0.05, 0.92, 1.2);
                 let speed = normal_clamped(rng, 1.30, 0.10, 1.05, 1.6);
                 p.stride_length_m = speed * p.stride_time_s;

@@ -171,7 +171,7 @@ impl SimSubject {
         SubjectTruth {
             schema: TRUTH_SCHEMA.to_string(),
             subject_id: self.params.subject_id.clone(),
-            group: self.params.group,
+            group: self.params.group.clone(),
             affected_side: self.params.affected_side,
             fs_hz: self.params.fs_hz,
             params: self.params.clone(),

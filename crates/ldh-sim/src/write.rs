@@ -144,7 +144,7 @@ impl ManifestRow {
         ManifestRow {
             subject_id: id.clone(),
             trial_id: None,
-            group: s.params.group,
+            group: s.params.group.clone(),
             affected_side: s
                 .params
                 .affected_side

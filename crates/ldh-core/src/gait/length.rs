@@ -54,6 +54,7 @@
 use nalgebra::{Matrix3, Rotation3, Vector3};
 use serde::{Deserialize, Serialize};
 
+use super::{LengthCheck, StrideCode, StrideFinding};
 use crate::align::Aligned;
 use crate::attitude::{rotation_wf, Attitude};
 use crate::error::LdhError;
@@ -193,58 +194,78 @@ pub const MAX_VERTICAL_SHARE: f64 = 0.15;
 pub const MAX_CLIP_STEP_SHARE: f64 = MAX_VERTICAL_SHARE;
 
 impl LengthEstimate {
-    /// Why this length cannot be vouched for, if so. `pendulum_m`: the shank-pendulum estimate
+    /// Why this length cannot be vouched for, if so: the check it fails, with its text. `pendulum_m`: the shank-pendulum estimate
     /// ([`pendulum_length_m`]), NaN when unknown.
-    pub fn implausible(&self, pendulum_m: f64) -> Option<String> {
+    pub fn check(&self, pendulum_m: f64) -> Option<StrideFinding> {
+        use LengthCheck::*;
+        let f = |c: LengthCheck, m: String| StrideFinding::new(StrideCode::Length(c), m);
         if !self.length_m.is_finite() {
-            return Some("stride length not integrable".into());
+            return Some(f(NotIntegrable, "stride length not integrable".into()));
         }
         if self.drift_mps > MAX_DRIFT_MPS {
-            return Some(format!(
-                "stride length withheld: velocity drift {:.2} m/s over the stride",
-                self.drift_mps
+            return Some(f(
+                Drift,
+                format!(
+                    "stride length withheld: velocity drift {:.2} m/s over the stride",
+                    self.drift_mps
+                ),
             ));
         }
         if self.tilt_deg > MAX_TILT_DEG {
-            return Some(format!(
+            return Some(f(
+                TiltCorrection,
+                format!(
                 "stride length withheld: the attitude needed a {:.0} deg tilt correction over the stride (more than {MAX_TILT_DEG:.0})",
                 self.tilt_deg
-            ));
+            )));
         }
         if self.unexplained_mps > MAX_DRIFT_MPS {
-            return Some(format!(
+            return Some(f(
+                Drift,
+                format!(
                 "stride length withheld: velocity drift {:.2} m/s over the stride that a tilt of the attitude does not explain",
                 self.unexplained_mps
-            ));
+            )));
         }
         if self.clipped_samples > 0 && self.clip_step_m > MAX_CLIP_STEP_SHARE * self.length_m {
-            return Some(format!(
+            return Some(f(
+                Clipped,
+                format!(
                 "stride length withheld: the accelerometer clipped on {} sample{} of the stride, and the drift left after reconstructing them could move the ankle by {:.0} cm ({:.0} % of the {:.2} m stride)",
                 self.clipped_samples,
                 if self.clipped_samples == 1 { "" } else { "s" },
                 self.clip_step_m * 100.0,
                 100.0 * self.clip_step_m / self.length_m,
                 self.length_m
-            ));
+            )));
         }
         if self.vertical_m.abs() > MAX_VERTICAL_M.min(MAX_VERTICAL_SHARE * self.length_m) {
-            return Some(format!(
+            return Some(f(
+                Floor,
+                format!(
                 "stride length withheld: the ankle ends {:.0} cm off the floor level ({:.0} % of the {:.2} m stride)",
                 self.vertical_m * 100.0,
                 100.0 * self.vertical_m.abs() / self.length_m,
                 self.length_m
-            ));
+            )));
         }
         if pendulum_m.is_finite()
             && pendulum_m > 0.05
             && !(0.45..=2.2).contains(&(self.length_m / pendulum_m))
         {
-            return Some(format!(
+            return Some(f(
+                Pendulum,
+                format!(
                 "stride length withheld: {:.2} m disagrees with the shank-pendulum estimate {:.2} m",
                 self.length_m, pendulum_m
-            ));
+            )));
         }
         None
+    }
+
+    /// [`LengthEstimate::check`]'s text.
+    pub fn implausible(&self, pendulum_m: f64) -> Option<String> {
+        self.check(pendulum_m).map(|f| f.message)
     }
 }
 

@@ -36,7 +36,7 @@ mod times;
 
 use serde::{Deserialize, Serialize};
 
-use crate::recording::Side;
+use crate::domain::{Measured, Parameter, Reason, Side, Withheld};
 pub use height::{
     height_sensitivity, height_sensitivity_measured, heights_to_measure, HeightSensitivity,
     MAX_HEIGHT_SPREAD_SHARE, SENSOR_HEIGHT_RANGE_M,
@@ -90,8 +90,144 @@ pub struct Stride {
     pub valid: bool,
     /// Why not valid, and why a value of the stride is withheld (its length: "stride length
     /// withheld: …"; the stride may then still be valid for its timing and angles); several
-    /// reasons joined by "; ", "" when valid with every value reported.
+    /// reasons joined by "; ", "" when valid with every value reported. The text of
+    /// [`Stride::findings`], for people: no code decides on it.
     pub reason: String,
+    /// The same reasons as typed findings, in the same order (what the pipeline decides on);
+    /// not serialised (the tables write `reason`).
+    #[serde(skip)]
+    pub findings: Vec<StrideFinding>,
+}
+
+/// What a stride's own length check found ([`LengthEstimate::check`], the segmentation and the
+/// checks between strides and legs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum LengthCheck {
+    /// The ACC-only attitude: the acceleration is not integrated.
+    AccOnly,
+    /// The accelerometer clipped, and the reconstruction's drift could move the ankle too far.
+    Clipped,
+    /// Velocity drift over the stride (with or without a tilt to explain it).
+    Drift,
+    /// The attitude needed too large a tilt correction.
+    TiltCorrection,
+    /// The ankle ends off the floor level.
+    Floor,
+    /// The length disagrees with the shank-pendulum estimate.
+    Pendulum,
+    /// Far from its bout's median length.
+    BoutMedian,
+    /// Contradicted by the other leg's strides over the same time.
+    OtherLeg,
+    /// The integration gave no finite length.
+    NotIntegrable,
+}
+
+impl LengthCheck {
+    /// The check in the words of a leg's withheld stride length ("… (velocity drift)").
+    pub fn words(self) -> &'static str {
+        match self {
+            LengthCheck::AccOnly => "the ACC-only attitude cannot separate gravity from motion",
+            LengthCheck::Clipped => "accelerometer clipped",
+            LengthCheck::Drift => "velocity drift",
+            LengthCheck::TiltCorrection => "attitude tilt correction too large",
+            LengthCheck::Floor => "ankle off the floor level",
+            LengthCheck::Pendulum => "disagrees with the shank-pendulum estimate",
+            LengthCheck::BoutMedian => "far from its bout's median",
+            LengthCheck::OtherLeg => "contradicted by the other leg's strides",
+            LengthCheck::NotIntegrable => "not integrable",
+        }
+    }
+}
+
+/// Why a stride is not valid, or which of its values is withheld.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub enum StrideCode {
+    /// Stride time outside the stride range.
+    StrideTime,
+    /// No toe off, or several.
+    ToeOff,
+    /// Part of a turn.
+    Turn,
+    /// First or last stride of a walking bout.
+    BoutEdge,
+    /// Outside the steady walking ([`exclude_unsteady`]).
+    NotSteady,
+    /// Its length failed a check.
+    Length(LengthCheck),
+    /// Its length passed its own checks, but too few of the leg's did
+    /// ([`withhold_unvouched_lengths`]).
+    LengthNotVouched,
+    /// Its angles are outside anatomical bounds.
+    AnglesOutOfBounds,
+    /// A quality finding (its warning code) about the whole leg or a span of it; `length`: it
+    /// withholds the stride's length; `all`: it withholds every value (the stride is invalid).
+    Finding {
+        /// The warning code.
+        code: String,
+        /// Whether the stride length is withheld.
+        length: bool,
+    },
+}
+
+/// One reason of a stride: a typed code and its text.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct StrideFinding {
+    /// What it is.
+    pub code: StrideCode,
+    /// The text, as `strides.csv` writes it.
+    pub message: String,
+}
+
+impl StrideFinding {
+    /// A finding of `code` with `message`.
+    pub fn new(code: StrideCode, message: impl Into<String>) -> StrideFinding {
+        StrideFinding {
+            code,
+            message: message.into(),
+        }
+    }
+}
+
+impl Stride {
+    /// Whether a finding of `code` is among the stride's.
+    pub fn has(&self, code: &StrideCode) -> bool {
+        self.findings.iter().any(|f| &f.code == code)
+    }
+
+    /// Add a finding (its text to `reason`, after "; ").
+    pub fn push(&mut self, f: StrideFinding) {
+        self.findings.push(f);
+        self.write_reason();
+    }
+
+    /// Add a finding unless the same one is there already (checks applied again).
+    pub fn push_once(&mut self, f: StrideFinding) {
+        if !self.findings.contains(&f) {
+            self.push(f);
+        }
+    }
+
+    /// Replace every finding by `f`.
+    pub fn replace_findings(&mut self, f: StrideFinding) {
+        self.findings = vec![f];
+        self.write_reason();
+    }
+
+    /// Drop the findings of `code`.
+    pub fn remove(&mut self, code: &StrideCode) {
+        self.findings.retain(|f| &f.code != code);
+        self.write_reason();
+    }
+
+    fn write_reason(&mut self) {
+        self.reason = self
+            .findings
+            .iter()
+            .map(|f| f.message.as_str())
+            .collect::<Vec<_>>()
+            .join("; ");
+    }
 }
 
 /// Per-side parameters (SPEC §3.6): means over valid strides.
@@ -131,11 +267,74 @@ pub struct SideParameters {
     pub pbi_deg: f64,
     /// BDK, mean roll excursion in swing, deg.
     pub bdk_deg: f64,
-    /// Parameters withheld by a quality check: column name (as in recordings.csv, e.g.
-    /// `stride_length_m`) → reason. A withheld parameter's value is NaN and must be shown as
+    /// Parameters withheld by a quality check, with the typed reason (written as column →
+    /// reason, as in recordings.csv). A withheld parameter's value is NaN and must be shown as
     /// "not measured: <reason>", never as a number. Empty when every parameter is vouched for.
-    #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
-    pub withheld: std::collections::BTreeMap<String, String>,
+    #[serde(default, skip_serializing_if = "Withheld::is_empty")]
+    pub withheld: Withheld,
+}
+
+impl SideParameters {
+    /// The value of `p` (NaN when not measured).
+    pub fn value(&self, p: Parameter) -> f64 {
+        use Parameter::*;
+        match p {
+            StepFrequency => self.step_frequency_hz,
+            StrideLength => self.stride_length_m,
+            Speed => self.speed_mps,
+            StepTime => self.step_time_s,
+            StrideTime => self.stride_time_s,
+            StanceRatio => self.stance_ratio,
+            SwingRatio => self.swing_ratio,
+            StrideLengthCv => self.stride_length_cv,
+            StrideTimeCv => self.stride_time_cv,
+            Sta => self.sta_per_s,
+            Wqk => self.wqk_deg,
+            Pbi => self.pbi_deg,
+            Bdk => self.bdk_deg,
+        }
+    }
+
+    /// The value of `p`, or why it is withheld (`None`: neither measured nor withheld, e.g. the
+    /// step time of one leg).
+    pub fn measured(&self, p: Parameter) -> Option<Measured> {
+        match self.withheld.get(p) {
+            Some(r) => Some(Measured::Withheld(r.clone())),
+            None => Some(self.value(p))
+                .filter(|v| v.is_finite())
+                .map(Measured::Value),
+        }
+    }
+
+    /// Withhold `p` for `reason`: its value (for STA, both per second and per stride) becomes
+    /// NaN; `replace` says whether the reason replaces an earlier one (a fault's does).
+    pub fn withhold(&mut self, p: Parameter, reason: Reason, replace: bool) {
+        use Parameter::*;
+        let slot = match p {
+            StepFrequency => &mut self.step_frequency_hz,
+            StrideLength => &mut self.stride_length_m,
+            Speed => &mut self.speed_mps,
+            StepTime => &mut self.step_time_s,
+            StrideTime => &mut self.stride_time_s,
+            StanceRatio => &mut self.stance_ratio,
+            SwingRatio => &mut self.swing_ratio,
+            StrideLengthCv => &mut self.stride_length_cv,
+            StrideTimeCv => &mut self.stride_time_cv,
+            Sta => {
+                self.sta_per_stride = f64::NAN;
+                &mut self.sta_per_s
+            }
+            Wqk => &mut self.wqk_deg,
+            Pbi => &mut self.pbi_deg,
+            Bdk => &mut self.bdk_deg,
+        };
+        *slot = f64::NAN;
+        if replace {
+            self.withheld.insert(p, reason);
+        } else {
+            self.withheld.insert_first(p, || reason);
+        }
+    }
 }
 
 /// Anatomical roll (positive: knee lateral to the ankle) from the ZYX roll of frame F.
@@ -144,15 +343,6 @@ pub fn anatomical_roll_deg(roll_zyx_deg: f64, side: Side) -> f64 {
         Side::Left => -roll_zyx_deg,
         Side::Right => roll_zyx_deg,
     }
-}
-
-/// Append `r` to a stride's reasons ("; " between reasons).
-pub(crate) fn append_reason(s: &mut Stride, r: String) {
-    s.reason = if s.reason.is_empty() {
-        r
-    } else {
-        format!("{}; {r}", s.reason)
-    };
 }
 
 #[cfg(test)]

@@ -5,8 +5,8 @@
 
 use super::times::SortedTimes;
 use super::{
-    anatomical_roll_deg, append_reason, pendulum_length_m, stride_lengths, zero_velocity_sample,
-    LengthEstimate, Stride, StrideParams, ValidStrideParams,
+    anatomical_roll_deg, pendulum_length_m, stride_lengths, zero_velocity_sample, LengthCheck,
+    LengthEstimate, Stride, StrideCode, StrideFinding, StrideParams, ValidStrideParams,
 };
 use crate::align::Aligned;
 use crate::attitude::{Attitude, AttitudeModel};
@@ -82,7 +82,7 @@ fn strides_with_turns_at(
     hs.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
     let mut out: Vec<Stride> = Vec::new();
     // Why a stride's length is withheld (the stride stays valid for its timing and angles).
-    let mut length_notes: Vec<Option<String>> = Vec::new();
+    let mut length_notes: Vec<Option<StrideFinding>> = Vec::new();
     // Whether a stride is part of a turn (a turn ends a walking bout).
     let mut turns: Vec<bool> = Vec::new();
     let mut at_heights = LengthsAtHeights::new(heights_m);
@@ -99,11 +99,11 @@ fn strides_with_turns_at(
     }
     for (s, b) in out.iter_mut().zip(&bouts) {
         s.bout = b.unwrap_or(0);
-        s.valid = s.reason.is_empty();
+        s.valid = s.findings.is_empty();
     }
     for (s, note) in out.iter_mut().zip(length_notes) {
-        if let Some(r) = note {
-            append_reason(s, r);
+        if let Some(f) = note {
+            s.push(f);
         }
     }
     withhold_length_outliers(&mut out, p.max_length_deviation);
@@ -159,7 +159,7 @@ struct Measured {
     /// The stride, `bout` 0 and `valid` true for now; `reason` holds the timing and turn reasons.
     stride: Stride,
     /// Why its length is withheld, if it is.
-    length_note: Option<String>,
+    length_note: Option<StrideFinding>,
     /// Whether it is part of a turn.
     turn: bool,
     /// Its length with the sensor at each of the other heights asked for, m (NaN where the
@@ -242,11 +242,14 @@ impl<'a> Leg<'a> {
     ) -> Measured {
         let (p, att, n) = (self.p, self.att, self.n);
         let st = h1 - h0;
-        let mut reasons: Vec<String> = Vec::new();
+        let mut reasons: Vec<StrideFinding> = Vec::new();
         if st < p.min_stride_s || st > p.max_stride_s {
-            reasons.push(format!(
-                "stride time {st:.2} s outside [{}, {}] s",
-                p.min_stride_s, p.max_stride_s
+            reasons.push(StrideFinding::new(
+                StrideCode::StrideTime,
+                format!(
+                    "stride time {st:.2} s outside [{}, {}] s",
+                    p.min_stride_s, p.max_stride_s
+                ),
             ));
         }
         let to = self.toe_off(h0, h1, &mut reasons);
@@ -261,7 +264,10 @@ impl<'a> Leg<'a> {
         dpsi = (dpsi + 180.0).rem_euclid(360.0) - 180.0;
         let turn = is_turn(h0, h1, dpsi);
         if turn {
-            reasons.push(format!("turning ({dpsi:.0} deg heading change)"));
+            reasons.push(StrideFinding::new(
+                StrideCode::Turn,
+                format!("turning ({dpsi:.0} deg heading change)"),
+            ));
         }
         let span = self.span(h0, h1, to, a);
         let mut heights = Vec::with_capacity(heights_m.len() + 1);
@@ -269,24 +275,29 @@ impl<'a> Leg<'a> {
         heights.extend_from_slice(heights_m);
         let mut lengths = self.lengths(&span, &heights).into_iter();
         let (length, length_note) = lengths.next().unwrap_or((f64::NAN, None));
+        let mut stride = Stride {
+            stride_index: k,
+            hs_time_s: h0,
+            to_time_s: to,
+            next_hs_time_s: h1,
+            stride_time_s: st,
+            stance_ratio: (to - h0) / st,
+            stride_length_m: length,
+            speed_mps: length / st,
+            wqk_deg: mx,
+            pbi_deg: -mn,
+            bdk_deg: bdk,
+            heading_change_deg: dpsi,
+            bout: 0,
+            valid: true,
+            reason: String::new(),
+            findings: Vec::new(),
+        };
+        for f in reasons {
+            stride.push(f);
+        }
         Measured {
-            stride: Stride {
-                stride_index: k,
-                hs_time_s: h0,
-                to_time_s: to,
-                next_hs_time_s: h1,
-                stride_time_s: st,
-                stance_ratio: (to - h0) / st,
-                stride_length_m: length,
-                speed_mps: length / st,
-                wqk_deg: mx,
-                pbi_deg: -mn,
-                bdk_deg: bdk,
-                heading_change_deg: dpsi,
-                bout: 0,
-                valid: true,
-                reason: reasons.join("; "),
-            },
+            stride,
             length_note,
             turn,
             at_heights_m: lengths.map(|(l, _)| l).collect(),
@@ -295,15 +306,18 @@ impl<'a> Leg<'a> {
 
     /// The toe off between the heel strikes at `h0` and `h1` s (the first when several, NaN
     /// when none), adding the reason to `reasons` unless there is exactly one.
-    fn toe_off(&self, h0: f64, h1: f64, reasons: &mut Vec<String>) -> f64 {
+    fn toe_off(&self, h0: f64, h1: f64, reasons: &mut Vec<StrideFinding>) -> f64 {
         match self.tos.after(h0, |t| t < h1) {
             (None, _) => {
-                reasons.push("no toe off".into());
+                reasons.push(StrideFinding::new(StrideCode::ToeOff, "no toe off"));
                 f64::NAN
             }
             (Some(t), 1) => t,
             (Some(t), n) => {
-                reasons.push(format!("{n} toe offs"));
+                reasons.push(StrideFinding::new(
+                    StrideCode::ToeOff,
+                    format!("{n} toe offs"),
+                ));
                 t
             }
         }
@@ -346,7 +360,7 @@ impl<'a> Leg<'a> {
 
     /// The stride length over `span`, m, with the sensor at each of `heights_m` above the
     /// ankle, NaN with the reason where it is withheld.
-    fn lengths(&self, span: &Span, heights_m: &[f64]) -> Vec<(f64, Option<String>)> {
+    fn lengths(&self, span: &Span, heights_m: &[f64]) -> Vec<(f64, Option<StrideFinding>)> {
         let ests = match span.zv {
             Some((z0, z1)) => stride_lengths(self.al, self.att, z0, z1, heights_m),
             None => vec![
@@ -365,9 +379,12 @@ impl<'a> Leg<'a> {
         ests.into_iter()
             .map(|est| {
                 let note = if self.att.model == AttitudeModel::Acc {
-                    Some(ACC_ONLY_LENGTH.to_string())
+                    Some(StrideFinding::new(
+                        StrideCode::Length(LengthCheck::AccOnly),
+                        ACC_ONLY_LENGTH,
+                    ))
                 } else {
-                    est.implausible(span.pendulum_m)
+                    est.check(span.pendulum_m)
                 };
                 let length = if note.is_some() {
                     f64::NAN
@@ -461,7 +478,7 @@ fn flag_bout_edges(out: &mut [Stride], bouts: &[Option<usize>]) {
             } else {
                 "last stride of a walking bout"
             };
-            append_reason(&mut out[i], r.to_string());
+            out[i].push(StrideFinding::new(StrideCode::BoutEdge, r));
         }
     }
 }
@@ -496,7 +513,10 @@ fn withhold_length_outliers(out: &mut [Stride], max_dev: f64) {
                     s.stride_length_m,
                     dev * 100.0
                 );
-                append_reason(s, r);
+                s.push(StrideFinding::new(
+                    StrideCode::Length(LengthCheck::BoutMedian),
+                    r,
+                ));
                 s.stride_length_m = f64::NAN;
                 s.speed_mps = f64::NAN;
             }

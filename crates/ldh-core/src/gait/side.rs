@@ -3,7 +3,8 @@
 //! evidence that withhold a leg's stride length when too few of its strides vouch for it.
 
 use super::times::SortedTimes;
-use super::{append_reason, SideParameters, Stride};
+use super::{LengthCheck, SideParameters, Stride, StrideCode, StrideFinding};
+use crate::domain::{Parameter, Reason, ReasonCode};
 
 fn mean(v: &[f64]) -> f64 {
     if v.is_empty() {
@@ -99,10 +100,6 @@ fn lengths_vouched(valid: usize, with_length: usize) -> bool {
         && with_length as f64 >= MIN_LENGTH_SHARE * valid as f64
 }
 
-/// The end of the reason [`withhold_unvouched_lengths`] gives a survivor, by which
-/// [`withhold_side_length`] still counts it as having passed its own checks.
-const SURVIVOR: &str = "valid strides pass the integration checks";
-
 /// Withholds the per-stride lengths (and speeds) of a leg whose lengths are not vouched for
 /// ([`lengths_vouched`]): the few strides that passed their own checks are survivors of the
 /// same faulty integration (on simulator family A the ACC-only model's 2 survivors of 616 were
@@ -120,23 +117,31 @@ pub fn withhold_unvouched_lengths(strides: &mut [Stride]) {
     for s in strides.iter_mut().filter(|s| s.stride_length_m.is_finite()) {
         s.stride_length_m = f64::NAN;
         s.speed_mps = f64::NAN;
-        append_reason(
-            s,
-            format!("stride length withheld: only {with_length} of the leg's {valid} {SURVIVOR}"),
-        );
+        s.push(StrideFinding::new(
+            StrideCode::LengthNotVouched,
+            format!("stride length withheld: only {with_length} of the leg's {valid} valid strides pass the integration checks"),
+        ));
     }
 }
 
-/// The finding a stride's reason names for its blanked length ("stride length withheld: lr
-/// disagreement" → "lr disagreement", as [`crate::pipeline::quality::apply_to_strides`] writes
-/// it), else "not integrable" (the length itself was not finite).
-fn finding_named_in(reason: &str) -> String {
-    reason
-        .split("; ")
-        .find_map(|part| part.split_once("stride length withheld: ").map(|(_, f)| f))
-        .filter(|f| !f.is_empty())
-        .unwrap_or("not integrable")
-        .to_string()
+/// Why a valid stride's length is blank, in words: the first of the length checks it failed
+/// (in the order of [`LengthCheck`]), else the first quality finding that withheld it, else
+/// "not integrable".
+fn why_no_length(s: &Stride) -> String {
+    let checks = s.findings.iter().filter_map(|f| match f.code {
+        StrideCode::Length(c) if c != LengthCheck::NotIntegrable => Some(c),
+        _ => None,
+    });
+    if let Some(c) = checks.min() {
+        return c.words().to_string();
+    }
+    s.findings
+        .iter()
+        .find_map(|f| match &f.code {
+            StrideCode::Finding { code, length: true } => Some(code.replace('_', " ")),
+            _ => None,
+        })
+        .unwrap_or_else(|| LengthCheck::NotIntegrable.words().to_string())
 }
 
 /// Withhold the side's stride length, speed and SV unless at least [`MIN_LENGTH_STRIDES`] (or
@@ -147,31 +152,15 @@ fn withhold_side_length(out: &mut SideParameters, valid: &[&Stride], with_length
         return;
     }
     // Survivors withheld by `withhold_unvouched_lengths` passed their own checks.
-    let survivors = valid.iter().filter(|s| s.reason.contains(SURVIVOR)).count();
+    let survivor = |s: &Stride| s.has(&StrideCode::LengthNotVouched);
+    let survivors = valid.iter().filter(|s| survivor(s)).count();
     let passed = with_length + survivors;
     let mut why: std::collections::BTreeMap<String, usize> = Default::default();
     for s in valid
         .iter()
-        .filter(|s| !s.stride_length_m.is_finite() && !s.reason.contains(SURVIVOR))
+        .filter(|s| !s.stride_length_m.is_finite() && !survivor(s))
     {
-        let r = &s.reason;
-        let key = [
-            (
-                "ACC-only",
-                "the ACC-only attitude cannot separate gravity from motion",
-            ),
-            ("clipped", "accelerometer clipped"),
-            ("drift", "velocity drift"),
-            ("tilt correction", "attitude tilt correction too large"),
-            ("floor", "ankle off the floor level"),
-            ("pendulum", "disagrees with the shank-pendulum estimate"),
-            ("median", "far from its bout's median"),
-            ("other leg", "contradicted by the other leg's strides"),
-        ]
-        .iter()
-        .find(|(k, _)| r.contains(k))
-        .map_or_else(|| finding_named_in(r), |(_, v)| v.to_string());
-        *why.entry(key).or_default() += 1;
+        *why.entry(why_no_length(s)).or_default() += 1;
     }
     let top = why
         .iter()
@@ -182,10 +171,15 @@ fn withhold_side_length(out: &mut SideParameters, valid: &[&Stride], with_length
         "stride length vouched for on {passed} of {} valid strides ({top})",
         valid.len()
     );
-    out.stride_length_m = f64::NAN;
-    out.speed_mps = f64::NAN;
-    out.stride_length_cv = f64::NAN;
-    for c in ["stride_length_m", "speed_mps", "stride_length_cv"] {
-        out.withheld.insert(c.to_string(), reason.clone());
+    for p in [
+        Parameter::StrideLength,
+        Parameter::Speed,
+        Parameter::StrideLengthCv,
+    ] {
+        out.withhold(
+            p,
+            Reason::new(ReasonCode::LengthNotVouched, reason.clone()),
+            true,
+        );
     }
 }

@@ -34,7 +34,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{append_reason, Stride};
+use super::{Stride, StrideCode, StrideFinding};
 use crate::error::{LdhError, Result};
 use crate::stats::{median, EvenMedian};
 
@@ -222,14 +222,9 @@ pub struct SteadySpan {
 /// first, so a leg re-segmented or re-checked can be given to it again.
 pub fn exclude_unsteady(strides: &mut [Stride], p: &ValidSteadyParams) -> Option<SteadySpan> {
     for s in strides.iter_mut() {
-        let reasons: Vec<&str> = s.reason.split("; ").collect();
-        if reasons.contains(&STEADY_REASON) {
+        if s.has(&StrideCode::NotSteady) {
             // Only valid strides are ever excluded, so without this reason it is valid again.
-            s.reason = reasons
-                .into_iter()
-                .filter(|r| *r != STEADY_REASON)
-                .collect::<Vec<_>>()
-                .join("; ");
+            s.remove(&StrideCode::NotSteady);
             s.valid = true;
         }
     }
@@ -252,7 +247,7 @@ pub fn exclude_unsteady(strides: &mut [Stride], p: &ValidSteadyParams) -> Option
     for (i, s) in strides.iter_mut().enumerate() {
         if s.valid && (i < w.first || i >= w.end) {
             s.valid = false;
-            append_reason(s, STEADY_REASON.to_string());
+            s.push(StrideFinding::new(StrideCode::NotSteady, STEADY_REASON));
         }
     }
     Some(SteadySpan {

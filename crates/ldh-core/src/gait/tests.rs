@@ -23,7 +23,7 @@ fn survivors_of_an_unvouched_leg_lose_their_lengths_too() {
     assert!(p.stride_length_m.is_nan());
     // the leg's reason still counts the survivors as having passed their own checks
     assert_eq!(
-        p.withheld["stride_length_m"],
+        p.withheld.reason(Parameter::StrideLength).unwrap(),
         "stride length vouched for on 4 of 127 valid strides (velocity drift)"
     );
     // a vouched leg is left alone
@@ -52,11 +52,17 @@ fn leg(n: usize, with_length: usize) -> Vec<Stride> {
             heading_change_deg: 0.0,
             bout: 0,
             valid: true,
-            reason: if k < with_length {
-                String::new()
-            } else {
-                "stride length withheld: velocity drift 2.00 m/s over the stride".into()
-            },
+            reason: String::new(),
+            findings: Vec::new(),
+        })
+        .map(|mut s| {
+            if !s.stride_length_m.is_finite() {
+                s.push(StrideFinding::new(
+                    StrideCode::Length(LengthCheck::Drift),
+                    "stride length withheld: velocity drift 2.00 m/s over the stride",
+                ));
+            }
+            s
         })
         .collect()
 }
@@ -67,7 +73,7 @@ fn a_side_length_needs_most_strides_vouched_for() {
     let p = side(127, 4);
     assert!(p.stride_length_m.is_nan() && p.speed_mps.is_nan());
     assert_eq!(
-        p.withheld["stride_length_m"],
+        p.withheld.reason(Parameter::StrideLength).unwrap(),
         "stride length vouched for on 4 of 127 valid strides (velocity drift)"
     );
     assert!((p.stride_time_s - 1.1).abs() < 1e-12, "timing stays");
@@ -85,17 +91,27 @@ fn a_side_length_blanked_by_a_finding_names_the_finding() {
     // The pair's left/right check blanked every stride's length (quality::apply_to_strides).
     let mut st = leg(10, 0);
     for s in st.iter_mut() {
-        s.reason = "stride length withheld: lr disagreement".into();
+        s.replace_findings(StrideFinding::new(
+            StrideCode::Finding {
+                code: "lr_disagreement".into(),
+                length: true,
+            },
+            "stride length withheld: lr disagreement",
+        ));
     }
     let p = side_parameters(&st, None);
     assert_eq!(
-        p.withheld["stride_length_m"],
+        p.withheld.reason(Parameter::StrideLength).unwrap(),
         "stride length vouched for on 0 of 10 valid strides (lr disagreement)"
     );
     // A length that was simply not finite, with no reason, is "not integrable".
     for s in st.iter_mut() {
-        s.reason.clear();
+        s.findings.clear();
     }
     let p = side_parameters(&st, None);
-    assert!(p.withheld["stride_length_m"].ends_with("(not integrable)"));
+    assert!(p
+        .withheld
+        .reason(Parameter::StrideLength)
+        .unwrap()
+        .ends_with("(not integrable)"));
 }

@@ -364,7 +364,7 @@ impl ModelFile {
                     let missing: Vec<String> = features
                         .iter()
                         .filter(|&&f| r.value(f).is_none())
-                        .map(|f| match r.withheld.reason(f.column()) {
+                        .map(|f| match r.withheld.reason(*f) {
                             Some(why) => format!("{} ({why})", f.column()),
                             None => f.column().to_string(),
                         })

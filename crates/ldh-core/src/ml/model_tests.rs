@@ -277,8 +277,8 @@ fn a_missing_feature_is_named_with_the_reason_it_was_withheld() {
     }
     r.stride_length_cv = None;
     r.withheld.0.insert(
-        "stride_length_cv".into(),
-        "sv unchecked (too few strides to check it against its noise)".into(),
+        crate::domain::Parameter::StrideLengthCv,
+        crate::domain::Reason::read("sv unchecked (too few strides to check it against its noise)"),
     );
     let p = m.predict_rows(&[r]).unwrap();
     assert_eq!(p[0].predicted_class, None);

@@ -6,7 +6,7 @@
 //! and reading has always accepted any text in these columns (a group `stroke` is carried and
 //! left out of the statistics with its name; a side `LEFT` is simply not a left leg). So every
 //! label is total: [`Label`] holds one of the values ldh writes ([`Known`]) or, verbatim, any
-//! other text; the group is [`GroupLabel`], which has its own `Other`. A column that may be
+//! other text; the group is [`Group`], which has its own `Other`. A column that may be
 //! empty ("not said") is an `Option`, written as an empty cell / empty JSON string (never
 //! `null`) through [`empty_is_none`]. Reading goes through `String`, so a wrong JSON type gives
 //! the same error as before, and writing gives the same bytes as the string columns did.
@@ -14,8 +14,8 @@
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use crate::attitude::AttitudeModel;
-use crate::pipeline::GroupLabel;
-use crate::recording::{Setting, Side};
+pub use crate::domain::AffectedSide;
+use crate::domain::{Group, Setting, Side};
 
 /// A value ldh writes in a label column, with its cell text.
 pub trait Known: Sized + Copy + PartialEq + 'static {
@@ -137,37 +137,6 @@ impl Known for Status {
     }
 }
 
-/// The affected side a subject's manifest gives.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum AffectedSide {
-    /// `left`.
-    Left,
-    /// `right`.
-    Right,
-    /// `none`: the manifest gives a group and no affected side (a healthy subject).
-    Neither,
-}
-
-impl AffectedSide {
-    /// The side, when one is affected.
-    pub fn side(self) -> Option<Side> {
-        match self {
-            AffectedSide::Left => Some(Side::Left),
-            AffectedSide::Right => Some(Side::Right),
-            AffectedSide::Neither => None,
-        }
-    }
-}
-
-impl From<Side> for AffectedSide {
-    fn from(s: Side) -> Self {
-        match s {
-            Side::Left => AffectedSide::Left,
-            Side::Right => AffectedSide::Right,
-        }
-    }
-}
-
 impl Known for AffectedSide {
     const ALL: &'static [AffectedSide] = &[
         AffectedSide::Left,
@@ -224,15 +193,15 @@ impl<T: Known> Cell for Label<T> {
 
 /// In a table the group is exactly `healthy` or `ldh`, anything else kept as written (the
 /// manifest's spellings `h`, `control` were mapped when the table was written).
-impl Cell for GroupLabel {
+impl Cell for Group {
     fn text(&self) -> &str {
         self.as_str()
     }
     fn from_text(s: &str) -> Self {
         match s {
-            "healthy" => GroupLabel::Healthy,
-            "ldh" => GroupLabel::Ldh,
-            o => GroupLabel::Other(o.to_string()),
+            "healthy" => Group::Healthy,
+            "ldh" => Group::Ldh,
+            o => Group::Other(o.to_string()),
         }
     }
 }
@@ -268,7 +237,7 @@ mod tests {
     struct Typed {
         side: Label<Side>,
         #[serde(with = "empty_is_none")]
-        group: Option<GroupLabel>,
+        group: Option<Group>,
         #[serde(default, with = "empty_is_none")]
         setting: Option<Label<Setting>>,
     }
@@ -296,13 +265,13 @@ mod tests {
         }
         let t: Typed = serde_json::from_str(r#"{"side":"right","group":"healthy"}"#).unwrap();
         assert_eq!(t.side, Side::Right);
-        assert_eq!(t.group, Some(GroupLabel::Healthy));
+        assert_eq!(t.group, Some(Group::Healthy));
         assert_eq!(t.setting, None, "a missing setting is not said");
         let t: Typed = serde_json::from_str(r#"{"side":"LEFT","group":"H"}"#).unwrap();
         assert_eq!(t.side, Label::Other("LEFT".into()), "kept as written");
         assert_eq!(
             t.group,
-            Some(GroupLabel::Other("H".into())),
+            Some(Group::Other("H".into())),
             "no manifest spellings"
         );
     }

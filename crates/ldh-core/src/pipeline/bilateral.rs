@@ -5,48 +5,7 @@ use serde::{Deserialize, Serialize};
 use crate::events::Events;
 use crate::recording::Side;
 
-/// Kind of a gait event.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-pub enum EventKind {
-    /// Heel strike.
-    #[serde(rename = "HS")]
-    HeelStrike,
-    /// Toe off.
-    #[serde(rename = "TO")]
-    ToeOff,
-}
-
-impl EventKind {
-    /// `"HS"` or `"TO"`, as `events.csv` and reference files write it.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            EventKind::HeelStrike => "HS",
-            EventKind::ToeOff => "TO",
-        }
-    }
-}
-
-impl std::fmt::Display for EventKind {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
-
-impl std::str::FromStr for EventKind {
-    type Err = crate::LdhError;
-    /// `HS` or `TO` (any case, surrounding spaces ignored).
-    fn from_str(s: &str) -> crate::Result<Self> {
-        match s.trim().to_ascii_uppercase().as_str() {
-            "HS" => Ok(EventKind::HeelStrike),
-            "TO" => Ok(EventKind::ToeOff),
-            other => Err(crate::LdhError::param(
-                "event",
-                other,
-                "expected 'HS' (heel strike) or 'TO' (toe off)",
-            )),
-        }
-    }
-}
+pub use crate::domain::EventKind;
 
 /// One event of the bilateral sequence.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -20,8 +20,8 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use super::heights::SensorHeights;
-pub use super::subject_input::GroupLabel;
 use super::subject_input::{Source, SubjectInput};
+use crate::domain::Group;
 use crate::error::{LdhError, Location, Result};
 use crate::io::table::{Row, Table, TableFormat};
 use crate::io::FormatSpec;
@@ -237,14 +237,14 @@ fn parse_row(
     }
     let group = Some(row.get("group"))
         .filter(|g| !g.is_empty())
-        .map(|g| GroupLabel::from(g.to_string()));
+        .map(|g| Group::from(g.to_string()));
     let side_cell = row.get("affected_side");
     let (affected_side, unknown) = match side_cell.to_ascii_lowercase().as_str() {
         "left" => (Some(Side::Left), false),
         "right" => (Some(Side::Right), false),
         "none" => (None, false),
         // Healthy controls have no affected side: empty is not "unknown" for them.
-        "" => (None, group != Some(GroupLabel::Healthy)),
+        "" => (None, group != Some(Group::Healthy)),
         other => {
             return Err(row.invalid_value(
                 "affected_side",

@@ -8,6 +8,7 @@
 mod analysis;
 mod batch;
 mod bilateral;
+mod finalize;
 mod heights;
 mod inputs;
 mod leg;
@@ -19,6 +20,7 @@ pub mod quality;
 mod subject;
 mod subject_input;
 
+pub use crate::domain::Group;
 pub use analysis::{AnalysedLeg, Analysis, LentHeelStrikes, Many};
 pub use batch::{bare_subject, leg_from_arrays};
 pub use bilateral::{bilateral_events, bilateral_events_on_clock, BilateralEvent, EventKind};
@@ -28,7 +30,9 @@ pub use inputs::{
     InputOptions, PeopleTrials, Source, SubjectInput,
 };
 pub use leg::{leg_back, leg_front, memory_report, LegFront, LegResult};
-pub use manifest::{is_manifest_text, GroupLabel, MANIFEST_COLUMNS};
+pub use manifest::{is_manifest_text, MANIFEST_COLUMNS};
+/// The group's former name (before issue 48 made [`Group`] the one group type); the same type.
+pub type GroupLabel = Group;
 pub use many::{bounded_jobs, check_output_names, FolderOptions, FolderSummary, KeptRun};
 pub use quality::{
     all_leg_warnings, codes, leg_checks, leg_warnings, pair_warnings, params as quality_params,

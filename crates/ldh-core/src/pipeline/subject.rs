@@ -4,7 +4,6 @@ use super::*;
 use serde::{Deserialize, Serialize};
 
 use crate::attitude::AttitudeModel;
-use crate::gait::{side_parameters, withhold_unvouched_lengths};
 use crate::io::{FormatSpec, ReadReport, ValidReadParams};
 use crate::recording::{Recording, Side};
 use crate::timings::{Stage, StageTimings};
@@ -28,7 +27,7 @@ pub struct SubjectResult {
     #[serde(default)]
     pub trial_id: Option<String>,
     /// Group (from the manifest).
-    pub group: Option<GroupLabel>,
+    pub group: Option<Group>,
     /// Affected side (from the manifest).
     pub affected_side: Option<Side>,
     /// The manifest left the affected side empty for a subject outside the healthy group.
@@ -146,48 +145,26 @@ pub(super) fn pair_legs(
     } else {
         (None, None)
     };
-    // The leg's own findings again (the strides may have been re-segmented for turns since the
-    // leg checks ran), then the pair's; then the stride lengths the other leg contradicts.
-    // Then steady walking only, on the strides as re-segmented.
+    // Every finding applied once, in the order of `finalize` (the leg's own findings again:
+    // the strides may have been re-segmented for turns since the leg checks ran).
     for a in [l.as_mut(), r.as_mut()].into_iter().flatten() {
-        let leg = &mut a.leg;
-        quality::apply_to_strides(&mut leg.strides, &leg.warnings);
-        quality::apply_to_strides(&mut leg.strides, &warnings);
-        withhold_unvouched_lengths(&mut leg.strides);
-        leg.steady = quality::apply_steady(&mut leg.strides, &mut leg.warnings, v.steady());
+        finalize::finalize_strides(&mut a.leg, &warnings, Some(v.steady()));
     }
     // Not when the pair's checks doubt they are one walk (what withholds the step time).
     let one_walk = overlapping
-        && !warnings.iter().any(|w| {
-            w.affects
-                .iter()
-                .any(|a| a == crate::output::Parameter::StepTime.column())
-        });
+        && !warnings
+            .iter()
+            .any(|w| w.withholds(crate::domain::Parameter::StepTime));
     if let (Ok(AnalysedLeg { leg: ll, .. }), Ok(AnalysedLeg { leg: rl, .. }), true) =
         (l.as_mut(), r.as_mut(), one_walk)
     {
         let shift_s = rl.t0_s - ll.t0_s;
         quality::withhold_disagreeing_lengths(&mut ll.strides, &mut rl.strides, shift_s);
     }
-    // The parameters again with the other leg's heel strikes, then what the checks withhold
-    // (the leg's own findings and the pair's).
+    // The parameters from the final strides, then what the findings withhold (`finalize`).
     let finish = |x: LegRun, other: Option<Vec<f64>>| {
         x.map(|AnalysedLeg { mut leg, .. }| {
-            let sta = (
-                leg.parameters.sta_per_s,
-                leg.parameters.sta_per_stride,
-                leg.parameters.sta_status.clone(),
-            );
-            // Fewer survivors after the pair's check may leave the leg's lengths unvouched.
-            withhold_unvouched_lengths(&mut leg.strides);
-            leg.parameters = side_parameters(&leg.strides, other.as_deref());
-            (
-                leg.parameters.sta_per_s,
-                leg.parameters.sta_per_stride,
-                leg.parameters.sta_status,
-            ) = sta;
-            withhold(&mut leg.parameters, &leg.warnings);
-            withhold(&mut leg.parameters, &warnings);
+            finalize::finalize_parameters(&mut leg, &warnings, other.as_deref());
             leg
         })
     };

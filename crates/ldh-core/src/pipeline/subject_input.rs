@@ -6,9 +6,9 @@ use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 use super::heights::SensorHeights;
+pub use crate::domain::Group;
 use crate::error::{LdhError, Result};
 use crate::io::{read_recording, read_recording_bytes, FormatSpec, ReadReport, ValidReadParams};
-use crate::recording::Group;
 use crate::recording::{Recording, Side};
 
 /// Where a recording comes from.
@@ -51,7 +51,7 @@ pub struct SubjectInput {
     /// Identifier (the person: a person's trials share it).
     pub subject_id: String,
     /// Group, when a manifest gives it.
-    pub group: Option<GroupLabel>,
+    pub group: Option<Group>,
     /// Affected side, when a manifest gives it (`None` for none or unknown).
     pub affected_side: Option<Side>,
     /// The manifest left `affected_side` empty for a subject outside the healthy group: the
@@ -112,61 +112,5 @@ impl SubjectInput {
     /// (`--sensor-height-m`, parameters) or the assumed one.
     pub fn sensor_height_m_of(&self, side: Side) -> Option<f64> {
         self.sensor_heights().of(side)
-    }
-}
-
-/// A subject's group as a manifest names it: the reference group, the LDH group (whose
-/// affected side is compared with the unaffected one), or any other label (carried into the
-/// tables, not compared).
-#[derive(Debug, Clone, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(from = "String", into = "String")]
-pub enum GroupLabel {
-    /// `healthy` (also written `h` or `control`): the reference group.
-    Healthy,
-    /// `ldh`: lumbar disc herniation, one affected side.
-    Ldh,
-    /// Any other label, as written (e.g. `stroke`).
-    Other(String),
-}
-
-impl GroupLabel {
-    /// `healthy`, `ldh` or the label.
-    pub fn as_str(&self) -> &str {
-        match self {
-            GroupLabel::Healthy => "healthy",
-            GroupLabel::Ldh => "ldh",
-            GroupLabel::Other(s) => s,
-        }
-    }
-}
-
-impl From<String> for GroupLabel {
-    fn from(s: String) -> Self {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "healthy" | "h" | "control" => GroupLabel::Healthy,
-            "ldh" => GroupLabel::Ldh,
-            _ => GroupLabel::Other(s.trim().to_string()),
-        }
-    }
-}
-
-impl From<GroupLabel> for String {
-    fn from(g: GroupLabel) -> String {
-        g.as_str().to_string()
-    }
-}
-
-impl From<Group> for GroupLabel {
-    fn from(g: Group) -> Self {
-        match g {
-            Group::Healthy => GroupLabel::Healthy,
-            Group::Ldh => GroupLabel::Ldh,
-        }
-    }
-}
-
-impl std::fmt::Display for GroupLabel {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.as_str())
     }
 }

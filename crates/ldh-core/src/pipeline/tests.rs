@@ -11,7 +11,7 @@ fn manifests_are_parsed_and_bad_rows_named() {
     assert_eq!(v[0].affected_side, Some(Side::Right));
     assert_eq!(v[0].sensor_height_m, Some(0.12));
     assert_eq!(v[0].left, Some(Source::Path(d.path().join("a/l.csv"))));
-    assert_eq!(v[1].group, Some(GroupLabel::Healthy));
+    assert_eq!(v[1].group, Some(Group::Healthy));
     std::fs::write(
         &m,
         "subject_id,group,affected_side,left,right\nS1,sick,up,a,b\n",

@@ -37,13 +37,13 @@ fn manifest_columns_quoting_formats_settings_and_groups() {
         v[0].right_format.as_ref().unwrap().name,
         "hugadb-right-shank"
     );
-    assert_eq!(v[0].group, Some(GroupLabel::Ldh));
-    assert_eq!(v[1].group, Some(GroupLabel::Healthy));
+    assert_eq!(v[0].group, Some(Group::Ldh));
+    assert_eq!(v[1].group, Some(Group::Healthy));
     assert!(!v[1].affected_side_unknown, "healthy: empty side is none");
     assert_eq!(v[1].left_format.as_ref().unwrap().name, "raw-counts");
     assert_eq!(v[1].right_format.as_ref().unwrap().name, "raw-counts");
     assert_eq!(v[1].setting, None);
-    assert_eq!(v[2].group, Some(GroupLabel::Other("stroke".into())));
+    assert_eq!(v[2].group, Some(Group::Other("stroke".into())));
     assert!(v[2].affected_side_unknown);
     assert!(!v[3].affected_side_unknown);
     assert_eq!(v[3].right, None);
@@ -51,7 +51,7 @@ fn manifest_columns_quoting_formats_settings_and_groups() {
     // The results carry the label, the unknown side (said), and the setting.
     let r = Analysis::new(AnalysisParams::default().check().unwrap()).subject(&v[2]);
     let rows = crate::output::recording_rows(&[r]);
-    assert_eq!(rows[0].group, Some(GroupLabel::Other("stroke".into())));
+    assert_eq!(rows[0].group, Some(Group::Other("stroke".into())));
     assert_eq!(rows[0].affected_side, None);
     assert_eq!(rows[0].side_role, None);
     assert_eq!(rows[0].setting, Some(Setting::Overground.into()));
@@ -240,26 +240,29 @@ fn a_persons_withheld_values_are_those_no_trial_measured() {
     assert_eq!(legs.len(), 2);
     let sv2 = legs[1].stride_length_cv.unwrap();
     legs[0].stride_length_cv = None;
-    legs[0]
-        .withheld
-        .0
-        .insert("stride_length_cv".into(), "sv unchecked (short)".into());
+    legs[0].withheld.0.insert(
+        crate::domain::Parameter::StrideLengthCv,
+        crate::domain::Reason::read("sv unchecked (short)"),
+    );
     for (t, leg) in legs.iter_mut().enumerate() {
         leg.sta_per_s = None;
-        leg.withheld
-            .0
-            .insert("sta_per_s".into(), format!("sta not computed {t}"));
+        leg.withheld.0.insert(
+            crate::domain::Parameter::Sta,
+            crate::domain::Reason::read(format!("sta not computed {t}")),
+        );
     }
     let refs: Vec<&RecordingRow> = legs.iter().collect();
     let p = crate::cohort::person_row(&refs, crate::Side::Left).unwrap();
     assert_eq!(p.stride_length_cv, Some(sv2));
     assert!(
-        !p.withheld.0.contains_key("stride_length_cv"),
+        !p.withheld
+            .reason(crate::domain::Parameter::StrideLengthCv)
+            .is_some(),
         "{}",
         p.withheld
     );
     assert_eq!(
-        p.withheld.0["sta_per_s"],
+        p.withheld.reason(crate::domain::Parameter::Sta).unwrap(),
         "t0: sta not computed 0; t1: sta not computed 1"
     );
 }

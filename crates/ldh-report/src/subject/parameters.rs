@@ -58,7 +58,7 @@ fn range_text(
 fn companion(r: &RecordingRow, p: Parameter) -> Option<String> {
     let v = r
         .value(p)
-        .filter(|_| r.is_ok() && r.withheld.reason(p.column()).is_none())?;
+        .filter(|_| r.is_ok() && r.withheld.reason(p).is_none())?;
     Some(match p {
         Parameter::StepFrequency => format!("{v:.2} steps/s"),
         _ => format!("{:.1} %", 100.0 * v),
@@ -160,8 +160,8 @@ pub(super) fn subject_radar(
                     .map(|rr| {
                         Parameter::from_column(&rr.column)
                             .ok()
+                            .filter(|p| r.withheld.reason(*p).is_none())
                             .and_then(|p| r.value(p))
-                            .filter(|_| r.withheld.reason(&rr.column).is_none())
                             .and_then(|v| rr.z(v))
                             .unwrap_or(f64::NAN)
                     })

@@ -80,7 +80,7 @@ pub fn stride_scores(results: &[SubjectResult], truths: &[SubjectTruth]) -> Vec<
         };
         for (leg, truth) in [(&r.left, &t.left), (&r.right, &t.right)] {
             if let Ok(leg) = leg {
-                let who = (r.model.as_str(), t.subject_id.as_str(), t.group);
+                let who = (r.model.as_str(), t.subject_id.as_str(), t.group.clone());
                 out.extend(leg_scores(leg, truth, who));
             }
         }

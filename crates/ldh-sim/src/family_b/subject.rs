@@ -185,7 +185,7 @@ pub fn simulate_subject_b(
 /// Family A-shaped summary of the subject (identifier, group, rate, mean stride).
 fn summary(p: &SubjectParamsB) -> SubjectParams {
     let mut s = SubjectParams::healthy(p.subject_id.clone());
-    s.group = p.group;
+    s.group = p.group.clone();
     s.affected_side = p.affected_side;
     s.fs_hz = p.fs_hz;
     s.duration_s = p.duration_s;

@@ -260,7 +260,11 @@ fn stride_length_variability_unchecked_is_withheld_with_its_reason() {
     assert!(l0.parameters.stride_length_cv.is_finite() && code(&l0).is_none());
     let withheld = |leg: &LegResult, why: &str| {
         assert!(leg.parameters.stride_length_cv.is_nan(), "{why}");
-        assert!(leg.parameters.withheld.contains_key("stride_length_cv"));
+        assert!(leg
+            .parameters
+            .withheld
+            .reason(ldh_core::domain::Parameter::StrideLengthCv)
+            .is_some());
         let m = code(leg).unwrap_or_default();
         assert!(m.contains(why), "{m}");
     };
@@ -290,7 +294,11 @@ fn stride_length_variability_unchecked_is_withheld_with_its_reason() {
             leg,
             "of one leg pair up with the other leg's (5 needed each way)",
         );
-        let why = leg.parameters.withheld["stride_length_cv"].as_str();
+        let why = leg
+            .parameters
+            .withheld
+            .reason(ldh_core::domain::Parameter::StrideLengthCv)
+            .unwrap();
         assert!(why.contains("too few strides"), "{why}");
     }
 }

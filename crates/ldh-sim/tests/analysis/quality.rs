@@ -86,6 +86,7 @@ fn stride(i: usize, t: f64, stance: f64) -> ldh_core::gait::Stride {
         bout: 0,
         valid: true,
         reason: String::new(),
+        findings: Vec::new(),
     }
 }
 
@@ -174,11 +175,14 @@ fn a_walk_without_quiet_standing_withholds_its_inclinations() {
         .find(|w| w.code == codes::NO_QUIET_STANDING)
         .expect("no_quiet_standing");
     assert_eq!(w.severity, Severity::Warning);
-    assert_eq!(w.affects, vec!["wqk_deg", "pbi_deg"]);
+    assert_eq!(w.affects, params::INCLINATIONS);
     let p = &cut.parameters;
     assert!(p.wqk_deg.is_nan() && p.pbi_deg.is_nan());
     assert!(
-        p.withheld["wqk_deg"].starts_with("no quiet standing"),
+        p.withheld
+            .reason(ldh_core::domain::Parameter::Wqk)
+            .unwrap()
+            .starts_with("no quiet standing"),
         "{:?}",
         p.withheld
     );

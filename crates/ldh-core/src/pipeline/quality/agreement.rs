@@ -178,7 +178,10 @@ fn withhold(
             s.stride_length_m,
             d * 100.0
         );
-        crate::gait::append_reason(s, r);
+        s.push(crate::gait::StrideFinding::new(
+            crate::gait::StrideCode::Length(crate::gait::LengthCheck::OtherLeg),
+            r,
+        ));
         s.stride_length_m = f64::NAN;
         s.speed_mps = f64::NAN;
         n += 1;
@@ -210,6 +213,7 @@ mod tests {
                 bout: 0,
                 valid: true,
                 reason: String::new(),
+                findings: Vec::new(),
             })
             .collect()
     }

@@ -8,11 +8,12 @@
 //! Human Movement, 2009); its frontal excursion in swing is 5-15°. No walking shank passes
 //! ±90° in the sagittal plane or 45° of frontal excursion within a stride.
 
+use super::finite_median;
 use super::warning::{codes, params, Severity, Warning};
-use super::{add_reason, finite_median};
 use crate::align::Aligned;
 use crate::attitude::Attitude;
 use crate::gait::Stride;
+use crate::gait::{StrideCode, StrideFinding};
 
 /// Largest sagittal shank angle of walking, either way, deg (WQK and PBI bounds).
 pub const MAX_PITCH_DEG: f64 = 90.0;
@@ -67,7 +68,7 @@ fn quantile(v: &[f64], q: f64) -> f64 {
 /// The attitude checks of one leg; out-of-bounds strides lose their angles (with a reason).
 pub fn attitude_checks(al: &Aligned, att: &Attitude, st: &mut [Stride]) -> Vec<Warning> {
     let mut w = Vec::new();
-    let mut affects: Vec<&str> = params::ANGLES.to_vec();
+    let mut affects: Vec<crate::domain::Parameter> = params::ANGLES.to_vec();
     affects.extend(params::LENGTH);
     let sp = stance_pitch(al, att, st);
     if sp.len() >= 3 {
@@ -131,7 +132,10 @@ pub fn attitude_checks(al: &Aligned, att: &Attitude, st: &mut [Stride]) -> Vec<W
             s.wqk_deg = f64::NAN;
             s.pbi_deg = f64::NAN;
             s.bdk_deg = f64::NAN;
-            add_reason(s, "angles withheld: outside anatomical bounds");
+            s.push_once(StrideFinding::new(
+                StrideCode::AnglesOutOfBounds,
+                "angles withheld: outside anatomical bounds",
+            ));
             s.valid = false;
         }
     }
@@ -202,6 +206,7 @@ mod tests {
                     bout: 0,
                     valid: true,
                     reason: String::new(),
+                    findings: Vec::new(),
                 }
             })
             .collect();
@@ -258,7 +263,7 @@ mod tests {
         let w = attitude_checks(&aligned(), &att, &mut st);
         assert_eq!(codes_of(&w), [codes::IMPLAUSIBLE_ANGLE]);
         assert!(w[0].message.contains("WQK 250"), "{}", w[0].message);
-        assert!(w[0].affects.iter().any(|a| a == "wqk_deg"));
+        assert!(w[0].withholds(crate::domain::Parameter::Wqk));
     }
 
     #[test]

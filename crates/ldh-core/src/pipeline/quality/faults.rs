@@ -16,9 +16,9 @@
 //! [`crate::io::flat_channel_warnings`]), flat runs at a channel's extreme (clipping,
 //! `gyro_clipping` / `acc_clipping`), and a gyroscope amplified throughout (`gyro_scale_fault`).
 
-use super::add_reason;
 use super::warning::{codes, params, Severity, Warning};
 use crate::gait::Stride;
+use crate::gait::{StrideCode, StrideFinding};
 use crate::recording::Recording;
 
 /// Shortest run of one repeated value that makes a channel frozen, s. A walking shank never
@@ -283,22 +283,33 @@ pub fn fault_warning(f: &ChannelFault) -> Warning {
         Severity::Warning,
         format!("{}: {what}, {then}", f.describe()),
     );
-    let mut affects: Vec<&str> = params::ANGLES.to_vec();
+    let mut affects: Vec<crate::domain::Parameter> = params::ANGLES.to_vec();
     affects.extend(params::LENGTH);
     let w = if gyro { w.withholding(&affects) } else { w };
     w.over_span(f.start_s, f.end_s)
 }
 
-/// Withhold the strides that overlap `[start_s, end_s]`: not valid, with `reason` added. The
-/// other strides keep their numbers and values. Returns how many overlap.
-pub(crate) fn withhold_span(st: &mut [Stride], start_s: f64, end_s: f64, reason: &str) -> usize {
+/// Withhold the strides that overlap the span of `w` (a finding about part of the walk): not
+/// valid, with the finding added ([`Warning::reason`] its text). The other strides keep their
+/// numbers and values. Returns how many overlap.
+pub(crate) fn withhold_span(st: &mut [Stride], w: &Warning) -> usize {
+    let Some([start_s, end_s]) = w.span_s else {
+        return 0;
+    };
+    let f = StrideFinding::new(
+        StrideCode::Finding {
+            code: w.code.clone(),
+            length: false,
+        },
+        w.reason(),
+    );
     let mut n = 0;
     for s in st
         .iter_mut()
         .filter(|s| s.hs_time_s <= end_s && s.next_hs_time_s >= start_s)
     {
         s.valid = false;
-        add_reason(s, reason);
+        s.push_once(f.clone());
         n += 1;
     }
     n
@@ -310,6 +321,6 @@ pub(crate) fn withhold_span(st: &mut [Stride], start_s: f64, end_s: f64, reason:
 pub fn withhold_faulty_strides(st: &mut [Stride], faults: &[ChannelFault]) -> usize {
     faults
         .iter()
-        .map(|f| withhold_span(st, f.start_s, f.end_s, &fault_warning(f).reason()))
+        .map(|f| withhold_span(st, &fault_warning(f)))
         .sum()
 }

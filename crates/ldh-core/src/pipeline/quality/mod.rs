@@ -14,7 +14,8 @@
 //! - [`noise`]: stride length variability against the measurement noise the two legs show.
 
 use crate::align::Alignment;
-use crate::gait::{SideParameters, Stride};
+use crate::domain::Parameter;
+use crate::gait::{SideParameters, Stride, StrideCode, StrideFinding};
 
 use super::LegResult;
 
@@ -80,15 +81,6 @@ pub(crate) fn finite_median(mut v: Vec<f64>) -> Option<f64> {
         return None;
     }
     crate::stats::median(&mut v, crate::stats::EvenMedian::Upper)
-}
-
-/// Add a reason to a stride's `reason` ("; "-joined).
-pub(crate) fn add_reason(s: &mut Stride, why: &str) {
-    if s.reason.is_empty() {
-        s.reason = why.to_string();
-    } else if !s.reason.contains(why) {
-        s.reason = format!("{}; {why}", s.reason);
-    }
 }
 
 /// Findings about one leg's gait (after the sensor and attitude checks): a device convention
@@ -229,44 +221,51 @@ pub fn discredits_attitude(w: &Warning) -> bool {
 pub fn apply_to_strides(st: &mut [Stride], warnings: &[Warning]) {
     for w in warnings {
         // A finding about part of the walk: the strides over it only.
-        if let Some([a, b]) = w.span_s {
-            faults::withhold_span(st, a, b, &w.reason());
-        }
-        let has = |c: &str| w.affects.iter().any(|a| a == c);
+        faults::withhold_span(st, w);
+        let has = |c: Parameter| w.withholds(c);
         if w.affects.is_empty() {
             continue;
         }
-        let all = params::ALL.iter().all(|c| has(c));
+        let all = params::ALL.iter().all(|&c| has(c));
         for s in st.iter_mut() {
             if all {
                 // What else was found about this stride came from the same faulty signals.
                 s.valid = false;
-                s.reason = w.code.replace('_', " ");
+                s.replace_findings(StrideFinding::new(
+                    StrideCode::Finding {
+                        code: w.code.clone(),
+                        length: true,
+                    },
+                    w.code.replace('_', " "),
+                ));
             }
             // A blanked cell says why (the strides table gets "an empty cell with a reason").
             let angles = [s.wqk_deg, s.pbi_deg, s.bdk_deg]
                 .iter()
                 .any(|v| v.is_finite());
             let length = s.stride_length_m.is_finite();
-            if has("wqk_deg") {
+            if has(Parameter::Wqk) {
                 s.wqk_deg = f64::NAN;
             }
-            if has("pbi_deg") {
+            if has(Parameter::Pbi) {
                 s.pbi_deg = f64::NAN;
             }
-            if has("bdk_deg") {
+            if has(Parameter::Bdk) {
                 s.bdk_deg = f64::NAN;
             }
-            if has("stride_length_m") {
+            if has(Parameter::StrideLength) {
                 s.stride_length_m = f64::NAN;
             }
-            if has("speed_mps") {
+            if has(Parameter::Speed) {
                 s.speed_mps = f64::NAN;
             }
             if discredits_attitude(w) {
                 s.heading_change_deg = f64::NAN;
             }
-            let what = match (angles && has("wqk_deg"), length && has("stride_length_m")) {
+            let what = match (
+                angles && has(Parameter::Wqk),
+                length && has(Parameter::StrideLength),
+            ) {
                 _ if all => None,
                 (true, true) => Some("angles and stride length"),
                 (true, false) => Some("angles"),
@@ -274,45 +273,29 @@ pub fn apply_to_strides(st: &mut [Stride], warnings: &[Warning]) {
                 (false, false) => None,
             };
             if let Some(what) = what {
-                add_reason(s, &format!("{what} withheld: {}", w.code.replace('_', " ")));
+                s.push_once(StrideFinding::new(
+                    StrideCode::Finding {
+                        code: w.code.clone(),
+                        length: length && has(Parameter::StrideLength),
+                    },
+                    format!("{what} withheld: {}", w.code.replace('_', " ")),
+                ));
             }
         }
     }
 }
 
 /// Withhold the parameters the warnings affect: NaN value and the reason in `withheld` (the
-/// first finding that withholds a column gives its reason).
+/// first finding that withholds a parameter gives its reason, unless a later one is a fault).
 pub fn withhold(p: &mut SideParameters, warnings: &[Warning]) {
     for w in warnings {
-        for c in &w.affects {
-            let slot = match c.as_str() {
-                "stride_time_s" => &mut p.stride_time_s,
-                "step_time_s" => &mut p.step_time_s,
-                "step_frequency_steps_per_s" => &mut p.step_frequency_hz,
-                "stance_ratio" => &mut p.stance_ratio,
-                "swing_ratio" => &mut p.swing_ratio,
-                "stride_length_m" => &mut p.stride_length_m,
-                "speed_mps" => &mut p.speed_mps,
-                "stride_length_cv" => &mut p.stride_length_cv,
-                "stride_time_cv" => &mut p.stride_time_cv,
-                "sta_per_s" => &mut p.sta_per_s,
-                "sta_per_stride" => &mut p.sta_per_stride,
-                "wqk_deg" => &mut p.wqk_deg,
-                "pbi_deg" => &mut p.pbi_deg,
-                "bdk_deg" => &mut p.bdk_deg,
-                _ => continue,
-            };
-            *slot = f64::NAN;
-            if c.starts_with("sta_") {
+        for &c in &w.affects {
+            if c == Parameter::Sta {
                 p.sta_status = format!("not measured: {}", w.reason());
             }
             // A sensor fault is the reason that matters: it replaces a reason found in the
             // faulty signals themselves (e.g. a stride length withheld for velocity drift).
-            if w.severity == Severity::Fault {
-                p.withheld.insert(c.clone(), w.reason());
-            } else {
-                p.withheld.entry(c.clone()).or_insert_with(|| w.reason());
-            }
+            p.withhold(c, w.withheld_reason(), w.severity == Severity::Fault);
         }
     }
 }

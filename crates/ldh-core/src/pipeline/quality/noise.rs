@@ -121,7 +121,7 @@ pub fn variability_warning(sv: [f64; 2], sigma2: f64, n: usize) -> Option<Warnin
             100.0 * share,
             100.0 * rms
         ))
-        .withholding(&["stride_length_cv"])
+        .withholding(&[crate::domain::Parameter::StrideLengthCv])
     })
 }
 
@@ -207,7 +207,7 @@ fn unchecked(sv: f64, cause: &str, why: &str) -> Warning {
             100.0 * sv
         ),
     )
-    .withholding(&["stride_length_cv"])
+    .withholding(&[crate::domain::Parameter::StrideLengthCv])
 }
 
 /// Withhold `leg`'s SV, if it has one, with [`unchecked_warning`] (`why`: what is missing, e.g.
@@ -289,7 +289,7 @@ mod tests {
         let s3 = walk_noise([v3l, v3r]);
         assert!((s3.sqrt() - 0.03).abs() < 0.0045, "{}", s3.sqrt());
         let w = variability_warning([cv(&l3), cv(&r3)], s3, n3).unwrap();
-        assert_eq!(w.affects, ["stride_length_cv"]);
+        assert_eq!(w.affects, [crate::domain::Parameter::StrideLengthCv]);
         assert!(w.message.contains("not measured"), "{}", w.message);
         // no noise anywhere: nothing withheld (the gait's own share alone stays below the rule)
         let (l0, r0) = (strides(0, 0.0), strides(1, 0.0));

@@ -86,7 +86,7 @@ pub fn sensor_checks(rec: &Recording) -> SensorFindings {
             .withholding(&params::ALL),
         );
     } else if gclip_share > GYRO_CLIP_SHARE {
-        let mut affects: Vec<&str> = params::ANGLES.to_vec();
+        let mut affects: Vec<crate::domain::Parameter> = params::ANGLES.to_vec();
         affects.extend(params::LENGTH);
         out.warnings.push(
             Warning::new(
@@ -161,6 +161,6 @@ mod tests {
         let cl = sensor_checks(&walk(100.0, 20.0, 1.0, 250.0));
         assert!(!cl.gyro_fault);
         assert_eq!(cl.warnings[0].code, codes::GYRO_CLIPPING);
-        assert!(cl.warnings[0].affects.contains(&"wqk_deg".to_string()));
+        assert!(cl.warnings[0].withholds(crate::domain::Parameter::Wqk));
     }
 }

@@ -110,7 +110,7 @@ mod tests {
             w.reason(),
             "too little steady (fewer than 10 steady strides)"
         );
-        assert_eq!(w.affects, ["stride_time_cv", "stride_length_cv"]);
+        assert_eq!(w.affects, params::VARIABILITY);
         assert_eq!(
             steady_warning(&span(7, 0, 0)).unwrap().message,
             "fewer than 10 steady strides: 7 valid (walking from 12.0 s to 80.0 s), so stride-time and stride-length variability (CV) are withheld; a longer straight walk gives more"

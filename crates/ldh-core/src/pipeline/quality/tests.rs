@@ -20,6 +20,7 @@ fn stride(i: usize, t: f64, stance: f64) -> crate::gait::Stride {
         bout: 0,
         valid: true,
         reason: String::new(),
+        findings: Vec::new(),
     }
 }
 
@@ -29,18 +30,21 @@ fn stride(i: usize, t: f64, stance: f64) -> crate::gait::Stride {
 fn blanked_stride_cells_carry_the_findings_reason() {
     let mut st: Vec<crate::gait::Stride> = (0..3).map(|i| stride(i, 1.0, 0.6)).collect();
     st[1].stride_length_m = f64::NAN;
-    st[1].reason = "stride length withheld: velocity drift 1.00 m/s over the stride".into();
+    st[1].push(crate::gait::StrideFinding::new(
+        crate::gait::StrideCode::Length(crate::gait::LengthCheck::Drift),
+        "stride length withheld: velocity drift 1.00 m/s over the stride",
+    ));
     let w = Warning::new(
         codes::ATTITUDE_DIVERGENCE,
         Severity::Warning,
         "the shank attitude drifts",
     )
     .withholding(&[
-        "wqk_deg",
-        "pbi_deg",
-        "bdk_deg",
-        "stride_length_m",
-        "speed_mps",
+        Parameter::Wqk,
+        Parameter::Pbi,
+        Parameter::Bdk,
+        Parameter::StrideLength,
+        Parameter::Speed,
     ]);
     apply_to_strides(&mut st, std::slice::from_ref(&w));
     assert!(st.iter().all(|s| s.valid && s.wqk_deg.is_nan()));

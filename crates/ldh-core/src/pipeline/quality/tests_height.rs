@@ -201,7 +201,7 @@ fn a_shank_turning_at_mid_stance_withholds_the_length_without_a_height_and_not_w
         (w.code.as_str(), w.severity),
         (codes::SENSOR_HEIGHT_UNKNOWN, Severity::Warning)
     );
-    assert_eq!(w.affects, params::LENGTH.map(String::from));
+    assert_eq!(w.affects, params::LENGTH);
     let text = format!("would be {lo:.2} and {hi:.2} m with the sensor 0.05 and 0.35 m above the ankle, {:.2} m at the assumed 0.10 m", h.median_m);
     assert!(w.message.contains(&text), "{}", w.message);
     assert!(w.message.contains(&format!(
@@ -227,7 +227,9 @@ fn a_shank_turning_at_mid_stance_withholds_the_length_without_a_height_and_not_w
     assert!(p.stride_length_m.is_nan() && p.speed_mps.is_nan() && p.stride_length_cv.is_nan());
     // The leg's reason names the finding (its message, with the lengths, is the warning's).
     assert_eq!(
-        p.withheld["stride_length_m"],
+        p.withheld
+            .reason(crate::domain::Parameter::StrideLength)
+            .unwrap(),
         "stride length vouched for on 0 of 10 valid strides (sensor height unknown)"
     );
     assert!(w.reason().starts_with("sensor height unknown (the sensor height was not given and the stride length depends on it)"));

@@ -393,7 +393,7 @@ fn hugadb_format_maps_and_raw_reading_agree_on_the_attitude() {
                 let p = &l.parameters;
                 if !(p.wqk_deg.is_nan()
                     && p.pbi_deg.is_nan()
-                    && p.withheld.contains_key("wqk_deg")
+                    && p.withheld.reason(crate::domain::Parameter::Wqk).is_some()
                     && l.warnings
                         .iter()
                         .any(|w| w.code == codes::NO_QUIET_STANDING))
@@ -547,7 +547,11 @@ fn hugadb_stride_length_variability_is_withheld_where_the_noise_makes_it() {
             let w = l.warnings.iter().find(|w| w.code == codes::SV_NOISE);
             assert!(w.is_some(), "{file} {}: {:?}", l.side, l.warnings);
             assert!(l.parameters.stride_length_cv.is_nan());
-            assert!(l.parameters.withheld.contains_key("stride_length_cv"));
+            assert!(l
+                .parameters
+                .withheld
+                .reason(crate::domain::Parameter::StrideLengthCv)
+                .is_some());
             // the stride length itself stays reported
             assert!(
                 l.parameters.stride_length_m.is_finite(),

@@ -52,9 +52,9 @@ fn checked_median(name: &str, l: &LegResult, given: bool, failures: &mut Vec<Str
     let p = &l.parameters;
     let why = p
         .withheld
-        .get("stride_length_m")
-        .cloned()
-        .unwrap_or_default();
+        .reason(crate::domain::Parameter::StrideLength)
+        .unwrap_or_default()
+        .to_string();
     let height = l
         .warnings
         .iter()

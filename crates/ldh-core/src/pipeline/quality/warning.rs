@@ -4,6 +4,31 @@
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
+use crate::domain::{Parameter, Reason, ReasonCode, Withheld};
+
+/// `Warning::affects` as the column names of recordings.csv.
+mod affects_columns {
+    use super::Parameter;
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    pub fn serialize<S: Serializer>(v: &[Parameter], s: S) -> Result<S::Ok, S::Error> {
+        let cols: Vec<&str> = v.iter().flat_map(|p| p.withheld_columns()).collect();
+        cols.serialize(s)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Parameter>, D::Error> {
+        let mut out: Vec<Parameter> = Vec::new();
+        for c in Vec::<String>::deserialize(d)? {
+            if let Some(p) = Parameter::from_withheld_column(&c) {
+                if !out.contains(&p) {
+                    out.push(p);
+                }
+            }
+        }
+        Ok(out)
+    }
+}
+
 /// How serious a finding is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -38,9 +63,10 @@ pub struct Warning {
     /// What was found, with the numbers, in one readable sentence or two. Never contains " | "
     /// (the separator of the CSV column).
     pub message: String,
-    /// The parameters it withholds (column names of recordings.csv); empty when none.
-    #[serde(default)]
-    pub affects: Vec<String>,
+    /// The parameters it withholds; empty when none. Written as their column names of
+    /// recordings.csv (STA as `sta_per_s` and `sta_per_stride`).
+    #[serde(default, with = "affects_columns")]
+    pub affects: Vec<Parameter>,
     /// The time span the finding covers, s from the recording's first sample (first and last
     /// sample), for a finding about part of the walk (`channel_fault`): the strides overlapping
     /// it are withheld ([`crate::pipeline::quality::apply_to_strides`]). Absent for findings
@@ -50,7 +76,7 @@ pub struct Warning {
 }
 
 impl Warning {
-    /// A finding; `affects` are column names of recordings.csv.
+    /// A finding that withholds nothing (see [`Warning::withholding`]).
     pub fn new(code: &str, severity: Severity, message: impl Into<String>) -> Warning {
         Warning {
             code: code.into(),
@@ -66,13 +92,22 @@ impl Warning {
         self
     }
     /// The same finding withholding `params`.
-    pub fn withholding(mut self, params: &[&str]) -> Warning {
+    pub fn withholding(mut self, params: &[Parameter]) -> Warning {
         for p in params {
-            if !self.affects.iter().any(|a| a == p) {
-                self.affects.push(p.to_string());
+            if !self.affects.contains(p) {
+                self.affects.push(*p);
             }
         }
         self
+    }
+    /// Whether it withholds `p`.
+    pub fn withholds(&self, p: Parameter) -> bool {
+        self.affects.contains(&p)
+    }
+    /// The reason it gives a parameter it withholds: its code, with [`Warning::reason`] as the
+    /// message.
+    pub fn withheld_reason(&self) -> Reason {
+        Reason::new(ReasonCode::Finding(self.code.clone()), self.reason())
     }
     /// A reader warning (free text from the file checks) as a structured warning.
     pub fn from_reader(text: &str) -> Warning {
@@ -159,35 +194,21 @@ pub mod codes {
     pub const CHANNEL_FAULT: &str = "channel_fault";
 }
 
-/// Column names of recordings.csv, by what they are computed from.
+/// The parameters of recordings.csv, by what they are computed from.
 pub mod params {
-    /// Every per-side parameter.
-    pub const ALL: [&str; 14] = [
-        "stride_time_s",
-        "step_time_s",
-        "step_frequency_steps_per_s",
-        "stance_ratio",
-        "swing_ratio",
-        "stride_length_m",
-        "speed_mps",
-        "stride_length_cv",
-        "stride_time_cv",
-        "sta_per_s",
-        "sta_per_stride",
-        "wqk_deg",
-        "pbi_deg",
-        "bdk_deg",
-    ];
+    use crate::domain::Parameter::{self, *};
+    /// Every per-side parameter (in the table's column order).
+    pub const ALL: [Parameter; 13] = Parameter::TABLE_ORDER;
     /// The shank angles (from the attitude).
-    pub const ANGLES: [&str; 3] = ["wqk_deg", "pbi_deg", "bdk_deg"];
+    pub const ANGLES: [Parameter; 3] = [Wqk, Pbi, Bdk];
     /// The shank angles measured from the vertical (an error of the shank axis moves them).
-    pub const INCLINATIONS: [&str; 2] = ["wqk_deg", "pbi_deg"];
+    pub const INCLINATIONS: [Parameter; 2] = [Wqk, Pbi];
     /// Stride length and what is derived from it (double integration of the acceleration).
-    pub const LENGTH: [&str; 3] = ["stride_length_m", "speed_mps", "stride_length_cv"];
+    pub const LENGTH: [Parameter; 3] = [StrideLength, Speed, StrideLengthCv];
     /// The parameters that pair the legs.
-    pub const PAIRED: [&str; 2] = ["step_time_s", "step_frequency_steps_per_s"];
+    pub const PAIRED: [Parameter; 2] = [StepTime, StepFrequency];
     /// Stride-to-stride variability.
-    pub const VARIABILITY: [&str; 2] = ["stride_time_cv", "stride_length_cv"];
+    pub const VARIABILITY: [Parameter; 2] = [StrideTimeCv, StrideLengthCv];
 }
 
 /// A list of warnings: a JSON array of objects, and one readable CSV cell (the warnings'
@@ -284,10 +305,10 @@ fn parse_flat(s: &str) -> Warning {
     parsed.unwrap_or_else(|| Warning::from_reader(s))
 }
 
-/// Parameters withheld: column name → reason; a JSON object, and one readable CSV cell
-/// (`name: reason` joined by " | ").
+/// Parameters withheld ([`Withheld`], keyed by [`Parameter`]): a JSON object column → reason,
+/// and one readable CSV cell (`column: reason` joined by " | ").
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct WithheldList(pub std::collections::BTreeMap<String, String>);
+pub struct WithheldList(pub Withheld);
 
 impl WithheldList {
     /// Nothing withheld.
@@ -295,14 +316,18 @@ impl WithheldList {
         self.0.is_empty()
     }
     /// Why `param` is withheld, if it is.
-    pub fn reason(&self, param: &str) -> Option<&str> {
-        self.0.get(param).map(String::as_str)
+    pub fn reason(&self, param: Parameter) -> Option<&str> {
+        self.0.reason(param)
+    }
+    /// Nothing withheld any more.
+    pub fn clear(&mut self) {
+        self.0.clear();
     }
 }
 
 impl fmt::Display for WithheldList {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        for (i, (k, v)) in self.0.iter().enumerate() {
+        for (i, (k, v)) in self.0.columns().into_iter().enumerate() {
             if i > 0 {
                 f.write_str(" | ")?;
             }
@@ -327,17 +352,14 @@ impl<'de> Deserialize<'de> for WithheldList {
         #[derive(Deserialize)]
         #[serde(untagged)]
         enum Either {
-            Map(std::collections::BTreeMap<String, String>),
+            Map(Withheld),
             Text(String),
         }
         Ok(match Either::deserialize(d)? {
             Either::Map(m) => WithheldList(m),
-            Either::Text(t) => WithheldList(
-                t.split(" | ")
-                    .filter_map(|kv| kv.split_once(": "))
-                    .map(|(k, v)| (k.to_string(), v.to_string()))
-                    .collect(),
-            ),
+            Either::Text(t) => WithheldList(Withheld::from_columns(
+                t.split(" | ").filter_map(|kv| kv.split_once(": ")),
+            )),
         })
     }
 }
@@ -363,11 +385,7 @@ mod tests {
             .withholding(&params::ANGLES),
             Warning::new(codes::ACC_CLIPPING, Severity::Note, "clipped at 2 g"),
         ]);
-        let wh = WithheldList(
-            [("wqk_deg".to_string(), "gyro scale fault".to_string())]
-                .into_iter()
-                .collect(),
-        );
+        let wh = WithheldList(Withheld::from_columns([("wqk_deg", "gyro scale fault")]));
         let row = Row {
             id: 1,
             warnings: w.clone(),

@@ -1,0 +1,17 @@
+//! The domain layer (issue 48): the vocabulary every stage shares, defined once at the bottom
+//! of ldh-core. It imports nothing above it (only `crate::error`), and every module may use it.
+//!
+//! - [`labels`]: [`Side`], [`Setting`], [`Group`] (the one group type of manifests, tables,
+//!   statistics and the simulator), [`AffectedSide`], [`EventKind`];
+//! - [`parameter`]: [`Parameter`], every gait parameter once with its code, column, plain
+//!   name, unit and meaning (the model is gaitmap's one vocabulary, `gaitmap/utils/consts.py`);
+//! - [`measured`]: [`Reason`] (a typed code with its message), [`Measured`], [`PerParameter`],
+//!   [`Withheld`] (the withheld parameters and why, keyed by [`Parameter`]).
+
+pub mod labels;
+pub mod measured;
+pub mod parameter;
+
+pub use labels::{AffectedSide, EventKind, Group, Setting, Side};
+pub use measured::{Measured, PerParameter, Reason, ReasonCode, Withheld};
+pub use parameter::{Definition, Parameter, UnknownParameter};

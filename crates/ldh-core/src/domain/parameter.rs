@@ -1,0 +1,314 @@
+//! Every gait parameter, defined once (paper Table 2 and Table 3, plus PBI; issue 48): its code,
+//! the column of the per-recording table, its plain name, its unit, what it means, and what its
+//! per-stride value means when the per-stride table has one. The column dictionary
+//! (`ldh columns`, docs/columns.md), the tables' parameter columns, the report's rows and the
+//! reliability table all read these definitions, so a parameter has one name and one unit
+//! everywhere. A column name given from outside (`ldh train --features`, a model file's feature
+//! list) becomes a `Parameter` once, by [`Parameter::from_column`], with a typed
+//! [`UnknownParameter`] error.
+
+use crate::error::LdhError;
+
+/// A gait parameter of the cohort tables, the classifiers and the reports.
+/// Declared in the order of [`Parameter::ALL`] ([`Parameter::index`] relies on it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Parameter {
+    /// SF, steps/s.
+    StepFrequency,
+    /// SL, m.
+    StrideLength,
+    /// SS, m/s.
+    Speed,
+    /// STT, s.
+    StepTime,
+    /// ST, s.
+    StrideTime,
+    /// STP, fraction of the stride.
+    StanceRatio,
+    /// SWP, fraction of the stride.
+    SwingRatio,
+    /// SV, SD / mean.
+    StrideLengthCv,
+    /// STV, SD / mean.
+    StrideTimeCv,
+    /// STA, 1/s (largest Lyapunov exponent).
+    Sta,
+    /// WQK, deg.
+    Wqk,
+    /// PBI, deg (ldh's addition).
+    Pbi,
+    /// BDK, deg.
+    Bdk,
+}
+
+/// The definition of one parameter: everything any output says about it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Definition {
+    /// Code in the paper's Table 2 (`SF`, `SL` …).
+    pub code: &'static str,
+    /// Column of the per-recording table (units in the name).
+    pub column: &'static str,
+    /// Plain name.
+    pub name: &'static str,
+    /// Unit of the value as the tables hold it.
+    pub unit: &'static str,
+    /// What the per-side value means (the column dictionary, after the code).
+    pub description: &'static str,
+    /// What the per-stride value means, when the per-stride table has one (same column name).
+    pub per_stride: Option<&'static str>,
+}
+
+const fn d(
+    code: &'static str,
+    column: &'static str,
+    name: &'static str,
+    unit: &'static str,
+    description: &'static str,
+    per_stride: Option<&'static str>,
+) -> Definition {
+    Definition {
+        code,
+        column,
+        name,
+        unit,
+        description,
+        per_stride,
+    }
+}
+
+/// A column name that is not a parameter of [`Parameter::ALL`].
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown feature '{0}'; known: {known}", known = Parameter::columns().join(", "))]
+pub struct UnknownParameter(pub String);
+
+impl From<UnknownParameter> for LdhError {
+    fn from(e: UnknownParameter) -> Self {
+        LdhError::param(
+            "features",
+            &e.0,
+            format!(
+                "unknown feature; known: {}",
+                Parameter::columns().join(", ")
+            ),
+        )
+    }
+}
+
+impl Parameter {
+    /// Every parameter, in the order of the paper's Table 3 (plus PBI).
+    pub const ALL: [Parameter; 13] = [
+        Parameter::StepFrequency,
+        Parameter::StrideLength,
+        Parameter::Speed,
+        Parameter::StepTime,
+        Parameter::StrideTime,
+        Parameter::StanceRatio,
+        Parameter::SwingRatio,
+        Parameter::StrideLengthCv,
+        Parameter::StrideTimeCv,
+        Parameter::Sta,
+        Parameter::Wqk,
+        Parameter::Pbi,
+        Parameter::Bdk,
+    ];
+
+    /// Every parameter in the column order of the per-recording table (recordings.csv).
+    pub const TABLE_ORDER: [Parameter; 13] = [
+        Parameter::StrideTime,
+        Parameter::StepTime,
+        Parameter::StepFrequency,
+        Parameter::StanceRatio,
+        Parameter::SwingRatio,
+        Parameter::StrideLength,
+        Parameter::Speed,
+        Parameter::StrideLengthCv,
+        Parameter::StrideTimeCv,
+        Parameter::Sta,
+        Parameter::Wqk,
+        Parameter::Pbi,
+        Parameter::Bdk,
+    ];
+
+    /// The parameter's definition.
+    pub const fn definition(self) -> Definition {
+        use Parameter::*;
+        match self {
+            StepFrequency => d(
+                "SF",
+                "step_frequency_steps_per_s",
+                "step frequency",
+                "steps/s",
+                "1 / mean step time (× 60 = steps/min of this side; the report's cadence is one value per walk from both legs).",
+                None,
+            ),
+            StrideLength => d(
+                "SL",
+                "stride_length_m",
+                "stride length",
+                "m",
+                "mean distance the foot travels over a stride (both feet travel the same distance on a straight walk).",
+                Some("Stride length; empty when withheld (`reason` says why)."),
+            ),
+            Speed => d(
+                "SS",
+                "speed_mps",
+                "stride speed",
+                "m/s",
+                "mean walking speed, stride length / stride time.",
+                Some("Stride length / stride time."),
+            ),
+            StepTime => d(
+                "STT",
+                "step_time_s",
+                "step time",
+                "s",
+                "mean step time (the other leg's heel strike to this leg's); empty with one leg.",
+                None,
+            ),
+            StrideTime => d(
+                "ST",
+                "stride_time_s",
+                "stride time",
+                "s",
+                "mean stride time (heel strike to the next heel strike of the same leg).",
+                Some("Stride time."),
+            ),
+            StanceRatio => d(
+                "STP",
+                "stance_ratio",
+                "stance phase",
+                "ratio",
+                "mean share of the stride the foot is on the ground (toe off − heel strike) / stride time; normal ≈ 0.60.",
+                Some("(toe off − heel strike) / stride time."),
+            ),
+            SwingRatio => d(
+                "SWP",
+                "swing_ratio",
+                "swing phase",
+                "ratio",
+                "1 − stance ratio: the share of the stride the foot is in the air.",
+                None,
+            ),
+            StrideLengthCv => d(
+                "SV",
+                "stride_length_cv",
+                "stride length variability",
+                "ratio",
+                "stride-to-stride variability of stride length (× 100 = %).",
+                None,
+            ),
+            StrideTimeCv => d(
+                "STV",
+                "stride_time_cv",
+                "stride time variability",
+                "ratio",
+                "stride-to-stride variability of stride time (× 100 = %); healthy ≈ 0.01–0.03.",
+                None,
+            ),
+            Sta => d(
+                "STA",
+                "sta_per_s",
+                "gait stability (Lyapunov)",
+                "1/s",
+                "short-term largest Lyapunov exponent of the shank's sagittal angular velocity (Rosenstein): how fast nearby gait states diverge; higher = less stable.",
+                None,
+            ),
+            Wqk => d(
+                "WQK",
+                "wqk_deg",
+                "max shank flexion",
+                "deg",
+                "mean largest forward inclination of the shank in a stride (sagittal pitch maximum, the knee ahead of the ankle, late swing).",
+                Some("Largest forward shank inclination in the stride (WQK)."),
+            ),
+            Pbi => d(
+                "PBI",
+                "pbi_deg",
+                "peak backward inclination",
+                "deg",
+                "mean largest backward inclination of the shank in a stride (−pitch minimum, at push-off).",
+                Some("Largest backward shank inclination in the stride (PBI)."),
+            ),
+            Bdk => d(
+                "BDK",
+                "bdk_deg",
+                "swing roll excursion",
+                "deg",
+                "mean range of the shank's frontal-plane roll in swing (toe off to heel strike): sideways swing of the leg, e.g. circumduction.",
+                Some("Range of frontal-plane shank roll from toe off to the next heel strike (BDK)."),
+            ),
+        }
+    }
+
+    /// The position in [`Parameter::ALL`].
+    pub const fn index(self) -> usize {
+        self as usize
+    }
+
+    /// Code in the paper's Table 2 (`SF`, `SL` …; PBI is ldh's addition).
+    pub const fn code(self) -> &'static str {
+        self.definition().code
+    }
+
+    /// Column of the per-recording table (units in the name).
+    pub const fn column(self) -> &'static str {
+        self.definition().column
+    }
+
+    /// Plain name.
+    pub const fn name(self) -> &'static str {
+        self.definition().name
+    }
+
+    /// Unit.
+    pub const fn unit(self) -> &'static str {
+        self.definition().unit
+    }
+
+    /// What the per-side value means.
+    pub const fn description(self) -> &'static str {
+        self.definition().description
+    }
+
+    /// The columns a withheld value of this parameter empties in the per-recording table: its
+    /// own, and for STA also `sta_per_stride` (the same exponent per stride).
+    pub fn withheld_columns(self) -> Vec<&'static str> {
+        match self {
+            Parameter::Sta => vec!["sta_per_s", "sta_per_stride"],
+            _ => vec![self.column()],
+        }
+    }
+
+    /// The columns of [`Parameter::ALL`].
+    pub fn columns() -> Vec<&'static str> {
+        Parameter::ALL.iter().map(|p| p.column()).collect()
+    }
+
+    /// The parameter whose column is `column`.
+    pub fn from_column(column: &str) -> Result<Parameter, UnknownParameter> {
+        Parameter::ALL
+            .into_iter()
+            .find(|p| p.column() == column)
+            .ok_or_else(|| UnknownParameter(column.to_string()))
+    }
+
+    /// The parameter one of whose [`withheld_columns`](Parameter::withheld_columns) is `column`.
+    pub fn from_withheld_column(column: &str) -> Option<Parameter> {
+        Parameter::ALL
+            .into_iter()
+            .find(|p| p.withheld_columns().contains(&column))
+    }
+}
+
+impl std::str::FromStr for Parameter {
+    type Err = UnknownParameter;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Parameter::from_column(s)
+    }
+}
+
+impl std::fmt::Display for Parameter {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.column())
+    }
+}
