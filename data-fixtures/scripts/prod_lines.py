@@ -1,96 +1,48 @@
 #!/usr/bin/env python3
-"""Production lines of Rust code per module: no tests, comments or blank lines (issue 48's measure).
+"""Production lines of ldh-core per module (issue 48's measure): lines of `crates/ldh-core/src`
+that are not blank, not comments (`//`, `///`, `//!`) and not tests (files `tests*.rs`,
+`*_tests.rs`, `test_*.rs`, `proptests.rs`, anything under a `tests/` folder, and a file's trailing
+`#[cfg(test)] mod x { … }`).
 
-A file is test code when its name is tests.rs, tests_*.rs, *_tests.rs, proptests.rs, test_*.rs or it
-sits under a `tests/` folder; inside other files, an item after `#[cfg(test)]` is skipped to its
-closing brace. Comments (`//`, `///`, `//!`, `/* */`) and blank lines are not counted.
-
-Usage: python3 data-fixtures/scripts/prod_lines.py crates/ldh-core/src [more src dirs]
-Prints one line per top-level module (a folder or file directly under src) and the total.
+Usage: python3 data-fixtures/scripts/prod_lines.py [module …]   (default: every module, and the total)
 """
 import pathlib
 import re
 import sys
 
-TEST_FILE = re.compile(r"^(tests?(_.*)?|.*_tests|proptests|test_.*)\.rs$")
+SRC = pathlib.Path("crates/ldh-core/src")
 
 
-def is_test_file(rel: pathlib.PurePath) -> bool:
-    return bool(TEST_FILE.match(rel.name)) or "tests" in rel.parts[:-1]
+def is_test(rel: pathlib.Path) -> bool:
+    s = rel.stem
+    return (s.startswith("tests") or s.endswith("_tests") or s.startswith("test_")
+            or s == "proptests" or "tests" in rel.parts[:-1])
 
 
-def strip_block_comments(text: str) -> str:
-    out, i, depth = [], 0, 0
-    in_str = False
-    while i < len(text):
-        two = text[i : i + 2]
-        c = text[i]
-        if depth == 0 and not in_str and c == '"' and (i == 0 or text[i - 1] != "\\"):
-            in_str = True
-            out.append(c)
-        elif in_str:
-            if c == '"' and text[i - 1] != "\\":
-                in_str = False
-            out.append(c)
-        elif two == "/*":
-            depth += 1
-            i += 1
-        elif two == "*/" and depth:
-            depth -= 1
-            i += 1
-        elif depth == 0:
-            out.append(c)
-        elif c == "\n":
-            out.append(c)
-        i += 1
-    return "".join(out)
-
-
-def count(path: pathlib.Path) -> int:
-    lines = strip_block_comments(path.read_text(encoding="utf-8")).splitlines()
-    n, skip_next_item, depth_at, depth = 0, False, None, 0
-    for line in lines:
+def count(f: pathlib.Path) -> int:
+    lines = f.read_text(encoding="utf-8").splitlines()
+    n = 0
+    for i, line in enumerate(lines):
         s = line.strip()
-        if depth_at is None and s.startswith("#[cfg(test)]"):
-            skip_next_item = True
-            continue
-        opens, closes = s.count("{"), s.count("}")
-        if skip_next_item:
-            if s.endswith(";") and opens == 0:
-                skip_next_item = False  # `mod tests;`
-                continue
-            if opens:
-                depth_at = depth
-                skip_next_item = False
-        depth += opens - closes
-        if depth_at is not None:
-            if depth <= depth_at:
-                depth_at = None
-            continue
-        if not s or s.startswith("//"):
-            continue
-        n += 1
+        if s == "#[cfg(test)]" and i + 1 < len(lines) and re.match(r"\s*(pub(\(crate\))? )?mod \w+ \{", lines[i + 1]):
+            break
+        if s and not s.startswith("//"):
+            n += 1
     return n
 
 
-def main() -> None:
-    grand = 0
-    for src in map(pathlib.Path, sys.argv[1:] or ["crates/ldh-core/src"]):
-        per = {}
-        for f in sorted(src.rglob("*.rs")):
-            rel = f.relative_to(src)
-            if is_test_file(rel):
-                continue
-            top = rel.parts[0].removesuffix(".rs")
-            per[top] = per.get(top, 0) + count(f)
-        total = sum(per.values())
-        grand += total
-        for k, v in sorted(per.items(), key=lambda kv: -kv[1]):
-            print(f"{src}  {k:<14} {v:6d}")
-        print(f"{src}  {'TOTAL':<14} {total:6d}")
-    if len(sys.argv) > 2:
-        print(f"all  {grand:6d}")
+def main(modules):
+    per = {}
+    for f in SRC.rglob("*.rs"):
+        rel = f.relative_to(SRC)
+        if not is_test(rel):
+            per.setdefault(rel.with_suffix("").parts[0], 0)
+            per[rel.with_suffix("").parts[0]] += count(f)
+    for m in modules or sorted(per):
+        print(f"{per.get(m, 0):6d}  {m}")
+    if not modules:
+        print(f"{sum(per.values()):6d}  total")
 
 
 if __name__ == "__main__":
-    main()
+    main(sys.argv[1:])

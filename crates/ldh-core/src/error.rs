@@ -458,9 +458,9 @@ pub enum LdhError {
     #[error(transparent)]
     Unit(Box<crate::io::UnitError>),
     /// A reference file for `ldh agree` that cannot be used, or a comparison that cannot be made
-    /// (see [`crate::agreement::ReferenceError`]).
+    /// (see [`crate::reference::ReferenceError`]).
     #[error(transparent)]
-    Reference(Box<crate::agreement::ReferenceError>),
+    Reference(Box<crate::reference::ReferenceError>),
     /// A nonlinear-dynamics computation is undefined for its input (see [`crate::nonlinear`]).
     #[error(transparent)]
     Nonlinear(#[from] crate::nonlinear::NonlinearError),

@@ -481,12 +481,7 @@ fn median_stride_s(mid: &[usize], fs_hz: f64, max_stride_s: f64) -> f64 {
         .map(|w| (w[1] - w[0]) as f64 / fs_hz)
         .filter(|d| *d <= max_stride_s)
         .collect();
-    iv.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
-    if iv.is_empty() {
-        1.1
-    } else {
-        iv[iv.len() / 2]
-    }
+    crate::stats::median(&mut iv, crate::stats::EvenMedian::Upper).unwrap_or(1.1)
 }
 
 /// The heel strike after the mid-swing at sample `m` and before `end`, as a fractional sample.

@@ -43,6 +43,7 @@ pub mod output;
 pub mod pipeline;
 pub mod preprocess;
 pub mod recording;
+pub mod reference;
 pub mod stats;
 pub mod timings;
 

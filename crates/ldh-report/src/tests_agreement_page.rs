@@ -55,7 +55,7 @@ fn agree_with(
     .check()
     .unwrap();
     let mut reference = Reference::default();
-    let parse = ldh_core::agreement::reference::parse_reference;
+    let parse = ldh_core::reference::parse_reference;
     parse(events, Path::new("ev.csv"), results, &p, &mut reference).unwrap();
     parse(strides, Path::new("st.csv"), results, &p, &mut reference).unwrap();
     ldh_core::agreement::run(results, &reference, &p, mode).unwrap()

@@ -1,8 +1,8 @@
-//! `ldh agree`: an `ldh analyze` run ([`crate::output::LdhResults`]) against a laboratory's reference files
-//! ([`read_reference`]): clock offsets, event matching, per-stride and per-recording agreement
+//! `ldh agree`: an `ldh analyze` run ([`crate::output::LdhResults`]) against a laboratory's
+//! reference ([`crate::reference`]: long-form files and per-step walkway exports, read and
+//! checked): clock offsets, event matching, per-stride and per-recording agreement
 //! ([`AgreementReport`], written by [`write_report`]; the page with the Bland–Altman plots and
-//! timing histograms is `ldh_report::agreement_page`'s); per-step walkway exports
-//! (GAITRite-like) read through a column map ([`walkway`]).
+//! timing histograms is `ldh_report::agreement_page`'s).
 //!
 //! The statistics live in [`crate::stats::agreement`] (Bland–Altman limits, ICC, test–retest
 //! reliability), the event matching and the clock-offset search in [`crate::events::matching`]
@@ -13,24 +13,21 @@
 
 pub mod calibrate;
 mod outcome;
-pub mod reference;
-mod reference_error;
 pub mod run;
 mod run_events;
-pub mod walkway;
-mod walkway_map;
 pub mod write;
 
 #[cfg(test)]
-mod tests_run;
-#[cfg(test)]
-mod tests_walkway;
+pub(crate) mod tests_run;
 
 pub use crate::events::matching::{
     match_events, match_groups, summarize, EventMatch, MatchSummary,
 };
 pub use crate::events::offset::{
     estimate_clock_offset, polish_offset, ClockOffset, OffsetCandidate,
+};
+pub use crate::reference::{
+    read_reference, read_walkway, Reference, ReferenceError, WalkwayIds, WalkwayMap,
 };
 pub use crate::stats::agreement::{
     agreement, bland_altman, icc, limits_of_agreement, linregress, reliability, test_retest,
@@ -39,8 +36,5 @@ pub use crate::stats::agreement::{
     MAX_OFFSET_GRID_POINTS, MIN_PAIRS, MIN_SUBJECTS,
 };
 pub use calibrate::{calibrated_params, params_toml, MIN_CALIBRATION_EVENTS};
-pub use reference::{read_reference, Reference};
-pub use reference_error::ReferenceError;
 pub use run::{run, AgreementReport, OffsetMode};
-pub use walkway::{read_walkway, WalkwayIds, WalkwayMap};
 pub use write::write_report;

@@ -35,14 +35,14 @@ pub use super::outcome::{
     AgreementReport, EventAgreement, GroupCount, MatchedEvent, PairedValue, ParameterResult,
     TrialOffset, UnmatchedEvent, ALL_GROUPS, UNLABELLED,
 };
-use super::reference::{Reference, ReferenceValues};
-use super::reference_error::boxed;
 use super::run_events::{event_train, group_counts};
 use super::{
     agreement, estimate_clock_offset, match_events, polish_offset, ReferenceError,
     ValidAgreementParams,
 };
 use crate::output::results::{LdhResults, LdhStride, STRIDE_PARAMETERS};
+use crate::reference::boxed;
+use crate::reference::{Reference, ReferenceValues};
 
 /// The clock offset of the trials whose reference file gives none.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]

@@ -14,9 +14,9 @@ use super::outcome::{
     offset_of, AgreementReport, EventAgreement, GroupCount, MatchedEvent, Trial, UnmatchedEvent,
     ALL_GROUPS, KINDS, SIDES, UNLABELLED,
 };
-use super::reference::Reference;
 use super::{match_events, summarize, EventMatch, ValidAgreementParams};
 use crate::output::results::LdhResults;
+use crate::reference::Reference;
 
 /// The group of a trial: its recordings' `group` (the manifest's), else `unlabelled`.
 pub(crate) fn trial_group(results: &LdhResults, (s, t): &Trial) -> String {

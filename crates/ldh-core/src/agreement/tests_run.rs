@@ -3,16 +3,16 @@
 
 use std::path::Path;
 
-use super::reference::parse_reference;
 use super::{OffsetMode, Reference, ReferenceError};
 use crate::agreement::ValidAgreementParams;
 use crate::output::LdhResults;
 use crate::pipeline::SubjectResult;
+use crate::reference::parse_reference;
 use crate::LdhError;
 
 /// Results of subjects whose legs failed (no events or strides): enough for the reader's
 /// subject, trial and range checks. `trials`: (subject, trial, duration s).
-pub(super) fn fake_results(trials: &[(&str, &str, f64)]) -> LdhResults {
+pub(crate) fn fake_results(trials: &[(&str, &str, f64)]) -> LdhResults {
     let results: Vec<SubjectResult> = trials
         .iter()
         .map(|(s, t, _)| SubjectResult {

@@ -69,8 +69,7 @@ fn upper_median(values: impl Iterator<Item = f64>) -> Option<f64> {
     if v.len() < MIN_BRACKETS {
         return None;
     }
-    v.sort_by(f64::total_cmp);
-    Some(v[v.len() / 2])
+    crate::stats::median(&mut v, crate::stats::EvenMedian::Upper)
 }
 
 /// A leg's landmark geometry and swing arc, medians over its strides whose landmarks are in

@@ -54,8 +54,7 @@ fn impact_s(da: &[f64], fs_hz: f64, zc_s: f64, stride_s: f64) -> Option<f64> {
         return None;
     }
     let mut base: Vec<f64> = da[b0 as usize..b1 as usize].to_vec();
-    base.sort_by(f64::total_cmp);
-    let base = base[base.len() / 2];
+    let base = crate::stats::median(&mut base, crate::stats::EvenMedian::Upper).expect("b1 > b0");
     let window = &da[w0 as usize..=w1 as usize];
     let peak = window.iter().copied().fold(0.0, f64::max);
     if peak < (IMPACT_RATIO * base).max(IMPACT_MIN_G) {
@@ -114,8 +113,7 @@ pub fn shift_to_impacts(legs: &mut [&mut Events], hs_offset_stride: f64) -> Opti
     if k < IMPACT_MIN_STRIKES || (k as f64) < IMPACT_SHARE * all as f64 {
         return None;
     }
-    found.sort_by(f64::total_cmp);
-    let typical = found[k / 2];
+    let typical = crate::stats::median(&mut found, crate::stats::EvenMedian::Upper).expect("k > 0");
     // Every strike at its zero crossing plus the median delay: the recording's own offset in
     // place of a simulator's. Not each strike's own impact: that is known to a sample only
     // (±5 ms at 100 Hz), where the interpolated crossing keeps stride times to a fraction of a

@@ -502,8 +502,7 @@ fn withhold_length_outliers(out: &mut [Stride], max_dev: f64) {
         if l.len() < 3 {
             continue;
         }
-        l.sort_by(f64::total_cmp);
-        let med = l[l.len() / 2];
+        let med = crate::stats::median(&mut l, crate::stats::EvenMedian::Upper).expect("3 or more");
         for &k in members {
             let s = &mut out[k];
             let dev = (s.stride_length_m - med) / med;

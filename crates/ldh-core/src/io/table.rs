@@ -1,8 +1,8 @@
 //! The one reader of every CSV table that is not a sensor recording (issue 48): the cohort
 //! manifest (`pipeline::manifest`), `ldh agree`'s reference files and walkway exports
-//! (`agreement::reference`, `agreement::walkway`), `reliability.csv`
-//! (`agreement::reliability_table`) and ldh's own `strides.csv` / `events.csv` read back
-//! (`output::stride_groups`, `agreement::results`).
+//! (`reference::long_form`, `reference::walkway`), `reliability.csv`
+//! (`cohort::reliability_table`) and ldh's own `strides.csv` / `events.csv` read back
+//! (`output::stride_groups`, `output::results`).
 //!
 //! Built on the `csv` crate (RFC 4180 quoting: a quoted field may hold the delimiter) and serde
 //! ([`Row::deserialize`] maps a row onto a `#[derive(Deserialize)]` type by header name). A

@@ -273,7 +273,7 @@ fn parse_row(
         return Err(row.invalid_value(
             c.column(),
             v,
-            &format!(
+            format!(
                 "the row's sensor_height_m ({}) or an empty sensor_height_m: one sensor cannot \
                  have two heights (leave sensor_height_m empty when the legs differ)",
                 c.both_m
@@ -301,7 +301,7 @@ fn parse_row(
             row.invalid_value(
                 name,
                 v,
-                &format!("a built-in format name or a TOML column map ({e})"),
+                format!("a built-in format name or a TOML column map ({e})"),
             )
         })?;
         formats.insert(v.to_string(), f.clone());
@@ -347,7 +347,7 @@ fn belt_speed(row: &Row, setting: Option<Setting>) -> Result<Option<f64>> {
             return Err(row.invalid_value(
                 "belt_speed_mps",
                 v,
-                &format!("a belt speed in m/s, > 0 and at most {MAX_BELT_SPEED_MPS}"),
+                format!("a belt speed in m/s, > 0 and at most {MAX_BELT_SPEED_MPS}"),
             ))
         }
     };

@@ -58,7 +58,7 @@ pub fn median(values: &mut [f64], even: EvenMedian) -> Option<f64> {
     let (below, mid, _) = values.select_nth_unstable_by(n / 2, f64::total_cmp);
     let mid = *mid;
     Some(match even {
-        EvenMedian::Mean if n % 2 == 0 => {
+        EvenMedian::Mean if n.is_multiple_of(2) => {
             let low = below.iter().copied().max_by(f64::total_cmp);
             0.5 * (low.expect("an even count of at least 2") + mid)
         }

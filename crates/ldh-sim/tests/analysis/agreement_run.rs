@@ -3,11 +3,11 @@
 
 use std::path::Path;
 
-use ldh_core::agreement::reference::parse_reference;
 use ldh_core::agreement::ValidAgreementParams;
 use ldh_core::agreement::{run, AgreementParams, OffsetMode, Reference, ReferenceError};
 use ldh_core::output::LdhResults;
 use ldh_core::pipeline::SubjectResult;
+use ldh_core::reference::parse_reference;
 use ldh_core::LdhError;
 use ldh_sim::evaluate::TruthScope;
 

@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Location, Result};
 use crate::output::Parameter;
 
-use super::reference_error::boxed;
+use super::error::boxed;
 use super::ReferenceError;
 use crate::output::results::STRIDE_PARAMETERS;
 

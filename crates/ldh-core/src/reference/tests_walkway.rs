@@ -4,10 +4,12 @@
 
 use std::path::{Path, PathBuf};
 
-use super::reference::{parse_reference, Reference};
-use super::walkway::{parse_walkway, WalkwayIds, WalkwayMap};
-use super::{ReferenceError, ValidAgreementParams};
+use super::long_form::{parse_reference, Reference};
+use super::walkway::{parse_walkway, WalkwayIds};
+use super::walkway_map::WalkwayMap;
+use super::ReferenceError;
 use crate::output::LdhResults;
+use crate::stats::agreement::ValidAgreementParams;
 use crate::LdhError;
 
 fn fixture(name: &str) -> PathBuf {
@@ -17,7 +19,7 @@ fn fixture(name: &str) -> PathBuf {
 }
 
 fn results() -> LdhResults {
-    super::tests_run::fake_results(&[("S01", "", 30.0)])
+    crate::agreement::tests_run::fake_results(&[("S01", "", 30.0)])
 }
 
 fn map() -> WalkwayMap {
@@ -106,7 +108,7 @@ fn ids_from_the_command_line_and_start_anchored_strides() {
     let mut m = map();
     m.subject_column = None;
     m.skip_rows_before_header = 0;
-    m.stride_anchor = super::walkway::StrideAnchor::Start;
+    m.stride_anchor = super::StrideAnchor::Start;
     let text = "Left/Right,First Contact (sec.),Last Contact (sec.),Stride Length (cm.),Stride Time (sec.),Velocity (cm./sec.),Stance %\n\
                 L,1.0,1.6,130,1.08,120,60\nR,1.5,2.1,131,1.07,121,61\n";
     let ids = WalkwayIds {

@@ -27,9 +27,10 @@ use crate::output::Parameter;
 use crate::pipeline::EventKind;
 use crate::Side;
 
-use super::reference_error::boxed;
-use super::{ReferenceError, ValidAgreementParams};
+use super::error::boxed;
+use super::ReferenceError;
 use crate::output::results::{GaitEvent, LdhResults, STRIDE_PARAMETERS};
+use crate::stats::agreement::ValidAgreementParams;
 
 /// One row of reference parameters: a stride, or a recording (one leg of one trial).
 #[derive(Debug, Clone, PartialEq)]

@@ -16,7 +16,7 @@
 //! foot's first footfall gives no stride.
 //!
 //! The converted rows are checked by the reader of the long-form files
-//! ([`super::reference::parse_reference`]) and every error's line and column (and the earlier
+//! ([`super::long_form::parse_reference`]) and every error's line and column (and the earlier
 //! line it cites) moved back to the export's, so each error names the export file, its line and
 //! its column (a subject or trial given on the command line has no column).
 
@@ -26,12 +26,13 @@ use std::path::{Path, PathBuf};
 use crate::error::{LdhError, Location, Result};
 use crate::io::table::{CsvFault, Row, Table as CsvTable, TableFormat};
 
-pub use super::walkway_map::{MappedColumn, SideColumn, StrideAnchor, WalkwayMap, WalkwayUnit};
+use super::walkway_map::{MappedColumn, StrideAnchor, WalkwayMap};
 
-use super::reference::{parse_reference, Reference};
-use super::reference_error::boxed;
-use super::{ReferenceError, ValidAgreementParams};
+use super::error::boxed;
+use super::long_form::{parse_reference, Reference};
+use super::ReferenceError;
 use crate::output::results::{LdhResults, STRIDE_PARAMETERS};
+use crate::stats::agreement::ValidAgreementParams;
 
 /// The subject and trial of an export whose map has no column for them.
 #[derive(Debug, Clone, PartialEq, Default)]
