@@ -201,3 +201,5 @@ mod tests_agreement_page;
 mod tests_cohort;
 #[cfg(test)]
 mod tests_headline;
+#[cfg(test)]
+mod tests_vocabulary;
