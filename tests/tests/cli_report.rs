@@ -114,7 +114,7 @@ fn reports_are_well_formed_self_contained_and_label_every_axis() {
             "(steps/min)",
             "(m/s)",
             "<b>Stride length</b> (m)",
-            "(% of gait cycle)",
+            "(% of the gait cycle)",
             "(CV %)",
             "(SI %, left vs right)",
             "normal range",

@@ -82,7 +82,7 @@ fn a_two_visit_report_marks_only_changes_beyond_the_mdc95() {
     assert!(html.contains("From pre to post, changed by more than the measurement's own noise (MDC95, reliability.csv: 10 people × 3 trials): stride time "));
     let said = &html[html.find("From pre to post").unwrap()..];
     let said = &said[..said.find("</p>").unwrap()];
-    assert!(!said.contains("stride speed"), "{said}");
+    assert!(!said.contains("walking speed"), "{said}");
     assert!(
         said.contains("every other change lies within the noise"),
         "{said}"

@@ -38,7 +38,7 @@ fn val(row: &Row, v: f64) -> String {
     match row.q.parameter {
         Parameter::StanceRatio => format!("{v:.d$} %"),
         Parameter::Wqk | Parameter::Pbi | Parameter::Bdk => format!("{v:.d$}°"),
-        _ => format!("{v:.d$} {}", row.q.unit),
+        _ => format!("{v:.d$} {}", row.q.unit()),
     }
 }
 
@@ -49,7 +49,7 @@ fn range(row: &Row, reference: &Reference) -> String {
         Some(r) => match (r.low, r.high) {
             (Some(l), Some(h)) => {
                 let d = q.decimals;
-                let (l, h) = (l * q.scale, h * q.scale);
+                let (l, h) = (l * q.scale(), h * q.scale());
                 format!("normal {l:.d$}–{}", val(row, h))
             }
             _ => String::new(),
@@ -89,7 +89,7 @@ fn asymmetry_sentence(row: &Row, si: f64) -> Option<String> {
         ),
         _ => format!(
             "{} is uneven: {pct:.0} % larger on the {side} than on the {other} ({vs}).",
-            row.q.label
+            row.q.label()
         ),
     })
 }
@@ -109,7 +109,7 @@ fn outside_sentence(row: &Row, reference: &Reference) -> Option<String> {
         })
         .collect();
     let first = out.first()?;
-    let label = row.q.label;
+    let label = row.q.label();
     Some(match row.q.scope {
         Scope::Walk => format!(
             "{label} is {}: {} ({rng}).",
@@ -182,7 +182,7 @@ fn not_measured(v: &Verdicts, sides: &[&RecordingRow]) -> Option<String> {
             .filter(|i| matches!(row.cells[*i], Cell::NotMeasured(_)))
             .filter(|i| row.q.scope == Scope::Walk || !failed.contains(&["left", "right"][*i]))
             .collect();
-        let name = row.q.label.to_lowercase();
+        let name = row.q.label().to_lowercase();
         match (row.q.scope, missing.len()) {
             (_, 0) => {}
             (Scope::Walk, _) if failed.len() < 2 => parts.push(name),

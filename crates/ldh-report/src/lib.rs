@@ -203,3 +203,5 @@ mod tests_agreement_page;
 mod tests_cohort;
 #[cfg(test)]
 mod tests_headline;
+#[cfg(test)]
+mod tests_vocabulary;

@@ -43,8 +43,8 @@ fn range_cells(
             (
                 format!(
                     "{}–{}",
-                    fmt(Some(l * m.scale), d),
-                    fmt(Some(h * m.scale), d)
+                    fmt(Some(l * m.scale()), d),
+                    fmt(Some(h * m.scale()), d)
                 ),
                 src,
             )
@@ -178,7 +178,7 @@ pub(crate) fn clinical_summary(
                 @let rr = reference.range(row.q.parameter);
                 @let (range, src) = range_cells(rr, row.q, citations);
                 tr {
-                    td { b { (row.q.label) } " (" (row.q.unit) ")" @if row.q.scope == Scope::Walk { " — the walk, both legs" } }
+                    td { b { (row.q.label()) } " (" (row.q.unit()) ")" @if row.q.scope == Scope::Walk { " — the walk, both legs" } }
                     (value_cells(row, notes))
                     td.num { (range) } td { (src) }
                 }
@@ -197,7 +197,7 @@ pub(crate) fn clinical_summary(
             @for row in rows().filter(|_| v.no_pair.is_none()) {
                 @if let Some(a) = &row.asymmetry {
                     tr {
-                        td { b { (row.q.label) " asymmetry" } " (SI %, left vs right)" }
+                        td { b { (row.q.label()) " asymmetry" } " (SI %, left vs right)" }
                         (asymmetry_cell(a, 2, notes))
                         td.num { "|SI| ≤ " (format!("{limit:.0}")) }
                         td { "asymmetry threshold (Robinson et al. 1987)" }

@@ -212,8 +212,8 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
     let mut checked = 0;
     for q in super::verdict::QUANTITIES.iter() {
         let start = table
-            .find(&format!("<td>{} — {}", q.parameter.code(), q.label))
-            .unwrap_or_else(|| panic!("{} not in the table", q.label));
+            .find(&format!("<td>{} — {}", q.parameter.code(), q.label()))
+            .unwrap_or_else(|| panic!("{} not in the table", q.label()));
         let row = &table[start..];
         let row = &row[..row.find("</tr>").unwrap()];
         // Cells: parameter, unit, left (or the walk's), right, range, SI.
@@ -224,7 +224,7 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
             assert!(
                 left_cell.contains("from the right leg only") || left_cell.contains("not measured"),
                 "{}: {left_cell}",
-                q.label
+                q.label()
             );
             checked += 1;
             continue;
@@ -232,7 +232,7 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
         assert!(
             left_cell.contains("not measured ["),
             "{}: {left_cell}",
-            q.label
+            q.label()
         );
         assert!(
             !left_cell.contains('▲') && !left_cell.contains('▼'),
@@ -247,13 +247,13 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
                 .next()
                 .is_some_and(|ch| ch.is_ascii_digit() || ch == '-'),
             "{}: a number: {left_cell}",
-            q.label
+            q.label()
         );
         // No symmetry index from a withheld value.
         assert!(
             cells[6].contains(">–<") || cells[6].contains("not measured ["),
             "{}: SI {}",
-            q.label,
+            q.label(),
             cells[6]
         );
         checked += 1;
@@ -267,13 +267,13 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
         .iter()
         .filter(|q| q.in_summary && q.scope == super::verdict::Scope::Side)
     {
-        let row = &summary[summary.find(&format!("<b>{}</b>", q.label)).unwrap()..];
+        let row = &summary[summary.find(&format!("<b>{}</b>", q.label())).unwrap()..];
         let row = &row[..row.find("</tr>").unwrap()];
         let cells: Vec<&str> = row.split("<td").collect();
         assert!(
             cells[1].contains("not measured ["),
             "{}: {}",
-            q.label,
+            q.label(),
             cells[1]
         );
         assert!(!cells[1].contains('▲') && !cells[1].contains('▼'));
@@ -412,7 +412,7 @@ fn the_summary_uses_clinical_units_and_plain_flags() {
         "<b>Cadence</b> (steps/min)",
         "<b>Walking speed</b> (m/s)",
         "<b>Stride length</b> (m)",
-        "<b>Stance</b> (% of gait cycle)",
+        "<b>Stance</b> (% of the gait cycle)",
         "(CV %)",
         "(SI %, left vs right)",
         // 1.5 steps/s = 90 steps/min, below the published 96–126.

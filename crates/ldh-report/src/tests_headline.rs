@@ -66,7 +66,7 @@ fn a_30_pct_step_asymmetry_with_normal_cadence_is_the_headline_and_one_verdict_e
     );
     assert!(html.contains(&h.findings[0]));
     // One cadence per walk, from both legs' strides: 60·2/1.05 = 114, within 96–126.
-    let cadence = v.rows.iter().find(|r| r.q.label == "Cadence").unwrap();
+    let cadence = v.rows.iter().find(|r| r.q.label() == "Cadence").unwrap();
     assert_eq!(cadence.cells.len(), 1);
     assert!(matches!(
         cadence.cells[0],
@@ -85,16 +85,16 @@ fn a_30_pct_step_asymmetry_with_normal_cadence_is_the_headline_and_one_verdict_e
     let section2 = &html[html.find("2. Gait parameters").unwrap()..];
     let section2 = &section2[..section2.find("</table>").unwrap()];
     for row in v.rows.iter().filter(|r| r.q.in_summary) {
-        let in_summary = marks(summary, &format!("<b>{}</b>", row.q.label));
+        let in_summary = marks(summary, &format!("<b>{}</b>", row.q.label()));
         let in_table = marks(
             section2,
-            &format!("<td>{} — {}", row.q.parameter.code(), row.q.label),
+            &format!("<td>{} — {}", row.q.parameter.code(), row.q.label()),
         );
         let asym = match &row.asymmetry {
-            Some(_) => marks(summary, &format!("<b>{} asymmetry</b>", row.q.label)),
+            Some(_) => marks(summary, &format!("<b>{} asymmetry</b>", row.q.label())),
             None => String::new(),
         };
-        assert_eq!(format!("{in_summary}{asym}"), in_table, "{}", row.q.label);
+        assert_eq!(format!("{in_summary}{asym}"), in_table, "{}", row.q.label());
     }
     assert!(!marks(summary, "<b>Cadence</b>").contains(['▲', '▼']));
     // The cohort page counts the same verdicts.
@@ -130,7 +130,7 @@ fn bounds_are_inclusive_and_compared_as_shown() {
     let mut recs = uneven("S");
     recs[0].stance_ratio = Some(0.70);
     let (_, v, _) = page_parts(recs);
-    let stance = v.rows.iter().find(|r| r.q.label == "Stance").unwrap();
+    let stance = v.rows.iter().find(|r| r.q.label() == "Stance").unwrap();
     assert!(matches!(
         stance.cells[0],
         Cell::Value {

@@ -31,17 +31,13 @@ pub(crate) enum Scope {
     Side,
 }
 
-/// One quantity of the page, in clinical units.
+/// One quantity of the page, in clinical units: its name, unit and scale are its
+/// [`Parameter`]'s ([`Parameter::label`], [`Parameter::display`]); what is here is how the
+/// page uses it.
 #[derive(Debug)]
 pub(crate) struct Quantity {
-    /// What a clinician calls it.
-    pub label: &'static str,
-    /// The clinical unit.
-    pub unit: &'static str,
     /// The parameter whose reference range judges it.
     pub parameter: Parameter,
-    /// Factor from the table's unit to the clinical unit.
-    pub scale: f64,
     /// Decimals shown (and compared).
     pub decimals: usize,
     /// One per walk or one per side.
@@ -54,12 +50,23 @@ pub(crate) struct Quantity {
     pub in_summary: bool,
 }
 
-#[allow(clippy::too_many_arguments)]
+impl Quantity {
+    /// What a clinician calls it (the parameter's name, capitalised).
+    pub fn label(&self) -> String {
+        self.parameter.label()
+    }
+    /// The clinical unit.
+    pub fn unit(&self) -> &'static str {
+        self.parameter.display().1
+    }
+    /// Factor from the table's unit to the clinical unit.
+    pub fn scale(&self) -> f64 {
+        self.parameter.display().0
+    }
+}
+
 const fn q(
-    label: &'static str,
-    unit: &'static str,
     parameter: Parameter,
-    scale: f64,
     decimals: usize,
     scope: Scope,
     companion: Option<Parameter>,
@@ -67,10 +74,7 @@ const fn q(
     in_summary: bool,
 ) -> Quantity {
     Quantity {
-        label,
-        unit,
         parameter,
-        scale,
         decimals,
         scope,
         companion,
@@ -85,138 +89,18 @@ use Scope::{Side as S, Walk as W};
 /// Every quantity of the page, in page order; the cadence is judged against the step
 /// frequency's range (in steps/min).
 pub(crate) const QUANTITIES: [Quantity; 12] = [
-    q(
-        "Cadence",
-        "steps/min",
-        P::StepFrequency,
-        60.0,
-        0,
-        W,
-        None,
-        false,
-        true,
-    ),
-    q(
-        "Walking speed",
-        "m/s",
-        P::Speed,
-        1.0,
-        2,
-        W,
-        None,
-        false,
-        true,
-    ),
-    q(
-        "Stride time",
-        "s",
-        P::StrideTime,
-        1.0,
-        2,
-        W,
-        None,
-        false,
-        true,
-    ),
-    q(
-        "Step time",
-        "s",
-        P::StepTime,
-        1.0,
-        2,
-        S,
-        Some(P::StepFrequency),
-        true,
-        true,
-    ),
-    q(
-        "Stance",
-        "% of gait cycle",
-        P::StanceRatio,
-        100.0,
-        1,
-        S,
-        Some(P::SwingRatio),
-        true,
-        true,
-    ),
-    q(
-        "Stride length",
-        "m",
-        P::StrideLength,
-        1.0,
-        2,
-        S,
-        None,
-        true,
-        true,
-    ),
-    q(
-        "Stride time variability",
-        "CV %",
-        P::StrideTimeCv,
-        100.0,
-        1,
-        S,
-        None,
-        false,
-        true,
-    ),
-    q(
-        "Stride length variability",
-        "CV %",
-        P::StrideLengthCv,
-        100.0,
-        1,
-        S,
-        None,
-        false,
-        true,
-    ),
-    q(
-        "Shank swing (WQK, peak forward pitch)",
-        "deg",
-        P::Wqk,
-        1.0,
-        1,
-        S,
-        None,
-        true,
-        false,
-    ),
-    q(
-        "Shank pitch back (PBI)",
-        "deg",
-        P::Pbi,
-        1.0,
-        1,
-        S,
-        None,
-        true,
-        false,
-    ),
-    q(
-        "Shank roll in swing (BDK)",
-        "deg",
-        P::Bdk,
-        1.0,
-        1,
-        S,
-        None,
-        true,
-        false,
-    ),
-    q(
-        "Gait stability (STA, Lyapunov exponent)",
-        "1/s",
-        P::Sta,
-        1.0,
-        3,
-        S,
-        None,
-        false,
-        false,
-    ),
+    q(P::StepFrequency, 0, W, None, false, true),
+    q(P::Speed, 2, W, None, false, true),
+    q(P::StrideTime, 2, W, None, false, true),
+    q(P::StepTime, 2, S, Some(P::StepFrequency), true, true),
+    q(P::StanceRatio, 1, S, Some(P::SwingRatio), true, true),
+    q(P::StrideLength, 2, S, None, true, true),
+    q(P::StrideTimeCv, 1, S, None, false, true),
+    q(P::StrideLengthCv, 1, S, None, false, true),
+    q(P::Wqk, 1, S, None, true, false),
+    q(P::Pbi, 1, S, None, true, false),
+    q(P::Bdk, 1, S, None, true, false),
+    q(P::Sta, 3, S, None, false, false),
 ];
 
 /// A value against its range.
@@ -402,8 +286,8 @@ fn walk_value(
 fn cell(v: Result<f64, String>, q: &Quantity, rr: Option<&ReferenceRange>) -> Cell {
     match v {
         Ok(v) if v.is_finite() => Cell::Value {
-            v: round(v * q.scale, q.decimals),
-            judgement: judge(v * q.scale, rr, q.scale, q.decimals),
+            v: round(v * q.scale(), q.decimals),
+            judgement: judge(v * q.scale(), rr, q.scale(), q.decimals),
             note: None,
         },
         Ok(_) => Cell::NotMeasured("not computable".into()),

@@ -247,7 +247,7 @@ mod tests {
         assert_eq!(row(Parameter::StrideTime).beyond(1), None);
         let s = headline_sentence(&c);
         assert!(
-            s.contains("From pre to post, changed by more than the measurement's own noise (MDC95, reliability.csv: 10 people × 3 trials): stride speed rose by 0.150 m/s (MDC95 0.100 m/s); every other change lies within the noise."),
+            s.contains("From pre to post, changed by more than the measurement's own noise (MDC95, reliability.csv: 10 people × 3 trials): walking speed rose by 0.150 m/s (MDC95 0.100 m/s); every other change lies within the noise."),
             "{s}"
         );
         assert!(!s.contains("stride length"), "{s}");

@@ -23,9 +23,9 @@ pub enum Parameter {
     StepTime,
     /// ST, s.
     StrideTime,
-    /// STP, fraction of the stride.
+    /// STP, fraction of the gait cycle.
     StanceRatio,
-    /// SWP, fraction of the stride.
+    /// SWP, fraction of the gait cycle.
     SwingRatio,
     /// SV, SD / mean.
     StrideLengthCv,
@@ -42,27 +42,35 @@ pub enum Parameter {
 }
 
 /// The definition of one parameter: everything any output says about it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Definition {
     /// Code in the paper's Table 2 (`SF`, `SL` …).
     pub code: &'static str,
     /// Column of the per-recording table (units in the name).
     pub column: &'static str,
-    /// Plain name.
+    /// Plain name, as in a sentence ("walking speed"; a report's row capitalises it).
     pub name: &'static str,
     /// Unit of the value as the tables hold it.
     pub unit: &'static str,
+    /// How a report shows it: the factor from [`Definition::unit`] and the unit it then has
+    /// (the same quantity: a fraction × 100 is a per cent, steps/s × 60 steps/min).
+    pub display: (f64, &'static str),
     /// What the per-side value means (the column dictionary, after the code).
     pub description: &'static str,
     /// What the per-stride value means, when the per-stride table has one (same column name).
     pub per_stride: Option<&'static str>,
 }
 
+/// The unit of stance and swing: a share of the stride (heel strike to the next heel strike
+/// of the same leg, the gait cycle).
+pub const GAIT_CYCLE_FRACTION: &str = "fraction of the gait cycle";
+
+/// The unit of the variability parameters: the coefficient of variation.
+pub const CV: &str = "SD / mean";
+
 const fn d(
-    code: &'static str,
-    column: &'static str,
-    name: &'static str,
-    unit: &'static str,
+    (code, column, name, unit): (&'static str, &'static str, &'static str, &'static str),
+    display: (f64, &'static str),
     description: &'static str,
     per_stride: Option<&'static str>,
 ) -> Definition {
@@ -71,10 +79,17 @@ const fn d(
         column,
         name,
         unit,
+        display,
         description,
         per_stride,
     }
 }
+
+const AS_IS_S: (f64, &str) = (1.0, "s");
+const AS_IS_M: (f64, &str) = (1.0, "m");
+const AS_IS_DEG: (f64, &str) = (1.0, "deg");
+const PER_CENT_OF_CYCLE: (f64, &str) = (100.0, "% of the gait cycle");
+const CV_PER_CENT: (f64, &str) = (100.0, "CV %");
 
 /// A column name that is not a parameter of [`Parameter::ALL`].
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -134,106 +149,80 @@ impl Parameter {
         use Parameter::*;
         match self {
             StepFrequency => d(
-                "SF",
-                "step_frequency_steps_per_s",
-                "step frequency",
-                "steps/s",
+                ("SF", "step_frequency_steps_per_s", "cadence", "steps/s"),
+                (60.0, "steps/min"),
                 "1 / mean step time (× 60 = steps/min of this side; the report's cadence is one value per walk from both legs).",
                 None,
             ),
             StrideLength => d(
-                "SL",
-                "stride_length_m",
-                "stride length",
-                "m",
+                ("SL", "stride_length_m", "stride length", "m"),
+                AS_IS_M,
                 "mean distance the foot travels over a stride (both feet travel the same distance on a straight walk).",
                 Some("Stride length; empty when withheld (`reason` says why)."),
             ),
             Speed => d(
-                "SS",
-                "speed_mps",
-                "stride speed",
-                "m/s",
+                ("SS", "speed_mps", "walking speed", "m/s"),
+                (1.0, "m/s"),
                 "mean walking speed, stride length / stride time.",
                 Some("Stride length / stride time."),
             ),
             StepTime => d(
-                "STT",
-                "step_time_s",
-                "step time",
-                "s",
+                ("STT", "step_time_s", "step time", "s"),
+                AS_IS_S,
                 "mean step time (the other leg's heel strike to this leg's); empty with one leg.",
                 None,
             ),
             StrideTime => d(
-                "ST",
-                "stride_time_s",
-                "stride time",
-                "s",
+                ("ST", "stride_time_s", "stride time", "s"),
+                AS_IS_S,
                 "mean stride time (heel strike to the next heel strike of the same leg).",
                 Some("Stride time."),
             ),
             StanceRatio => d(
-                "STP",
-                "stance_ratio",
-                "stance phase",
-                "ratio",
+                ("STP", "stance_ratio", "stance", GAIT_CYCLE_FRACTION),
+                PER_CENT_OF_CYCLE,
                 "mean share of the stride the foot is on the ground (toe off − heel strike) / stride time; normal ≈ 0.60.",
                 Some("(toe off − heel strike) / stride time."),
             ),
             SwingRatio => d(
-                "SWP",
-                "swing_ratio",
-                "swing phase",
-                "ratio",
+                ("SWP", "swing_ratio", "swing", GAIT_CYCLE_FRACTION),
+                PER_CENT_OF_CYCLE,
                 "1 − stance ratio: the share of the stride the foot is in the air.",
                 None,
             ),
             StrideLengthCv => d(
-                "SV",
-                "stride_length_cv",
-                "stride length variability",
-                "ratio",
+                ("SV", "stride_length_cv", "stride length variability", CV),
+                CV_PER_CENT,
                 "stride-to-stride variability of stride length (× 100 = %).",
                 None,
             ),
             StrideTimeCv => d(
-                "STV",
-                "stride_time_cv",
-                "stride time variability",
-                "ratio",
+                ("STV", "stride_time_cv", "stride time variability", CV),
+                CV_PER_CENT,
                 "stride-to-stride variability of stride time (× 100 = %); healthy ≈ 0.01–0.03.",
                 None,
             ),
             Sta => d(
-                "STA",
-                "sta_per_s",
-                "gait stability (Lyapunov)",
-                "1/s",
+                ("STA", "sta_per_s", "gait stability (Lyapunov exponent)", "1/s"),
+                (1.0, "1/s"),
                 "short-term largest Lyapunov exponent of the shank's sagittal angular velocity (Rosenstein): how fast nearby gait states diverge; higher = less stable.",
                 None,
             ),
             Wqk => d(
-                "WQK",
-                "wqk_deg",
-                "max shank flexion",
-                "deg",
+                ("WQK", "wqk_deg", "shank swing (peak forward pitch)", "deg"),
+                AS_IS_DEG,
                 "mean largest forward inclination of the shank in a stride (sagittal pitch maximum, the knee ahead of the ankle, late swing).",
                 Some("Largest forward shank inclination in the stride (WQK)."),
             ),
             Pbi => d(
-                "PBI",
-                "pbi_deg",
-                "peak backward inclination",
-                "deg",
+                ("PBI", "pbi_deg", "shank pitch back", "deg"),
+                AS_IS_DEG,
                 "mean largest backward inclination of the shank in a stride (−pitch minimum, at push-off).",
                 Some("Largest backward shank inclination in the stride (PBI)."),
             ),
             Bdk => d(
-                "BDK",
-                "bdk_deg",
-                "swing roll excursion",
-                "deg",
+                ("BDK", "bdk_deg", "shank roll in swing", "deg"),
+                AS_IS_DEG,
                 "mean range of the shank's frontal-plane roll in swing (toe off to heel strike): sideways swing of the leg, e.g. circumduction.",
                 Some("Range of frontal-plane shank roll from toe off to the next heel strike (BDK)."),
             ),
@@ -263,6 +252,20 @@ impl Parameter {
     /// Unit.
     pub const fn unit(self) -> &'static str {
         self.definition().unit
+    }
+
+    /// How a report shows it: `(factor from the unit, unit)`.
+    pub const fn display(self) -> (f64, &'static str) {
+        self.definition().display
+    }
+
+    /// The name as a report's row label (capitalised: "Walking speed").
+    pub fn label(self) -> String {
+        let name = self.name();
+        let mut c = name.chars();
+        c.next().map_or(String::new(), |f| {
+            f.to_uppercase().collect::<String>() + c.as_str()
+        })
     }
 
     /// What the per-side value means.

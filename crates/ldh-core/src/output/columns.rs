@@ -1,10 +1,14 @@
 //! The column dictionary: every column of `recordings.csv`, `strides.csv` and `events.csv` with
 //! its unit and meaning, in words a clinician or a data scientist can use (issue 39). One table
-//! in code; `docs/columns.md` is generated from it ([`markdown`]) and `ldh columns [NAME]`
-//! prints it. A test checks that every column the writers emit is here exactly once and that
+//! in code ([`columns`]); the gait parameters' columns come from their one definition
+//! ([`Parameter::definition`], issue 48); `docs/columns.md` is generated from it ([`markdown`])
+//! and `ldh columns [NAME]` prints it. A test checks that every column the writers emit is here exactly once and that
 //! the committed docs/columns.md is what [`markdown`] writes.
 
+use std::borrow::Cow;
 use std::fmt::Write;
+
+use crate::domain::Parameter;
 
 /// Which output table a column belongs to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -28,37 +32,38 @@ impl Table {
     }
 }
 
-/// One column: table, name, unit ("" for text, "1" for a dimensionless number) and meaning.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// One column: table, name, unit ("" for text) and meaning.
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ColumnDoc {
     /// The table.
     pub table: Table,
     /// The column name as written.
     pub name: &'static str,
-    /// The unit ("" for text and flags; "1" for a dimensionless ratio).
+    /// The unit ("" for text and flags).
     pub unit: &'static str,
     /// What it means.
-    pub meaning: &'static str,
+    pub meaning: Cow<'static, str>,
 }
 
-const fn c(
-    table: Table,
-    name: &'static str,
-    unit: &'static str,
-    meaning: &'static str,
-) -> ColumnDoc {
-    ColumnDoc {
-        table,
-        name,
-        unit,
-        meaning,
-    }
+/// A column of [`LAYOUT`], or the place of a table's parameter columns.
+enum Entry {
+    /// A column that is no gait parameter.
+    C(Table, &'static str, &'static str, &'static str),
+    /// The table's parameter columns, from their [`Parameter`] definitions: in recordings.csv
+    /// every parameter (STA followed by `sta_per_stride` and `sta_status`), in strides.csv those
+    /// with a per-stride value.
+    P(Table),
 }
 
+const fn c(table: Table, name: &'static str, unit: &'static str, meaning: &'static str) -> Entry {
+    Entry::C(table, name, unit, meaning)
+}
+
+use Entry::P;
 use Table::{Events as E, Recordings as R, Strides as S};
 
 /// Every output column, in each table's column order.
-pub const COLUMNS: &[ColumnDoc] = &[
+const LAYOUT: &[Entry] = &[
     c(R, "subject_id", "", "The person (manifest `subject_id`, or the folder name)."),
     c(R, "side", "", "`left` or `right`: the leg this row is about."),
     c(R, "model", "", "Attitude model: `fusion` (adaptive Kalman fusion of gyroscope and accelerometer, the default) or `acc` (accelerometer only, for comparison)."),
@@ -74,21 +79,7 @@ pub const COLUMNS: &[ColumnDoc] = &[
     c(R, "duration_s", "s", "Length of the recording."),
     c(R, "strides_total", "strides", "Strides found (heel strike to the next heel strike of the same leg)."),
     c(R, "strides_valid", "strides", "Strides the parameters are means of (not a turn, not at a bout's edge, steady walking, passed the checks)."),
-    c(R, "stride_time_s", "s", "ST: mean stride time (heel strike to the next heel strike of the same leg)."),
-    c(R, "step_time_s", "s", "STT: mean step time (the other leg's heel strike to this leg's); empty with one leg."),
-    c(R, "step_frequency_steps_per_s", "steps/s", "SF: 1 / mean step time (× 60 = steps/min of this side; the report's cadence is one value per walk from both legs)."),
-    c(R, "stance_ratio", "1 (fraction of the stride)", "STP: mean share of the stride the foot is on the ground (toe off − heel strike) / stride time; normal ≈ 0.60."),
-    c(R, "swing_ratio", "1 (fraction of the stride)", "SWP: 1 − stance ratio: the share of the stride the foot is in the air."),
-    c(R, "stride_length_m", "m", "SL: mean distance the foot travels over a stride (both feet travel the same distance on a straight walk)."),
-    c(R, "speed_mps", "m/s", "SS: mean walking speed, stride length / stride time."),
-    c(R, "stride_length_cv", "1 (SD / mean)", "SV: stride-to-stride variability of stride length (× 100 = %)."),
-    c(R, "stride_time_cv", "1 (SD / mean)", "STV: stride-to-stride variability of stride time (× 100 = %); healthy ≈ 0.01–0.03."),
-    c(R, "sta_per_s", "1/s", "STA: short-term largest Lyapunov exponent of the shank's sagittal angular velocity (Rosenstein): how fast nearby gait states diverge; higher = less stable."),
-    c(R, "sta_per_stride", "1/stride", "STA × mean stride time: the same divergence per stride."),
-    c(R, "sta_status", "", "Why STA is empty (too few strides, not computed, a fault)."),
-    c(R, "wqk_deg", "deg", "WQK: mean largest forward inclination of the shank in a stride (sagittal pitch maximum, the knee ahead of the ankle, late swing)."),
-    c(R, "pbi_deg", "deg", "PBI: mean largest backward inclination of the shank in a stride (−pitch minimum, at push-off)."),
-    c(R, "bdk_deg", "deg", "BDK: mean range of the shank's frontal-plane roll in swing (toe off to heel strike): sideways swing of the leg, e.g. circumduction."),
+    P(R),
     c(R, "mirrored", "", "`true` when the device is mounted with its y axis backwards (as a device worn on the lateral side of the right shank is); corrected for."),
     c(R, "axial_rotation_deg", "deg", "How far the device is turned about the shank axis from its nominal mounting; corrected for."),
     c(R, "outliers_replaced", "samples", "Samples replaced as outliers (3 SD of |a|) or clipped."),
@@ -110,13 +101,7 @@ pub const COLUMNS: &[ColumnDoc] = &[
     c(S, "hs_time_s", "s", "Heel strike that begins the stride, from the recording's first sample."),
     c(S, "to_time_s", "s", "Toe off within the stride; empty when not found."),
     c(S, "next_hs_time_s", "s", "Heel strike that ends the stride."),
-    c(S, "stride_time_s", "s", "Stride time."),
-    c(S, "stance_ratio", "1 (fraction of the stride)", "(toe off − heel strike) / stride time."),
-    c(S, "stride_length_m", "m", "Stride length; empty when withheld (`reason` says why)."),
-    c(S, "speed_mps", "m/s", "Stride length / stride time."),
-    c(S, "wqk_deg", "deg", "Largest forward shank inclination in the stride (WQK)."),
-    c(S, "pbi_deg", "deg", "Largest backward shank inclination in the stride (PBI)."),
-    c(S, "bdk_deg", "deg", "Range of frontal-plane shank roll from toe off to the next heel strike (BDK)."),
+    P(S),
     c(S, "heading_change_deg", "deg", "Change of walking direction over the stride (turn detection; not a clinical value)."),
     c(S, "valid", "", "`true` when the stride counts in the means; `false` with its reason (a turn, a bout's edge, not steady walking, a check)."),
     c(S, "reason", "", "Why the stride is not valid, or why one of its values is withheld; reasons joined by `; `."),
@@ -140,9 +125,72 @@ pub const LABELS: &[(&str, &str)] = &[
     ("LR", "healthy left against right"),
 ];
 
+/// STA's companion columns in recordings.csv (after `sta_per_s`).
+const STA_COMPANIONS: [(&str, &str, &str); 2] = [
+    (
+        "sta_per_stride",
+        "1/stride",
+        "STA × mean stride time: the same divergence per stride.",
+    ),
+    (
+        "sta_status",
+        "",
+        "Why STA is empty (too few strides, not computed, a fault).",
+    ),
+];
+
+fn parameter_columns(t: Table, out: &mut Vec<ColumnDoc>) {
+    for p in Parameter::TABLE_ORDER {
+        let d = p.definition();
+        let meaning = match t {
+            Table::Recordings => format!("{} ({}): {}", d.code, d.name, d.description),
+            _ => match d.per_stride {
+                Some(m) => m.to_string(),
+                None => continue,
+            },
+        };
+        out.push(ColumnDoc {
+            table: t,
+            name: d.column,
+            unit: d.unit,
+            meaning: meaning.into(),
+        });
+        if t == Table::Recordings && p == Parameter::Sta {
+            for (name, unit, meaning) in STA_COMPANIONS {
+                out.push(ColumnDoc {
+                    table: t,
+                    name,
+                    unit,
+                    meaning: meaning.into(),
+                });
+            }
+        }
+    }
+}
+
+/// Every output column, in each table's column order: the dictionary.
+pub fn columns() -> &'static [ColumnDoc] {
+    static ALL: std::sync::OnceLock<Vec<ColumnDoc>> = std::sync::OnceLock::new();
+    ALL.get_or_init(|| {
+        let mut out = Vec::new();
+        for e in LAYOUT {
+            match *e {
+                Entry::C(table, name, unit, meaning) => out.push(ColumnDoc {
+                    table,
+                    name,
+                    unit,
+                    meaning: meaning.into(),
+                }),
+                Entry::P(t) => parameter_columns(t, &mut out),
+            }
+        }
+        out
+    })
+}
+
 /// The columns called `name` (case-insensitive), in every table that has one.
 pub fn lookup(name: &str) -> Vec<&'static ColumnDoc> {
-    COLUMNS
+    columns()
         .iter()
         .filter(|c| c.name.eq_ignore_ascii_case(name.trim()))
         .collect()
@@ -151,7 +199,7 @@ pub fn lookup(name: &str) -> Vec<&'static ColumnDoc> {
 /// Column names that contain `part` (case-insensitive), for a "did you mean".
 pub fn similar(part: &str) -> Vec<&'static str> {
     let part = part.trim().to_ascii_lowercase();
-    let mut v: Vec<&str> = COLUMNS
+    let mut v: Vec<&str> = columns()
         .iter()
         .map(|c| c.name)
         .filter(|n| !part.is_empty() && (n.contains(&part) || part.contains(n)))
@@ -170,7 +218,7 @@ pub fn describe(c: &ColumnDoc) -> String {
 /// The whole dictionary as Markdown (docs/columns.md).
 pub fn markdown() -> String {
     let mut s = String::from(
-        "# Output columns\n\nGenerated from `crates/ldh-core/src/output/columns.rs` (`ldh columns` prints it, `ldh columns NAME`\none column); a test keeps this file and the writers in step. Ratios and CVs are fractions (× 100 = %).\nAn empty cell is a value that was not measured: the `withheld` column (recordings) or `reason`\n(strides) says why.\n",
+        "# Output columns\n\nGenerated from `crates/ldh-core/src/output/columns.rs` and the gait parameters' one definition in\n`crates/ldh-core/src/domain/parameter.rs` (`ldh columns` prints it, `ldh columns NAME` one column); a\ntest keeps this file and the writers in step. Stance, swing and the CVs are fractions (× 100 = %).\nAn empty cell is a value that was not measured: the `withheld` column (recordings) or `reason`\n(strides) says why.\n",
     );
     for t in [Table::Recordings, Table::Strides, Table::Events] {
         let _ = write!(
@@ -178,7 +226,7 @@ pub fn markdown() -> String {
             "\n## {}\n\n| column | unit | meaning |\n|---|---|---|\n",
             t.file()
         );
-        for c in COLUMNS.iter().filter(|c| c.table == t) {
+        for c in columns().iter().filter(|c| c.table == t) {
             let _ = writeln!(s, "| `{}` | {} | {} |", c.name, c.unit, c.meaning);
         }
     }
@@ -226,7 +274,7 @@ mod tests {
             ),
             (Table::Events, header(&crate::output::event_rows(&results))),
         ] {
-            let documented: Vec<String> = COLUMNS
+            let documented: Vec<String> = columns()
                 .iter()
                 .filter(|c| c.table == t)
                 .map(|c| c.name.to_string())
@@ -254,6 +302,6 @@ mod tests {
         assert_eq!(lookup("steady_end_s")[0].table, Table::Recordings);
         assert!(lookup("wqk").is_empty());
         assert!(similar("wqk").contains(&"wqk_deg"));
-        assert!(describe(lookup("stance_ratio")[0]).contains("fraction of the stride"));
+        assert!(describe(lookup("stance_ratio")[0]).contains("fraction of the gait cycle"));
     }
 }

@@ -255,9 +255,9 @@ fn a_persons_withheld_values_are_those_no_trial_measured() {
     let p = crate::cohort::person_row(&refs, crate::Side::Left).unwrap();
     assert_eq!(p.stride_length_cv, Some(sv2));
     assert!(
-        !p.withheld
+        p.withheld
             .reason(crate::domain::Parameter::StrideLengthCv)
-            .is_some(),
+            .is_none(),
         "{}",
         p.withheld
     );

@@ -2,6 +2,7 @@
 //! foot, the heel strike, the toe off and each stride parameter, in which unit
 //! (`docs/agreement.md`, "Walkway exports"; read by [`super::walkway`]).
 
+use crate::domain::parameter::GAIT_CYCLE_FRACTION;
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
@@ -78,8 +79,8 @@ impl WalkwayUnit {
             Millimetres => ("m", 1e3),
             MetresPerSecond => ("m/s", 1.0),
             CentimetresPerSecond => ("m/s", 1e2),
-            Ratio => ("ratio", 1.0),
-            Percent => ("ratio", 1e2),
+            Ratio => (GAIT_CYCLE_FRACTION, 1.0),
+            Percent => (GAIT_CYCLE_FRACTION, 1e2),
             Degrees => ("deg", 1.0),
         }
     }

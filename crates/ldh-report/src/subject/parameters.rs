@@ -41,8 +41,8 @@ fn range_text(
             };
             format!(
                 "{}–{} ({src})",
-                fmt(Some(l * q.scale), dec),
-                fmt(Some(h * q.scale), dec)
+                fmt(Some(l * q.scale()), dec),
+                fmt(Some(h * q.scale()), dec)
             )
         }
         Some(r) => format!(
@@ -96,14 +96,14 @@ pub(super) fn parameter_table(
                 @let q = row.q;
                 tr {
                     td {
-                        (q.parameter.code()) " — " (q.label)
+                        (q.parameter.code()) " — " (q.label())
                         @if let Some(c) = q.companion {
                             " (with " (c.code()) ": "
                             (left.and_then(|r| companion(r, c)).unwrap_or("–".into())) " / "
                             (right.and_then(|r| companion(r, c)).unwrap_or("–".into())) ")"
                         }
                     }
-                    td { (q.unit) }
+                    td { (q.unit()) }
                     (value_cells(row, notes))
                     td { (range_text(reference.range(q.parameter), q, citations, p.0.min_healthy_subjects)) }
                     @match &row.asymmetry {
