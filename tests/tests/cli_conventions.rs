@@ -97,4 +97,32 @@ fn completions_and_man_page_come_from_the_clap_definition() {
     let o = ldh_ok(&["man"]);
     let s = String::from_utf8_lossy(&o.stdout);
     assert!(s.contains(".TH ldh 1") && s.contains("analyze"), "{s}");
+    // A page per command: `ldh man analyze` is ldh-analyze(1), with its options.
+    let o = ldh_ok(&["man", "analyze"]);
+    let s = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        s.contains(".TH ldh-analyze 1") && s.contains("input\\-format"),
+        "{s}"
+    );
+    let o = ldh(&["man", "nosuch"]);
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        e.contains("no command 'nosuch'") && e.contains("analyze, "),
+        "{e}"
+    );
+    let t = tempfile::tempdir().unwrap();
+    let dir = t.path().join("man1");
+    ldh_ok(&["man", "--out", dir.to_str().unwrap()]);
+    for page in [
+        "ldh.1",
+        "ldh-analyze.1",
+        "ldh-inspect.1",
+        "ldh-agree.1",
+        "ldh-man.1",
+    ] {
+        let text =
+            std::fs::read_to_string(dir.join(page)).unwrap_or_else(|e| panic!("{page}: {e}"));
+        assert!(text.starts_with(".ie") || text.contains(".TH"), "{page}");
+    }
 }

@@ -282,8 +282,8 @@ fn a_subject_named_like_a_trial_key_keeps_its_own_trace() {
         assert_ne!(a["legs"], b["legs"], "two recordings, two traces");
         // Pages name files without folders (issue 36 item 5): each page by its trial.
         for (stem, ident) in [
-            ("P1__trial_2", "Recorded: setting not given: left"),
-            ("P1", "Recorded: trial 2, setting not given: left"),
+            ("P1__trial_2", "Recorded: files "),
+            ("P1", "Recorded: trial 2: files "),
         ] {
             let page =
                 std::fs::read_to_string(out.join(format!("reports/subjects/{stem}.html"))).unwrap();

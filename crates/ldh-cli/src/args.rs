@@ -132,8 +132,16 @@ pub enum Command {
         #[arg(value_enum)]
         shell: Shell,
     },
-    /// Print the manual page (roff): `ldh man > ldh.1 && man ./ldh.1`.
-    Man,
+    /// Print a manual page (roff): `ldh man > ldh.1 && man ./ldh.1`, one command's with
+    /// `ldh man analyze` (the page `ldh-analyze.1`), or write every page with `--out DIR`.
+    Man {
+        /// A command whose page to print (`analyze`, `inspect`…); omit for the page of `ldh`.
+        command: Option<String>,
+        /// Write every page (`ldh.1`, `ldh-analyze.1`, …) into this folder instead (made if
+        /// needed); `MANPATH=DIR/.. man ldh-analyze` then finds them when DIR is `…/man1`.
+        #[arg(long, value_name = "DIR", conflicts_with = "command")]
+        out: Option<PathBuf>,
+    },
 }
 
 #[derive(Debug, Args)]

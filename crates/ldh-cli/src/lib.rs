@@ -52,7 +52,7 @@ where
         Command::Columns { name } => commands::columns::run(name),
         Command::Demo { out } => commands::demo::run(&out),
         Command::Completions { shell } => commands::completions::run(shell),
-        Command::Man => commands::completions::man(),
+        Command::Man { command, out } => commands::completions::man(command.as_deref(), out),
     };
     match r {
         Ok(code) => code,

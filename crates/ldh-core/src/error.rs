@@ -42,6 +42,17 @@ pub fn clip(s: &str) -> std::borrow::Cow<'_, str> {
     clip_to(s, ECHO_CHARS)
 }
 
+/// The operating system's error as messages say it: one wording for a path that does not exist
+/// (`no such file or folder`) and for a refused permission (`permission denied`), whichever
+/// command or platform meets them; other errors as the system words them.
+fn io_reason(e: &std::io::Error) -> std::borrow::Cow<'_, str> {
+    match e.kind() {
+        std::io::ErrorKind::NotFound => "no such file or folder".into(),
+        std::io::ErrorKind::PermissionDenied => "permission denied".into(),
+        _ => std::borrow::Cow::Owned(clip_to(&e.to_string(), REASON_CHARS).into_owned()),
+    }
+}
+
 /// Names as a message lists them (`["a", "b"]`), each cut by [`clip`], at most 12 of them (then
 /// `… (N in all)`).
 fn clip_names(names: &[String]) -> String {
@@ -188,7 +199,7 @@ pub enum LdhError {
         needed_mb: f64,
     },
     /// Opening or reading a file failed.
-    #[error("{}: cannot read: {}", path.display(), clip_to(&source.to_string(), REASON_CHARS))]
+    #[error("{}: cannot read: {}", path.display(), io_reason(source))]
     Io {
         /// The file.
         path: PathBuf,
@@ -274,6 +285,15 @@ pub enum LdhError {
         what: String,
         /// The accepted names, comma-separated.
         accepted: String,
+    },
+    /// A given map's fixed delimiter does not split a row that holds its columns at another
+    /// delimiter (an Xsens map with tabs on a comma-separated export).
+    #[error("{loc}: {}", clip_to(detail, REASON_CHARS))]
+    DelimiterMismatch {
+        /// Where (the header line).
+        loc: Location,
+        /// What differs and the fix, in words.
+        detail: String,
     },
     /// A column the format reads occurs more than once in the header: neither may silently win.
     #[error("{loc}: column '{}' occurs {} times in the header (columns {}); rename the copies or, for one block of columns per sensor, set [sensor] block in the format", clip(column), positions.len(), clip_positions(positions))]

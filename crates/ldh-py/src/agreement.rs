@@ -8,13 +8,14 @@ use std::path::PathBuf;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use ldh_core::agreement::write::AgreementRow;
 use ldh_core::agreement::{self, AgreementParams, OffsetMode};
 use ldh_core::cohort::reliability_table::COLUMNS;
 use ldh_core::cohort::{self, ReliabilityTable};
 use ldh_core::output::{LdhResults, Parameter, RecordingRow};
 use ldh_core::LdhError;
 
-use crate::convert::{columns as columns_of, from_py, to_py, value_of, Opts};
+use crate::convert::{columns as columns_of, csv_header, from_py, to_py, value_of, Opts};
 use crate::errors::OrRaise;
 
 /// `offset_s`: `None` (the clocks agree), a number of seconds, or `"estimate"`.
@@ -51,33 +52,41 @@ pub(crate) fn agree<'py>(
     reference_system: Option<String>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let mode = offset_mode(offset_s).or_raise(py)?;
-    let v = py
-        .detach(move || -> Result<serde_json::Value, LdhError> {
-            let mut p = AgreementParams::default();
-            if let Some(t) = tolerance_s {
-                p.tolerance_s = t;
-            }
-            let params = p.check()?;
-            let results = LdhResults::read(&results_dir)?;
-            let reference = agreement::read_reference(&reference, &results, &params)?;
-            let report = agreement::run(&results, &reference, &params, mode)?;
-            if let Some(f) = write_params {
-                let p = agreement::calibrated_params(
-                    &report,
-                    results.analysis_params.as_ref(),
-                    reference_system.as_deref(),
-                )?;
-                ldh_core::io::write_atomic(f, agreement::params_toml(&p)?.as_bytes())?;
-            }
-            let mut v = value_of(&report)?;
-            let table = value_of(&agreement::write::rows(&report))?;
-            if let serde_json::Value::Object(m) = &mut v {
-                m.insert("table".into(), table);
-            }
-            Ok(v)
-        })
+    let (v, rows) = py
+        .detach(
+            move || -> Result<(serde_json::Value, Vec<AgreementRow>), LdhError> {
+                let mut p = AgreementParams::default();
+                if let Some(t) = tolerance_s {
+                    p.tolerance_s = t;
+                }
+                let params = p.check()?;
+                let results = LdhResults::read(&results_dir)?;
+                let reference = agreement::read_reference(&reference, &results, &params)?;
+                let report = agreement::run(&results, &reference, &params, mode)?;
+                if let Some(f) = write_params {
+                    let p = agreement::calibrated_params(
+                        &report,
+                        results.analysis_params.as_ref(),
+                        reference_system.as_deref(),
+                    )?;
+                    ldh_core::io::write_atomic(f, agreement::params_toml(&p)?.as_bytes())?;
+                }
+                let mut v = value_of(&report)?;
+                let rows = agreement::write::rows(&report);
+                let table = value_of(&rows)?;
+                if let serde_json::Value::Object(m) = &mut v {
+                    m.insert("table".into(), table);
+                }
+                Ok((v, rows))
+            },
+        )
         .or_raise(py)?;
-    to_py(py, &v, Opts::default())
+    let out = to_py(py, &v, Opts::default())?;
+    // The rows of `agreement.csv` as columns in the file's order (`ldh.Agreement.table`).
+    let header = csv_header(&AgreementRow::default());
+    let header: Vec<&str> = header.iter().map(String::as_str).collect();
+    out.set_item("table_columns", columns_of(py, &rows, &header)?)?;
+    Ok(out)
 }
 
 /// The columns of a recordings table the reliability reads: the trial's keys (text) and the

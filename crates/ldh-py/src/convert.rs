@@ -116,19 +116,7 @@ pub(crate) fn choice<T: DeserializeOwned>(name: &'static str, s: &str) -> Result
 /// Column order of a table: the CSV header of its first row (the field order), then any other
 /// key of the rows.
 fn column_order<T: Serialize>(rows: &[T], maps: &[serde_json::Map<String, Value>]) -> Vec<String> {
-    let mut cols: Vec<String> = Vec::new();
-    if let Some(first) = rows.first() {
-        let mut w = csv::WriterBuilder::new().from_writer(Vec::new());
-        // Lists (warnings, withheld) are one cell in CSV, as `ldh analyze` writes them.
-        if ldh_core::pipeline::quality::flat(|| w.serialize(first)).is_ok() {
-            if let Ok(bytes) = w.into_inner() {
-                let mut r = csv::Reader::from_reader(&bytes[..]);
-                if let Ok(h) = r.headers() {
-                    cols = h.iter().map(String::from).collect();
-                }
-            }
-        }
-    }
+    let mut cols: Vec<String> = rows.first().map(csv_header).unwrap_or_default();
     for m in maps {
         for k in m.keys() {
             if !cols.contains(k) {
@@ -137,6 +125,23 @@ fn column_order<T: Serialize>(rows: &[T], maps: &[serde_json::Map<String, Value>
         }
     }
     cols
+}
+
+/// The CSV header a row of a table is written with (its fields in order, as `ldh` writes the
+/// file); empty when it cannot be serialised.
+pub(crate) fn csv_header<T: Serialize>(row: &T) -> Vec<String> {
+    let mut w = csv::WriterBuilder::new().from_writer(Vec::new());
+    // Lists (warnings, withheld) are one cell in CSV, as `ldh analyze` writes them.
+    if ldh_core::pipeline::quality::flat(|| w.serialize(row)).is_err() {
+        return Vec::new();
+    }
+    let Ok(bytes) = w.into_inner() else {
+        return Vec::new();
+    };
+    let mut r = csv::Reader::from_reader(&bytes[..]);
+    r.headers()
+        .map(|h| h.iter().map(String::from).collect())
+        .unwrap_or_default()
 }
 
 /// Rows of a table as columns: numbers (with `None` as NaN) as float64 arrays, booleans as bool

@@ -87,6 +87,22 @@ def test_agree_estimates_the_offset_matches_events_and_compares_parameters(resul
     row = frame[(frame.level == "recording") & (frame.quantity == "stride_time_s")].iloc[0]
     assert row["bias"] == pytest.approx(np.mean(ldh_v - ref_v), abs=1e-12)
 
+    # The result object: agreement.csv in its column order, the event errors in s with the unit
+    # in their names, the parameters in their own unit.
+    assert isinstance(r, ldh.Agreement) and isinstance(r.table, pd.DataFrame)
+    assert list(r.table.columns[:8]) == ["level", "quantity", "side", "group", "n_ldh", "n_reference", "n_matched", "n_dropped"]
+    assert list(r.table.columns[-1:]) == ["note"] and len(r.table) == len(r["table"])
+    hs = r.events[(r.events.quantity == "HS") & (r.events.side == "both")].iloc[0]
+    assert {"bias_s", "sd_s", "mae_s", "p95_abs_s"} <= set(r.events.columns)
+    assert "icc_2_1" not in r.events.columns and "bias" not in r.events.columns
+    assert hs["bias_s"] == pytest.approx(both["summary"]["bias_s"], abs=1e-12)
+    st = r.parameters[(r.parameters.level == "recording") & (r.parameters.quantity == "stride_time_s")].iloc[0]
+    assert st["bias"] == pytest.approx(np.mean(ldh_v - ref_v), abs=1e-12)
+    assert "recall" not in r.parameters.columns
+    assert list(r.offsets.columns) == ["subject_id", "trial_id", "offset_s", "source"] and len(r.offsets) == 4
+    plain = ldh.agree(d, [tmp_path / "ev.csv", tmp_path / "rec.csv"], offset_s="estimate", as_frame=False)
+    assert isinstance(plain.table["bias"], np.ndarray) and list(plain.table)[:3] == ["level", "quantity", "side"]
+
 
 def test_bad_reference_and_bad_arguments_raise_typed_errors(results, tmp_path):
     d, _ = results
@@ -103,6 +119,8 @@ def test_bad_reference_and_bad_arguments_raise_typed_errors(results, tmp_path):
         ldh.agree(d, bad, tolerance_s=-1.0)
     with pytest.raises(ldh.LdhFileNotFoundError):
         ldh.agree(d, tmp_path / "missing.csv")
+    with pytest.raises(TypeError, match=r"ldh\.agree\(\): results_dir must be a path .* got a dict"):
+        ldh.agree({"level": []}, bad)
 
 
 def test_write_params_calibrates_the_events_to_the_reference(results, tmp_path):

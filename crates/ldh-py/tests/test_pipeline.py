@@ -113,3 +113,24 @@ def test_a_sensor_height_not_given_is_said_in_the_warnings(tmp_path):
                   ldh.analyze(tmp_path / "no_height.csv", compute_sta=False, sensor_height_m=0.1)):
         assert "sensor_height_unknown" not in list(given.warnings["code"])
         np.testing.assert_array_equal(given["recordings"]["stride_time_s"], none["recordings"]["stride_time_s"])
+
+
+def test_path_functions_refuse_data_with_a_typeerror_naming_the_array_functions(tmp_path):
+    """``ldh.analyze(df)`` used to read the column names as paths ("time_s: cannot read") and
+    ``ldh.analyze(123)`` raised a bare ``'int' object is not iterable`` (issue 51)."""
+    data = {"time_s": np.arange(3.0), "acc_x_g": np.ones(3)}
+    for bad, kind in ((123, "an int"), (data, "a dict"), (np.zeros((3, 7)), "a numpy ndarray")):
+        with pytest.raises(ldh.LdhTypeError, match=rf"ldh\.analyze\(\): inputs must be a path .* got {kind}; .*ldh\.analyze_pair\(left, right, fs_hz\)"):
+            ldh.analyze(bad)
+    with pytest.raises(TypeError, match=r"ldh\.analyze\(\): inputs\[1\] must be a path .* got a float"):
+        ldh.analyze([tmp_path, 1.5])
+    with pytest.raises(TypeError, match=r"ldh\.read_recording\(\): path must be a path .*ldh\.analyze_recording"):
+        ldh.read_recording(data)
+    with pytest.raises(TypeError, match=r"ldh\.analyze_many\(\)"):
+        ldh.analyze_many(7)
+    pd = pytest.importorskip("pandas")
+    with pytest.raises(TypeError, match=r"got a pandas DataFrame; for arrays or DataFrames in memory use ldh\.analyze_pair"):
+        ldh.analyze(pd.DataFrame(data))
+    # Paths still pass as str, os.PathLike, lists, tuples and other iterables of them.
+    with pytest.raises(ldh.LdhFileNotFoundError, match="no such file or folder"):
+        ldh.analyze(iter([tmp_path / "a.csv", str(tmp_path / "b.csv")]))

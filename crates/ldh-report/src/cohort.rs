@@ -227,7 +227,12 @@ fn group_sections(c: &CohortReport, n: &Sections) -> Result<Markup> {
     let head = n.heading("Group statistics");
     let co = match Cohort::from_rows(&c.recordings) {
         Err(e) => {
-            return Ok(html! { (head) p.note { "No group statistics: " (e.to_string()) } "\n" });
+            // The reason alone: the heading already says which step it is.
+            let why = match e {
+                ldh_core::LdhError::Signal { reason, .. } => reason,
+                e => e.to_string(),
+            };
+            return Ok(html! { (head) p.note { "No group statistics: " (why) } "\n" });
         }
         Ok(co) => co,
     };

@@ -143,7 +143,7 @@ fn the_subject_page_names_trial_visit_setting_belt_speed_and_files() {
     };
     let html = subject_html(&s, &Reference::published(&p), &p).unwrap();
     assert!(
-        html.contains(" Recorded: trial t1, visit pre, treadmill, belt 1.10 m/s: left t1_left.csv, right t1_right.csv."),
+        html.contains(" Recorded: trial t1, visit pre, treadmill, belt 1.10 m/s: files t1_left.csv (left leg), t1_right.csv (right leg)."),
         "{html}"
     );
     assert!(!html.contains("/home/someone"));
@@ -166,12 +166,14 @@ fn the_subject_page_says_when_the_files_were_recorded_or_that_they_do_not_say() 
     };
     let html = page("2024-03-05T10:21:33Z");
     assert!(
-        html.contains("right t1_right.csv. Recorded 2024-03-05 10:21 UTC (from the left file)."),
+        html.contains(
+            "t1_right.csv (right leg). Recorded 2024-03-05 10:21 UTC (from the left file)."
+        ),
         "{html}"
     );
     let html = page("");
     assert!(
-        html.contains("right t1_right.csv. Recording date and time: not in the files."),
+        html.contains("t1_right.csv (right leg). Recording date and time: not in the files."),
         "{html}"
     );
     assert!(!html.contains("not yet parsed"));

@@ -12,6 +12,8 @@ use crate::args::InspectArgs;
 
 /// Run `ldh inspect`.
 pub fn run(a: InspectArgs) -> Result<ExitCode> {
+    // A misspelt path stops the command before any work, as in every command (exit 2).
+    ldh_core::io::require_existing(&a.files)?;
     let format = a.format.as_deref().map(resolve_format).transpose()?;
     let rp = ReadParams {
         max_gap_s: a.max_gap_s,

@@ -129,10 +129,12 @@ impl super::ValidEventParams {
     }
 }
 
-/// `+12 ms` / `−31 ms`.
+/// `+12 ms` / `−31 ms` / `0 ms` (a shift that rounds to zero has no sign: never `+-0 ms`).
 fn signed_ms(s: f64) -> String {
     let ms = (s * 1000.0).round();
-    if ms < 0.0 {
+    if ms == 0.0 {
+        "0 ms".to_string()
+    } else if ms < 0.0 {
         format!("−{} ms", -ms)
     } else {
         format!("+{ms} ms")
@@ -218,5 +220,9 @@ mod tests {
             cal(0.012, -0.031).sentence(),
             "Gait events calibrated against force plates (ref.csv): heel strikes shifted +12 ms, toe offs −31 ms (measured by ldh agree with the gyro-bracket detector)."
         );
+        // A shift that rounds to zero (also from below) has no sign.
+        assert!(cal(-0.0004, 0.0)
+            .sentence()
+            .contains("heel strikes shifted 0 ms, toe offs 0 ms"));
     }
 }

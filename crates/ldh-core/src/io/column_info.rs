@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use super::format::{FormatSpec, TimeUnit};
 use super::header::{Header, UnitsFrom};
+use super::infer::Assumed;
 use super::units::Unit;
 
 /// One column the reader reads.
@@ -26,7 +27,7 @@ pub struct ColumnInfo {
     /// sign together); `None` for time given as a counter or ISO 8601.
     pub factor: Option<f64>,
     /// The conversion in words: `÷ 9.80665 (m/s² → g)`, `× 180/π (rad/s → deg/s), sign
-    /// flipped (axis map -x)`, `none`.
+    /// flipped (axis map -x)`, `no conversion`.
     pub conversion: String,
 }
 
@@ -49,6 +50,7 @@ fn units_from_text(h: &Header) -> String {
         UnitsFrom::NameSuffix => "name suffix".into(),
         UnitsFrom::Labels => "header".into(),
         UnitsFrom::UnitsRow(n) => format!("units row (line {n})"),
+        UnitsFrom::Signal => "assumed from the signal".into(),
     }
 }
 
@@ -100,7 +102,7 @@ fn counter_words(rate: Option<f64>, wrap: Option<u64>) -> String {
     s
 }
 
-/// The parts joined, or `none`.
+/// The parts joined, or `no conversion` (the file's values are ldh's units).
 fn words(parts: &[String]) -> String {
     let v: Vec<&str> = parts
         .iter()
@@ -108,7 +110,7 @@ fn words(parts: &[String]) -> String {
         .filter(|p| !p.is_empty())
         .collect();
     if v.is_empty() {
-        "none".into()
+        "no conversion".into()
     } else {
         v.join(", ")
     }
@@ -160,18 +162,19 @@ fn sensor_info(
 
 /// Every column the header's format reads, time first, then acc x y z and gyro x y z in
 /// ldh's frame.
-pub(super) fn describe_columns(h: &Header) -> Vec<ColumnInfo> {
+pub(super) fn describe_columns(h: &Header, assumed: &Assumed) -> Vec<ColumnInfo> {
     let from = units_from_text(h);
+    let from_of = |a: &Option<String>| a.clone().unwrap_or_else(|| from.clone());
     let spec = &h.spec;
-    let mut out: Vec<ColumnInfo> = time_info(h, &from).into_iter().collect();
+    let mut out: Vec<ColumnInfo> = time_info(h, &from_of(&assumed.time)).into_iter().collect();
     let acc = ("acc", h.cols.acc, Unit::from(spec.acc.unit), spec.acc.scale);
-    sensor_info(h, spec, acc, &from, &mut out);
+    sensor_info(h, spec, acc, &from_of(&assumed.acc), &mut out);
     let gyro = (
         "gyro",
         h.cols.gyro,
         Unit::from(spec.gyro.unit),
         spec.gyro.scale,
     );
-    sensor_info(h, spec, gyro, &from, &mut out);
+    sensor_info(h, spec, gyro, &from_of(&assumed.gyro), &mut out);
     out
 }

@@ -10,7 +10,11 @@ use super::columns::{
     all_by_index, describe_missing, resolve, unit_suffixed, Columns, Missing, Unresolved,
 };
 use super::format::{Delimiter, FormatSpec};
-use super::labelled::{labelled, stated_unit, with_units_row, without_units, Labelled};
+use super::infer::Infer;
+use super::labelled::{
+    all_inferred, kinds_row, labelled, partial, stated_unit, with_units_row, without_units, Found,
+    Labelled,
+};
 use super::start_time::{start_in_comment, DateTime};
 use super::text::{detect_delimiter, split_header, Lines};
 use super::units::Unit;
@@ -32,7 +36,8 @@ pub(crate) struct Header {
     pub cols: Columns,
     /// The file has a header row (false only for maps that give every column by number).
     pub has_row: bool,
-    /// Without a header row: the first data row (its line and text), to be read as data.
+    /// The first data row when it was read ahead (its line and text), to be read as data: in a
+    /// file without a header row, or under recognised names looked under for units.
     pub first_row: Option<(u64, String)>,
     /// Delimiter named by a `sep=` line.
     pub sep_line: Option<u8>,
@@ -40,6 +45,8 @@ pub(crate) struct Header {
     pub units_from: UnitsFrom,
     /// The start date and time a line above the header states (`// Start Time: ...`).
     pub start: Option<DateTime>,
+    /// The units the header does not state, to infer from the signal (`infer.rs`).
+    pub infer: Infer,
 }
 
 /// Where the units of the columns read come from (shown per column by `ldh inspect`).
@@ -53,6 +60,8 @@ pub(crate) enum UnitsFrom {
     Labels,
     /// The row of units under the names, at this 1-based line.
     UnitsRow(u64),
+    /// Nowhere: every unit is inferred from the signal.
+    Signal,
 }
 
 fn is_number(f: &str) -> bool {
@@ -131,7 +140,7 @@ pub(super) fn find_header<R: BufRead>(
             match match_row(f, row, sep_line, format.is_some(), path, notes)? {
                 RowMatch::Found(header) => return Ok(Header { start, ..*header }),
                 RowMatch::No => {}
-                RowMatch::Missing(missing, fields) => {
+                RowMatch::Missing(missing, fields, delim_note) => {
                     // Only the first header-like row is described; among the formats,
                     // the one missing the fewest columns.
                     let replace = match &closest {
@@ -144,6 +153,7 @@ pub(super) fn find_header<R: BufRead>(
                             missing,
                             at: lineno,
                             fields,
+                            delim_note,
                         });
                     }
                 }
@@ -170,9 +180,21 @@ pub(super) fn find_header<R: BufRead>(
 /// next), if any.
 type LabelledRow = (Option<Header>, Option<(u64, String)>);
 
-/// A row no built-in format reads, tried as names carrying units (`labelled.rs`): the header
-/// found, or none and the row read ahead to look for units under the names, if any, to be read
-/// next.
+/// The next non-blank line of `lines`, owned.
+fn next_nonblank<R: BufRead>(lines: &mut Lines<R>) -> Result<Option<(u64, String)>> {
+    loop {
+        match lines.next_line()? {
+            Some((_, l)) if l.trim().is_empty() => continue,
+            Some((n, l)) => return Ok(Some((n, l.to_string()))),
+            None => return Ok(None),
+        }
+    }
+}
+
+/// A row no built-in format reads, tried as recognised vendor names (`labelled.rs`): the
+/// header found, or none and the row read ahead to look for units under the names, if any, to
+/// be read next. Names without units take them from a units row under them (Shimmer's `CAL`
+/// row between skipped), else from the signal; the row read ahead is then the first data row.
 fn try_labelled<R: BufRead>(
     lines: &mut Lines<R>,
     row: (u64, &str),
@@ -187,47 +209,64 @@ fn try_labelled<R: BufRead>(
         return Ok((None, None));
     }
     let base = &FormatSpec::detected()[0];
-    let header = |(spec, cols): (FormatSpec, Columns), units_from| Header {
+    let header = |f: Found, units_from, first_row| Header {
         line: lineno,
-        spec,
+        spec: f.spec,
         delim,
         fields: fields.clone(),
-        cols,
+        cols: f.cols,
         has_row: true,
-        first_row: None,
+        first_row,
         sep_line,
         units_from,
         start: None,
+        infer: f.infer,
     };
-    match labelled(base, &fields, path, lineno)? {
-        Labelled::No => Ok((None, None)),
+    let pos = match labelled(base, &fields, path, lineno)? {
+        Labelled::No => return Ok((None, None)),
         Labelled::Found(b) => {
-            notes.push("units read from the column names".to_string());
-            Ok((Some(header(*b, UnitsFrom::Labels)), None))
+            notes.push(format!(
+                "format recognised from the column names ({}); units read from the names",
+                b.spec.name
+            ));
+            return Ok((Some(header(*b, UnitsFrom::Labels, None)), None));
         }
-        Labelled::NeedsUnitsRow(pos) => {
-            let next = loop {
-                match lines.next_line()? {
-                    Some((_, l)) if l.trim().is_empty() => continue,
-                    Some((n, l)) => break Some((n, l.to_string())),
-                    None => break None,
-                }
-            };
-            let Some((n, text)) = next else {
-                return Ok((None, None));
-            };
-            let units = split_header(&text, delim);
-            match with_units_row(base, &fields, &pos, &units, (lineno, n), path)? {
-                Some(found) => {
-                    notes.push(format!(
-                        "units read from the row under the names (line {n})"
-                    ));
-                    Ok((Some(header(found, UnitsFrom::UnitsRow(n))), None))
-                }
-                None => Ok((None, Some((n, text)))),
-            }
+        Labelled::NeedsUnitsRow(pos) => pos,
+    };
+    let Some((mut n, mut text)) = next_nonblank(lines)? else {
+        return Ok((None, None));
+    };
+    let mut units = split_header(&text, delim);
+    if kinds_row(&pos, &units) {
+        match next_nonblank(lines)? {
+            Some((m, t)) => (n, text) = (m, t),
+            None => return Ok((None, None)),
+        }
+        units = split_header(&text, delim);
+    }
+    if let Some(found) = with_units_row(base, &fields, &pos, &units, (lineno, n), path)? {
+        notes.push(format!(
+            "format recognised from the column names ({}); units read from the row under the names (line {n})",
+            found.spec.name
+        ));
+        return Ok((Some(header(found, UnitsFrom::UnitsRow(n), None)), None));
+    }
+    let data = pos
+        .iter()
+        .all(|(i, _)| units.get(*i).is_some_and(|c| is_number(c)));
+    if data {
+        if let Some(found) = all_inferred(base, &fields, &pos, path, lineno)? {
+            notes.push(format!(
+                "format recognised from the column names ({}); no units stated",
+                found.spec.name
+            ));
+            return Ok((
+                Some(header(found, UnitsFrom::Signal, Some((n, text)))),
+                None,
+            ));
         }
     }
+    Ok((None, Some((n, text))))
 }
 
 /// The delimiter a `sep=` line names (`Some(None)`: a `sep=` line naming no delimiter ldh
@@ -252,8 +291,9 @@ enum RowMatch {
     Found(Box<Header>),
     /// Not this format's header: a data row, or a row that does not look like a header.
     No,
-    /// A header-like row lacking the format's columns (detection mode), with its fields.
-    Missing(Vec<Missing>, Vec<String>),
+    /// A header-like row lacking the format's columns (detection mode), with its fields and,
+    /// when they were split at another delimiter than the format's, what differs.
+    Missing(Vec<Missing>, Vec<String>, Option<String>),
 }
 
 /// The format that misses the fewest columns in the first header-like row (detection mode).
@@ -266,6 +306,8 @@ struct Closest<'a> {
     at: u64,
     /// The row's fields.
     fields: Vec<String>,
+    /// The delimiter that differs, in words.
+    delim_note: Option<String>,
 }
 
 /// Try format `f` on `row` (1-based line number, text), split at the
@@ -287,6 +329,25 @@ fn match_row(
         .unwrap_or_else(|| detect_delimiter(line));
     let fields = split_header(line, delim);
     let by_index = all_by_index(f);
+    let delim_note = other_delimiter(f, line, delim, &fields);
+    if let Some((note, alt)) = delim_note {
+        if format_given {
+            return Err(LdhError::DelimiterMismatch {
+                loc: Location::line(path, lineno),
+                detail: format!(
+                    "{note}, where it holds the format's columns; set delimiter = \"auto\" in {}",
+                    map_command(f)
+                ),
+            });
+        }
+        // Detection: what differs is said if no format fits; the map is not used with another
+        // delimiter than its own (its other settings, a counter's rate, may not hold either).
+        let m = match resolve(f, &alt) {
+            Err(Unresolved::Missing(m)) => m,
+            _ => Vec::new(),
+        };
+        return Ok(RowMatch::Missing(m, alt, Some(note)));
+    }
     if !by_index && fields.iter().all(|x| x.is_empty() || is_number(x)) {
         // A data row: names cannot match (and suggestions would cost time).
         return Ok(RowMatch::No);
@@ -332,6 +393,7 @@ fn match_row(
                 first_row,
                 units_from,
                 start: None,
+                infer: Infer::default(),
             })))
         }
         Err(Unresolved::Duplicate { column, positions }) => Err(LdhError::DuplicateColumn {
@@ -351,8 +413,59 @@ fn match_row(
                     by: format!("format '{}'{hint}", f.name),
                 });
             }
-            Ok(RowMatch::Missing(m, fields))
+            Ok(RowMatch::Missing(m, fields, None))
         }
+    }
+}
+
+/// When `f` has a fixed delimiter (`delim`) that leaves `fields` no header, but the row split
+/// at the delimiter it holds is header-like and holds some of `f`'s columns: what differs, in
+/// words, and that split.
+fn other_delimiter(
+    f: &FormatSpec,
+    line: &str,
+    delim: u8,
+    fields: &[String],
+) -> Option<(String, Vec<String>)> {
+    if f.delimiter == Delimiter::Auto || header_like(fields) {
+        return None;
+    }
+    let other = detect_delimiter(line);
+    if other == delim || !line.as_bytes().contains(&other) {
+        return None;
+    }
+    let alt = split_header(line, other);
+    if !header_like(&alt) {
+        return None;
+    }
+    let wanted = f.required_columns().len();
+    if let Err(Unresolved::Missing(m)) = resolve(f, &alt) {
+        if m.len() >= wanted {
+            return None;
+        }
+    }
+    let name = |b: u8| Delimiter::from_byte(b).map_or("?", |d| d.name());
+    Some((
+        format!(
+            "format '{}' splits rows at {}, but this row is separated by {}",
+            f.name,
+            name(delim),
+            name(other)
+        ),
+        alt,
+    ))
+}
+
+/// Where to change a map: a copy of a built-in one (`ldh formats NAME > my.toml`, then
+/// `--input-format my.toml`), else the map given.
+pub(super) fn map_command(f: &FormatSpec) -> String {
+    if FormatSpec::builtin(&f.name).is_ok_and(|b| b == *f) {
+        format!(
+            "a copy of the map: `ldh formats {} > my.toml`, edit it, then `--input-format my.toml`",
+            f.name
+        )
+    } else {
+        format!("the map '{}' given with --input-format", f.name)
     }
 }
 
@@ -394,17 +507,28 @@ fn no_header(
             path: path.to_path_buf(),
         };
     }
-    let (fmt, missing, hint) = match closest {
+    let (fmt, missing, mut hint) = match closest {
         Some(c) => {
-            let (missing, hint) = describe_missing(&c.missing, &c.fields, c.format);
-            (c.format.name.clone(), missing, hint)
+            let (missing, mut hint) = describe_missing(&c.missing, &c.fields, c.format);
+            if let Some(d) = c.delim_note {
+                hint.push_str(&format!("; {d}"));
+            }
+            if let Some(p) = partial(&c.fields).filter(|_| !format_given) {
+                hint.push_str(&format!("; {p}"));
+            }
+            (c.format, missing, hint)
         }
         None => (
-            candidates[0].name.clone(),
+            candidates[0],
             candidates[0].required_columns(),
             String::new(),
         ),
     };
+    hint.push_str(&format!(
+        "; to read the file, set its column names and units in {}",
+        map_command(fmt)
+    ));
+    let fmt = fmt.name.clone();
     LdhError::NoHeader {
         path: path.to_path_buf(),
         format: if format_given || candidates.len() == 1 {

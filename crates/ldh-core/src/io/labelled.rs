@@ -1,128 +1,128 @@
-//! Headers whose column names carry their units (docs/input.md, "Units in the header"):
-//! `time (ms), Acc_X [m/s^2], ..., Gyr_Z (°/s)`, `GyrX/deg/s`, or names in one row and units in
-//! the next (`time,acc_x,...` then `s,m/s^2,...` or `[s],[g],...`). Tried, when no format is
-//! given, on a header-like row that no built-in format reads: the channel names are recognised
-//! (`time`, `timestamp`; `acc`, `accel`, `accelerometer`, `acceleration` + axis; `gyr`, `gyro`,
-//! `gyroscope`, `angular_velocity`, `angular_rate` + axis; case, `_`, `-`, `.` and spaces
-//! ignored) and the units parsed by [`super::units`]; the result is the `ldh` map with those
-//! columns and units.
+//! Headers read without a map (docs/input.md, "Units in the header" and "Exports read without
+//! a map"): vendor exports whose names `recognise.rs` recognises, with units in the names
+//! (`time (ms), Acc_X [m/s^2], ..., Gyr_Z (°/s)`, `GyrX/deg/s`, `acc_x_mps2`), in a row under
+//! the names (`time,acc_x,...` then `s,m/s^2,...` or `[s],[g],...`; Shimmer's `CAL` row
+//! between is skipped), implied by the name (`gFx`: g) or not at all (then inferred from the
+//! signal: `infer.rs`). Tried, when no format is given, on a header-like row that no built-in
+//! format reads; the result is the `ldh` map with those columns and units, named after the
+//! exporter the names suggest.
 
 use std::path::Path;
 
 use super::columns::{resolve, Columns, Unresolved};
 use super::format::{ColumnRef, FormatSpec};
+use super::infer::{Infer, TimeGuess};
+use super::recognise::{exporter, recognise, Channel, Implied, Recognised};
 use super::units::{is_unit, parse_for, split_label, Quantity, Unit, UnitError};
 use crate::error::{LdhError, Location, Result};
 
-/// A channel a recognised column name feeds.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Channel {
-    /// Time.
-    Time,
-    /// Acceleration axis 0, 1, 2 (x, y, z).
-    Acc(usize),
-    /// Angular-rate axis 0, 1, 2.
-    Gyro(usize),
-}
-
-impl Channel {
-    fn quantity(self) -> Quantity {
-        match self {
-            Channel::Time => Quantity::Time,
-            Channel::Acc(_) => Quantity::Acceleration,
-            Channel::Gyro(_) => Quantity::AngularRate,
+/// The recognised column of each of the seven slots (time, acc x y z, gyro x y z), or `None`
+/// when one is missing; two cells claiming a slot with the same rank are a
+/// [`LdhError::DuplicateColumn`] (a lower rank gives way: Shimmer's wide-range accelerometer to
+/// its low-noise one).
+fn positions(
+    fields: &[String],
+    path: &Path,
+    line: u64,
+) -> Result<Option<Vec<(usize, Recognised)>>> {
+    let mut at: Vec<Vec<(usize, Recognised)>> = vec![Vec::new(); 7];
+    for (i, f) in fields.iter().enumerate() {
+        if let Some(r) = recognise(f) {
+            at[r.channel.slot()].push((i, r));
         }
     }
-    /// Index in the order time, acc x y z, gyro x y z.
-    fn slot(self) -> usize {
-        match self {
-            Channel::Time => 0,
-            Channel::Acc(k) => 1 + k,
-            Channel::Gyro(k) => 4 + k,
+    let mut out = Vec::with_capacity(7);
+    for mut cells in at {
+        let Some(best) = cells.iter().map(|(_, r)| r.rank).max() else {
+            return Ok(None);
+        };
+        cells.retain(|(_, r)| r.rank == best);
+        if cells.len() > 1 {
+            return Err(LdhError::DuplicateColumn {
+                loc: Location::line(path, line),
+                column: fields[cells[0].0].trim().to_string(),
+                positions: cells.iter().map(|(i, _)| i + 1).collect(),
+            });
         }
+        out.push(cells.swap_remove(0));
     }
+    Ok(Some(out))
 }
 
-const ACC_NAMES: [&str; 5] = [
-    "acc",
-    "accel",
-    "accelerometer",
-    "acceleration",
-    "accelerations",
-];
-const GYRO_NAMES: [&str; 6] = [
-    "gyr",
-    "gyro",
-    "gyroscope",
-    "angularvelocity",
-    "angularrate",
-    "angvel",
+const SLOTS: [Quantity; 7] = [
+    Quantity::Time,
+    Quantity::Acceleration,
+    Quantity::Acceleration,
+    Quantity::Acceleration,
+    Quantity::AngularRate,
+    Quantity::AngularRate,
+    Quantity::AngularRate,
 ];
 
-/// The channel a column name (without its unit) names, if any: `Acc_X`, `AccX`, `accel x`,
-/// `GyrZ`, `gyro_z`, `time`, `Timestamp`.
-fn channel_of(name: &str) -> Option<Channel> {
-    let mut n = name.to_ascii_lowercase();
-    n.retain(|c| !matches!(c, '_' | '-' | '.' | ' ' | '\t'));
-    if matches!(n.as_str(), "time" | "timestamp" | "t") {
-        return Some(Channel::Time);
+/// What the recogniser finds in a header row that lacks a channel, for the message when no
+/// format fits: `time (timestamp), acceleration (ax, ay, az); no angular rate`; `None` when it
+/// finds nothing.
+pub(super) fn partial(fields: &[String]) -> Option<String> {
+    let mut found: [Vec<&str>; 3] = [Vec::new(), Vec::new(), Vec::new()];
+    for f in fields {
+        if let Some(r) = recognise(f) {
+            let k = match r.channel {
+                Channel::Time => 0,
+                Channel::Acc(_) => 1,
+                Channel::Gyro(_) => 2,
+            };
+            found[k].push(f.trim());
+        }
     }
-    let axis = match n.pop()? {
-        'x' => 0,
-        'y' => 1,
-        'z' => 2,
-        _ => return None,
-    };
-    if ACC_NAMES.contains(&n.as_str()) {
-        Some(Channel::Acc(axis))
-    } else if GYRO_NAMES.contains(&n.as_str()) {
-        Some(Channel::Gyro(axis))
+    if found.iter().all(Vec::is_empty) {
+        return None;
+    }
+    let names = ["time", "acceleration", "angular rate"];
+    let (mut has, mut lacks) = (Vec::new(), Vec::new());
+    for (k, v) in found.iter().enumerate() {
+        let want = if k == 0 { 1 } else { 3 };
+        if v.len() >= want {
+            has.push(format!("{} ({})", names[k], v.join(", ")));
+        } else if v.is_empty() {
+            lacks.push(format!("no {}", names[k]));
+        } else {
+            lacks.push(format!("{} only ({})", names[k], v.join(", ")));
+        }
+    }
+    let has = if has.is_empty() {
+        "nothing complete".to_string()
     } else {
-        None
-    }
+        has.join(", ")
+    };
+    Some(if lacks.is_empty() {
+        format!("the names read as {has}, but the row under them is neither units nor numbers split at the same delimiter")
+    } else {
+        format!("the names read as {has}; {}", lacks.join(", "))
+    })
+}
+
+/// A recognised header: the map, where its columns are and which units are to be inferred.
+pub(super) struct Found {
+    /// The map (the `ldh` map with the header's columns and units).
+    pub spec: FormatSpec,
+    /// Where its columns are.
+    pub cols: Columns,
+    /// The units the header does not state.
+    pub infer: Infer,
 }
 
 /// What the labels of a header row say.
 pub(super) enum Labelled {
     /// Not a header of recognised channel names (or some channel is missing).
     No,
-    /// The names carry their units: the map and where its columns are.
-    Found(Box<(FormatSpec, Columns)>),
+    /// The names recognised, with the units they state or imply (the others to infer).
+    Found(Box<Found>),
     /// All seven channels named, none with a unit: the next row may be a units row.
-    NeedsUnitsRow(Vec<usize>),
+    NeedsUnitsRow(Vec<(usize, Recognised)>),
 }
 
-/// The seven columns (time, acc x y z, gyro x y z) of a header row, or `None` when one is
-/// missing; a channel named twice is a [`LdhError::DuplicateColumn`].
-fn positions(fields: &[String], path: &Path, line: u64) -> Result<Option<Vec<usize>>> {
-    let mut at: Vec<Vec<usize>> = vec![Vec::new(); 7];
-    for (i, f) in fields.iter().enumerate() {
-        if let Some(ch) = channel_of(split_label(f).0) {
-            at[ch.slot()].push(i);
-        }
-    }
-    if let Some(d) = at.iter().find(|p| p.len() > 1) {
-        return Err(LdhError::DuplicateColumn {
-            loc: Location::line(path, line),
-            column: fields[d[0]].trim().to_string(),
-            positions: d.iter().map(|i| i + 1).collect(),
-        });
-    }
-    Ok(at.iter().map(|p| p.first().copied()).collect())
-}
-
-const SLOTS: [Channel; 7] = [
-    Channel::Time,
-    Channel::Acc(0),
-    Channel::Acc(1),
-    Channel::Acc(2),
-    Channel::Gyro(0),
-    Channel::Gyro(1),
-    Channel::Gyro(2),
-];
-
-/// Read the header row `fields` (at `line`) as names with units. `base` is the `ldh` map the
-/// result is made from (its delimiter, comments and axis map).
+/// Read the header row `fields` (at `line`) as recognised names, with units where they carry
+/// them. `base` is the `ldh` map the result is made from (its delimiter and comments).
 pub(super) fn labelled(
     base: &FormatSpec,
     fields: &[String],
@@ -132,61 +132,82 @@ pub(super) fn labelled(
     let Some(pos) = positions(fields, path, line)? else {
         return Ok(Labelled::No);
     };
-    let texts: Vec<Option<&str>> = pos.iter().map(|&i| split_label(&fields[i]).1).collect();
-    if texts.iter().all(Option::is_none) {
+    if pos
+        .iter()
+        .all(|(_, r)| r.unit_text.is_none() && r.implied.is_none())
+    {
         return Ok(Labelled::NeedsUnitsRow(pos));
     }
     let mut units = Vec::with_capacity(7);
-    for (k, (&i, text)) in pos.iter().zip(&texts).enumerate() {
-        let ch = SLOTS[k];
+    for (k, (i, r)) in pos.iter().enumerate() {
         let loc = Location::cell(path, line, i + 1);
-        let Some(text) = text else {
-            return Err(unit_err(UnitError::Missing {
-                loc,
-                column: fields[i].trim().to_string(),
-                quantity: ch.quantity(),
-            }));
-        };
-        units.push(parse_for(text, ch.quantity(), fields[i].trim(), loc).map_err(unit_err)?);
+        units.push(match (&r.unit_text, r.implied) {
+            (Some(t), _) => Some(parse_for(t, SLOTS[k], fields[*i].trim(), loc).map_err(unit_err)?),
+            (None, Some(Implied::Unit(u))) => Some(u),
+            _ => None,
+        });
     }
     build(base, fields, &pos, &units, path, line)
+}
+
+/// Whether a row is a vendor's row of data kinds under the names (Shimmer's `CAL`), to be
+/// skipped on the way to a units row.
+pub(super) fn kinds_row(pos: &[(usize, Recognised)], row: &[String]) -> bool {
+    pos.iter().all(|(i, _)| {
+        row.get(*i).is_some_and(|c| {
+            matches!(
+                c.trim().to_ascii_uppercase().as_str(),
+                "CAL" | "UNCAL" | "RAW"
+            )
+        })
+    })
 }
 
 /// The header `fields` (at `line`) with its units in the next row, `units_row` (at
 /// `units_line`): `Ok(None)` when that row is not a units row (it holds no unit ldh knows in
 /// the columns read, or a number), else the map, or the [`UnitError`] of a cell that is not a
-/// unit of its column.
+/// unit of its column. An empty cell leaves its unit to be inferred.
 pub(super) fn with_units_row(
     base: &FormatSpec,
     fields: &[String],
-    pos: &[usize],
+    pos: &[(usize, Recognised)],
     units_row: &[String],
     lines: (u64, u64),
     path: &Path,
-) -> Result<Option<(FormatSpec, Columns)>> {
+) -> Result<Option<Found>> {
     let (line, units_line) = lines;
     let cells: Vec<&str> = pos
         .iter()
-        .map(|&i| units_row.get(i).map_or("", |c| c.trim()))
+        .map(|(i, _)| units_row.get(*i).map_or("", |c| c.trim()))
         .collect();
     let numeric = |c: &str| c.parse::<f64>().is_ok() || c.replace(',', ".").parse::<f64>().is_ok();
     if cells.iter().any(|c| numeric(c)) || !cells.iter().any(|c| is_unit(c)) {
         return Ok(None);
     }
     let mut units = Vec::with_capacity(7);
-    for (k, (&i, cell)) in pos.iter().zip(&cells).enumerate() {
+    for (k, ((i, _), cell)) in pos.iter().zip(&cells).enumerate() {
         let loc = Location::cell(path, units_line, i + 1);
-        let q = SLOTS[k].quantity();
-        if cell.is_empty() {
-            return Err(unit_err(UnitError::Missing {
-                loc,
-                column: fields[i].trim().to_string(),
-                quantity: q,
-            }));
-        }
-        units.push(parse_for(cell, q, fields[i].trim(), loc).map_err(unit_err)?);
+        units.push(if cell.is_empty() {
+            None
+        } else {
+            Some(parse_for(cell, SLOTS[k], fields[*i].trim(), loc).map_err(unit_err)?)
+        });
     }
     match build(base, fields, pos, &units, path, line)? {
+        Labelled::Found(b) => Ok(Some(*b)),
+        _ => Ok(None),
+    }
+}
+
+/// The header recognised with every unit left to infer (no unit in the names, no units row).
+pub(super) fn all_inferred(
+    base: &FormatSpec,
+    fields: &[String],
+    pos: &[(usize, Recognised)],
+    path: &Path,
+    line: u64,
+) -> Result<Option<Found>> {
+    match build(base, fields, pos, &[None; 7], path, line)? {
         Labelled::Found(b) => Ok(Some(*b)),
         _ => Ok(None),
     }
@@ -196,43 +217,79 @@ fn unit_err(e: UnitError) -> LdhError {
     LdhError::Unit(Box::new(e))
 }
 
-/// The `ldh` map reading the columns at `pos` (time, acc x y z, gyro x y z) in `units`; the
-/// three axes of a sensor must share a unit.
+/// The unit the axes of one sensor (`slots`) state: the first stated, which the others must
+/// share ([`UnitError::Mixed`]); `None` when none states one.
+fn sensor_unit(
+    slots: std::ops::Range<usize>,
+    units: &[Option<Unit>],
+    pos: &[(usize, Recognised)],
+    fields: &[String],
+    at: (&Path, u64),
+) -> Result<Option<Unit>> {
+    let mut first: Option<(usize, Unit)> = None;
+    for k in slots {
+        let Some(u) = units[k] else { continue };
+        match first {
+            None => first = Some((k, u)),
+            Some((f, fu)) if fu != u => {
+                return Err(unit_err(UnitError::Mixed {
+                    loc: Location::cell(at.0, at.1, pos[k].0 + 1),
+                    column: fields[pos[k].0].trim().to_string(),
+                    unit: u,
+                    first: fields[pos[f].0].trim().to_string(),
+                    first_unit: fu,
+                }))
+            }
+            _ => {}
+        }
+    }
+    Ok(first.map(|(_, u)| u))
+}
+
+/// The `ldh` map reading the columns at `pos` (time, acc x y z, gyro x y z) in `units` (`None`:
+/// to infer); the three axes of a sensor must share a unit. Named after the exporter the
+/// names suggest; a Shimmer export takes the `shimmer-consensys` map's axes.
 fn build(
     base: &FormatSpec,
     fields: &[String],
-    pos: &[usize],
-    units: &[Unit],
+    pos: &[(usize, Recognised)],
+    units: &[Option<Unit>],
     path: &Path,
     line: u64,
 ) -> Result<Labelled> {
-    for first in [1, 4] {
-        for k in first + 1..first + 3 {
-            if units[k] != units[first] {
-                return Err(unit_err(UnitError::Mixed {
-                    loc: Location::cell(path, line, pos[k] + 1),
-                    column: fields[pos[k]].trim().to_string(),
-                    unit: units[k],
-                    first: fields[pos[first]].trim().to_string(),
-                    first_unit: units[first],
-                }));
-            }
+    let acc = sensor_unit(1..4, units, pos, fields, (path, line))?;
+    let gyro = sensor_unit(4..7, units, pos, fields, (path, line))?;
+    let mut spec = base.clone();
+    spec.name = exporter(fields).to_string();
+    spec.description = "recognised from the column names".to_string();
+    if spec.name == "shimmer" {
+        if let Ok(sh) = FormatSpec::builtin("shimmer-consensys") {
+            spec.axes = sh.axes;
         }
     }
-    let mut spec = base.clone();
-    let name = |k: usize| ColumnRef::Name(fields[pos[k]].trim().to_string());
+    let name = |k: usize| ColumnRef::Name(fields[pos[k].0].trim().to_string());
     spec.time.column = Some(name(0));
     spec.acc.columns = [name(1), name(2), name(3)];
     spec.gyro.columns = [name(4), name(5), name(6)];
+    let mut infer = Infer::default();
     // Each unit's quantity was checked by `parse_for`.
-    let (Some(t), Some(a), Some(g)) = (units[0].time(), units[1].acc(), units[4].gyro()) else {
-        return Ok(Labelled::No);
-    };
-    spec.time.unit = t;
-    spec.acc.unit = a;
-    spec.gyro.unit = g;
+    match units[0].and_then(Unit::time) {
+        Some(t) => spec.time.unit = t,
+        None if pos[0].1.implied == Some(Implied::SampleTimeFine) => {
+            infer.time = Some(TimeGuess::SampleTimeFine)
+        }
+        None => infer.time = Some(TimeGuess::Clock),
+    }
+    match acc.and_then(Unit::acc) {
+        Some(a) => spec.acc.unit = a,
+        None => infer.acc = true,
+    }
+    match gyro.and_then(Unit::gyro) {
+        Some(g) => spec.gyro.unit = g,
+        None => infer.gyro = true,
+    }
     match resolve(&spec, fields) {
-        Ok(cols) => Ok(Labelled::Found(Box::new((spec, cols)))),
+        Ok(cols) => Ok(Labelled::Found(Box::new(Found { spec, cols, infer }))),
         Err(Unresolved::Duplicate { column, positions }) => Err(LdhError::DuplicateColumn {
             loc: Location::line(path, line),
             column,

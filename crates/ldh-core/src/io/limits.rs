@@ -63,6 +63,21 @@ pub fn open_regular(path: &Path, what: &str) -> Result<(std::fs::File, u64)> {
     Ok((file, meta.len()))
 }
 
+/// Refuse, before any work, a path that does not exist: the first one, as
+/// [`LdhError::Io`] of kind not found (`X: cannot read: no such file or folder`), the wording
+/// and the error every command gives for a misspelt path.
+pub fn require_existing(paths: &[std::path::PathBuf]) -> Result<()> {
+    // The path itself, not what a symbolic link points to: a dangling link or a loop is the
+    // file's own error when it is read ("too many levels of symbolic links"), not a misspelling.
+    match paths.iter().find(|p| std::fs::symlink_metadata(p).is_err()) {
+        Some(p) => Err(LdhError::Io {
+            path: p.clone(),
+            source: std::io::Error::new(std::io::ErrorKind::NotFound, "no such file or folder"),
+        }),
+        None => Ok(()),
+    }
+}
+
 /// What a file that is not a regular file is, for messages.
 fn file_type_name(t: &std::fs::FileType) -> &'static str {
     #[cfg(unix)]

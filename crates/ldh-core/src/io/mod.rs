@@ -8,11 +8,13 @@ mod column_info;
 mod columns;
 pub mod format;
 mod header;
+mod infer;
 mod inspect;
 mod labelled;
 pub(crate) mod limits;
 mod number;
 pub mod reader;
+mod recognise;
 mod rows;
 mod start_time;
 pub mod table;
@@ -25,8 +27,8 @@ pub use column_info::ColumnInfo;
 pub use format::{ColumnRef, FormatSpec, SensorSelect, BUILTIN_FORMATS, DETECTED_FORMATS};
 pub use inspect::{inspect, Inspection, PreprocessSummary};
 pub use limits::{
-    open_regular, read_text_limited, MAX_FORMAT_MB, MAX_MANIFEST_MB, MAX_MODEL_MB, MAX_PARAMS_MB,
-    MAX_TABLE_MB,
+    open_regular, read_text_limited, require_existing, MAX_FORMAT_MB, MAX_MANIFEST_MB,
+    MAX_MODEL_MB, MAX_PARAMS_MB, MAX_TABLE_MB,
 };
 pub use reader::{
     flat_channel_warnings, read_recording, read_recording_bytes, read_recording_from, GapPolicy,

@@ -32,6 +32,7 @@ use std::path::{Path, PathBuf};
 
 use super::channels::{scale_and_flag_clipping, to_ldh_frame};
 use super::format::{Delimiter, FormatSpec};
+use super::infer::infer_units;
 use super::limits::{check_headroom, open_limited};
 use super::rows::{parse_rows, Layout};
 use super::start_time::{start_in_time, start_in_utc_cells, utc_columns, RecordedAt, StartFrom};
@@ -295,13 +296,11 @@ fn read_from(
     // The header row and the format (column resolution: `columns.rs`).
     let mut found = super::header::find_header(&mut lines, format, path, &mut notes)?;
     let delim_name = header_notes(&found, format.is_none(), &mut notes);
-    let columns = super::column_info::describe_columns(&found);
-    let spec = &found.spec;
 
     // Data rows into columns: after the header row and the rows the format skips (counted from
     // the first data row when the file has no header row).
     let mut first_row = found.first_row.take();
-    for _ in 0..spec.skip_rows_after_header {
+    for _ in 0..found.spec.skip_rows_after_header {
         if first_row.take().is_none() && lines.next_line()?.is_none() {
             break;
         }
@@ -327,7 +326,7 @@ fn read_from(
     }
     let layout = Layout {
         path,
-        spec,
+        spec: &found.spec,
         delim: found.delim,
         header_fields: &found.fields,
         cols: found.cols,
@@ -339,6 +338,14 @@ fn read_from(
     if n_rows == 0 {
         return Err(too_short(path, 0.0, 0, params));
     }
+    let bounds = RateBounds {
+        min_hz: params.min_rate_hz,
+        max_hz: params.max_rate_hz,
+    };
+    // Units the header does not state, from the signal (`infer.rs`).
+    let assumed = infer_units(&mut found.spec, found.infer, &rows, &bounds, &mut notes);
+    let columns = super::column_info::describe_columns(&found, &assumed);
+    let spec = &found.spec;
 
     // The time base: seconds, checks, the longest segment between gaps, the grid.
     if let (None, Some(&t), Some(i)) = (recorded_at, rows.time_raw.first(), found.cols.time) {
@@ -353,10 +360,6 @@ fn read_from(
     }
     let times = times_in_seconds(rows.time_raw, spec, n_rows, &mut notes);
     check_monotonic(&times, &rows.row_lines, found.cols.time, path)?;
-    let bounds = RateBounds {
-        min_hz: params.min_rate_hz,
-        max_hz: params.max_rate_hz,
-    };
     check_median_rate(&times, bounds, spec.time.unit, path)?;
     let reject_gaps = params.gap_policy == GapPolicy::Reject;
     let segments = split_at_gaps(

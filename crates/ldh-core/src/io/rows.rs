@@ -217,13 +217,13 @@ fn field_count_error<R: BufRead>(
     let expected = layout.header_fields.len();
     let mut fields = Vec::new();
     split_fields(line, layout.delim, &mut fields);
-    // Decimal commas in a comma-separated file double the fields.
-    let hint = if layout.delim == b','
-        && fields.len() > expected
-        && !line.contains('.')
-        && fields.iter().all(|f| f.parse::<f64>().is_ok())
+    // Decimal commas in a comma-separated file double the fields; one such cell adds one.
+    let numbers = fields.iter().all(|f| f.parse::<f64>().is_ok());
+    let hint = if layout.delim == b',' && fields.len() > expected && numbers && !line.contains('.')
     {
         "; the row has no '.' but more commas than the header: decimal commas in a comma-separated file? Export with '.' as decimal separator or ';' as delimiter".to_string()
+    } else if layout.delim == b',' && fields.len() > expected && numbers {
+        decimal_comma_hint(&fields, fields.len() - expected)
     } else if fields.len() < expected && lines.rest_is_blank().unwrap_or(false) {
         "; it is the last line: the file looks truncated (an interrupted export or copy?)"
             .to_string()
@@ -236,6 +236,29 @@ fn field_count_error<R: BufRead>(
         expected,
         hint,
     }
+}
+
+/// The hint for a row of numbers with `extra` fields more than the header: a decimal comma is
+/// likely, at the first integer cell followed by a cell of digits alone (`1,25` split into `1`
+/// and `25`), named with its column.
+fn decimal_comma_hint(fields: &[&str], extra: usize) -> String {
+    let digits = |c: &str| !c.is_empty() && c.bytes().all(|b| b.is_ascii_digit());
+    let at = fields.windows(2).position(|w| {
+        let a = w[0].trim_start_matches(['-', '+']);
+        digits(a) && digits(w[1])
+    });
+    let place = match at {
+        Some(i) => format!(
+            " ('{},{}' at column {} reads as two cells)",
+            fields[i],
+            fields[i + 1],
+            i + 1
+        ),
+        None => String::new(),
+    };
+    format!(
+        "; the row holds numbers only, {extra} more than the header: a decimal comma in {extra} cell(s) is likely{place}. Write that value with '.' (or export with ';' as delimiter)"
+    )
 }
 
 /// The time cell of column `tc` (0-based) on line `lineno`, in the format's time unit (an

@@ -56,6 +56,8 @@ pub(super) fn times_in_seconds(
         TimeUnit::Seconds | TimeUnit::Iso8601 => time_raw,
         TimeUnit::Milliseconds => time_raw.iter().map(|t| t * 1e-3).collect(),
         TimeUnit::Microseconds => time_raw.iter().map(|t| t * 1e-6).collect(),
+        TimeUnit::HundredMicroseconds => time_raw.iter().map(|t| t * 1e-4).collect(),
+        TimeUnit::Nanoseconds => time_raw.iter().map(|t| t * 1e-9).collect(),
         TimeUnit::Counter => {
             let rate = spec.time.rate_hz.expect("validated");
             let wrap = spec.time.counter_wrap.map(|w| w as f64);

@@ -34,7 +34,7 @@ impl Quantity {
         match self {
             Quantity::Acceleration => "g, m/s^2 (m/s2, m/s², m s^-2, m/s/s)",
             Quantity::AngularRate => "deg/s (°/s, dps, deg/sec, degrees/s), rad/s (rad/sec)",
-            Quantity::Time => "s (sec, seconds), ms (msec), us (µs, usec)",
+            Quantity::Time => "s (sec, seconds), ms (msec), us (µs, usec), ns (nsec)",
         }
     }
 }
@@ -67,6 +67,10 @@ pub enum Unit {
     Milliseconds,
     /// Microseconds.
     Microseconds,
+    /// Ticks of 100 µs (Xsens `SampleTimeFine`).
+    HundredMicroseconds,
+    /// Nanoseconds.
+    Nanoseconds,
 }
 
 impl Unit {
@@ -75,7 +79,11 @@ impl Unit {
         match self {
             Unit::G | Unit::MetresPerSecond2 => Quantity::Acceleration,
             Unit::DegreesPerSecond | Unit::RadiansPerSecond => Quantity::AngularRate,
-            Unit::Seconds | Unit::Milliseconds | Unit::Microseconds => Quantity::Time,
+            Unit::Seconds
+            | Unit::Milliseconds
+            | Unit::Microseconds
+            | Unit::HundredMicroseconds
+            | Unit::Nanoseconds => Quantity::Time,
         }
     }
 
@@ -97,6 +105,8 @@ impl Unit {
             Unit::RadiansPerSecond => 180.0 / std::f64::consts::PI,
             Unit::Milliseconds => 1e-3,
             Unit::Microseconds => 1e-6,
+            Unit::HundredMicroseconds => 1e-4,
+            Unit::Nanoseconds => 1e-9,
         }
     }
 
@@ -110,6 +120,8 @@ impl Unit {
             Unit::Seconds => "s",
             Unit::Milliseconds => "ms",
             Unit::Microseconds => "µs",
+            Unit::HundredMicroseconds => "100 µs",
+            Unit::Nanoseconds => "ns",
         }
     }
 
@@ -123,6 +135,8 @@ impl Unit {
             Unit::RadiansPerSecond => format!("× 180/π (rad/s → {to})"),
             Unit::Milliseconds => format!("× 0.001 (ms → {to})"),
             Unit::Microseconds => format!("× 0.000001 (µs → {to})"),
+            Unit::HundredMicroseconds => format!("× 0.0001 (100 µs ticks → {to})"),
+            Unit::Nanoseconds => format!("× 0.000000001 (ns → {to})"),
         }
     }
 
@@ -150,6 +164,8 @@ impl Unit {
             Unit::Seconds => Some(TimeUnit::Seconds),
             Unit::Milliseconds => Some(TimeUnit::Milliseconds),
             Unit::Microseconds => Some(TimeUnit::Microseconds),
+            Unit::HundredMicroseconds => Some(TimeUnit::HundredMicroseconds),
+            Unit::Nanoseconds => Some(TimeUnit::Nanoseconds),
             _ => None,
         }
     }
@@ -162,6 +178,8 @@ impl Unit {
             TimeUnit::Seconds => Some(Unit::Seconds),
             TimeUnit::Milliseconds => Some(Unit::Milliseconds),
             TimeUnit::Microseconds => Some(Unit::Microseconds),
+            TimeUnit::HundredMicroseconds => Some(Unit::HundredMicroseconds),
+            TimeUnit::Nanoseconds => Some(Unit::Nanoseconds),
             TimeUnit::Counter | TimeUnit::Iso8601 | TimeUnit::None => None,
         }
     }
@@ -255,6 +273,8 @@ impl FromStr for Unit {
             "s" | "sec" | "secs" | "second" | "seconds" => Unit::Seconds,
             "ms" | "msec" | "msecs" | "millisecond" | "milliseconds" => Unit::Milliseconds,
             "us" | "usec" | "usecs" | "microsecond" | "microseconds" => Unit::Microseconds,
+            "100us" => Unit::HundredMicroseconds,
+            "ns" | "nsec" | "nanosecond" | "nanoseconds" => Unit::Nanoseconds,
             _ => return Err(UnknownUnit(text.trim().to_string())),
         };
         Ok(u)

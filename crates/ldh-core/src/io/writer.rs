@@ -428,6 +428,8 @@ impl<'a> Cells<'a> {
                 self.num(t * 1e3, opts.time_decimals.saturating_sub(3), false)
             }
             TimeUnit::Microseconds => self.num(t * 1e6, 0, false),
+            TimeUnit::HundredMicroseconds => self.num(t * 1e4, 0, false),
+            TimeUnit::Nanoseconds => self.num(t * 1e9, 0, false),
             TimeUnit::Counter => {
                 let rate = spec.time.rate_hz.expect("validated");
                 let mut c = (t * rate).round() as u64;

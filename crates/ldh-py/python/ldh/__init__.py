@@ -11,9 +11,10 @@ from ._errors import (
     LdhFileNotFoundError,
     LdhOSError,
     LdhParamError,
+    LdhTypeError,
     LdhWarning,
 )
-from ._agreement import agree, reliability
+from ._agreement import Agreement, agree, reliability
 from ._io import butter_filtfilt, preprocess, read_recording, simulate_cohort, write_demo
 from ._ml import cross_validate, predict, train
 from ._nonlinear import lyap_e, lyap_r
@@ -37,10 +38,12 @@ from ._stats import (
 __version__ = _ldh.__version__
 __all__ = [
     "agree",
+    "Agreement",
     "reliability",
     "LdhError",
     "LdhDataError",
     "LdhParamError",
+    "LdhTypeError",
     "LdhFileNotFoundError",
     "LdhOSError",
     "LdhWarning",

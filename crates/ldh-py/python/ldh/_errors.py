@@ -1,8 +1,9 @@
 """The ldh exception family.
 
 Every error raised by ldh is an ``LdhError``; each also derives from the built-in exception a
-Python user would catch (``ValueError`` for bad data or arguments, ``FileNotFoundError`` and
-``OSError`` for files), so ``except ValueError`` keeps working.
+Python user would catch (``ValueError`` for bad data or arguments, ``TypeError`` for an
+argument of the wrong kind, ``FileNotFoundError`` and ``OSError`` for files), so
+``except ValueError`` keeps working.
 """
 
 
@@ -16,6 +17,11 @@ class LdhDataError(LdhError, ValueError):
 
 class LdhParamError(LdhError, ValueError):
     """A parameter is outside its valid range."""
+
+
+class LdhTypeError(LdhError, TypeError):
+    """An argument of the wrong kind: a DataFrame or an array given to a function that reads
+    files (the message names the function that takes it)."""
 
 
 class LdhFileNotFoundError(LdhError, FileNotFoundError):

@@ -9,7 +9,7 @@ import numpy as np
 
 from . import _ldh
 from ._errors import LdhParamError, LdhWarning
-from ._util import PathLike, sample_limit, vec as _vec
+from ._util import ARRAYS_INSTEAD, PathLike, path_arg, sample_limit, vec as _vec
 
 
 def read_recording(
@@ -64,6 +64,9 @@ def read_recording(
     ------
     LdhFileNotFoundError
         The file does not exist (also a ``FileNotFoundError``).
+    LdhTypeError
+        ``path`` is not a path (also a ``TypeError``); the message names the functions for
+        arrays and DataFrames.
     LdhDataError
         The file is not a usable recording (also a ``ValueError``); the message names the
         file, line and column. Also a file above ``max_file_size_mb`` or a recording with
@@ -73,7 +76,7 @@ def read_recording(
         An invalid option (also a ``ValueError``), e.g. ``max_samples=0``.
     """
     rec, report = _ldh.read_recording(
-        os.fspath(path), format, max_gap_s, gap_policy, min_duration_s, check_units,
+        path_arg(path, "read_recording", "path", ARRAYS_INSTEAD), format, max_gap_s, gap_policy, min_duration_s, check_units,
         float(max_file_size_mb), sample_limit(max_samples),
     )
     for w in report.get("warnings", []):
@@ -157,7 +160,7 @@ def preprocess(
 def write_demo(out: PathLike) -> int:
     """Write the embedded demo cohort (2 healthy, 2 LDH subjects) to ``out``; returns the
     number of files written."""
-    return _ldh.write_demo(os.fspath(out))
+    return _ldh.write_demo(path_arg(out, "write_demo", "out"))
 
 
 def simulate_cohort(
@@ -211,7 +214,7 @@ def simulate_cohort(
     if seed >= 2**64:
         raise LdhParamError(f"seed must be below 2**64, got {seed!r}")
     return _ldh.simulate_cohort(
-        os.fspath(out), int(healthy), int(ldh), float(seconds), int(seed), float(rate_hz), bool(turn),
+        path_arg(out, "simulate_cohort", "out"), int(healthy), int(ldh), float(seconds), int(seed), float(rate_hz), bool(turn),
         int(slow_ldh), float(acc_range_g), float(ramp_s), int(trials),
         None if day_to_day_sd_fraction is None else float(day_to_day_sd_fraction),
     )

@@ -2,7 +2,6 @@
 ``analyze_recording``)."""
 from __future__ import annotations
 
-import os
 import warnings
 from typing import Any, Dict, Optional, Sequence, Union
 
@@ -11,7 +10,7 @@ import numpy as np
 from . import _ldh
 from ._errors import LdhParamError, LdhWarning
 from ._result import Result
-from ._util import PathLike, opt_float, params_dict, sample_limit, vec
+from ._util import ARRAYS_INSTEAD, PathLike, opt_float, params_dict, path_list, sample_limit, vec
 
 _CHANNELS = ["acc_x_g", "acc_y_g", "acc_z_g", "gyro_x_dps", "gyro_y_dps", "gyro_z_dps"]
 
@@ -25,12 +24,10 @@ def _jobs(n_jobs: Optional[int]) -> int:
     return int(n_jobs)
 
 
-def _paths(inputs: Union[None, PathLike, Sequence[PathLike]]) -> list:
+def _paths(inputs: Union[None, PathLike, Sequence[PathLike]], func: str = "analyze") -> list:
     if inputs is None:
         return []
-    if isinstance(inputs, (str, os.PathLike)):
-        return [os.fspath(inputs)]
-    paths = [os.fspath(p) for p in inputs]
+    paths = path_list(inputs, func, "inputs", ARRAYS_INSTEAD)
     if not paths:
         # Only ``None`` means the embedded demo: an empty list is a mistake, not a request.
         raise LdhParamError("inputs is an empty list: give paths, or None for the embedded demo cohort")
@@ -139,6 +136,9 @@ def analyze(
     LdhDataError
         A manifest that cannot be used, e.g. one with a header and no subject row ("the manifest
         has no subjects"; also a ``ValueError``), before any work.
+    LdhTypeError
+        ``inputs`` is not a path or a list of paths (also a ``TypeError``): a DataFrame or an
+        array is analysed with :func:`analyze_pair` or :func:`analyze_recording`.
     """
     raw = _ldh.analyze(
         _paths(inputs), model, detector, format, compute_sta, opt_float(sensor_height_m),
@@ -173,9 +173,7 @@ def analyze_many(paths: Sequence[PathLike], n_jobs: Optional[int] = None, **kwar
     function is pure (files in, tables out) and keeps no state, so it runs unchanged in Dask or
     Ray workers: ``client.map(lambda d: ldh.analyze(d, n_jobs=1), subject_dirs)``.
     """
-    if isinstance(paths, (str, os.PathLike)):
-        paths = [paths]
-    paths = list(paths)
+    paths = path_list(paths, "analyze_many", "paths", ARRAYS_INSTEAD)
     if not paths:
         raise LdhParamError("analyze_many needs at least one input path (ldh.analyze() without inputs analyses the demo)")
     return analyze(paths, n_jobs=n_jobs, **kwargs)

@@ -6,18 +6,19 @@ use maud::{html, Markup};
 use super::super::html::base_name;
 use ldh_core::output::{labels, RecordingRow};
 
-/// Where the walk happened, as given: `treadmill, belt 1.10 m/s`, `overground`, or that it
-/// was not said.
-pub(crate) fn setting_text(r: &RecordingRow) -> String {
+/// Where the walk happened, as given: `treadmill, belt 1.10 m/s`, `overground`; `None` when
+/// the manifest does not say (nothing is printed for it).
+pub(crate) fn setting_text(r: &RecordingRow) -> Option<String> {
     match (labels::text(&r.setting), r.belt_speed_mps) {
-        ("treadmill", Some(b)) => format!("treadmill, belt {b:.2} m/s"),
-        ("treadmill", None) => "treadmill (belt speed not given)".into(),
-        ("", _) => "setting not given".into(),
-        (other, _) => other.to_string(),
+        ("treadmill", Some(b)) => Some(format!("treadmill, belt {b:.2} m/s")),
+        ("treadmill", None) => Some("treadmill (belt speed not given)".into()),
+        ("", _) => None,
+        (other, _) => Some(other.to_string()),
     }
 }
 
-/// One trial's line: `trial 2, visit pre, treadmill, belt 1.10 m/s: left a.csv, right b.csv`.
+/// One trial's line: `trial 2, visit pre, treadmill, belt 1.10 m/s: files a.csv (left leg),
+/// b.csv (right leg)`; without trial, visit or setting, the files alone.
 fn trial_line(legs: &[&RecordingRow]) -> String {
     let first = legs[0];
     let mut head: Vec<String> = Vec::new();
@@ -27,19 +28,24 @@ fn trial_line(legs: &[&RecordingRow]) -> String {
     if !first.visit.is_empty() {
         head.push(format!("visit {}", first.visit));
     }
-    head.push(setting_text(first));
+    head.extend(setting_text(first));
     let files: Vec<String> = legs
         .iter()
         .map(|r| {
             let name = base_name(&r.source);
             if name.is_empty() {
-                format!("{} (no file read)", r.side)
+                format!("no file read ({} leg)", r.side)
             } else {
-                format!("{} {name}", r.side)
+                format!("{name} ({} leg)", r.side)
             }
         })
         .collect();
-    format!("{}: {}", head.join(", "), files.join(", "))
+    let files = format!("files {}", files.join(", "));
+    if head.is_empty() {
+        files
+    } else {
+        format!("{}: {files}", head.join(", "))
+    }
 }
 
 /// When a trial was recorded, from the first of its files that says it (a header line, UTC

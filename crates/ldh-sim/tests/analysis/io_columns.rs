@@ -117,7 +117,7 @@ fn missing_columns_are_named_with_the_closest_header_names_only() {
     let t = tempfile::tempdir().unwrap();
     let text = with_header(
         &rec,
-        "time_s,acc_x_g,acc_y_g,acc_z_g,gyr_x,gyr_y,gyr_z",
+        "time_s,acc_x_g,acc_y_g,acc_z_g,gyro_1,gyro_2,gyro_3",
         1.0,
         1.0,
         1.0,
@@ -125,7 +125,13 @@ fn missing_columns_are_named_with_the_closest_header_names_only() {
     let p = write(t.path(), "half.csv", &text);
     let e = read(&p, None).unwrap_err().to_string();
     assert!(e.contains("no header row"), "{e}");
-    assert!(e.contains("gyro_x → gyr_x"), "{e}");
+    assert!(e.contains("gyro_x → gyro_1"), "{e}");
+    // What the names read as, and how to write a map.
+    assert!(
+        e.contains("acceleration (acc_x_g, acc_y_g, acc_z_g); no angular rate"),
+        "{e}"
+    );
+    assert!(e.contains("ldh formats ldh > my.toml"), "{e}");
     // time_s is there: not called missing.
     assert!(!e.contains("\"time_s\""), "{e}");
     let e = read(&p, Some(&FormatSpec::default()))

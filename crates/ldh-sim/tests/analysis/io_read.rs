@@ -379,6 +379,20 @@ fn bad_files_are_refused_with_the_file_and_the_problem() {
     spec.delimiter = Delimiter::Semicolon;
     let (r, _) = read(&p, Some(&spec)).unwrap();
     assert_close(&r, &rec, 1e-5, 1e-3);
+
+    // One cell with a decimal comma among '.' cells: the likely cause, with its column.
+    let mut rows: Vec<String> = good.lines().map(String::from).collect();
+    let mut cells: Vec<String> = rows[3].split(',').map(String::from).collect();
+    cells[1] = format!("{:.0},{}", 0.0, 5);
+    rows[3] = cells.join(",");
+    let p = t.write("one_comma.csv", rows.join("\n"));
+    let m = err_of(&p, None);
+    assert!(
+        m.contains("one_comma.csv:4")
+            && m.contains("a decimal comma in 1 cell(s) is likely")
+            && m.contains("'0,5' at column 2"),
+        "{m}"
+    );
 }
 
 #[test]

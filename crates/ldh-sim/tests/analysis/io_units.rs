@@ -258,23 +258,6 @@ fn unusable_units_are_refused_with_file_line_column_and_text() {
 
     let (e, msg) = unit_error(
         d,
-        "missing.csv",
-        "time,acc_x [g],acc_y [g],acc_z [g],gyro_x [dps],gyro_y [dps],gyro_z [dps]",
-    );
-    assert!(
-        matches!(
-            e,
-            UnitError::Missing {
-                quantity: Quantity::Time,
-                ..
-            }
-        ),
-        "{e:?}"
-    );
-    assert!(msg.contains("missing.csv:1:1"), "{msg}");
-
-    let (e, msg) = unit_error(
-        d,
         "mixed.csv",
         "time [s],acc_x [g],acc_y [m/s^2],acc_z [g],gyro_x [dps],gyro_y [dps],gyro_z [dps]",
     );
@@ -294,19 +277,40 @@ fn unusable_units_are_refused_with_file_line_column_and_text() {
     );
 }
 
+/// Names without units, with no units row: the units are inferred from the signal and said;
+/// a time column without a unit beside units in the other names is inferred too.
 #[test]
-fn names_without_units_and_no_units_row_are_still_no_header() {
+fn names_without_units_take_them_from_the_signal() {
     let t = tempfile::tempdir().unwrap();
     let p = file(
         t.path(),
         "nounits.csv",
         "time,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z",
         ',',
+        [1e3, MPS2, 1.0],
+    );
+    let (r, rep) = read(&p, None).unwrap();
+    assert!(max_diff(&r, walking()) < 1e-12);
+    let notes = rep.notes.join(" | ");
+    assert!(notes.contains("in ms, assumed"), "{notes}");
+    assert!(notes.contains("reads as m/s², assumed"), "{notes}");
+    assert!(notes.contains("reads as deg/s, assumed"), "{notes}");
+    assert_eq!(rep.format, "generic");
+    let p = file(
+        t.path(),
+        "time_only.csv",
+        "time,acc_x [g],acc_y [g],acc_z [g],gyro_x [dps],gyro_y [dps],gyro_z [dps]",
+        ',',
         [1.0, 1.0, 1.0],
     );
-    let e = read(&p, None).unwrap_err();
-    assert!(matches!(e, LdhError::NoHeader { .. }), "{e}");
-    assert!(e.to_string().contains("time_s → time"), "{e}");
+    let (r, rep) = read(&p, None).unwrap();
+    assert!(max_diff(&r, walking()) < 1e-12);
+    assert!(
+        rep.columns[0].unit_from.contains("assumed"),
+        "{:?}",
+        rep.columns[0]
+    );
+    assert_eq!(rep.columns[1].unit_from, "header");
 }
 
 /// A given map keeps its units: the header's `[g]` is noted, not used, and the map's names
@@ -379,7 +383,7 @@ fn the_column_report_gives_channel_unit_and_conversion() {
         c[1].conversion,
         format!("÷ {MPS2} (m/s² → g), sign flipped (axis map -x)")
     );
-    assert_eq!(c[5].conversion, "none");
+    assert_eq!(c[5].conversion, "no conversion");
     assert_eq!(c[1].unit_from, "format 'shimmer-consensys'");
     assert_eq!(
         c[1].line(),

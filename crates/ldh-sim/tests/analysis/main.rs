@@ -10,6 +10,7 @@ mod io_read;
 mod io_start;
 mod io_stream;
 mod io_units;
+mod io_vendors;
 mod pipeline;
 mod pipeline_inputs;
 mod pipeline_steady;

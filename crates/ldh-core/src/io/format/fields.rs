@@ -77,6 +77,12 @@ pub enum TimeUnit {
     /// Microseconds.
     #[serde(rename = "us")]
     Microseconds,
+    /// Ticks of 100 µs (Xsens MTi/MTw `SampleTimeFine`, a 10 kHz clock).
+    #[serde(rename = "100us")]
+    HundredMicroseconds,
+    /// Nanoseconds (Android's sensor timestamps).
+    #[serde(rename = "ns")]
+    Nanoseconds,
     /// A sample counter (needs `rate_hz`), possibly wrapping at `counter_wrap`.
     #[serde(rename = "counter")]
     Counter,
