@@ -52,8 +52,8 @@ pub use calibration::{EventCalibration, MAX_CALIBRATION_SHIFT_S};
 pub use confidence::{hs_confidence_at, to_confidence_at, unsure_events, UnsureEvent};
 pub use impact::{
     impacts, shift_to_impacts, Impact, GYRO_ONLY_CONFIDENCE, IMPACT_MIN_G, IMPACT_MIN_STRIKES,
-    IMPACT_RATIO, IMPACT_SHARE, IMPACT_WINDOW_STRIDE, MIN_EVENT_CONFIDENCE, SECOND_CANDIDATE_GAP_S,
-    SECOND_CANDIDATE_SHARE, TWO_CANDIDATES_CONFIDENCE,
+    IMPACT_RATIO, IMPACT_SHARE, IMPACT_WINDOW_STRIDE, MIN_EVENT_CONFIDENCE, NO_IMPACT_CONFIDENCE,
+    SECOND_CANDIDATE_GAP_S, SECOND_CANDIDATE_SHARE, TWO_CANDIDATES_CONFIDENCE,
 };
 
 use serde::{Deserialize, Serialize};
@@ -311,7 +311,7 @@ pub struct Events {
     pub hs_impact_delay_s: Option<f64>,
     /// Confidence of each heel strike, 0–1 (same order as `hs_s`; `events/impact.rs`): 1 −
     /// ½·ratio⁻¹·4 at its own impact, 0.5 where the walk shows no impacts, 0.2 with two
-    /// candidate landings, 0 without an impact in a walk that shows them. Empty for the
+    /// candidate landings, 0.3 without an impact in a walk that shows them. Empty for the
     /// detectors that do not place heel strikes by impacts. Strides bounded by a strike below
     /// [`MIN_EVENT_CONFIDENCE`] are withheld.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

@@ -25,8 +25,7 @@
 //! landing is not constant — it grows in short and slow steps, where the shank stops rotating
 //! backwards well before the heel lands (up to 120 ms on force plates). A strike without an
 //! impact in such a walk keeps its zero crossing plus the walk's median delay and carries
-//! confidence 0 (`no impact`): the strides it bounds are withheld
-//! (docs/quality.md "Unsure events"). Until 2026-12-01 every strike of such a walk lay at its
+//! a low confidence, [`NO_IMPACT_CONFIDENCE`] (docs/quality.md "Unsure events"). Until 2026-12-01 every strike of such a walk lay at its
 //! crossing plus the walk's median delay: stride times then kept the interpolated crossing's
 //! sub-millisecond precision on the simulators (family B: 0.6 ms against 3.6 ms with per-strike
 //! impacts known to a sample), but on real walks the crossing's own scatter stayed: on TRIPOD
@@ -42,7 +41,8 @@
 //! 1 − ½·[`IMPACT_RATIO`] / ratio (0.5 at the smallest impact accepted, → 1 for a clear one);
 //! [`TWO_CANDIDATES_CONFIDENCE`] when a second step at least as large as the first follows it
 //! after a lull, [`SECOND_CANDIDATE_GAP_S`] or more later (two candidate landings: a shuffle,
-//! a toe touching before the heel); 0 without an impact in a walk that shows them.
+//! a toe touching before the heel); [`NO_IMPACT_CONFIDENCE`] without an impact in a walk
+//! that shows them.
 //!
 //! The ratio and share are not fitted: they are set between what family A shows without an
 //! impact (median ratio 1.7, 95th percentile 3.4) and what an impact is. The window must cover
@@ -77,6 +77,11 @@ pub const TWO_CANDIDATES_CONFIDENCE: f64 = 0.2;
 /// Confidence of a heel strike of a walk that shows no impacts (the gyroscope's landmark and
 /// offset alone).
 pub const GYRO_ONLY_CONFIDENCE: f64 = 0.5;
+/// Confidence of a heel strike without an impact in a walk that shows them (at its zero
+/// crossing plus the walk's median delay): low, but not withheld — on family B's normal
+/// walkers such strikes lie where the impacts of the others do, and withholding them took a
+/// quarter of their strides (docs/quality.md "Unsure events").
+pub const NO_IMPACT_CONFIDENCE: f64 = 0.3;
 /// Events whose confidence is below this are unsure: the strides they bound are withheld.
 pub const MIN_EVENT_CONFIDENCE: f64 = 0.25;
 
@@ -124,8 +129,9 @@ fn impact_at(da: &[f64], fs_hz: f64, zc_s: f64, stride_s: f64) -> Option<Impact>
     if peak < (IMPACT_RATIO * base).max(IMPACT_MIN_G) {
         return None;
     }
-    // The onset of the largest step: where |Δa| first reaches half the peak, between the change
-    // before (at i − 1.5 samples) and the first change above (at i − 0.5).
+    // The onset of the largest step: the first change reaching half the peak is the one from
+    // sample i − 1 to i, so the contact lies between them; the larger that change already is,
+    // the earlier in the interval (half the peak: at i; the whole peak: at i − ½).
     let half = 0.5 * peak;
     let j = window.iter().position(|&d| d >= half)?;
     let i = w0 + j;
@@ -140,7 +146,7 @@ fn impact_at(da: &[f64], fs_hz: f64, zc_s: f64, stride_s: f64) -> Option<Impact>
     } else {
         1.0
     };
-    let onset_s = (i as f64 - 1.5 + frac) / fs_hz;
+    let onset_s = (i as f64 - 1.0 + frac) / fs_hz;
     // A second candidate: after the first burst (from the onset until |Δa| falls below a
     // quarter of the burst's own largest change) and at least SECOND_CANDIDATE_GAP_S after the
     // onset, a change of at least the share of that largest one.
@@ -222,7 +228,7 @@ pub fn shift_to_impacts(legs: &mut [&mut Events], hs_offset_stride: f64) -> Opti
                 }
                 None => {
                     *hs = zc + typical;
-                    conf.push(0.0);
+                    conf.push(NO_IMPACT_CONFIDENCE);
                 }
             }
         }
@@ -268,9 +274,9 @@ mod tests {
         }
     }
 
-    /// The onset of the step at sample 54: where |Δa| reaches half its peak (0.9 g) between the
-    /// change 52→53 (≈ 0.02 g, at 52.5) and 53→54 (≈ 1 g, at 53.5): about 53.4 samples.
-    const ONSET_DELAY_S: f64 = 0.534 - 0.5;
+    /// The onset of the step at sample 54: the change 53→54 (≈ 1 g) is the first above half the
+    /// peak (0.9 g), barely: the contact lies late in [53, 54], at about 53.9 samples.
+    const ONSET_DELAY_S: f64 = 0.539 - 0.5;
 
     /// Find the impacts of one leg and place its heel strikes by them alone.
     fn place(ev: &mut Events, acc: &[Vec<f64>; 3]) -> Option<f64> {
@@ -294,7 +300,7 @@ mod tests {
                 assert!((hs - (k as f64 + 0.5 + d)).abs() < 2e-3, "{k}: {hs}");
             }
         }
-        assert_eq!(l.hs_confidence[1], 0.0);
+        assert_eq!(l.hs_confidence[1], NO_IMPACT_CONFIDENCE);
         assert_eq!(l.hs_s[1], 1.5 + d);
         assert!(l.hs_confidence[0] > 0.9 && r.hs_confidence[1] > 0.9);
         // Placed once: the pipeline's placement clears the impacts, so a second one is a no-op.
@@ -314,7 +320,7 @@ mod tests {
         let (mut acc, mut ev) = walk(|k| k != 5);
         ring(&mut acc, 560);
         place(&mut ev, &acc);
-        assert!((ev.hs_s[5] - 5.5 - 0.094).abs() < 2e-3, "{}", ev.hs_s[5]);
+        assert!((ev.hs_s[5] - 5.5 - 0.099).abs() < 2e-3, "{}", ev.hs_s[5]);
         assert!(
             (ev.hs_s[4] - 4.5 - ONSET_DELAY_S).abs() < 2e-3,
             "{}",
