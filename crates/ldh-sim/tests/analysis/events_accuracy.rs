@@ -146,11 +146,13 @@ fn events_accuracy_on_the_simulators() {
             .to_string(),
         "|---|---:|---|---:|---|---:|---:|".to_string(),
     ];
-    let mut worst: f64 = 0.0;
+    let (mut worst, mut worst_hs): (f64, f64) = (0.0, 0.0);
     for (name, subjects) in sim_conditions() {
         let (hs, to, missed, unsure) = sim_errors(&subjects);
         let (h, t) = (summary(&hs), summary(&to));
         worst = worst.max(h.p95).max(t.p95);
+        worst_hs = worst_hs.max(h.p95);
+        assert_eq!(missed, 0, "{name}: steady events missed");
         lines.push(format!(
             "| {name} | {} | {} | {} | {} | {missed} | {} / {} |",
             h.n,
@@ -162,6 +164,9 @@ fn events_accuracy_on_the_simulators() {
         ));
     }
     println!("{}\nworst P95 {worst:.1} ms", lines.join("\n"));
+    // Issue 49: no condition's heel-strike P95 above 30 ms (15.7 ms when written; toe off
+    // is not there yet: docs/accuracy.md).
+    assert!(worst_hs <= 30.0, "{}", lines.join("\n"));
 }
 
 /// `LDH_REALDATA/tripod`, or `shared/realdata/tripod` in a folder above this crate.
@@ -596,7 +601,9 @@ fn events_accuracy_on_tripod() {
     }
     println!("{}", lines.join("\n"));
     for (name, s, _) in &scores {
-        // Every footfall found.
+        // Every footfall found; the scatter no worse than when written (11.3–16.1 ms, of
+        // which OptoGait's own 9–15 ms: docs/accuracy.md).
         assert!(s.hs.matched as f64 >= 0.95 * s.hs.contacts as f64, "{name}");
+        assert!(s.hs.hs.sd <= 18.0, "{name}: {:.1} ms", s.hs.hs.sd);
     }
 }
