@@ -17,9 +17,11 @@
 //!   (t_m): TO = t_p + a·T + b·(t_m − t_p) + c·(t_p − t_s), T the median stride time. The pitch
 //!   peak alone drifts relative to TO with the subject's swing knee flexion; the two intervals
 //!   measure the local phase speed on either side of it and cancel most of that drift.
-//! * [`EventDetector::GyroBracket`] (default) — HS at the zero crossing plus the walk's own
-//!   delay to the heel's impact where the walk shows impacts (`events/impact.rs`), else as in
-//!   `GyroZeroCrossing`; TO at a fraction of
+//! * [`EventDetector::GyroBracket`] (default) — HS at each strike's own impact (the onset of the
+//!   step in the shank's acceleration after the zero crossing) where the walk shows impacts
+//!   (`events/impact.rs`; a strike without one at the crossing plus the walk's median delay,
+//!   unsure), else as in `GyroZeroCrossing`; every event with a confidence
+//!   (`events/confidence.rs`); TO at a fraction of
 //!   the bracket [t_s, t_p], raised on the leg whose landmark geometry and swing arc are both
 //!   stiffer than the subject's other leg's, placed per subject by [`place_bilateral`]
 //!   (`events/bracket.rs`).
@@ -38,6 +40,7 @@
 
 mod bracket;
 mod calibration;
+mod confidence;
 mod impact;
 pub mod matching;
 pub mod offset;
@@ -50,8 +53,11 @@ pub use bracket::{
     BRACKET_K0, BRACKET_MAX, BRACKET_SLOPE, MIN_BRACKETS, SAME_WALK_STRIDE_TOLERANCE,
 };
 pub use calibration::{EventCalibration, MAX_CALIBRATION_SHIFT_S};
+pub use confidence::{hs_confidence_at, to_confidence_at, unsure_events, UnsureEvent};
 pub use impact::{
-    impact_delays_s, shift_to_impacts, IMPACT_MIN_G, IMPACT_MIN_STRIKES, IMPACT_RATIO, IMPACT_SHARE,
+    impacts, shift_to_impacts, Impact, GYRO_ONLY_CONFIDENCE, IMPACT_MIN_G, IMPACT_MIN_STRIKES,
+    IMPACT_RATIO, IMPACT_SHARE, IMPACT_WINDOW_STRIDE, MIN_EVENT_CONFIDENCE, NO_IMPACT_CONFIDENCE,
+    SECOND_CANDIDATE_GAP_S, SECOND_CANDIDATE_SHARE, TWO_CANDIDATES_CONFIDENCE,
 };
 pub use matching::{match_events, match_groups, summarize, EventMatch, MatchSummary};
 pub use offset::{estimate_clock_offset, polish_offset, ClockOffset, OffsetCandidate};
@@ -73,8 +79,8 @@ pub enum EventDetector {
     Salarian,
     /// HS from the ω_s zero crossing, TO from three landmarks with a model fitted on family A.
     GyroLandmarks,
-    /// HS from the ω_s zero crossing (plus the walk's delay to the impact where it shows
-    /// impacts), TO at a fraction of the bracket between the late-stance
+    /// HS at each strike's impact where the walk shows impacts (else the ω_s zero crossing
+    /// plus an offset), TO at a fraction of the bracket between the late-stance
     /// peak of ω_s and the pitch peak, raised on the leg whose landmark geometry and swing arc
     /// are both stiffer than the subject's other leg's (default).
     #[default]
@@ -165,8 +171,8 @@ pub struct EventParams {
     pub min_stride_s: f64,
     /// Longest plausible stride, s. Default 2.5.
     pub max_stride_s: f64,
-    /// Heel strikes at the zero crossing plus the walk's own delay to the impact in the
-    /// acceleration, where the walk shows impacts ([`shift_to_impacts`]); `gyro-bracket` only,
+    /// Heel strikes at their own impact in the acceleration, where the walk shows impacts
+    /// ([`shift_to_impacts`]); `gyro-bracket` only,
     /// and not when `hs_offset_stride` is given (an explicit offset wins). Default true.
     pub hs_impact: bool,
     /// Shifts measured against a laboratory's reference by `ldh agree --write-params`
@@ -255,7 +261,7 @@ impl ValidEventParams {
 }
 
 /// Find the impact after each heel strike of `ev` in the raw acceleration `acc_g` (g, sampled
-/// at `fs_hz` on the events' clock) into `ev.hs_impact_delays_s`, when the parameters place
+/// at `fs_hz` on the events' clock) into `ev.hs_impacts`, when the parameters place
 /// heel strikes by impacts (`hs_impact` with `gyro-bracket` and no `hs_offset_stride`);
 /// [`place_bilateral`] then uses them. The number of strikes with an impact.
 pub fn find_impacts(
@@ -267,9 +273,8 @@ pub fn find_impacts(
     if !uses_impacts(params) {
         return 0;
     }
-    ev.hs_impact_delays_s =
-        impact_delays_s(ev, acc_g, fs_hz, params.hs_offset * ev.median_stride_s);
-    ev.hs_impact_delays_s.iter().flatten().count()
+    ev.hs_impacts = impacts(ev, acc_g, fs_hz, params.hs_offset * ev.median_stride_s);
+    ev.hs_impacts.iter().flatten().count()
 }
 
 /// Whether heel strikes are placed by impacts with these parameters.
@@ -302,14 +307,26 @@ pub struct Events {
     /// serialised (what [`place_bilateral`] reads).
     #[serde(skip)]
     pub to_swing_arc_deg: Vec<f64>,
-    /// The delay from each heel strike's zero crossing to its impact (same order as `hs_s`),
-    /// s; empty unless [`find_impacts`] ran. Not serialised (what [`place_bilateral`] reads).
+    /// The impact after each heel strike's zero crossing (same order as `hs_s`); empty unless
+    /// [`find_impacts`] ran. Not serialised (what [`place_bilateral`] reads).
     #[serde(skip)]
-    pub hs_impact_delays_s: Vec<Option<f64>>,
-    /// The delay from the zero crossing used for every heel strike, s, when they were placed
-    /// by impacts ([`shift_to_impacts`]). Not serialised.
+    pub hs_impacts: Vec<Option<Impact>>,
+    /// The walk's median delay from the zero crossing to the impact, s, when its heel strikes
+    /// were placed by impacts ([`shift_to_impacts`]). Not serialised.
     #[serde(skip)]
     pub hs_impact_delay_s: Option<f64>,
+    /// Confidence of each heel strike, 0–1 (same order as `hs_s`; `events/impact.rs`): 1 −
+    /// ½·ratio⁻¹·4 at its own impact, 0.5 where the walk shows no impacts, 0.2 with two
+    /// candidate landings, 0.3 without an impact in a walk that shows them. Empty for the
+    /// detectors that do not place heel strikes by impacts. Strides bounded by a strike below
+    /// [`MIN_EVENT_CONFIDENCE`] are withheld.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub hs_confidence: Vec<f64>,
+    /// Confidence of each toe off, 0–1 (same order as `to_s`; `events/bracket.rs`): 1 − the
+    /// second-largest late-stance peak of ω_s over the largest (two candidate push-offs make it
+    /// small). Empty for the detectors other than `gyro-bracket`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub to_confidence: Vec<f64>,
 }
 
 /// Parabolic sub-sample position of an extremum at `i`.
@@ -426,6 +443,7 @@ pub fn detect(
     let mut to = Vec::new();
     let mut marks = Vec::new();
     let mut arcs = Vec::new();
+    let mut to_conf = Vec::new();
     for &m in &mid {
         // HS: after mid-swing, within half a stride.
         let end = (m + half).min(n - 1);
@@ -438,6 +456,7 @@ pub fn detect(
         if p.detector == EventDetector::GyroBracket {
             if let Some(lm) = landmarks_s(&sig, start, m) {
                 to.push(bracket_toe_off_s(lm, BRACKET_K0, params.to_offset * t_med).min(lm[2]));
+                to_conf.push(late_stance_confidence(omega_s_dps, start, m));
                 marks.push(lm);
                 arcs.push(hs_i.map_or(f64::NAN, |h| {
                     bracket::swing_arc_deg(omega_s_dps, fs_hz, lm[1], h)
@@ -454,8 +473,34 @@ pub fn detect(
         median_stride_s: t_med,
         to_landmarks_s: marks,
         to_swing_arc_deg: arcs,
+        to_confidence: to_conf,
         ..Events::default()
     })
+}
+
+/// The confidence of the toe off before the mid-swing at `m` (window `[start, m)`): 1 − the
+/// largest other positive peak of ω_s over the late-stance peak the bracket starts from, where
+/// "other" means separated from it by a dip below half its own height (a wobble on one peak is
+/// not a second candidate). Two push-off peaks of nearly one height (a shuffle, a hesitation
+/// before the swing) leave the bracket's start, and the toe off with it, unsure.
+fn late_stance_confidence(omega_s_dps: &[f64], start: usize, m: usize) -> f64 {
+    let w = omega_s_dps;
+    let (a, b) = (start.max(1), m.min(w.len().saturating_sub(1)));
+    let peaks: Vec<usize> = (a..b)
+        .filter(|&i| w[i] > 0.0 && w[i] >= w[i + 1] && w[i] > w[i - 1])
+        .collect();
+    let Some(&l) = peaks.iter().max_by(|&&x, &&y| w[x].total_cmp(&w[y])) else {
+        return 0.0;
+    };
+    let second = peaks
+        .iter()
+        .filter(|&&i| {
+            let (lo, hi) = (i.min(l), i.max(l));
+            i != l && w[lo..=hi].iter().copied().fold(f64::INFINITY, f64::min) < 0.5 * w[i]
+        })
+        .map(|&i| w[i])
+        .fold(0.0, f64::max);
+    1.0 - second / w[l]
 }
 
 /// The signals the event rules read: pitch (deg), ω_s (deg/s), −ω_s and the rate (Hz).

@@ -388,6 +388,10 @@ pub struct EventRow {
     /// Trial of the person (manifest `trial_id`), empty for a single recording pair.
     #[serde(default)]
     pub trial_id: String,
+    /// The event's confidence, 0–1, two decimals (`events::confidence`; below 0.25 the strides
+    /// it bounds are withheld); empty when the detector gives none.
+    #[serde(default)]
+    pub confidence: Option<f64>,
 }
 
 /// Rows grouped by subject in one pass, subjects in the order they first appear (a batch of
@@ -420,6 +424,7 @@ pub fn event_rows(results: &[SubjectResult]) -> Vec<EventRow> {
                 },
                 order: e.order,
                 trial_id: r.trial_id.clone().unwrap_or_default(),
+                confidence: e.confidence.map(|c| (c * 100.0).round() / 100.0),
             });
         }
     }

@@ -14,7 +14,7 @@
 //! companion: how the page shows it, not what it is called). The test below checks, for every
 //! parameter, that each of these places says what its definition says.
 
-use ldh_core::agreement::{ReliabilityRow, ReliabilityTable};
+use ldh_core::cohort::{ReliabilityRow, ReliabilityTable};
 use ldh_core::domain::Parameter;
 use ldh_core::output::columns::{columns, Table};
 

@@ -130,9 +130,10 @@ pub(super) fn swing_arc_deg(omega_s_dps: &[f64], fs_hz: f64, tp_s: f64, hs: f64)
 }
 
 /// Place both legs' events of one subject ([`EventDetector::GyroBracket`] only; the other
-/// detectors are left as they are; one leg alone: the other `None`). Heel strikes: both legs'
-/// at their zero crossings plus the walk's median delay to the impact, when the walk shows
-/// impacts ([`super::shift_to_impacts`]; each leg alone when the two are not one walk). Toe
+/// detectors are left as they are; one leg alone: the other `None`). Heel strikes: each at its
+/// own impact, when the walk shows impacts (a strike without one at its zero crossing plus the
+/// walk's median delay; [`super::shift_to_impacts`]; each leg alone when the two are not one
+/// walk). Toe
 /// offs: each leg's at its fraction of its brackets, from its own
 /// and the other leg's landmark geometry, and never after its mid-swing. A leg not given (not
 /// read, failed, or faulty) is `None`; the other then keeps k₀, as do both legs when their
@@ -153,14 +154,19 @@ pub fn place_bilateral(
         (Some(l), Some(r)) => same_walk(l.median_stride_s, r.median_stride_s),
         _ => false,
     };
-    // Heel strikes: one delay to the impact for the walk (each leg alone if not one walk).
+    // Heel strikes: at their impacts, the walk's median delay for those without (each leg
+    // alone if not one walk).
     let hs_offset = params.hs_offset;
     let place_hs = |legs: &mut [&mut Events]| {
+        // Impacts not searched (`hs_impact` off) or already used: nothing to place.
+        if legs.iter().all(|e| e.hs_impacts.is_empty()) {
+            return;
+        }
         let d = super::shift_to_impacts(legs, hs_offset);
         for ev in legs.iter_mut() {
             ev.hs_impact_delay_s = d;
             // Used once: a second placement must not shift the heel strikes again.
-            ev.hs_impact_delays_s.clear();
+            ev.hs_impacts.clear();
         }
     };
     match (left.as_deref_mut(), right.as_deref_mut()) {

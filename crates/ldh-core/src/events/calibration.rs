@@ -98,7 +98,9 @@ impl EventCalibration {
             .map(|t| inside(t + self.to_shift_s))
             .collect();
         retain_by(&mut ev.hs_s, &hs_keep);
-        retain_by(&mut ev.hs_impact_delays_s, &hs_keep);
+        retain_by(&mut ev.hs_impacts, &hs_keep);
+        retain_by(&mut ev.hs_confidence, &hs_keep);
+        retain_by(&mut ev.to_confidence, &to_keep);
         retain_by(&mut ev.to_s, &to_keep);
         retain_by(&mut ev.to_landmarks_s, &to_keep);
         retain_by(&mut ev.to_swing_arc_deg, &to_keep);
@@ -176,8 +178,8 @@ mod tests {
             median_stride_s: 1.0,
             to_landmarks_s: vec![[0.5, 0.7, 0.8], [1.5, 1.7, 1.8], [2.5, 2.7, 2.8]],
             to_swing_arc_deg: vec![40.0, 41.0, 42.0],
-            hs_impact_delays_s: vec![Some(0.01), None, Some(0.02), Some(0.03)],
-            hs_impact_delay_s: None,
+            hs_confidence: vec![1.0, 0.0, 0.5, 0.7],
+            ..Events::default()
         };
         cal(-0.02, 0.03).apply(&mut ev, 3.0);
         let close = |a: &[f64], b: &[f64]| {
@@ -185,7 +187,7 @@ mod tests {
         };
         assert!(close(&ev.hs_s, &[0.98, 1.98, 2.97]), "{:?}", ev.hs_s);
         assert!(close(&ev.to_s, &[0.63, 1.63, 2.63]), "{:?}", ev.to_s);
-        assert_eq!(ev.hs_impact_delays_s, vec![None, Some(0.02), Some(0.03)]);
+        assert_eq!(ev.hs_confidence, vec![0.0, 0.5, 0.7]);
         assert_eq!(ev.to_landmarks_s.len(), 3);
         assert_eq!(ev.midswing_s, vec![0.8, 1.8]);
         // A toe off pushed past the end goes with its landmarks.

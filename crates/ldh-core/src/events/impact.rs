@@ -13,23 +13,44 @@
 //!
 //! Per heel strike, the sample-to-sample change of the raw acceleration vector |Δa| is compared
 //! with its median over terminal swing ([0.15, 0.03] of the stride before the zero crossing): the
-//! largest change in the 0.12 of the stride after the zero crossing must be at least
-//! [`IMPACT_RATIO`] times that median and at least [`IMPACT_MIN_G`]; the impact is the first
-//! sample of the window reaching half of it (the onset of the step), and the contact is placed
-//! half a sample before that sample (it lies between the two). A walk uses impacts only when at
-//! least [`IMPACT_SHARE`] of its heel strikes, both legs pooled (and at least
-//! [`IMPACT_MIN_STRIKES`]), show one. Every strike of both legs then lies at its zero crossing
-//! plus the walk's median delay from crossing to impact: the recording's own offset in place of
-//! the simulator-fitted one ([`crate::events::place_bilateral`]; a leg analysed alone uses its
-//! own). Each strike's own impact is known to a sample only, where the interpolated crossing
-//! keeps stride times to a fraction of a millisecond (per-strike impacts took family B's stride
-//! time MAE from 0.6 to 3.6 ms); one delay for both legs keeps the step times between them
-//! (decided per leg, one leg of a short walk moved and the other did not). A walk without
-//! impacts keeps the gyroscope's landmark and offset (family A: 3–4 % of its strikes exceed the
-//! ratio by chance, so no walk qualifies).
+//! largest change in the [`IMPACT_WINDOW_STRIDE`] of the stride after the zero crossing must be
+//! at least [`IMPACT_RATIO`] times that median and at least [`IMPACT_MIN_G`]; the impact is
+//! where |Δa| first reaches half of it (the onset of the step), interpolated linearly between
+//! the two changes around it (each change sits half-way between its two samples).
+//!
+//! **Each strike at its own impact (issue 49).** A walk uses impacts when at least
+//! [`IMPACT_SHARE`] of its heel strikes, both legs pooled (and at least
+//! [`IMPACT_MIN_STRIKES`]), show one. Each strike with an impact is then placed at it: the heel
+//! strike is what happens at the foot, step by step, and the delay from the crossing to the
+//! landing is not constant — it grows in short and slow steps, where the shank stops rotating
+//! backwards well before the heel lands (up to 120 ms on force plates). A strike without an
+//! impact in such a walk keeps its zero crossing plus the walk's median delay and carries
+//! a low confidence, [`NO_IMPACT_CONFIDENCE`] (docs/quality.md "Unsure events"). Until 2026-12-01 every strike of such a walk lay at its
+//! crossing plus the walk's median delay: stride times then kept the interpolated crossing's
+//! sub-millisecond precision on the simulators (family B: 0.6 ms against 3.6 ms with per-strike
+//! impacts known to a sample), but on real walks the crossing's own scatter stayed: on TRIPOD
+//! (OptoGait per footfall) 14–23 ms SD against 11–17 ms per strike, the OptoGait's own
+//! 10–13 ms included (docs/accuracy.md "Event timing per dataset and condition (issue 49)").
+//! The linear interpolation of the onset keeps most of the crossing's precision.
+//!
+//! A walk without impacts keeps the gyroscope's landmark and offset (family A: 3–4 % of its
+//! strikes exceed the ratio by chance, so no walk qualifies); its strikes carry confidence
+//! [`GYRO_ONLY_CONFIDENCE`].
+//!
+//! **Confidence of a heel strike** (`events.csv` `confidence`): with an impact,
+//! 1 − ½·[`IMPACT_RATIO`] / ratio (0.5 at the smallest impact accepted, → 1 for a clear one);
+//! [`TWO_CANDIDATES_CONFIDENCE`] when a second step at least as large as the first follows it
+//! after a lull, [`SECOND_CANDIDATE_GAP_S`] or more later (two candidate landings: a shuffle,
+//! a toe touching before the heel); [`NO_IMPACT_CONFIDENCE`] without an impact in a walk
+//! that shows them.
 //!
 //! The ratio and share are not fitted: they are set between what family A shows without an
-//! impact (median ratio 1.7, 95th percentile 3.4) and what an impact is.
+//! impact (median ratio 1.7, 95th percentile 3.4) and what an impact is. The window must cover
+//! the 120 ms by which the crossing can precede the
+//! landing in short steps. The window stays at 0.12 of the stride (180 ms in a slow stride of
+//! 1.5 s, 120 ms in a fast one of 1 s): on TRIPOD 0.20 gives the same strikes, but on family
+//! A's slow walkers, which model no impact, it finds chance steps in the longer window and took
+//! their HS P95 from 23 to 34 ms.
 
 use super::Events;
 
@@ -42,40 +63,116 @@ pub const IMPACT_MIN_G: f64 = 0.1;
 pub const IMPACT_SHARE: f64 = 0.5;
 /// Fewest heel strikes with an impact for a walk to use them.
 pub const IMPACT_MIN_STRIKES: usize = 5;
+/// The impact is searched from the zero crossing to this fraction of the stride after it.
+pub const IMPACT_WINDOW_STRIDE: f64 = 0.12;
+/// A later step of at least this share of the first burst's largest |Δa|, after |Δa| fell
+/// below a quarter of the window's peak, is a second candidate landing (set after TRIPOD: at
+/// 0.8, with no gap, the ringing of single impacts made a quarter of its strikes unsure).
+pub const SECOND_CANDIDATE_SHARE: f64 = 1.0;
+/// A second candidate landing starts at least this long after the first's onset, s (the
+/// ringing of one impact lasts 2–4 samples at 100–128 Hz).
+pub const SECOND_CANDIDATE_GAP_S: f64 = 0.05;
+/// Confidence of a heel strike with two candidate landings.
+pub const TWO_CANDIDATES_CONFIDENCE: f64 = 0.2;
+/// Confidence of a heel strike of a walk that shows no impacts (the gyroscope's landmark and
+/// offset alone).
+pub const GYRO_ONLY_CONFIDENCE: f64 = 0.5;
+/// Confidence of a heel strike without an impact in a walk that shows them (at its zero
+/// crossing plus the walk's median delay): low, but not withheld — on family B's normal
+/// walkers such strikes lie where the impacts of the others do, and withholding them took a
+/// quarter of their strides (docs/quality.md "Unsure events").
+pub const NO_IMPACT_CONFIDENCE: f64 = 0.3;
+/// Events whose confidence is below this are unsure: the strides they bound are withheld.
+pub const MIN_EVENT_CONFIDENCE: f64 = 0.25;
 
-/// The impact after the gyroscope's heel-strike landmark `zc_s` (s), or `None`: the time half a
-/// sample before the first large step of the acceleration (`da[i]` = |a_i − a_(i−1)|, g).
-fn impact_s(da: &[f64], fs_hz: f64, zc_s: f64, stride_s: f64) -> Option<f64> {
+/// What the acceleration shows after one heel strike's zero crossing.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Impact {
+    /// Delay from the zero crossing to the impact's onset, s.
+    pub delay_s: f64,
+    /// The impact's |Δa| over the terminal swing's median |Δa|.
+    pub ratio: f64,
+    /// A second candidate landing follows ([`SECOND_CANDIDATE_SHARE`]).
+    pub second_candidate: bool,
+}
+
+impl Impact {
+    /// The heel strike's confidence when placed at this impact (module docs).
+    pub fn confidence(&self) -> f64 {
+        if self.second_candidate {
+            TWO_CANDIDATES_CONFIDENCE
+        } else {
+            (1.0 - 0.5 * IMPACT_RATIO / self.ratio).clamp(0.5, 1.0)
+        }
+    }
+}
+
+/// The impact after the gyroscope's heel-strike landmark `zc_s` (s), or `None` (`da[i]` =
+/// |a_i − a_(i−1)|, g).
+fn impact_at(da: &[f64], fs_hz: f64, zc_s: f64, stride_s: f64) -> Option<Impact> {
     let idx = |t: f64| (t * fs_hz).round();
     let (b0, b1) = (idx(zc_s - 0.15 * stride_s), idx(zc_s - 0.03 * stride_s));
     // The first change that ends after the crossing.
-    let (w0, w1) = ((zc_s * fs_hz).floor() + 1.0, idx(zc_s + 0.12 * stride_s));
+    let (w0, w1) = (
+        (zc_s * fs_hz).floor() + 1.0,
+        idx(zc_s + IMPACT_WINDOW_STRIDE * stride_s),
+    );
     if b0 < 1.0 || w1 >= da.len() as f64 || b1 <= b0 || w1 < w0 {
         return None;
     }
     let mut base: Vec<f64> = da[b0 as usize..b1 as usize].to_vec();
     let base = crate::stats::median(&mut base, crate::stats::EvenMedian::Upper).expect("b1 > b0");
-    let window = &da[w0 as usize..=w1 as usize];
+    let (w0, w1) = (w0 as usize, w1 as usize);
+    let window = &da[w0..=w1];
     let peak = window.iter().copied().fold(0.0, f64::max);
     if peak < (IMPACT_RATIO * base).max(IMPACT_MIN_G) {
         return None;
     }
-    // The onset of the largest step: its first sample above half the peak.
-    window
-        .iter()
-        .position(|&d| d >= 0.5 * peak)
-        .map(|i| (w0 + i as f64 - 0.5) / fs_hz)
+    // The onset of the largest step: the first change reaching half the peak is the one from
+    // sample i − 1 to i, so the contact lies between them; the larger that change already is,
+    // the earlier in the interval (half the peak: at i; the whole peak: at i − ½).
+    let half = 0.5 * peak;
+    let j = window.iter().position(|&d| d >= half)?;
+    let i = w0 + j;
+    // A step already under way before the crossing is the swing's own deceleration, not a
+    // landing (family A, which models no impact, shows it on slow walkers).
+    if da[i - 1] >= half {
+        return None;
+    }
+    let prev = da[i - 1];
+    let frac = if da[i] > prev {
+        (half - prev) / (da[i] - prev)
+    } else {
+        1.0
+    };
+    let onset_s = (i as f64 - 1.0 + frac) / fs_hz;
+    // A second candidate: after the first burst (from the onset until |Δa| falls below a
+    // quarter of the burst's own largest change) and at least SECOND_CANDIDATE_GAP_S after the
+    // onset, a change of at least the share of that largest one.
+    let lull = window[j..].iter().position(|&d| d < 0.25 * peak);
+    let second_candidate = lull.is_some_and(|l| {
+        let first = window[j..j + l].iter().copied().fold(0.0, f64::max);
+        let gap = j + ((SECOND_CANDIDATE_GAP_S * fs_hz).ceil() as usize).max(l);
+        window
+            .get(gap..)
+            .is_some_and(|rest| rest.iter().any(|&d| d >= SECOND_CANDIDATE_SHARE * first))
+    });
+    Some(Impact {
+        delay_s: onset_s - zc_s,
+        ratio: peak / base.max(1e-12),
+        second_candidate,
+    })
 }
 
-/// The delay from each heel strike's zero crossing to its impact, s (`None`: no impact found),
-/// in the order of `ev.hs_s`. `acc_g`: the raw acceleration, g, on the events' clock;
-/// `hs_offset_s`: the offset that was added to each zero crossing, s.
-pub fn impact_delays_s(
+/// The impact after each heel strike's zero crossing (`None`: no impact found), in the order
+/// of `ev.hs_s`. `acc_g`: the raw acceleration, g, on the events' clock; `hs_offset_s`: the
+/// offset that was added to each zero crossing, s.
+pub fn impacts(
     ev: &Events,
     acc_g: [&[f64]; 3],
     fs_hz: f64,
     hs_offset_s: f64,
-) -> Vec<Option<f64>> {
+) -> Vec<Option<Impact>> {
     let n = acc_g.iter().map(|c| c.len()).min().unwrap_or(0);
     if n < 2 {
         return vec![None; ev.hs_s.len()];
@@ -90,39 +187,51 @@ pub fn impact_delays_s(
     let t = ev.median_stride_s;
     ev.hs_s
         .iter()
-        .map(|&hs| {
-            let zc = hs - hs_offset_s;
-            impact_s(&da, fs_hz, zc, t).map(|i| i - zc)
-        })
+        .map(|&hs| impact_at(&da, fs_hz, hs - hs_offset_s, t))
         .collect()
 }
 
-/// Move the heel strikes of the legs of one walk (one or both) to their zero crossings plus the
-/// median delay to the impact over all their strikes, when at least [`IMPACT_SHARE`] of them
-/// (and [`IMPACT_MIN_STRIKES`]) show one (`ev.hs_impact_delays_s`); both legs get the same
-/// delay, so the step times between them keep what the crossings measure. `hs_offset_stride`:
-/// the offset that was added to each crossing, fraction of the leg's median stride. Returns
-/// the delay used, s.
+/// Place the heel strikes of the legs of one walk (one or both) by their impacts
+/// (`ev.hs_impacts`), when at least [`IMPACT_SHARE`] of them (and [`IMPACT_MIN_STRIKES`]) show
+/// one: each strike with an impact at it, each without at its zero crossing plus the median
+/// delay over all the walk's impacts (confidence 0). `hs_offset_stride`: the offset that was
+/// added to each crossing, fraction of the leg's median stride. Sets each strike's confidence
+/// ([`Events::hs_confidence`]). Returns the median delay, s, or `None` when the walk does not
+/// use impacts (every strike then keeps its crossing and offset, with
+/// [`GYRO_ONLY_CONFIDENCE`]).
 pub fn shift_to_impacts(legs: &mut [&mut Events], hs_offset_stride: f64) -> Option<f64> {
-    let all: usize = legs.iter().map(|e| e.hs_impact_delays_s.len()).sum();
+    let all: usize = legs.iter().map(|e| e.hs_impacts.len()).sum();
     let mut found: Vec<f64> = legs
         .iter()
-        .flat_map(|e| e.hs_impact_delays_s.iter().flatten().copied())
+        .flat_map(|e| e.hs_impacts.iter().flatten().map(|i| i.delay_s))
         .collect();
     let k = found.len();
     if k < IMPACT_MIN_STRIKES || (k as f64) < IMPACT_SHARE * all as f64 {
+        for ev in legs.iter_mut() {
+            ev.hs_confidence = vec![GYRO_ONLY_CONFIDENCE; ev.hs_s.len()];
+        }
         return None;
     }
     let typical = crate::stats::median(&mut found, crate::stats::EvenMedian::Upper).expect("k > 0");
-    // Every strike at its zero crossing plus the median delay: the recording's own offset in
-    // place of a simulator's. Not each strike's own impact: that is known to a sample only
-    // (±5 ms at 100 Hz), where the interpolated crossing keeps stride times to a fraction of a
-    // millisecond.
     for ev in legs.iter_mut() {
-        let shift = typical - hs_offset_stride * ev.median_stride_s;
-        for hs in ev.hs_s.iter_mut() {
-            *hs += shift;
+        let offset = hs_offset_stride * ev.median_stride_s;
+        let impacts = std::mem::take(&mut ev.hs_impacts);
+        let mut conf = Vec::with_capacity(ev.hs_s.len());
+        for (k, hs) in ev.hs_s.iter_mut().enumerate() {
+            let zc = *hs - offset;
+            match impacts.get(k).copied().flatten() {
+                Some(i) => {
+                    *hs = zc + i.delay_s;
+                    conf.push(i.confidence());
+                }
+                None => {
+                    *hs = zc + typical;
+                    conf.push(NO_IMPACT_CONFIDENCE);
+                }
+            }
         }
+        ev.hs_impacts = impacts;
+        ev.hs_confidence = conf;
     }
     Some(typical)
 }
@@ -132,7 +241,8 @@ mod tests {
     use super::*;
 
     /// 10 strides of 1 s at 100 Hz: smooth swing acceleration with a step of 1 g at the
-    /// contacts, 30 ms after each zero crossing at k + 0.5 s (`impacts`: which strides have one).
+    /// contacts, the first change at sample 54 (35 ms after each zero crossing at k + 0.5 s;
+    /// `impacts`: which strides have one).
     fn walk(impacts: impl Fn(usize) -> bool) -> ([Vec<f64>; 3], Events) {
         let n = 1100;
         let mut acc: [Vec<f64>; 3] = Default::default();
@@ -144,10 +254,7 @@ mod tests {
         }
         for k in 0..10 {
             if impacts(k) {
-                // Contact at k + 0.535 s: samples from 54 on ring.
-                for (j, v) in [1.0, -0.8, 0.5, -0.2].iter().enumerate() {
-                    acc[0][100 * k + 54 + j] += v;
-                }
+                ring(&mut acc, 100 * k + 54);
             }
         }
         let ev = Events {
@@ -158,23 +265,43 @@ mod tests {
         (acc, ev)
     }
 
+    /// A contact ringing from sample `at` on.
+    fn ring(acc: &mut [Vec<f64>; 3], at: usize) {
+        for (j, v) in [1.0, -0.8, 0.5, -0.2].iter().enumerate() {
+            acc[0][at + j] += v;
+        }
+    }
+
+    /// The onset of the step at sample 54: the change 53→54 (≈ 1 g) is the first above half the
+    /// peak (0.9 g), barely: the contact lies late in [53, 54], at about 53.9 samples.
+    const ONSET_DELAY_S: f64 = 0.539 - 0.5;
+
     /// Find the impacts of one leg and place its heel strikes by them alone.
     fn place(ev: &mut Events, acc: &[Vec<f64>; 3]) -> Option<f64> {
-        ev.hs_impact_delays_s = impact_delays_s(ev, [&acc[0], &acc[1], &acc[2]], 100.0, 0.016);
+        ev.hs_impacts = impacts(ev, [&acc[0], &acc[1], &acc[2]], 100.0, 0.016);
         shift_to_impacts(&mut [ev], 0.016)
     }
 
     #[test]
-    fn both_legs_of_a_walk_get_the_delay_of_their_pooled_impacts() {
+    fn each_strike_lies_at_its_own_impact_and_the_others_at_the_walks_delay() {
         // Left: impacts on 4 of 10 strikes (too few alone); right: on all 10.
         let (acc_l, mut l) = walk(|k| k % 3 == 0);
         let (acc_r, mut r) = walk(|_| true);
-        l.hs_impact_delays_s = impact_delays_s(&l, [&acc_l[0], &acc_l[1], &acc_l[2]], 100.0, 0.016);
-        r.hs_impact_delays_s = impact_delays_s(&r, [&acc_r[0], &acc_r[1], &acc_r[2]], 100.0, 0.016);
+        l.hs_impacts = impacts(&l, [&acc_l[0], &acc_l[1], &acc_l[2]], 100.0, 0.016);
+        r.hs_impacts = impacts(&r, [&acc_r[0], &acc_r[1], &acc_r[2]], 100.0, 0.016);
         let d = shift_to_impacts(&mut [&mut l, &mut r], 0.016).unwrap();
-        assert!((d - 0.035).abs() < 1e-9, "{d}");
-        assert!((l.hs_s[1] - 1.535).abs() < 1e-9 && (r.hs_s[1] - 1.535).abs() < 1e-9);
-        // Placed once: the pipeline's placement clears the delays, so a second one is a no-op.
+        assert!((d - ONSET_DELAY_S).abs() < 2e-3, "{d}");
+        // Every strike 0.5 + the delay after its second; the left's without an impact at the
+        // walk's delay with confidence 0, the others at their own with a high one.
+        for ev in [&l, &r] {
+            for (k, hs) in ev.hs_s.iter().enumerate() {
+                assert!((hs - (k as f64 + 0.5 + d)).abs() < 2e-3, "{k}: {hs}");
+            }
+        }
+        assert_eq!(l.hs_confidence[1], NO_IMPACT_CONFIDENCE);
+        assert_eq!(l.hs_s[1], 1.5 + d);
+        assert!(l.hs_confidence[0] > 0.9 && r.hs_confidence[1] > 0.9);
+        // Placed once: the pipeline's placement clears the impacts, so a second one is a no-op.
         let p = crate::events::EventParams::default().check().unwrap();
         for e in [&mut l, &mut r] {
             e.to_landmarks_s = vec![[0.1, 0.2, 0.3]; e.to_s.len()];
@@ -186,25 +313,30 @@ mod tests {
     }
 
     #[test]
-    fn heel_strikes_move_to_the_impacts_of_a_leg_that_shows_them() {
-        let (acc, mut ev) = walk(|k| k != 3);
-        let moved = place(&mut ev, &acc);
-        assert!(moved.is_some());
-        // Every strike at its crossing plus the median delay (35 ms), stride 3 too.
-        for (k, hs) in ev.hs_s.iter().enumerate() {
-            assert!((hs - (k as f64 + 0.535)).abs() < 1e-9, "stride {k}: {hs}");
-        }
+    fn a_late_landing_is_placed_at_its_own_impact() {
+        // Stride 5 (a short step): the heel lands 100 ms after its crossing instead of 35 ms.
+        let (mut acc, mut ev) = walk(|k| k != 5);
+        ring(&mut acc, 560);
+        place(&mut ev, &acc);
+        assert!((ev.hs_s[5] - 5.5 - 0.099).abs() < 2e-3, "{}", ev.hs_s[5]);
+        assert!(
+            (ev.hs_s[4] - 4.5 - ONSET_DELAY_S).abs() < 2e-3,
+            "{}",
+            ev.hs_s[4]
+        );
     }
 
     #[test]
-    fn a_step_far_from_the_legs_typical_delay_is_not_taken_for_the_contact() {
-        let (mut acc, mut ev) = walk(|k| k != 5);
-        // Stride 5: a step 100 ms after its crossing instead of 35 ms.
-        for (j, v) in [1.0, -0.8, 0.5, -0.2].iter().enumerate() {
-            acc[0][560 + j] += v;
+    fn two_candidate_landings_make_a_strike_unsure() {
+        let (mut acc, mut ev) = walk(|_| true);
+        // Stride 2: a second step larger than the first, 60 ms later.
+        for (j, v) in [1.2, -1.0, 0.6, -0.2].iter().enumerate() {
+            acc[0][260 + j] += v;
         }
         place(&mut ev, &acc);
-        assert!((ev.hs_s[5] - 5.535).abs() < 1e-9, "{}", ev.hs_s[5]);
+        assert_eq!(ev.hs_confidence[2], TWO_CANDIDATES_CONFIDENCE);
+        assert!(ev.hs_confidence[2] < MIN_EVENT_CONFIDENCE);
+        assert!(ev.hs_confidence[3] > MIN_EVENT_CONFIDENCE);
     }
 
     #[test]
@@ -227,7 +359,7 @@ mod tests {
         ] {
             let mut e = ev.clone();
             assert_eq!(find_impacts(&mut e, a, 100.0, &p.check().unwrap()), 0);
-            assert!(e.hs_impact_delays_s.is_empty());
+            assert!(e.hs_impacts.is_empty());
         }
     }
 
@@ -238,6 +370,7 @@ mod tests {
         let before = ev.hs_s.clone();
         assert_eq!(place(&mut ev, &acc), None);
         assert_eq!(ev.hs_s, before);
+        assert!(ev.hs_confidence.iter().all(|&c| c == GYRO_ONLY_CONFIDENCE));
         // None at all.
         let (acc, mut ev) = walk(|_| false);
         assert_eq!(place(&mut ev, &acc), None);

@@ -87,7 +87,14 @@ fn strides_with_turns_at(
     let mut turns: Vec<bool> = Vec::new();
     let mut at_heights = LengthsAtHeights::new(heights_m);
     for (k, w) in hs.windows(2).enumerate() {
-        let m = leg.measure(k, w[0], w[1], is_turn, heights_m);
+        let mut m = leg.measure(k, w[0], w[1], is_turn, heights_m);
+        // A stride bounded by an unsure event is not valid (docs/quality.md "Unsure events").
+        for why in crate::events::unsure_events(ev, w[0], m.stride.to_time_s, w[1]) {
+            m.stride.push(StrideFinding::new(
+                StrideCode::UnsureEvent(why),
+                why.to_string(),
+            ));
+        }
         out.push(m.stride);
         length_notes.push(m.length_note);
         turns.push(m.turn);

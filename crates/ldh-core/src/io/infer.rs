@@ -19,7 +19,7 @@
 
 use super::format::{AccUnit, FormatSpec, GyroUnit, TimeUnit};
 use super::rows::Rows;
-use super::timebase::{median_of, RateBounds};
+use super::timebase::RateBounds;
 use super::units::Unit;
 use crate::recording::STANDARD_GRAVITY_MPS2;
 
@@ -111,7 +111,7 @@ fn time_unit(
     if steps.is_empty() {
         return None;
     }
-    let step = median_of(&mut steps);
+    let step = upper_median(&mut steps);
     let candidates: &[(TimeUnit, &str)] = match guess {
         TimeGuess::Clock => &[
             (TimeUnit::Seconds, "s"),
@@ -192,7 +192,7 @@ fn acc_unit(raw: &[Vec<f64>; 6], scale: f64) -> (AccUnit, String, String) {
             "acceleration unit not stated and no rows: g assumed".into(),
         );
     }
-    let med = median_of(&mut mag);
+    let med = upper_median(&mut mag);
     let g = STANDARD_GRAVITY_MPS2;
     let (unit, how) = if (0.5..=2.5).contains(&med) {
         (AccUnit::G, "g")
@@ -322,4 +322,9 @@ mod tests {
         assert_eq!(u, GyroUnit::Dps);
         assert!(note.contains("barely moves"), "{note}");
     }
+}
+
+/// The upper median of a non-empty slice (`stats::median`, the crate's one median).
+fn upper_median(v: &mut [f64]) -> f64 {
+    crate::stats::median(v, crate::stats::EvenMedian::Upper).unwrap_or(f64::NAN)
 }

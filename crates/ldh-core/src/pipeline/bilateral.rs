@@ -18,6 +18,9 @@ pub struct BilateralEvent {
     pub event: EventKind,
     /// Where the expected order (… HS_L, TO_R, HS_R, TO_L, HS_L …) is broken, why; else "".
     pub order: String,
+    /// The event's confidence, 0–1 (`events::confidence`); `None` when the detector gives none.
+    #[serde(default)]
+    pub confidence: Option<f64>,
 }
 
 /// Both legs' events merged into one time-ordered sequence. In walking the sequence cycles
@@ -37,20 +40,23 @@ pub fn bilateral_events_on_clock(
     let mut v: Vec<BilateralEvent> = Vec::new();
     for (side, ev) in [(Side::Left, left), (Side::Right, right)] {
         let Some((ev, offset)) = ev else { continue };
-        for &t in &ev.hs_s {
+        let conf = |c: &[f64], i: usize| c.get(i).copied().filter(|x| x.is_finite());
+        for (i, &t) in ev.hs_s.iter().enumerate() {
             v.push(BilateralEvent {
                 time_s: t + offset,
                 side,
                 event: EventKind::HeelStrike,
                 order: String::new(),
+                confidence: conf(&ev.hs_confidence, i),
             });
         }
-        for &t in &ev.to_s {
+        for (i, &t) in ev.to_s.iter().enumerate() {
             v.push(BilateralEvent {
                 time_s: t + offset,
                 side,
                 event: EventKind::ToeOff,
                 order: String::new(),
+                confidence: conf(&ev.to_confidence, i),
             });
         }
     }

@@ -188,7 +188,7 @@ pub fn leg_back(
             codes::HS_AT_IMPACT,
             quality::Severity::Note,
             format!(
-                "heel strikes at the gyroscope's zero crossing + {:.0} ms, this walk's own delay to the heel's impact (instead of the fitted {:.1} % of the stride)",
+                "heel strikes at each strike's own impact (median {:.0} ms after the gyroscope's zero crossing; a strike without one there is unsure), instead of the crossing + the fitted {:.1} % of the stride",
                 d * 1e3,
                 100.0 * v.events().params().detector.offsets().0
             ),

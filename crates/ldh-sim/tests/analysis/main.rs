@@ -4,6 +4,7 @@
 
 mod agreement_retest;
 mod agreement_run;
+mod events_accuracy;
 mod fusion;
 mod io_columns;
 mod io_read;

@@ -182,8 +182,8 @@ pub mod codes {
     /// No quiet standing: the shank axis came from the mean acceleration of the walk and no
     /// gyroscope bias was removed at rest; WQK and PBI are withheld (off by ≈ 10°).
     pub const NO_QUIET_STANDING: &str = "no_quiet_standing";
-    /// The heel strikes were placed at the walk's own delay from the gyroscope's landmark to
-    /// the impact (a note: which rule placed them, and the delay).
+    /// The heel strikes were placed at their own impacts (a note: which rule placed them, and
+    /// the walk's median delay from the gyroscope's landmark to the impact).
     pub const HS_AT_IMPACT: &str = "hs_at_impact";
     /// Strides at the start or end of the walk excluded as not steady (a note with the window).
     pub const STEADY_WINDOW: &str = "steady_window";
