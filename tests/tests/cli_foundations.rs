@@ -158,7 +158,6 @@ fn inspect_reports_each_bad_file_and_keeps_going() {
         bad.to_str().unwrap(),
         good.to_str().unwrap(),
         empty.to_str().unwrap(),
-        "/nonexistent/x.csv",
     ]);
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     let t = text(&o);
@@ -167,10 +166,38 @@ fn inspect_reports_each_bad_file_and_keeps_going() {
         "{t}"
     );
     assert!(t.contains("empty.csv: the file is empty"), "{t}");
-    assert!(t.contains("/nonexistent/x.csv: cannot read"), "{t}");
     assert!(t.contains("H01/left.csv: ldh format"), "{t}");
-    assert!(t.contains("3 of 4 file(s) failed"), "{t}");
+    assert!(t.contains("2 of 3 file(s) failed"), "{t}");
     assert!(!t.contains("panicked"));
+}
+
+/// A misspelt path is refused before any work, in the words and with the exit code (2) of
+/// `ldh analyze` (issue 51: one wording and exit code for a missing file in every command).
+#[test]
+fn inspect_refuses_a_missing_file_as_analyze_does() {
+    let d = tempfile::tempdir().unwrap();
+    ldh_core::demo::write_to(d.path()).unwrap();
+    let good = d.path().join("H01/left.csv");
+    let o = ldh(&["inspect", good.to_str().unwrap(), "/nonexistent/x.csv"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("/nonexistent/x.csv: cannot read: no such file or folder"),
+        "{}",
+        text(&o)
+    );
+    let a = ldh(&[
+        "analyze",
+        "/nonexistent/x.csv",
+        "/nonexistent/y.csv",
+        "-o",
+        d.path().join("out").to_str().unwrap(),
+    ]);
+    assert_eq!(a.status.code(), Some(2), "{}", text(&a));
+    assert!(
+        text(&a).contains("/nonexistent/x.csv: cannot read: no such file or folder"),
+        "{}",
+        text(&a)
+    );
 }
 
 #[test]

@@ -41,7 +41,7 @@ fn similar_subject_ids_get_distinct_reports_with_their_own_data() {
         assert!(html.contains(&format!("Gait report — {id}")), "{stem}");
         // The files by name only, no folders (issue 36 item 5): that the page shows this
         // subject's data, not another's, is checked by its stride time below.
-        assert!(html.contains("left left.csv"), "{stem}");
+        assert!(html.contains("left.csv (left leg)"), "{stem}");
         for any in ["H01", "H02", "H03"] {
             assert!(
                 !html.contains(&format!("{any}/left.csv")),

@@ -96,7 +96,7 @@ fn a_rerun_replaces_the_whole_result_set() {
     // Pages name files without folders (issue 36 item 5): the new recording is the table's.
     let table = std::fs::read_to_string(out.join("recordings.csv")).unwrap();
     assert!(table.contains("H03/left.csv") && !table.contains("H01/left.csv"));
-    assert!(page.contains("left left.csv"), "the new recording");
+    assert!(page.contains("left.csv (left leg)"), "the new recording");
     assert!(
         page.contains("Signal plots are not available"),
         "{}",
