@@ -11,7 +11,9 @@
 pub mod labels;
 pub mod measured;
 pub mod parameter;
+mod unsure;
 
 pub use labels::{AffectedSide, EventKind, Group, Setting, Side};
 pub use measured::{Measured, PerParameter, Reason, ReasonCode, Withheld};
 pub use parameter::{Definition, Parameter, UnknownParameter};
+pub use unsure::UnsureEvent;

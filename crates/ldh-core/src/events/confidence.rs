@@ -11,34 +11,7 @@
 //! landmark, confidence 0.5) withhold nothing on that account.
 
 use super::{Events, MIN_EVENT_CONFIDENCE, TWO_CANDIDATES_CONFIDENCE};
-
-/// Why an event is unsure.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum UnsureEvent {
-    /// A heel strike without an impact in a walk whose other strikes show one.
-    NoImpact,
-    /// A heel strike followed by a second step of the acceleration almost as large.
-    TwoLandings,
-    /// A toe off whose late-stance peak has a rival of nearly its height.
-    TwoPushOffs,
-}
-
-impl UnsureEvent {
-    /// The stride's reason, as `strides.csv` writes it.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            UnsureEvent::NoImpact => "heel strike unsure (no impact)",
-            UnsureEvent::TwoLandings => "heel strike unsure (two candidate landings)",
-            UnsureEvent::TwoPushOffs => "toe off unsure (two push-off peaks)",
-        }
-    }
-}
-
-impl std::fmt::Display for UnsureEvent {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
+pub use crate::domain::UnsureEvent;
 
 /// The confidence of the event at exactly `t` in `times` (NaN when it is not one of them or
 /// the detector gives none).

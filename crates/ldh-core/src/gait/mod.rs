@@ -161,7 +161,7 @@ pub enum StrideCode {
     /// Its angles are outside anatomical bounds.
     AnglesOutOfBounds,
     /// Bounded by an event the signals cannot place well (docs/quality.md "Unsure events").
-    UnsureEvent(crate::events::UnsureEvent),
+    UnsureEvent(crate::domain::UnsureEvent),
     /// A quality finding (its warning code) about the whole leg or a span of it; `length`: it
     /// withholds the stride's length; `all`: it withholds every value (the stride is invalid).
     Finding {

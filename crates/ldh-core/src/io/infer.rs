@@ -257,6 +257,11 @@ fn gyro_unit(raw: &[Vec<f64>; 6], to_g: f64, scale: f64) -> (GyroUnit, String, S
     (unit, why, note)
 }
 
+/// The upper median of a non-empty slice (`stats::median`, the crate's one median).
+fn upper_median(v: &mut [f64]) -> f64 {
+    crate::stats::median(v, crate::stats::EvenMedian::Upper).unwrap_or(f64::NAN)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -322,9 +327,4 @@ mod tests {
         assert_eq!(u, GyroUnit::Dps);
         assert!(note.contains("barely moves"), "{note}");
     }
-}
-
-/// The upper median of a non-empty slice (`stats::median`, the crate's one median).
-fn upper_median(v: &mut [f64]) -> f64 {
-    crate::stats::median(v, crate::stats::EvenMedian::Upper).unwrap_or(f64::NAN)
 }
