@@ -30,4 +30,3 @@ impl std::fmt::Display for UnsureEvent {
         f.write_str(self.as_str())
     }
 }
-
