@@ -231,10 +231,13 @@ mod tests {
             l.iter().map(|s| &s.reason).collect::<Vec<_>>()
         );
         assert!(l[2].stride_length_m.is_nan() && l[2].speed_mps.is_nan() && l[2].valid);
+        // The typed code decides; the message states the disagreement in numbers.
+        let other = crate::gait::StrideCode::Length(crate::gait::LengthCheck::OtherLeg);
         assert!(
-            l[2].reason.contains("+21 % from the other leg's 1.20 m"),
-            "{}",
-            l[2].reason
+            l[2].findings.iter().any(|f| f.code == other
+                && f.message.contains("+21 % from the other leg's 1.20 m")),
+            "{:?}",
+            l[2].findings
         );
         // the right strides beside the long one differ by (1.45 + 1.2)/2 = 1.325: 9–10 %, kept
         assert!(r.iter().all(|s| s.stride_length_m.is_finite()));
@@ -258,7 +261,14 @@ mod tests {
         r[2].valid = false;
         assert_eq!(withhold_disagreeing_lengths(&mut l, &mut r, 0.0), [1, 0]);
         assert!(l[2].stride_length_m.is_nan(), "{}", l[2].reason);
-        assert!(l[2].reason.contains("-21 %"), "{}", l[2].reason);
+        let other = crate::gait::StrideCode::Length(crate::gait::LengthCheck::OtherLeg);
+        assert!(
+            l[2].findings
+                .iter()
+                .any(|f| f.code == other && f.message.contains("-21 %")),
+            "{:?}",
+            l[2].findings
+        );
         assert!(r.iter().take(2).all(|s| s.stride_length_m.is_finite()));
     }
 

@@ -282,7 +282,11 @@ mod tests {
         let w = attitude_checks(&aligned(), &att, &mut st);
         assert!(w.is_empty(), "{w:?}");
         assert!(!st[7].valid && st[7].bdk_deg.is_nan() && st[7].wqk_deg.is_nan());
-        assert!(st[7].reason.contains("outside anatomical bounds"));
+        assert!(
+            st[7].has(&crate::gait::StrideCode::AnglesOutOfBounds),
+            "{:?}",
+            st[7].findings
+        );
         assert_eq!(st.iter().filter(|s| s.valid).count(), 19);
     }
 }
