@@ -197,11 +197,3 @@ pub struct CohortReport {
 
 #[cfg(test)]
 pub(crate) mod tests;
-#[cfg(test)]
-mod tests_agreement_page;
-#[cfg(test)]
-mod tests_cohort;
-#[cfg(test)]
-mod tests_headline;
-#[cfg(test)]
-mod tests_vocabulary;

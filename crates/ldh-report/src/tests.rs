@@ -1,5 +1,10 @@
 //! Report building blocks: escaping by construction, file names, symmetry index, reference ranges, params.
 
+mod agreement_page;
+mod cohort;
+mod headline;
+mod vocabulary;
+
 use super::*;
 use ldh_core::output::RecordingRow;
 

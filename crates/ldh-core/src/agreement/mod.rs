@@ -18,7 +18,7 @@ mod run_events;
 pub mod write;
 
 #[cfg(test)]
-pub(crate) mod tests_run;
+pub(crate) mod tests;
 
 pub use crate::events::matching::{
     match_events, match_groups, summarize, EventMatch, MatchSummary,

@@ -56,11 +56,3 @@ pub const MAX_LINE_BYTES: usize = 1 << 16;
 
 #[cfg(test)]
 mod tests;
-#[cfg(test)]
-mod tests_columns;
-#[cfg(test)]
-mod tests_start;
-#[cfg(test)]
-mod tests_stream;
-#[cfg(test)]
-mod tests_units;

@@ -1,6 +1,11 @@
 //! Reader tests: every supported variation reads back what was written, and every bad input
 //! gives an error that names the file and the problem (and line and column where there is one).
 
+mod columns;
+mod start;
+mod stream;
+mod units;
+
 use super::format::*;
 use super::reader::*;
 use super::writer::*;

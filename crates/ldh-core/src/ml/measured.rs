@@ -276,5 +276,4 @@ pub fn nothing_to_train(why: String, notes: &[TrainNote]) -> LdhError {
 }
 
 #[cfg(test)]
-#[path = "measured_tests.rs"]
 mod tests;

@@ -42,10 +42,4 @@ pub use predict::{predict, read_model, PredictOutcome};
 pub use train::{train, train_with_progress, ClassifierKind, TrainOutcome, TrainParams};
 
 #[cfg(test)]
-mod model_plausible_tests;
-#[cfg(test)]
-mod model_roundtrip_tests;
-#[cfg(test)]
-mod model_tests;
-#[cfg(test)]
 mod tests;

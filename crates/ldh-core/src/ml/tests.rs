@@ -1,6 +1,10 @@
 //! Classifier tests: parity with scikit-learn on the committed tables and folds, determinism,
 //! degenerate inputs, the model file.
 
+mod model;
+mod model_plausible;
+mod model_roundtrip;
+
 use super::cv::{cross_validate_with_folds, folds, CvKind, CvParams};
 use super::dataset::{grouped_folds, stratified_folds, Dataset, Task};
 use super::model::{Classifier, ModelFile};

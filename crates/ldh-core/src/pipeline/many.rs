@@ -201,7 +201,7 @@ pub fn bounded_jobs(requested: usize) -> (usize, Option<String>) {
 }
 
 #[cfg(test)]
-mod jobs_tests {
+mod tests {
     #[test]
     fn jobs_are_bounded_by_the_cores() {
         let cores = std::thread::available_parallelism().unwrap().get();

@@ -226,5 +226,3 @@ impl ValidAnalysisParams {
 
 #[cfg(test)]
 mod tests;
-#[cfg(test)]
-mod tests_inputs;

@@ -1,3 +1,5 @@
+mod inputs;
+
 use super::*;
 use crate::recording::Side;
 

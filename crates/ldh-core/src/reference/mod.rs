@@ -12,7 +12,7 @@ mod walkway;
 mod walkway_map;
 
 #[cfg(test)]
-mod tests_walkway;
+mod tests;
 
 pub(crate) use error::boxed;
 pub use error::ReferenceError;

@@ -1,5 +1,5 @@
 //! The quality layer on the simulator and on synthetic strides (the HuGaDB checks are in
-//! `tests_hugadb.rs`).
+//! `tests/hugadb.rs`).
 
 use ldh_core::pipeline::quality::*;
 

@@ -1,6 +1,6 @@
 //! Partial channel faults ([`ldh_core::pipeline::quality::faults`]) on simulated walks with a fault injected, on the
 //! embedded demo recordings (no fault may be found on clean recordings; the real HuGaDB walks:
-//! `ldh-core`'s pipeline/quality/tests_hugadb_faults.rs), and through the pipeline (the strides over the fault withheld, the others kept).
+//! `ldh-core`'s pipeline/quality/tests/hugadb_faults.rs), and through the pipeline (the strides over the fault withheld, the others kept).
 
 use ldh_core::pipeline::quality::*;
 use ldh_core::pipeline::{AnalysisParams, LegResult, Source};

@@ -127,7 +127,7 @@ const SINGULAR_COND: f64 = 1e12;
 
 #[test]
 fn the_smoother_is_exact_on_every_hugadb_leg_whose_gyroscope_is_accepted() {
-    let Some(dir) = crate::pipeline::quality::tests_hugadb::hugadb_dir() else {
+    let Some(dir) = crate::pipeline::quality::tests::hugadb::hugadb_dir() else {
         println!("skipped: ../shared/realdata/hugadb not found (set LDH_REALDATA)");
         return;
     };

@@ -92,7 +92,7 @@ fn all_channels(rec: &Recording, what: &str) -> usize {
 
 #[test]
 fn hugadb_recordings() {
-    let Some(dir) = crate::pipeline::quality::tests_hugadb::hugadb_dir() else {
+    let Some(dir) = crate::pipeline::quality::tests::hugadb::hugadb_dir() else {
         println!("skipped: ../shared/realdata/hugadb not found (set LDH_REALDATA)");
         return;
     };
@@ -104,7 +104,7 @@ fn hugadb_recordings() {
     files.sort();
     assert!(!files.is_empty());
     for f in &files {
-        let (right, left) = crate::pipeline::quality::tests_hugadb::read_hugadb(f);
+        let (right, left) = crate::pipeline::quality::tests::hugadb::read_hugadb(f);
         let name = f.file_name().unwrap().to_string_lossy().to_string();
         all_channels(&right, &format!("{name} right"));
         all_channels(&left, &format!("{name} left"));

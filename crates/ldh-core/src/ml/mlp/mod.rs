@@ -390,5 +390,3 @@ impl<D: Data<Elem = f64>> PredictInplace<ArrayBase<D, Ix2>, Array1<usize>> for M
 
 #[cfg(test)]
 mod tests;
-#[cfg(test)]
-mod tests_errors;

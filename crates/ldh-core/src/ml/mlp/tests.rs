@@ -1,5 +1,7 @@
 //! Unit tests of `ml::mlp`.
 
+mod errors;
+
 use super::train::{backprop, stratified_split};
 use super::*;
 use linfa::traits::Predict;

@@ -29,15 +29,6 @@ mod sensor;
 mod steady;
 mod warning;
 
-#[cfg(test)]
-pub(crate) mod tests_hugadb;
-#[cfg(test)]
-mod tests_hugadb_faults;
-#[cfg(test)]
-mod tests_hugadb_feet;
-#[cfg(test)]
-mod tests_stride_length;
-
 pub use agreement::{withhold_disagreeing_lengths, MAX_LEG_DISAGREEMENT};
 pub use attitude::{
     attitude_checks, MAX_BDK_DEG, MAX_PITCH_DEG, MIN_PITCH_EXCURSION_DEG, OUT_OF_BOUNDS_SHARE,
@@ -309,6 +300,4 @@ pub fn all_leg_warnings(l: &LegResult) -> Vec<Warning> {
 }
 
 #[cfg(test)]
-mod tests;
-#[cfg(test)]
-mod tests_height;
+pub(crate) mod tests;

@@ -1,5 +1,11 @@
 //! The quality layer on the simulator and on synthetic strides (the HuGaDB checks are in
-//! `tests_hugadb.rs`).
+//! `tests/hugadb.rs`).
+
+mod height;
+pub(crate) mod hugadb;
+mod hugadb_faults;
+mod hugadb_feet;
+mod stride_length;
 
 use super::*;
 

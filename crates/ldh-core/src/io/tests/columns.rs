@@ -1,7 +1,7 @@
 //! Column maps on whole files: unit-suffixed names, alternatives, multi-sensor files (HuGaDB
 //! layout), selection by number, duplicates, `#` lines, and the refused maps.
 
-use super::format::*;
+use super::super::format::*;
 
 #[test]
 fn shipped_texts_keep_their_comments() {

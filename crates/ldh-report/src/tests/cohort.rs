@@ -3,9 +3,9 @@
 //! numbers, shading only for what is wrong, a person's trials side by side (by visit), file
 //! names without folders; and the subject page's identification (item 5).
 
-use super::tests::row;
-use super::trials::Counts;
-use super::*;
+use super::super::trials::Counts;
+use super::super::*;
+use super::row;
 
 /// `id`'s two legs of trial `trial` at visit `visit`, speed `speed` m/s, from machine paths.
 fn trial(id: &str, group: &str, trial: &str, visit: &str, speed: f64) -> Vec<RecordingRow> {
@@ -118,7 +118,7 @@ fn a_persons_trials_stand_side_by_side_grouped_by_visit_with_their_difference() 
 
 #[test]
 fn file_names_lose_their_folders() {
-    use super::html::base_name;
+    use super::super::html::base_name;
     assert_eq!(base_name("/home/a/b/left.csv"), "left.csv");
     assert_eq!(base_name("C:\\data\\S1\\right.csv"), "right.csv");
     assert_eq!(

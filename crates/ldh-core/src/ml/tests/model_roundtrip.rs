@@ -7,11 +7,11 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
-use super::dataset::{Dataset, Task};
-use super::forest::ForestParams;
-use super::mlp::MlpParams;
-use super::model::{Classifier, ModelFile};
-use super::svm::SvmParams;
+use super::super::dataset::{Dataset, Task};
+use super::super::forest::ForestParams;
+use super::super::mlp::MlpParams;
+use super::super::model::{Classifier, ModelFile};
+use super::super::svm::SvmParams;
 
 /// Models of each kind in [`random_models_round_trip_bit_identically`]: 10^5 in all by default
 /// (about 10 s of CPU); `LDH_MODEL_ROUNDTRIPS_PER_KIND=100000` runs 10^5 of each (about 80 s of

@@ -2,10 +2,10 @@
 //! asymmetry and a normal cadence, the inclusive rounded bounds, and the headline's wording
 //! for the usual gaps (no sensor height, no affected side, no quiet standing, two trials).
 
-use super::headline::{make, Headline};
-use super::tests::row;
-use super::verdict::{judge, verdicts, Asymmetry, Cell, Judgement, Verdicts};
-use super::*;
+use super::super::headline::{make, Headline};
+use super::super::verdict::{judge, verdicts, Asymmetry, Cell, Judgement, Verdicts};
+use super::super::*;
+use super::row;
 use ldh_core::pipeline::{Severity, Warning, WarningList, WithheldList};
 
 /// A normal walk of `id`'s `side`: stride 1.05 s (114 steps/min), step time `step_s`, stance
@@ -39,7 +39,7 @@ fn page_parts(recs: Vec<RecordingRow>) -> (String, Verdicts, Headline) {
         ..Default::default()
     };
     let html = subject_html(&s, &reference, &p).unwrap();
-    let own = super::subject::person_sides(&s.recordings);
+    let own = super::super::subject::person_sides(&s.recordings);
     let sides: Vec<&RecordingRow> = own.iter().collect();
     let v = verdicts(&sides, &reference, p.0.asymmetry_flag_pct);
     let h = make(&v, &sides, &s.recordings, &reference, &s.context);

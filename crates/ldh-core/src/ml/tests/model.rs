@@ -3,11 +3,11 @@
 
 use serde_json::{json, Value};
 
-use super::dataset::{Dataset, Task};
-use super::model::{Classifier, ModelFile};
-use super::model_check::{checksum, ModelError};
+use super::super::dataset::{Dataset, Task};
+use super::super::model::{Classifier, ModelFile};
+use super::super::model_check::{checksum, ModelError};
 
-const THREE: &str = include_str!("../../../../data-fixtures/ml/three_class_dataset.csv");
+const THREE: &str = include_str!("../../../../../data-fixtures/ml/three_class_dataset.csv");
 
 pub(super) fn trained(kind: &str) -> (ModelFile, Value, Dataset) {
     let ds = Dataset::from_csv(THREE, Task::ThreeClass, "t").unwrap();
@@ -246,13 +246,13 @@ fn class_and_scaler_tampering_is_refused() {
     let mut t = v.clone();
     t["scaling"]["range"][0] = json!(1e308);
     t["scaling"]["min"][0] = json!(-1e308);
-    // Consistent in shape, but not the training range (issue 37: model_plausible_tests.rs).
+    // Consistent in shape, but not the training range (issue 37: tests/model_plausible.rs).
     let e = ModelFile::from_json(&sealed(t), "big.json").unwrap_err();
     assert!(matches!(e, ModelError::Implausible { .. }), "{e}");
     // Non-finite values in memory (a file cannot hold them) are caught by validation too.
     let (mut m, _, _) = trained("rf");
     m.scaling.min[0] = f64::NAN;
-    assert!(super::model_check::validate(&m, "mem").is_err());
+    assert!(super::super::model_check::validate(&m, "mem").is_err());
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! The quality layer on the real HuGaDB recordings (when present): faulty gyroscopes, the
 //! attitude through both reading paths, headings of faulty legs, alternation.
 
-use super::*;
+use super::super::*;
 use crate::pipeline::{memory_report, Analysis, AnalysisParams, LoadedLeg, SubjectInput};
 use crate::recording::Side;
 use std::path::{Path, PathBuf};

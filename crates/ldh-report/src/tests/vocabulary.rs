@@ -18,7 +18,7 @@ use ldh_core::cohort::{ReliabilityRow, ReliabilityTable};
 use ldh_core::domain::Parameter;
 use ldh_core::output::columns::{columns, Table};
 
-use super::verdict::QUANTITIES;
+use super::super::verdict::QUANTITIES;
 
 #[test]
 fn every_parameter_is_named_from_its_one_definition_everywhere() {

@@ -6,7 +6,7 @@
 //! length is withheld. A leg
 //! whose shank is almost still at mid-stance (as the simulators') only gets the note.
 
-use super::{apply_to_strides, codes, params, sensor_height_warning, withhold, Severity};
+use super::super::{apply_to_strides, codes, params, sensor_height_warning, withhold, Severity};
 use crate::align::{Aligned, Alignment};
 use crate::attitude::{Attitude, AttitudeModel};
 use crate::events::Events;

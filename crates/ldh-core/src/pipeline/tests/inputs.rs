@@ -1,7 +1,7 @@
 //! Manifests (csv crate, columns, refusals), subject ids of files given directly, and trials
 //! averaged per person before the statistics and the classifiers.
 
-use super::*;
+use super::super::*;
 use crate::output::RecordingRow;
 use crate::recording::{Setting, Side};
 

@@ -2,8 +2,8 @@
 //! be found on a clean recording. (Simulated walks with a fault injected: `ldh-sim`'s
 //! tests/analysis/quality_faults.rs.)
 
-use super::tests_hugadb::{hugadb_dir, read_hugadb};
-use super::*;
+use super::super::*;
+use super::hugadb::{hugadb_dir, read_hugadb};
 
 /// No false fault on the real walks: every shank of the 18 HuGaDB files (the corrupted
 /// gyroscopes clip at their range, which is clipping, not a partial fault).

@@ -2,7 +2,7 @@
 //! into the same recording as ldh's own format; unknown, wrong, missing and mixed units refused
 //! with file, line and column; a given map keeps its units; the per-column report.
 
-use super::units::{split_label, Quantity, Unit};
+use super::super::units::{split_label, Quantity, Unit};
 use crate::recording::STANDARD_GRAVITY_MPS2;
 
 const MPS2: f64 = STANDARD_GRAVITY_MPS2;

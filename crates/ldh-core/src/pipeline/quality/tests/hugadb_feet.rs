@@ -7,7 +7,7 @@
 //! landmarks as `data-fixtures/scripts/hugadb_foot_reference.py`); this test keeps the shank's
 //! toe off inside that bracket on real strides, whatever changes in the events stage.
 
-use super::tests_hugadb::{hugadb_dir, read_hugadb_map, without_sta, HUGADB_CLEAN};
+use super::hugadb::{hugadb_dir, read_hugadb_map, without_sta, HUGADB_CLEAN};
 use crate::pipeline::{memory_report, Analysis, SubjectInput};
 use nalgebra::{Matrix3, Vector3};
 use std::path::Path;

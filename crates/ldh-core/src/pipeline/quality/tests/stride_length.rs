@@ -12,8 +12,8 @@
 //! too (issue 20's criterion) and lies in the range of healthy young adults' strides, and a
 //! leg that does not says why.
 
-use super::codes;
-use super::tests_hugadb::{hugadb_dir, read_hugadb_map, HUGADB_CLEAN};
+use super::super::codes;
+use super::hugadb::{hugadb_dir, read_hugadb_map, HUGADB_CLEAN};
 use crate::pipeline::{
     memory_report, Analysis, AnalysisParams, LegResult, LoadedLeg, Severity, SubjectInput,
 };

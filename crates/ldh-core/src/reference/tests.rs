@@ -19,7 +19,7 @@ fn fixture(name: &str) -> PathBuf {
 }
 
 fn results() -> LdhResults {
-    crate::agreement::tests_run::fake_results(&[("S01", "", 30.0)])
+    crate::agreement::tests::fake_results(&[("S01", "", 30.0)])
 }
 
 fn map() -> WalkwayMap {

@@ -3,9 +3,9 @@
 
 use serde_json::{json, Value};
 
-use super::model::ModelFile;
-use super::model_check::ModelError;
-use super::model_tests::{sealed, trained};
+use super::super::model::ModelFile;
+use super::super::model_check::ModelError;
+use super::model::{sealed, trained};
 
 /// The edited, re-sealed model is refused as implausible, naming the file and `needle`.
 fn implausible(v: Value, needle: &str) {
@@ -336,14 +336,14 @@ fn read_model_refuses_large_files_fifos_and_devices_before_parsing() {
         .unwrap()
         .set_len(100_000_000)
         .unwrap(); // sparse: 100 MB stated, nothing written
-    let e = super::read_model(&big).unwrap_err().to_string();
+    let e = super::super::read_model(&big).unwrap_err().to_string();
     assert!(
         e.contains("big.json") && e.contains("100.0 MB") && e.contains("16 MB"),
         "{e}"
     );
     #[cfg(unix)]
     {
-        let e = super::read_model(std::path::Path::new("/dev/zero"))
+        let e = super::super::read_model(std::path::Path::new("/dev/zero"))
             .unwrap_err()
             .to_string();
         assert!(
@@ -354,7 +354,7 @@ fn read_model_refuses_large_files_fifos_and_devices_before_parsing() {
     let (m, _, _) = trained("svm");
     let ok = dir.path().join("m.json");
     std::fs::write(&ok, m.to_json().unwrap()).unwrap();
-    let back = super::read_model(&ok).unwrap();
+    let back = super::super::read_model(&ok).unwrap();
     assert_eq!(back.origin(), ok.display().to_string());
     let e = back
         .check_features(&["x".to_string()])

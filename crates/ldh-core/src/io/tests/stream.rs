@@ -1,9 +1,9 @@
 //! Streaming reader tests (issue 19): a stream read in tiny chunks gives what bytes in memory
 //! give; faults past the first 64 KiB are found with their line; the sample and size limits.
 
-use super::format::FormatSpec;
-use super::reader::*;
-use super::text::Lines;
+use super::super::format::FormatSpec;
+use super::super::reader::*;
+use super::super::text::Lines;
 use crate::error::LdhError;
 use std::path::Path;
 
@@ -100,7 +100,7 @@ fn lines_after_comment_lines_keep_their_numbers_in_messages() {
 
 #[test]
 fn a_line_longer_than_the_bound_is_refused_with_its_line_without_holding_it() {
-    use super::MAX_LINE_BYTES;
+    use super::super::MAX_LINE_BYTES;
     // A row of exactly the bound (newline included) is read; one byte more is refused.
     for (extra, refused) in [(0usize, false), (1, true), (5_000_000, true)] {
         let mut text = rows(2);
@@ -149,7 +149,7 @@ fn a_long_bad_cell_is_echoed_cut_with_its_length() {
 
 #[test]
 fn files_read_whole_must_be_regular_files_within_their_limit() {
-    use super::{read_text_limited, MAX_PARAMS_MB};
+    use super::super::{read_text_limited, MAX_PARAMS_MB};
     let d = tempfile::tempdir().unwrap();
     let ok = d.path().join("p.toml");
     std::fs::write(&ok, "a = 1\n").unwrap();

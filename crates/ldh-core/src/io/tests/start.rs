@@ -2,7 +2,7 @@
 //! give it in a header comment (ldh `#`, Xsens `//`), in Xsens' UTC columns, as ISO 8601 or
 //! Unix timestamps, read onto the recording and the read report; a file without one has none.
 
-use super::start_time::{start_in_comment, DateTime};
+use super::super::start_time::{start_in_comment, DateTime};
 
 fn dt(ymd: (i64, i64, i64), hms: (i64, i64, i64), utc: bool) -> DateTime {
     DateTime::new(ymd, hms, utc).unwrap()

@@ -1,8 +1,8 @@
 //! Unit tests of `ml::mlp`: errors (parameters, data, training, prediction) and the
 //! predict_proba invariants (moved out of tests.rs to keep files short).
 
-use super::tests::blobs;
-use super::*;
+use super::super::*;
+use super::blobs;
 use ndarray::{array, Array2};
 use proptest::prelude::*;
 use std::sync::OnceLock;
