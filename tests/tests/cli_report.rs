@@ -454,3 +454,80 @@ fn chromium_renders_every_report() {
         }
     }
 }
+
+/// `../shared/realdata/hugadb` from the workspace root (or `$LDH_REALDATA/hugadb`; a worktree
+/// two levels down also finds `../../shared`).
+fn hugadb() -> Option<PathBuf> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut c: Vec<PathBuf> = Vec::new();
+    if let Some(d) = std::env::var_os("LDH_REALDATA") {
+        c.push(PathBuf::from(d).join("hugadb"));
+    }
+    c.push(root.join("../shared/realdata/hugadb"));
+    c.push(root.join("../../shared/realdata/hugadb"));
+    c.into_iter().find(|d| d.join("PROVENANCE.md").is_file())
+}
+
+/// Issue 50 item 6: a real person's page with many excluded strides prints on at most 3 A4
+/// pages. HuGaDB participant 03, two trials (03_00, 03_01; PROVENANCE.md: one of them without
+/// valid gyroscope data on both shanks), no sensor height: the page that printed to 4 pages
+/// (docs/reports.md). Runs when the data and Chromium are present; one line when skipped.
+#[test]
+fn a_real_subject_page_with_many_excluded_strides_prints_on_at_most_3_a4_pages() {
+    let Some(data) = hugadb() else {
+        println!("skipped: ../shared/realdata/hugadb not found");
+        return;
+    };
+    let Some(chrome) = chromium() else {
+        println!("skipped: no chromium on this machine");
+        return;
+    };
+    let t = tempfile::tempdir().unwrap();
+    let mut m = String::from(
+        "subject_id,trial_id,group,affected_side,left,right,left_format,right_format\n",
+    );
+    for (trial, f) in [
+        ("t1", "HuGaDB_v1_walking_03_00.txt"),
+        ("t2", "HuGaDB_v1_walking_03_01.txt"),
+    ] {
+        let p = data.join(f).canonicalize().unwrap();
+        let p = p.display();
+        m.push_str(&format!(
+            "P03,{trial},healthy,none,\"{p}\",\"{p}\",hugadb-left-shank,hugadb-right-shank\n"
+        ));
+    }
+    let manifest = t.path().join("manifest.csv");
+    std::fs::write(&manifest, &m).unwrap();
+    let out = t.path().join("out");
+    let o = ldh(&[
+        "analyze",
+        manifest.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--report",
+        "--no-sta",
+    ]);
+    let page = out.join("reports/subjects/P03.html");
+    assert!(page.is_file(), "{}", text(&o));
+    // Many strides excluded: the point of the test.
+    let strides = std::fs::read_to_string(out.join("strides.csv")).unwrap();
+    let excluded = strides.lines().filter(|l| l.contains(",false,")).count();
+    assert!(excluded >= 20, "{excluded} strides excluded");
+    let pdf = t.path().join("P03.pdf");
+    let o = run_chromium(
+        &chrome,
+        &[
+            "--no-pdf-header-footer",
+            &format!("--print-to-pdf={}", pdf.display()),
+        ],
+        &page,
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let n = pdf_pages(&std::fs::read(&pdf).unwrap());
+    std::fs::copy(&pdf, artefact_dir().join("real_subject_report.pdf")).unwrap();
+    println!("HuGaDB P03 (2 trials, {excluded} strides excluded): prints to {n} A4 pages");
+    assert!(
+        (1..=3).contains(&n),
+        "HuGaDB P03 prints to {n} A4 pages (at most 3)"
+    );
+}

@@ -180,22 +180,23 @@ fn triage(c: &CohortReport, links: &HashMap<&str, &str>) -> Result<Markup> {
         .into_iter()
         .map(|(id, recs)| triage_row(id, &recs, reference, limit))
         .collect();
-    rows.sort_by(|a, b| {
+    // A value not measured cannot be called normal: it counts as a value to look at, so the
+    // person with least measured never ranks as the best (issue 50).
+    let key = |t: &TriageRow| {
         (
-            a.rank,
-            std::cmp::Reverse((a.faults, a.abnormal + a.asymmetric, a.warnings)),
-            a.id,
+            t.rank,
+            std::cmp::Reverse((
+                t.faults,
+                t.abnormal + t.asymmetric + t.not_measured,
+                t.warnings,
+            )),
         )
-            .cmp(&(
-                b.rank,
-                std::cmp::Reverse((b.faults, b.abnormal + b.asymmetric, b.warnings)),
-                b.id,
-            ))
-    });
+    };
+    rows.sort_by(|a, b| (key(a), a.id).cmp(&(key(b), b.id)));
     Ok(html! {
         h2 #triage { "Subjects, worst first" } "\n"
         p.meta {
-            "One row per subject, sorted: subjects with nothing analysed first, then one side only, then by sensor faults, values outside the reference range and asymmetries beyond the threshold (the subject pages' own verdicts: " (reference.description) ") and warnings. Only values that have a reference range are counted; values not measured are counted apart, never as normal."
+            "One row per subject, sorted: subjects with nothing analysed first, then one side only, then by sensor faults, then by the values to look at — outside the reference range, asymmetric beyond the threshold, or not measured (a value not measured is never counted as normal) — then by warnings. The verdicts are the subject pages' own. Reference: " (reference.description)
         }
         "\n"
         table.triage {
@@ -226,13 +227,12 @@ fn triage(c: &CohortReport, links: &HashMap<&str, &str>) -> Result<Markup> {
 fn group_sections(c: &CohortReport, n: &Sections) -> Result<Markup> {
     let head = n.heading("Group statistics");
     let co = match Cohort::from_rows(&c.recordings) {
-        Err(e) => {
-            // The reason alone: the heading already says which step it is.
-            let why = match e {
-                ldh_core::LdhError::Signal { reason, .. } => reason,
-                e => e.to_string(),
-            };
-            return Ok(html! { (head) p.note { "No group statistics: " (why) } "\n" });
+        // One message for the cohort, its people counted by why they were left out (the
+        // error names each person: on 40 trials of one group it was cut at 2083 characters).
+        Err(_) => {
+            return Ok(
+                html! { (head) p.note { "No group statistics: " (why_no_groups(&c.recordings)) } "\n" },
+            );
         }
         Ok(co) => co,
     };
@@ -247,6 +247,62 @@ fn group_sections(c: &CohortReport, n: &Sections) -> Result<Markup> {
         div.side { (radars(&offs)?) div { (table4(&offs, c.offsets.len() < 2)) } }
         (boxplots(&co, n)?)
     })
+}
+
+/// Why the cohort has no group statistics, in one sentence: the usable people of each group
+/// against [`cohort::MIN_GROUP_SIZE`], and the others counted by why they are left out (the
+/// rule of [`Cohort::from_rows`]).
+fn why_no_groups(rows: &[RecordingRow]) -> String {
+    use ldh_core::pipeline::Group;
+    let (mut ldh, mut healthy) = (0usize, 0usize);
+    // (why, people), in order of first appearance.
+    let mut out: Vec<(String, usize)> = Vec::new();
+    for (_, recs) in ldh_core::output::rows_by_subject(rows) {
+        let legs = [Side::Left, Side::Right].map(|s| cohort::person_row(&recs, s));
+        let group = legs.iter().flatten().find_map(|r| r.group.clone());
+        let why = if legs.iter().any(|l| !l.as_ref().is_some_and(|r| r.is_ok())) {
+            "with a leg missing or not analysed".to_string()
+        } else {
+            match group {
+                Some(Group::Healthy) => {
+                    healthy += 1;
+                    continue;
+                }
+                Some(Group::Ldh)
+                    if legs[0].as_ref().is_some_and(|r| {
+                        r.affected_side
+                            .as_ref()
+                            .and_then(labels::Label::known)
+                            .is_some()
+                    }) =>
+                {
+                    ldh += 1;
+                    continue;
+                }
+                Some(Group::Ldh) => "in group 'ldh' without an affected side".to_string(),
+                Some(Group::Other(g)) if !g.is_empty() => {
+                    format!("in group '{g}', which the statistics do not compare")
+                }
+                _ => "without a group in the manifest".to_string(),
+            }
+        };
+        match out.iter_mut().find(|(w, _)| *w == why) {
+            Some((_, n)) => *n += 1,
+            None => out.push((why, 1)),
+        }
+    }
+    let left_out: Vec<String> = out
+        .iter()
+        .map(|(why, n)| format!("{n} {} {why}", if *n == 1 { "person" } else { "people" }))
+        .collect();
+    let mut s = format!(
+        "they compare the ldh group (affected side given) with the healthy group, each with at least {} people with both legs analysed; this cohort has {ldh} and {healthy}.",
+        cohort::MIN_GROUP_SIZE
+    );
+    if !left_out.is_empty() {
+        s.push_str(&format!(" Left out: {}.", left_out.join("; ")));
+    }
+    s
 }
 
 fn table3(co: &Cohort) -> Markup {

@@ -9,7 +9,6 @@ use super::verdict::{Asymmetry, Cell, Judgement, Row, Scope, Verdicts};
 use super::Reference;
 use ldh_core::output::{Parameter, RecordingRow};
 use ldh_core::pipeline::quality::codes;
-use ldh_core::pipeline::{Group, Severity};
 
 /// At most this many findings are named; the rest are counted.
 pub(crate) const MAX_FINDINGS: usize = 4;
@@ -26,6 +25,8 @@ pub(crate) struct Headline {
     /// The findings, asymmetry first, then the whole walk, then each side (at most
     /// [`MAX_FINDINGS`], then one sentence counting the rest).
     pub findings: Vec<String>,
+    /// A walk without enough steady walking: its variability is not reported, and why.
+    pub steady: Option<String>,
     /// What could not be measured, one sentence.
     pub not_measured: Option<String>,
     /// The one thing to do about it.
@@ -82,7 +83,9 @@ fn asymmetry_sentence(row: &Row, si: f64) -> Option<String> {
             "Steps are uneven: the {side} step takes {pct:.0} % longer than the {other} ({vs})."
         ),
         Parameter::StanceRatio => format!(
-            "Stance is uneven: the {side} leg stays on the ground {pct:.0} % longer than the {other} ({vs} of the gait cycle)."
+            "Stance is uneven: the {side} leg stays on the ground {pct:.0} % longer than the {other} ({vs} of the gait cycle; swing {:.1} % against {:.1} %).",
+            100.0 - big,
+            100.0 - small
         ),
         Parameter::StrideLength => format!(
             "Strides are uneven: the {side} stride is {pct:.0} % longer than the {other} ({vs})."
@@ -135,9 +138,20 @@ fn outside_sentence(row: &Row, reference: &Reference) -> Option<String> {
     })
 }
 
+/// The number of values of a row marked ▲/▼ in the tables.
+fn value_marks(row: &Row) -> usize {
+    row.cells
+        .iter()
+        .filter(|c| c.judgement().and_then(Judgement::mark).is_some())
+        .count()
+}
+
 /// The findings: flagged asymmetries (largest first), then the walk's and each side's values
-/// outside their range, at most [`MAX_FINDINGS`] and a count of the rest.
+/// outside their range, at most [`MAX_FINDINGS`] and a count of the rest — counted as the
+/// tables mark them (one mark per value and per asymmetry), so "N more" is what a reader finds
+/// marked there besides the findings named.
 fn findings(v: &Verdicts, reference: &Reference) -> Vec<String> {
+    // (sentence, the marks it stands for)
     let mut asym: Vec<(f64, String)> = v
         .rows
         .iter()
@@ -147,23 +161,49 @@ fn findings(v: &Verdicts, reference: &Reference) -> Vec<String> {
         })
         .collect();
     asym.sort_by(|a, b| b.0.total_cmp(&a.0));
-    let mut all: Vec<String> = asym.into_iter().map(|x| x.1).collect();
+    let mut all: Vec<(String, usize)> = asym.into_iter().map(|x| (x.1, 1)).collect();
     for scope in [Scope::Walk, Scope::Side] {
         all.extend(
             v.rows
                 .iter()
                 .filter(|r| r.q.scope == scope)
-                .filter_map(|r| outside_sentence(r, reference)),
+                .filter_map(|r| Some((outside_sentence(r, reference)?, value_marks(r)))),
         );
     }
     if all.len() > MAX_FINDINGS + 1 {
-        let rest = all.len() - MAX_FINDINGS;
+        let rest: usize = all[MAX_FINDINGS..].iter().map(|x| x.1).sum();
         all.truncate(MAX_FINDINGS);
-        all.push(format!(
-            "{rest} more findings outside the normal range are marked in the tables below."
+        all.push((
+            format!(
+                "{rest} more marked {} (▲/▼ outside the normal range, ◆ asymmetric) in the tables below.",
+                if rest == 1 { "value is" } else { "values are" }
+            ),
+            0,
         ));
     }
-    all
+    all.into_iter().map(|x| x.0).collect()
+}
+
+/// A walk that was not steady long enough on a leg (`too_little_steady`): its variability is
+/// not reported, and why (the start-up and changes of pace are not variability).
+fn steady(sides: &[&RecordingRow]) -> Option<String> {
+    let legs: Vec<&str> = sides
+        .iter()
+        .filter(|r| {
+            r.warnings
+                .iter()
+                .any(|w| w.code == codes::TOO_LITTLE_STEADY)
+        })
+        .map(|r| r.side.as_str())
+        .collect();
+    let who = match legs.as_slice() {
+        [] => return None,
+        [one] => format!("the {one} leg"),
+        _ => "both legs".into(),
+    };
+    Some(format!(
+        "The walk never settled into a steady pace long enough ({who}: fewer than 10 strides at a steady pace), so its stride time and stride length variability are not reported: the start-up and changes of pace would be read as variability."
+    ))
 }
 
 /// What was not measured: the summary's quantities, named once each with the legs concerned.
@@ -192,60 +232,6 @@ fn not_measured(v: &Verdicts, sides: &[&RecordingRow]) -> Option<String> {
         }
     }
     (!parts.is_empty()).then(|| format!("Could not be measured: {}.", parts.join(", ")))
-}
-
-/// The one thing to do, the first that applies: a leg that failed, a sensor fault, the
-/// sensor's height, quiet standing, a longer walk, the affected side.
-fn to_do(sides: &[&RecordingRow], anything_missing: bool) -> Option<String> {
-    let has = |code: &str| {
-        sides
-            .iter()
-            .any(|r| r.warnings.iter().any(|w| w.code == code))
-    };
-    if anything_missing {
-        if let Some(r) = sides.iter().find(|r| !r.is_ok()) {
-            return Some(format!(
-                "Check the {} recording (the reason is in the box below) and analyse it again.",
-                r.side
-            ));
-        }
-        if let Some(r) = sides
-            .iter()
-            .find(|r| r.warnings.at_least(Severity::Fault).next().is_some())
-        {
-            return Some(format!(
-                "Check the {} sensor (it recorded faulty signals) and record the walk again.",
-                r.side
-            ));
-        }
-        if has(codes::SENSOR_HEIGHT_UNKNOWN) {
-            return Some(
-                "Measure the sensor's height above the ankle and re-run the analysis with it."
-                    .into(),
-            );
-        }
-        if has(codes::NO_QUIET_STANDING) {
-            return Some(
-                "Next time, have the person stand still for 2 s before walking, then re-run."
-                    .into(),
-            );
-        }
-        if has(codes::FEW_STRIDES)
-            || has(codes::SV_UNCHECKED)
-            || has(codes::SV_NOISE)
-            || has(codes::TOO_LITTLE_STEADY)
-        {
-            return Some("Record a longer walk (at least 30 s of straight walking).".into());
-        }
-    }
-    let ldh = sides.iter().any(|r| matches!(r.group, Some(Group::Ldh)));
-    if ldh && sides.iter().all(|r| r.affected_side.is_none()) {
-        return Some(
-            "The affected side is not given: add it to the manifest so the legs are compared as affected and unaffected."
-                .into(),
-        );
-    }
-    None
 }
 
 /// On a treadmill with a belt speed given (manifest `belt_speed_mps`, the same for every
@@ -286,13 +272,20 @@ pub(crate) fn make(
         visits: super::visits::visit_changes(recordings, ctx)
             .map(|c| super::visits::headline_sentence(&c)),
         belt: belt_sentence(v, recordings),
-        context: sides
-            .iter()
-            .map(|r| r.trial_id.as_str())
-            .find(|t| t.starts_with("mean of"))
-            .map(|t| format!("The values are the {t} of this person.")),
+        context: {
+            let mean = sides
+                .iter()
+                .map(|r| r.trial_id.as_str())
+                .find(|t| t.starts_with("mean of"))
+                .map(|t| format!("The values are the {t} of this person."));
+            match (mean, super::trials::disagreement(recordings, ctx)) {
+                (Some(m), Some(d)) => Some(format!("{m} {d}")),
+                (m, d) => m.or(d),
+            }
+        },
         findings: findings(v, reference),
-        to_do: to_do(sides, not_measured.is_some()),
+        steady: steady(sides),
+        to_do: super::todo::to_do(v, sides),
         not_measured,
     }
 }
@@ -311,6 +304,7 @@ pub(crate) fn headline(h: &Headline) -> Markup {
                 b { "Findings" } "\n"
                 ul { @for f in &h.findings { li { (f) } "\n" } } "\n"
             }
+            @if let Some(n) = &h.steady { p { (n) } "\n" }
             @if let Some(n) = &h.not_measured { p { (n) } "\n" }
             @if let Some(t) = &h.to_do { p { b { "To do: " } (t) } "\n" }
         }

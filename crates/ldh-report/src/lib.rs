@@ -42,6 +42,7 @@ pub mod reference;
 mod results;
 mod subject;
 mod summary;
+mod todo;
 /// The signal traces `ldh analyze --report` keeps (written by the analysis, read by the pages).
 pub use ldh_core::output::trace;
 mod trials;

@@ -266,8 +266,12 @@ impl Reference {
                 "Healthy subjects of this cohort (n = {any_cohort}, mean of both legs; {used_legs} of {healthy_legs} analysed healthy legs used: only legs that pass every quality check): mean ± {z:.2} SD; parameters where the cohort has too few values fall back to published normal values."
             );
         } else {
+            let have = match healthy_legs {
+                0 => "it has no analysed healthy leg".to_string(),
+                n => format!("{used_legs} of {n} analysed healthy legs pass every quality check"),
+            };
             out.description = format!(
-                "Published normal values for healthy adults (approximate; see the references): the cohort has fewer than {} healthy subjects with legs that pass every quality check ({used_legs} of {healthy_legs} analysed healthy legs pass).",
+                "Published normal values for healthy adults (approximate; see the references). The cohort's own healthy subjects are not used: it needs at least {} whose legs pass every quality check, and {have}.",
                 p.0.min_healthy_subjects
             );
         }

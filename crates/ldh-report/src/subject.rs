@@ -11,6 +11,7 @@ use super::headline::{headline, make as make_headline};
 use super::html::{count, fmt, page, red_box, side_label, VERSION};
 use super::reference::Citations;
 use super::summary::{clinical_summary, WhyNotes};
+use super::trials::person_trials;
 use super::verdict::verdicts;
 use super::visits::{visit_changes, visits_section};
 use super::{LegTrace, ValidReportParams};
@@ -47,19 +48,20 @@ pub fn subject_html(
         (clinical_summary(&v, reference, &citations, p, &notes))
         @if let Some(c) = visit_changes(&s.recordings, &s.context) {
             (visits_section(&c, html! { h2 #visits { "Change between visits" } "\n" }))
+        } @else {
+            (person_trials(&s.recordings, &s.context, || html! { h2 #trials { "Trials side by side" } "\n" }))
         }
         (recordings_table(&sides))
-        (reading_notes(s))
         (excluded_strides(&s.strides))
         (parameter_table(&v, &sides, reference, &citations, p, &notes))
         (subject_radar(s, &sides, reference)?)
         (cycle_section(s, &sides, reference, p)?)
-        p.print-only.meta { "Printed report: the signal figures (section 3), the stride-by-stride plots (section 4) and the technical appendix (every quality finding with its code) are in the on-screen report." } "\n"
+        p.print-only.meta { "Printed report: the signal figures (section 3), the stride-by-stride plots (section 4) and the technical appendix (sampling, outliers, mounting, what reading noticed, every quality finding with its code) are in the on-screen report." } "\n"
         div.screen-only { (signals(s)?) (stride_by_stride(&s.strides)?) } "\n"
 
         (classifier(s))
         (methods(&citations))
-        div.screen-only { (appendix(&sides)) } "\n"
+        div.screen-only { (appendix(s, &sides)) } "\n"
     };
     Ok(page(&format!("Gait report — {}", s.subject_id), body))
 }
@@ -166,12 +168,18 @@ fn warning_box(sides: &[&RecordingRow]) -> Markup {
     red_box("Check before reading the numbers.", &items)
 }
 
-/// The technical appendix: every quality finding with its code and severity, each said once
-/// with the legs (and how many) that have it.
-fn appendix(sides: &[&RecordingRow]) -> Markup {
+/// The technical appendix (on screen only): the recordings' technical facts (warning codes,
+/// sampling rate, samples replaced as outliers, clipping, mounting, STA), what reading and
+/// alignment noticed, and every quality finding with its code and severity, each said once with
+/// the legs that have it — the tool's words, kept off the clinical pages (issue 50).
+fn appendix(s: &SubjectReport, sides: &[&RecordingRow]) -> Markup {
     let items = findings(sides);
     html! {
-        h2 #appendix { "Technical appendix: quality findings" } "\n"
+        h2 #appendix { "Technical appendix" } "\n"
+        h3 { "Recording details" } "\n"
+        (facts_table(sides, &TECHNICAL_FACTS))
+        (reading_notes(s))
+        h3 { "Quality findings" } "\n"
         @if items.is_empty() {
             p { "No quality check found anything." } "\n"
         } @else {
@@ -285,18 +293,32 @@ fn steady_fact(r: &RecordingRow) -> String {
     format!("{a:.1}–{b:.1} s ({ends})")
 }
 
-fn recordings_table(sides: &[&RecordingRow]) -> Markup {
+/// The rows of [`FACTS`] a clinician reads (section 1): the file, whether it was analysed, how
+/// long, the strides and the steady walking used.
+const CLINICAL_FACTS: [usize; 5] = [0, 1, 3, 8, 9];
+/// The rows of [`FACTS`] that are the tool's own (warning codes, rate, outliers, clipping,
+/// mounting, STA): in the technical appendix, on screen only (issue 50).
+const TECHNICAL_FACTS: [usize; 6] = [2, 4, 5, 6, 7, 10];
+
+/// The table of `rows` of [`FACTS`], one column per side.
+fn facts_table(sides: &[&RecordingRow], rows: &[usize]) -> Markup {
     let values: Vec<[String; 11]> = sides.iter().map(|r| facts(r)).collect();
     html! {
-        h2 { "1. Recordings" } "\n"
         table {
             "\n"
             tr { th { "fact" } @for r in sides { th { (side_label(r)) } } } "\n"
-            @for (i, name) in FACTS.iter().enumerate() {
-                tr { td { (name) } @for v in &values { td { (v[i]) } } } "\n"
+            @for &i in rows {
+                tr { td { (FACTS[i]) } @for v in &values { td { (v[i]) } } } "\n"
             }
         }
         "\n"
+    }
+}
+
+fn recordings_table(sides: &[&RecordingRow]) -> Markup {
+    html! {
+        h2 { "1. Recordings" } "\n"
+        (facts_table(sides, &CLINICAL_FACTS))
     }
 }
 

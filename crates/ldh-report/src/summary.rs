@@ -137,7 +137,7 @@ pub(crate) fn value_cells(row: &Row, notes: &WhyNotes) -> Markup {
 }
 
 /// An asymmetry's cell: the SI with ◆ and "asymmetric"/"symmetric" when judged, "not judged"
-/// for a quantity without a reference range.
+/// for a shank angle without a reference range.
 pub(crate) fn asymmetry_cell(a: &Asymmetry, colspan: usize, notes: &WhyNotes) -> Markup {
     match a {
         Asymmetry::NotMeasured(why) => {

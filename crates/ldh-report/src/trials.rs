@@ -184,33 +184,41 @@ pub(crate) fn trials_of_people(
         (title())
         p.meta { "Each person with two or more analysed trials: per parameter the value of each trial (the mean of both legs; a dash when a leg has none), trials grouped by visit, and their difference (with two visits, the difference of the visits' means). No change is marked here: each person's page (\"Change between visits\") marks the changes beyond the measurement's own noise when a reliability table is given." } "\n"
         @for (id, trials) in &people {
-            @let visits = visits_of(trials);
-            @let several_visits = visits.len() >= 2;
             h3 {
                 "Trials of this person: "
                 @if let Some(href) = links.get(id) { a href=(href) { (id) } } @else { (id) }
             } "\n"
-            table.trials {
-                @if several_visits {
-                    tr { th colspan="2" {} @for (v, n) in &visits { th colspan=(n) { "visit " (v) } } th {} } "\n"
-                }
-                tr {
-                    th { "parameter" } th { "unit" }
-                    @for t in trials { th { "trial " (t.id) } }
-                    th { (difference_header(trials)) }
-                }
-                "\n"
-                @for p in PARAMETERS {
-                    tr {
-                        td { (p.code()) " — " (p.name()) } td { (p.unit()) }
-                        @for t in trials { td.num { (fmt(t.value(p), decimals(p))) } }
-                        td.num { (signed(difference(trials, p), decimals(p))) }
-                    }
-                    "\n"
-                }
+            (trial_table(trials))
+        }
+    }
+}
+
+/// One person's trials side by side: per parameter the walk value of each trial, grouped by
+/// visit, and their difference.
+fn trial_table(trials: &[Trial]) -> Markup {
+    let visits = visits_of(trials);
+    let several_visits = visits.len() >= 2;
+    html! {
+        table.trials {
+            @if several_visits {
+                tr { th colspan="2" {} @for (v, n) in &visits { th colspan=(n) { "visit " (v) } } th {} } "\n"
+            }
+            tr {
+                th { "parameter" } th { "unit" }
+                @for t in trials { th { "trial " (t.id) } }
+                th { (difference_header(trials)) }
             }
             "\n"
+            @for p in PARAMETERS {
+                tr {
+                    td { (p.code()) " — " (p.name()) } td { (p.unit()) }
+                    @for t in trials { td.num { (fmt(t.value(p), decimals(p))) } }
+                    td.num { (signed(difference(trials, p), decimals(p))) }
+                }
+                "\n"
+            }
         }
+        "\n"
     }
 }
 
@@ -219,5 +227,104 @@ pub(super) fn signed(v: Option<f64>, dec: usize) -> String {
     match v {
         Some(x) if x.is_finite() => format!("{x:+.dec$}"),
         _ => "–".into(),
+    }
+}
+
+/// The parameters whose disagreement between a person's trials is said in words: the
+/// clinical summary's per-walk quantities (cadence is their stride time).
+const SAID: [Parameter; 7] = [
+    Parameter::StrideTime,
+    Parameter::StepTime,
+    Parameter::StanceRatio,
+    Parameter::StrideLength,
+    Parameter::Speed,
+    Parameter::StrideTimeCv,
+    Parameter::StrideLengthCv,
+];
+
+/// Without a reliability table, a difference between two trials is named when it exceeds this
+/// share of their mean (the report's asymmetry threshold, `asymmetry_flag_pct`, read the same
+/// way): named, never called beyond the noise.
+pub(crate) const NAMED_DIFFERENCE_SHARE: f64 = 0.10;
+
+/// `v` (the table's unit) in clinical units with its decimals ("1.03 s", "13.0 %").
+fn clinical(p: Parameter, v: f64) -> String {
+    let (scale, unit) = p.display();
+    let d = super::verdict::QUANTITIES
+        .iter()
+        .find(|q| q.parameter == p)
+        .map_or(2, |q| q.decimals);
+    let unit = if scale == 100.0 { "%" } else { unit };
+    format!("{:.d$} {unit}", v * scale)
+}
+
+/// A person's trials that disagree, in plain words (issue 50): for each parameter of [`SAID`]
+/// whose first and last trial differ beyond the reliability table's MDC95 (or, without one, by
+/// more than [`NAMED_DIFFERENCE_SHARE`] of their mean), the two values; `None` with fewer than
+/// two analysed trials or when they agree.
+pub(crate) fn disagreement(recordings: &[RecordingRow], ctx: &super::RunContext) -> Option<String> {
+    let recs: Vec<&RecordingRow> = recordings.iter().collect();
+    let trials = trials_of(&recs);
+    let (first, last) = (trials.first()?, trials.last()?);
+    if trials.len() < 2 {
+        return None;
+    }
+    let table = ctx.reliability.as_ref();
+    let mut parts: Vec<String> = Vec::new();
+    for p in SAID {
+        let (Some(a), Some(b)) = (first.value(p), last.value(p)) else {
+            continue;
+        };
+        let mdc = table.and_then(|t| t.mdc95(p));
+        let beyond = match (table, mdc) {
+            (Some(_), Some(m)) => (a - b).abs() > m,
+            (Some(_), None) => false,
+            (None, _) => (a - b).abs() > NAMED_DIFFERENCE_SHARE * 0.5 * (a + b).abs(),
+        };
+        if beyond {
+            let noise = mdc.map_or(String::new(), |m| format!(", MDC95 {}", clinical(p, m)));
+            parts.push(format!(
+                "{} {} in trial {} against {} in trial {}{noise}",
+                p.name(),
+                clinical(p, a),
+                first.id,
+                clinical(p, b),
+                last.id
+            ));
+        }
+    }
+    if parts.is_empty() {
+        return None;
+    }
+    let why = match table {
+        Some(_) => "by more than the measurement's own noise (MDC95 of the reliability table)",
+        None => "by more than 10 % (without a reliability table, ldh report --reliability, whether this is beyond the measurement's noise is not known)",
+    };
+    Some(format!(
+        "The trials disagree {why}: {}. The page shows their mean; look at each trial below before relying on it.",
+        parts.join("; ")
+    ))
+}
+
+/// The person's own trials side by side on their page (two or more analysed trials), with
+/// their disagreement in words; `title` makes the heading.
+pub(crate) fn person_trials(
+    recordings: &[RecordingRow],
+    ctx: &super::RunContext,
+    title: impl FnOnce() -> Markup,
+) -> Markup {
+    let recs: Vec<&RecordingRow> = recordings.iter().collect();
+    if trials_of(&recs).len() < 2 {
+        return html! {};
+    }
+    let trials = trials_of(&recs);
+    let agree = match ctx.reliability {
+        Some(_) => "The trials agree: no parameter of the summary differs between the first and the last trial by more than its MDC95 (reliability table).",
+        None => "The trials agree: no parameter of the summary differs between the first and the last trial by more than 10 %.",
+    };
+    html! {
+        (title())
+        p { (disagreement(recordings, ctx).as_deref().unwrap_or(agree)) } "\n"
+        (trial_table(&trials))
     }
 }

@@ -14,8 +14,12 @@
 //!   never judged on their own.
 //! - **One rounding for display and comparison**: the value and the range's bounds are rounded
 //!   to the decimals shown, and the bounds are inclusive ("126" lies within "96–126").
-//! - **No verdict without a reference range**: a quantity without one reads "no reference", and
-//!   its asymmetry is shown but not flagged.
+//! - **No verdict without a reference range**: a quantity without one reads "no reference".
+//!   Its asymmetry is still judged when it is a relative timing or length ([`relative_asymmetry`]:
+//!   step time, stance, stride length): the symmetry index compares the legs with each other, so
+//!   an offset of the method that moves both legs alike (the shank's toe off, docs/reports.md)
+//!   does not make it up (issue 50: a stance of 71.6 % against 52.7 % was "not judged"). The
+//!   shank angles' asymmetry still needs a range (an index of angles depends on their zero).
 
 use super::measured::not_measured;
 use super::{symmetry_index_pct, Reference, ReferenceRange};
@@ -102,6 +106,12 @@ pub(crate) const QUANTITIES: [Quantity; 12] = [
     q(P::Bdk, 1, S, None, true, false),
     q(P::Sta, 3, S, None, false, false),
 ];
+
+/// Whether the asymmetry of `p` is judged against the threshold without a reference range: the
+/// relative timings and lengths of the two legs (module docs).
+pub(crate) fn relative_asymmetry(p: Parameter) -> bool {
+    matches!(p, P::StepTime | P::StanceRatio | P::StrideLength)
+}
 
 /// A value against its range.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -193,7 +203,7 @@ impl Cell {
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) enum Asymmetry {
     /// The symmetry index (%, rounded to 0.1) and whether it is beyond the threshold; `None`:
-    /// not judged (the quantity has no reference range).
+    /// not judged (a shank angle without a reference range, [`relative_asymmetry`]).
     Value(f64, Option<bool>),
     /// Not measured, with the reason.
     NotMeasured(String),
@@ -334,7 +344,8 @@ pub(crate) fn verdicts(sides: &[&RecordingRow], reference: &Reference, limit_pct
                 if let Some(why) = &no_pair {
                     return Asymmetry::NotMeasured(why.clone());
                 }
-                let judged = rr.is_some_and(|r| r.low.is_some() && r.high.is_some());
+                let judged = relative_asymmetry(q.parameter)
+                    || rr.is_some_and(|r| r.low.is_some() && r.high.is_some());
                 match (
                     side_value(left, q.parameter),
                     side_value(right, q.parameter),

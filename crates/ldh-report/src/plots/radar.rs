@@ -11,7 +11,7 @@ use ldh_core::error::Result;
 pub const RADAR_CLIPPED: &str = "clipped at ±";
 
 /// The scale label of [`radar_svg`] (drawn under the chart).
-pub const RADAR_SCALE_LABEL: &str = "z-score (SD from the healthy mean)";
+pub const RADAR_SCALE_LABEL: &str = "z-score (SD from the reference mean)";
 /// z-scores beyond ± this are drawn on the rim of [`radar_svg`] and marked as clipped.
 pub const RADAR_Z_CLIP: f64 = 4.0;
 /// |z| above which a radar point is marked abnormal (outside mean ± 1.96 SD).
@@ -169,7 +169,8 @@ impl Geometry {
     }
 }
 
-/// The rings at −zmax, −zmax/2, 0 (black: the healthy mean), zmax/2 and zmax, labelled on axis 0.
+/// The rings at −zmax, −zmax/2, 0 (black: the reference mean, unlabelled: the caption names it),
+/// zmax/2 and zmax, labelled on axis 0.
 fn draw_rings(root: &Area, g: &Geometry, f: Fonts) -> Result<()> {
     let z_max = g.z_max;
     for z in [-z_max, -z_max / 2.0, 0.0, z_max / 2.0, z_max] {
@@ -180,19 +181,45 @@ fn draw_rings(root: &Area, g: &Geometry, f: Fonts) -> Result<()> {
             RGBColor(180, 180, 180).stroke_width(1)
         };
         root.draw(&PathElement::new(ring, style)).map_err(perr)?;
+        // The black ring is the reference mean (the caption says so): no label printed over it.
+        if z == 0.0 {
+            continue;
+        }
         let (x, y) = g.pt(0, g.to_r(z));
-        let label = if z == 0.0 {
-            "z = 0 (healthy mean)".to_string()
-        } else {
-            format!("z = {z:+.1}")
-        };
-        root.draw(&Text::new(label, (x + 6, y + 2), font(f.label)))
-            .map_err(perr)?;
+        root.draw(&Text::new(
+            format!("z = {z:+.1}"),
+            (x + 6, y + 2),
+            font(f.label),
+        ))
+        .map_err(perr)?;
     }
     Ok(())
 }
 
-/// One spoke per parameter, its code beyond the rim.
+/// The readable name of an axis: a parameter's name (from its definition, "stride time
+/// variability") for its code, else the text as given; split in two lines at the space nearest
+/// the middle when longer than 12 characters.
+fn axis_name(code: &str) -> Vec<String> {
+    let name = ldh_core::domain::Parameter::ALL
+        .into_iter()
+        .find(|p| p.code() == code)
+        .map_or_else(|| code.to_string(), |p| p.name().to_string());
+    if name.chars().count() <= 12 {
+        return vec![name];
+    }
+    let mid = name.len() / 2;
+    match name
+        .match_indices(' ')
+        .map(|(i, _)| i)
+        .min_by_key(|i| i.abs_diff(mid))
+    {
+        Some(i) => vec![name[..i].to_string(), name[i + 1..].to_string()],
+        None => vec![name],
+    }
+}
+
+/// One spoke per parameter, its readable name ([`axis_name`]) beyond the rim, kept inside the
+/// canvas.
 fn draw_axes(root: &Area, g: &Geometry, codes: &[String], f: Fonts) -> Result<()> {
     for (i, c) in codes.iter().enumerate() {
         root.draw(&PathElement::new(
@@ -200,14 +227,19 @@ fn draw_axes(root: &Area, g: &Geometry, codes: &[String], f: Fonts) -> Result<()
             RGBColor(200, 200, 200),
         ))
         .map_err(perr)?;
-        let (x, y) = g.pt(i, g.rad + f64::from(f.label));
-        let half = f.label * 3 / 10 * c.chars().count() as i32;
-        root.draw(&Text::new(
-            c.clone(),
-            (x - half, y - f.label / 2),
-            font(f.label),
-        ))
-        .map_err(perr)?;
+        let lines = axis_name(c);
+        let (x, y) = g.pt(i, g.rad + f64::from(f.label) * 1.3);
+        let top = y - f.label / 2 - (lines.len() as i32 - 1) * f.label / 2;
+        for (k, line) in lines.iter().enumerate() {
+            let w = f.label * 6 / 10 * line.chars().count() as i32;
+            let left = (x - w / 2).clamp(2, RADAR_W as i32 - w - 2);
+            root.draw(&Text::new(
+                line.clone(),
+                (left, top + k as i32 * (f.label + 2)),
+                font(f.label),
+            ))
+            .map_err(perr)?;
+        }
     }
     Ok(())
 }

@@ -13,9 +13,19 @@ fn svgs_have_titles_labels_and_shapes() {
         ],
     )
     .unwrap();
+    // Axes by the parameters' names (issue 50), the long one on two lines; no label over the
+    // reference ring.
     assert!(
-        r.starts_with("<svg") && r.contains("LDHE") && r.contains("SL") && r.contains("z-score")
+        r.starts_with("<svg")
+            && r.contains("LDHE")
+            && r.contains("\ncadence\n")
+            && r.contains("\nstride\n")
+            && r.contains("\nlength\n")
+            && r.contains("\nstride time\n")
+            && r.contains("z-score"),
+        "{r}"
     );
+    assert!(!r.contains("z = 0") && !r.contains("healthy mean"));
     let b = boxplot_svg(
         "stride time (s)",
         &[

@@ -86,7 +86,7 @@ pub(super) fn parameter_table(
         h2 { "2. Gait parameters" } "\n"
         p.meta {
             "Reference: " (reference.description) " Values outside the reference range are marked ▲ (above) or ▼ (below) and shaded (bounds included, compared as shown). Cadence, walking speed and stride time are one value per walk, from both legs; step frequency (the inverse of step time) and swing (the complement of stance) are shown beside them and judged with them. Symmetry index SI = 100·(L − R)/((L + R)/2) %; |SI| > "
-            (format!("{:.0}", p.0.asymmetry_flag_pct)) " % is shaded when the quantity has a reference range."
+            (format!("{:.0}", p.0.asymmetry_flag_pct)) " % is shaded for step time, stance and stride length (the legs compared with each other, with or without a range) and for the shank angles when they have a reference range."
         }
         "\n"
         table {
@@ -173,11 +173,21 @@ pub(super) fn subject_radar(
         return Ok(html! {});
     }
     let names: Vec<String> = ranges.iter().map(|r| r.code.clone()).collect();
+    // Name the reference that exists: the cohort's healthy subjects (n > 0) or, without
+    // them, the published values (never "the healthy reference" of n = 0, issue 50).
+    let cohort_n = ranges
+        .iter()
+        .filter_map(|r| match r.source {
+            ReferenceSource::Cohort { n_subjects } => Some(n_subjects),
+            _ => None,
+        })
+        .max();
+    let against = match cohort_n {
+        Some(n) => format!("this cohort's healthy subjects (n = {n})"),
+        None => "published normal values".to_string(),
+    };
     let svg = plots::radar_svg(
-        &format!(
-            "Subject {}: z-scores against the healthy reference",
-            s.subject_id
-        ),
+        &format!("Subject {}: z-scores against {against}", s.subject_id),
         &names,
         &series,
     )?;

@@ -57,7 +57,13 @@ fn the_cohort_page_counts_people_trials_and_both_legs_and_keeps_labels_as_given(
     // The free label as written, nowhere upper-cased; no group statistic for it.
     assert!(c.contains("<td>Stroke</td>") && !c.contains("STROKE"));
     assert!(
-        c.contains("No group statistics") && c.contains("the ldh group has 0 usable subject(s)"),
+        c.contains("No group statistics: they compare the ldh group (affected side given) with the healthy group, each with at least 3 people with both legs analysed; this cohort has 0 and 0. Left out: "),
+        "{c}"
+    );
+    // One message for the cohort, people counted by why they are left out (issue 50).
+    assert!(
+        c.contains("2 people in group 'Stroke', which the statistics do not compare")
+            && c.contains("1 person with a leg missing or not analysed"),
         "{c}"
     );
     // Sections 1–4 in order, without the paper's table or figure numbers.

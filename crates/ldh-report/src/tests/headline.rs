@@ -126,7 +126,8 @@ fn bounds_are_inclusive_and_compared_as_shown() {
     assert_eq!(judge(126.6, sf, 60.0, 0), Judgement::Above);
     assert_eq!(judge(95.5, sf, 60.0, 0), Judgement::Within);
     assert_eq!(judge(95.4, sf, 60.0, 0), Judgement::Below);
-    // Stance has no published range: no verdict, and its asymmetry is not flagged.
+    // Stance has no published range: no verdict on the value; its asymmetry (SI +12.1, the
+    // legs against each other) is judged all the same (issue 50).
     let mut recs = uneven("S");
     recs[0].stance_ratio = Some(0.70);
     let (_, v, _) = page_parts(recs);
@@ -138,7 +139,10 @@ fn bounds_are_inclusive_and_compared_as_shown() {
             ..
         }
     ));
-    assert!(matches!(stance.asymmetry, Some(Asymmetry::Value(_, None))));
+    assert!(matches!(
+        stance.asymmetry,
+        Some(Asymmetry::Value(_, Some(true)))
+    ));
 }
 
 fn warn(r: &mut RecordingRow, code: &str, cols: &[&str]) {
@@ -175,6 +179,7 @@ fn headline_without_the_sensor_height() {
             visits: None,
             belt: None,
             findings: vec![],
+            steady: None,
             not_measured: Some(
                 "Could not be measured: walking speed, stride length, stride length variability."
                     .into()
@@ -332,6 +337,7 @@ fn headline_with_a_frozen_gyroscope_segment() {
             visits: None,
             belt: None,
             findings: vec![],
+            steady: None,
             not_measured: Some(
                 "Could not be measured: stride length (left), stride length variability (left)."
                     .into()
@@ -352,4 +358,139 @@ fn headline_with_a_frozen_gyroscope_segment() {
     // give it as their reason.
     assert_eq!(bx.matches("frozen from 12.3 s to 15.8 s").count(), 1);
     assert_eq!(html.matches("channel_fault [warning]").count(), 1);
+}
+
+/// `leg` with the affected side given (so the to-do is about the recording alone).
+fn leg_of(id: &str, side: &str, step_s: f64) -> RecordingRow {
+    let mut r = leg(id, side, step_s);
+    r.affected_side = Some(ldh_core::output::AffectedSide::from(ldh_core::Side::Left).into());
+    r
+}
+
+/// Issue 50 item 4: a 30 % stance asymmetry is named although stance has no reference range
+/// (71.6 % against 52.7 %, SI +30.4), with the swing it leaves.
+#[test]
+fn headline_of_a_30_pct_stance_asymmetry() {
+    let mut recs = vec![leg_of("S", "left", 0.525), leg_of("S", "right", 0.525)];
+    recs[0].stance_ratio = Some(0.716);
+    recs[0].swing_ratio = Some(0.284);
+    recs[1].stance_ratio = Some(0.527);
+    recs[1].swing_ratio = Some(0.473);
+    let (html, v, h) = page_parts(recs);
+    assert_eq!(
+        h,
+        Headline {
+            findings: vec![
+                "Stance is uneven: the left leg stays on the ground 36 % longer than the right (71.6 % against 52.7 % of the gait cycle; swing 28.4 % against 47.3 %).".into()
+            ],
+            ..Default::default()
+        }
+    );
+    assert!(html.contains(&h.findings[0]));
+    // One verdict: marked ◆ in the tables and counted as the page's one asymmetry.
+    assert_eq!(v.asymmetric(), 1);
+    assert!(
+        html.contains("+30.4 ◆ <span class=\"flagword\">asymmetric</span>"),
+        "{html}"
+    );
+}
+
+/// Issue 50 item 5: two trials of one person that disagree say so, in the headline and beside
+/// each other on the page.
+#[test]
+fn headline_of_two_disagreeing_trials() {
+    let trial = |t: &str, stride_s: f64, cv: f64| {
+        let mut recs = vec![
+            leg_of("D", "left", stride_s / 2.0),
+            leg_of("D", "right", stride_s / 2.0),
+        ];
+        for r in recs.iter_mut() {
+            r.trial_id = t.into();
+            r.stride_time_s = Some(stride_s);
+            r.stride_time_cv = Some(cv);
+        }
+        recs
+    };
+    let mut recs = trial("t1", 1.03, 0.05);
+    recs.extend(trial("t2", 1.18, 0.13));
+    let (html, _, h) = page_parts(recs);
+    assert_eq!(
+        h.context.as_deref(),
+        Some(
+            "The values are the mean of 2 trials (t1, t2) of this person. The trials disagree \
+             by more than 10 % (without a reliability table, ldh report --reliability, whether \
+             this is beyond the measurement's noise is not known): stride time 1.03 s in trial \
+             t1 against 1.18 s in trial t2; step time 0.52 s in trial t1 against 0.59 s in \
+             trial t2; stride time variability 5.0 % in trial t1 against 13.0 % in trial t2. \
+             The page shows their mean; look at each trial below before relying on it."
+        )
+    );
+    // Side by side on the page, under the summary.
+    let at = html
+        .find("<h2 id=\"trials\">Trials side by side</h2>")
+        .expect("trials section");
+    assert!(at < html.find("1. Recordings").unwrap());
+    assert!(html[at..].contains("<th>trial t1</th><th>trial t2</th>"));
+}
+
+/// Issue 50 item 1: a walk that never becomes steady (`too_little_steady` on both legs) says
+/// so instead of reporting variability, and asks for a longer steady walk.
+#[test]
+fn headline_of_a_walk_that_never_becomes_steady() {
+    let mut recs = vec![leg_of("N", "left", 0.525), leg_of("N", "right", 0.525)];
+    for r in recs.iter_mut() {
+        warn(
+            r,
+            "too_little_steady",
+            &["stride_time_cv", "stride_length_cv"],
+        );
+    }
+    let (_, _, h) = page_parts(recs);
+    assert_eq!(
+        h,
+        Headline {
+            steady: Some(
+                "The walk never settled into a steady pace long enough (both legs: fewer than 10 strides at a steady pace), so its stride time and stride length variability are not reported: the start-up and changes of pace would be read as variability.".into()
+            ),
+            not_measured: Some(
+                "Could not be measured: stride time variability, stride length variability."
+                    .into()
+            ),
+            to_do: Some("Record a longer walk at the person's own steady pace (at least 30 s after the start-up), so its variability can be measured.".into()),
+            ..Default::default()
+        }
+    );
+}
+
+/// Issue 50 item 6: a stride length withheld because left and right disagree does not ask
+/// for the sensor height (given or not, it does not change the disagreement).
+#[test]
+fn a_stride_length_withheld_for_a_left_right_disagreement_does_not_ask_for_the_height() {
+    let mut recs = vec![leg_of("L", "left", 0.525), leg_of("L", "right", 0.525)];
+    for r in recs.iter_mut() {
+        warn(
+            r,
+            "lr_disagreement",
+            &["stride_length_m", "speed_mps", "stride_length_cv"],
+        );
+        // The height was assumed and moves the length little: a note, withholding nothing.
+        r.warnings.0.push(Warning::new(
+            "sensor_height_unknown",
+            Severity::Note,
+            "the sensor height was not given, so 0.10 m above the ankle was assumed",
+        ));
+    }
+    let (_, _, h) = page_parts(recs);
+    assert_eq!(
+        h,
+        Headline {
+            not_measured: Some(
+                "Could not be measured: walking speed, stride length, stride length variability."
+                    .into()
+            ),
+            to_do: Some("Check that the two files come from the same walk and that each is named for the leg it was worn on (the legs disagree, which no setting of the analysis explains), then analyse them again.".into()),
+            ..Default::default()
+        }
+    );
+    assert!(!h.to_do.unwrap().contains("height"));
 }
