@@ -4,11 +4,10 @@
 use crate::agreement_page::{agreement_html, bland_altman_points, GOOD_ICC};
 use crate::plots::tests::smallest_printed_pt;
 use crate::plots::{self, PrintWidth, MIN_PRINT_TEXT_PT, TIMING_BAR_COLOUR};
-use ldh_core::agreement::{AgreementParams, OffsetMode, Reference};
+use ldh_core::agreement::OffsetMode;
 use ldh_core::output::LdhResults;
-use ldh_core::pipeline::SubjectResult;
 use ldh_sim::evaluate::TruthScope;
-use std::path::Path;
+use ldh_test_support::{agree_with, simulated};
 
 /// The SVG of each `<figure>` of a page, in order.
 fn figure_svgs(page: &str) -> Vec<&str> {
@@ -24,41 +23,6 @@ fn figure_svgs(page: &str) -> Vec<&str> {
 fn bar_colour() -> String {
     let c = TIMING_BAR_COLOUR;
     format!("fill=\"#{:02X}{:02X}{:02X}\"", c.0, c.1, c.2)
-}
-
-/// A small simulated cohort analysed in memory, and its truth (as `ldh-sim`'s agreement tests).
-fn simulated() -> (Vec<SubjectResult>, Vec<ldh_sim::SubjectTruth>) {
-    let dir = tempfile::tempdir().unwrap();
-    let c = ldh_sim::CohortParams {
-        healthy: 2,
-        ldh: 2,
-        seed: 38,
-        ..Default::default()
-    };
-    let params = ldh_core::pipeline::AnalysisParams::default()
-        .with_options(None, None, None, Some(false))
-        .unwrap();
-    ldh_sim::analyze_cohort(&c, dir.path(), &params).unwrap()
-}
-
-/// `ldh agree` of `results` against the reference texts.
-fn agree_with(
-    results: &LdhResults,
-    events: &str,
-    strides: &str,
-    mode: OffsetMode,
-) -> ldh_core::agreement::AgreementReport {
-    let p = AgreementParams {
-        tolerance_s: ldh_sim::evaluate::MATCH_WINDOW_S,
-        ..Default::default()
-    }
-    .check()
-    .unwrap();
-    let mut reference = Reference::default();
-    let parse = ldh_core::reference::parse_reference;
-    parse(events, Path::new("ev.csv"), results, &p, &mut reference).unwrap();
-    parse(strides, Path::new("st.csv"), results, &p, &mut reference).unwrap();
-    ldh_core::agreement::run(results, &reference, &p, mode).unwrap()
 }
 
 /// On a simulated cohort against its exported truth: two histograms (HS, TO) whose bars are the

@@ -4,45 +4,12 @@
 use std::path::Path;
 
 use ldh_core::agreement::ValidAgreementParams;
-use ldh_core::agreement::{run, AgreementParams, OffsetMode, Reference, ReferenceError};
+use ldh_core::agreement::{run, OffsetMode, Reference, ReferenceError};
 use ldh_core::output::LdhResults;
-use ldh_core::pipeline::SubjectResult;
 use ldh_core::reference::parse_reference;
 use ldh_core::LdhError;
 use ldh_sim::evaluate::TruthScope;
-
-/// A small simulated cohort analysed in memory, and its truth.
-pub(crate) fn simulated() -> (Vec<SubjectResult>, Vec<ldh_sim::SubjectTruth>) {
-    let dir = tempfile::tempdir().unwrap();
-    let c = ldh_sim::CohortParams {
-        healthy: 2,
-        ldh: 2,
-        seed: 38,
-        ..Default::default()
-    };
-    let params = ldh_core::pipeline::AnalysisParams::default()
-        .with_options(None, None, None, Some(false))
-        .unwrap();
-    ldh_sim::analyze_cohort(&c, dir.path(), &params).unwrap()
-}
-
-pub(crate) fn agree_with(
-    results: &LdhResults,
-    events: &str,
-    strides: &str,
-    mode: OffsetMode,
-) -> ldh_core::agreement::AgreementReport {
-    let p = AgreementParams {
-        tolerance_s: ldh_sim::evaluate::MATCH_WINDOW_S,
-        ..Default::default()
-    }
-    .check()
-    .unwrap();
-    let mut reference = Reference::default();
-    parse_reference(events, Path::new("ev.csv"), results, &p, &mut reference).unwrap();
-    parse_reference(strides, Path::new("st.csv"), results, &p, &mut reference).unwrap();
-    run(results, &reference, &p, mode).unwrap()
-}
+use ldh_test_support::{agree_with, simulated};
 
 fn close(a: f64, b: f64) -> bool {
     (a - b).abs() <= 1e-9 * a.abs().max(b.abs()).max(1.0)

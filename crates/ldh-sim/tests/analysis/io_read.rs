@@ -6,7 +6,8 @@ use ldh_core::io::reader::*;
 use ldh_core::io::writer::*;
 use ldh_core::recording::Recording;
 use ldh_sim::{CohortParams, SensorModel};
-use std::path::{Path, PathBuf};
+use ldh_test_support::TempFolder;
+use std::path::Path;
 
 fn walking(fs_hz: f64) -> Recording {
     let c = CohortParams {
@@ -18,23 +19,6 @@ fn walking(fs_hz: f64) -> Recording {
         ..CohortParams::default()
     };
     c.simulate(0).unwrap().left.recording
-}
-
-struct Tmp {
-    dir: tempfile::TempDir,
-}
-
-impl Tmp {
-    fn new() -> Tmp {
-        Tmp {
-            dir: tempfile::tempdir().unwrap(),
-        }
-    }
-    fn write(&self, name: &str, bytes: impl AsRef<[u8]>) -> PathBuf {
-        let p = self.dir.path().join(name);
-        std::fs::write(&p, bytes).unwrap();
-        p
-    }
 }
 
 fn params() -> ValidReadParams {
@@ -82,7 +66,7 @@ fn err_of(path: &Path, spec: Option<&FormatSpec>) -> String {
 #[test]
 fn default_format_round_trips_with_every_delimiter_bom_crlf_and_comments() {
     let rec = walking(100.0);
-    let t = Tmp::new();
+    let t = TempFolder::new();
     let base = csv(&rec, &FormatSpec::default());
     let variants = [
         ("comma.csv", base.clone()),
@@ -113,7 +97,7 @@ fn default_format_round_trips_with_every_delimiter_bom_crlf_and_comments() {
 #[test]
 fn vendor_formats_round_trip() {
     let rec = walking(100.0);
-    let t = Tmp::new();
+    let t = TempFolder::new();
     for name in DETECTED_FORMATS {
         let spec = FormatSpec::builtin(name).unwrap();
         let opts = WriteOptions {
@@ -141,7 +125,7 @@ fn vendor_formats_round_trip() {
 #[test]
 fn time_in_ms_iso8601_and_counters_with_wrap() {
     let rec = walking(100.0);
-    let t = Tmp::new();
+    let t = TempFolder::new();
     let mut ms = FormatSpec::default();
     ms.time = TimeSpec {
         column: Some("t_ms".into()),
@@ -186,7 +170,7 @@ fn time_in_ms_iso8601_and_counters_with_wrap() {
 
 #[test]
 fn rate_is_measured_for_50_60_and_200_hz_devices() {
-    let t = Tmp::new();
+    let t = TempFolder::new();
     for fs in [50.0, 60.0, 200.0] {
         let rec = walking(fs);
         let p = t.write(&format!("r{fs}.csv"), csv(&rec, &FormatSpec::default()));
@@ -210,7 +194,7 @@ fn jittered_timestamps_are_resampled_and_small_gaps_bridged() {
         }
     }
     lines.drain(300..305);
-    let t = Tmp::new();
+    let t = TempFolder::new();
     let p = t.write("jitter.csv", lines.join("\n"));
     let (r, rep) = read(&p, None).unwrap();
     assert!(rep.resampled);
@@ -225,7 +209,7 @@ fn long_gaps_split_or_reject() {
     let text = csv(&rec, &FormatSpec::default());
     let mut lines: Vec<&str> = text.lines().collect();
     lines.drain(200..260); // 0.6 s missing
-    let t = Tmp::new();
+    let t = TempFolder::new();
     let p = t.write("gap.csv", lines.join("\n"));
     let (r, rep) = read(&p, None).unwrap();
     assert_eq!(rep.gaps.len(), 1);
@@ -247,7 +231,7 @@ fn saturation_is_counted_by_range_and_by_flat_extremes() {
     for v in rec.gyro_dps[2].iter_mut() {
         *v = v.clamp(-300.0, 300.0);
     }
-    let t = Tmp::new();
+    let t = TempFolder::new();
     let p = t.write("clip.csv", csv(&rec, &FormatSpec::default()));
     let (r, rep) = read(&p, None).unwrap();
     assert!(
@@ -282,7 +266,7 @@ fn bad_files_are_refused_with_the_file_and_the_problem() {
         v[i] = new;
         v.join("\n")
     };
-    let t = Tmp::new();
+    let t = TempFolder::new();
 
     let p = t.write("empty.csv", "");
     assert!(err_of(&p, None).contains("empty"));
@@ -398,7 +382,7 @@ fn bad_files_are_refused_with_the_file_and_the_problem() {
 #[test]
 fn implausible_units_are_named() {
     let rec = walking(100.0);
-    let t = Tmp::new();
+    let t = TempFolder::new();
     // Gyro written in rad/s but declared deg/s.
     let mut radians = rec.clone();
     for ch in radians.gyro_dps.iter_mut() {
@@ -426,7 +410,7 @@ fn implausible_units_are_named() {
 #[test]
 fn axis_maps_are_applied_and_reflections_refused() {
     let rec = walking(100.0);
-    let t = Tmp::new();
+    let t = TempFolder::new();
     // A device whose x points down the shank and z the other way: ldh x = −x, z = −z.
     let spec = FormatSpec::default().with_axes(["-x", "+y", "-z"]);
     let p = t.write("flipped.csv", csv(&rec, &spec));
