@@ -189,6 +189,13 @@ fn findings(v: &Verdicts, reference: &Reference) -> Vec<String> {
 fn steady(sides: &[&RecordingRow]) -> Option<String> {
     let legs: Vec<&str> = sides
         .iter()
+        // A leg with a sensor fault says so itself: its steadiness is not a finding.
+        .filter(|r| {
+            r.warnings
+                .at_least(ldh_core::pipeline::Severity::Fault)
+                .next()
+                .is_none()
+        })
         .filter(|r| {
             r.warnings
                 .iter()

@@ -188,14 +188,14 @@ pub(crate) fn trials_of_people(
                 "Trials of this person: "
                 @if let Some(href) = links.get(id) { a href=(href) { (id) } } @else { (id) }
             } "\n"
-            (trial_table(trials))
+            (trial_table(trials, &PARAMETERS))
         }
     }
 }
 
-/// One person's trials side by side: per parameter the walk value of each trial, grouped by
-/// visit, and their difference.
-fn trial_table(trials: &[Trial]) -> Markup {
+/// One person's trials side by side: per parameter of `params` the walk value of each trial,
+/// grouped by visit, and their difference.
+fn trial_table(trials: &[Trial], params: &[Parameter]) -> Markup {
     let visits = visits_of(trials);
     let several_visits = visits.len() >= 2;
     html! {
@@ -209,7 +209,7 @@ fn trial_table(trials: &[Trial]) -> Markup {
                 th { (difference_header(trials)) }
             }
             "\n"
-            @for p in PARAMETERS {
+            @for &p in params {
                 tr {
                     td { (p.code()) " — " (p.name()) } td { (p.unit()) }
                     @for t in trials { td.num { (fmt(t.value(p), decimals(p))) } }
@@ -318,6 +318,15 @@ pub(crate) fn person_trials(
         return html! {};
     }
     let trials = trials_of(&recs);
+    // Only the parameters some trial measured (a leg that failed in every trial leaves the
+    // walk values empty: a table of dashes says nothing and lengthens the printed page).
+    let params: Vec<Parameter> = PARAMETERS
+        .into_iter()
+        .filter(|&p| trials.iter().any(|t| t.value(p).is_some()))
+        .collect();
+    if params.is_empty() {
+        return html! {};
+    }
     let agree = match ctx.reliability {
         Some(_) => "The trials agree: no parameter of the summary differs between the first and the last trial by more than its MDC95 (reliability table).",
         None => "The trials agree: no parameter of the summary differs between the first and the last trial by more than 10 %.",
@@ -325,6 +334,6 @@ pub(crate) fn person_trials(
     html! {
         (title())
         p { (disagreement(recordings, ctx).as_deref().unwrap_or(agree)) } "\n"
-        (trial_table(&trials))
+        (trial_table(&trials, &params))
     }
 }

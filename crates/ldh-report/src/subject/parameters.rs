@@ -169,7 +169,12 @@ pub(super) fn subject_radar(
             )
         })
         .collect();
-    if series.is_empty() || ranges.len() < 3 {
+    // A shape needs three measured axes on a side: with fewer, the radar shows nothing the
+    // table does not (and a real page with a faulty leg printed on a fourth A4 page).
+    let shaped = series
+        .iter()
+        .any(|(_, z)| z.iter().filter(|v| v.is_finite()).count() >= 3);
+    if !shaped || ranges.len() < 3 {
         return Ok(html! {});
     }
     let names: Vec<String> = ranges.iter().map(|r| r.code.clone()).collect();
