@@ -350,10 +350,10 @@ fn push(segs: &mut Vec<Segment>, t: &mut f64, activity: Activity, motion: Motion
     *t += d;
 }
 
-/// Fill [t, end) with daytime episodes: a rest episode (sitting 55 %, median 5 min; standing
-/// 35 %, median 45 s; lying 10 %, median 15 min), fidgeting in 40 % of sittings, then a
-/// movement: walking 88 % (log-normal, median 15 s, 35 % followed by a 2–10 s stop and another
-/// bout), stairs 8 % (8–25 s), cycling 3 % (5–30 min), running 1 % (1–10 min).
+/// Fill [t, end) with daytime episodes: a rest episode (sitting 60 %, median 5 min; standing
+/// 35 %, median 45 s; lying 5 %, median 10 min), fidgeting in 40 % of sittings, then a
+/// movement: walking 90 % (log-normal, median 15 s, 35 % followed by a 2–10 s stop and another
+/// bout), stairs 8 % (8–25 s), cycling 1 % (5–30 min), running 1 % (1–10 min).
 fn fill_day(
     rng: &mut ChaCha8Rng,
     base: &SubjectParams,
@@ -363,12 +363,12 @@ fn fill_day(
 ) {
     while end - *t > 1e-9 {
         let u: f64 = rng.gen();
-        let (activity, d) = if u < 0.55 {
+        let (activity, d) = if u < 0.60 {
             (Activity::Sitting, lognormal(rng, 300.0, 1.0, 20.0, 5400.0))
-        } else if u < 0.90 {
+        } else if u < 0.95 {
             (Activity::Standing, lognormal(rng, 45.0, 0.9, 3.0, 1200.0))
         } else {
-            (Activity::Lying, lognormal(rng, 900.0, 0.6, 120.0, 3600.0))
+            (Activity::Lying, lognormal(rng, 600.0, 0.6, 120.0, 3600.0))
         };
         let d = d.min(end - *t);
         if activity == Activity::Sitting && d > 60.0 && rng.gen_bool(0.4) {
@@ -382,9 +382,9 @@ fn fill_day(
             push(segs, t, activity, rest_motion(rng, activity), d);
         }
         let u: f64 = rng.gen();
-        let (activity, want_s) = if u < 0.88 {
+        let (activity, want_s) = if u < 0.90 {
             (Activity::Walking, lognormal(rng, 15.0, 1.0, 5.0, 600.0))
-        } else if u < 0.96 {
+        } else if u < 0.98 {
             (Activity::Stairs, rng.gen_range(8.0..25.0))
         } else if u < 0.99 {
             (Activity::Cycling, rng.gen_range(300.0..1800.0))

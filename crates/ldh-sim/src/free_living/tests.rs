@@ -74,6 +74,9 @@ fn a_week_plan_is_contiguous_with_nights_and_non_wear() {
     }
     assert!((t - 168.0 * 3600.0).abs() < 1e-6);
     let h = |a| time.get(&a).copied().unwrap_or(0.0) / 3600.0 / 7.0;
+    for a in Activity::ALL {
+        println!("{a}: {:.2} h/day", h(a));
+    }
     // Per day: 6–10 h lying (nights), some non-wear, 0.5–2.5 h of walking bouts.
     assert!(
         (6.0..11.0).contains(&h(Activity::Lying)),
