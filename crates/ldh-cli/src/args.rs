@@ -56,6 +56,16 @@ pub enum Command {
     /// inside --out, make the run refuse (exit 2), naming them; nothing is deleted or written
     /// through a link.
     Analyze(AnalyzeArgs),
+    /// Walking in daily life from two shank sensors worn for days (docs/free-living.md).
+    ///
+    /// INPUT as for `analyze`: a subject's two files (left, then right), a subject folder, or
+    /// a manifest with one row per person and monitoring period (`visit`). Each recording is
+    /// streamed (minutes to weeks, memory does not grow with its length): wear, posture,
+    /// cycling and running are found per window, walking bouts are analysed by the same
+    /// pipeline as `analyze`, the two sensors' clock drift is estimated. Writes bouts.csv,
+    /// days.csv, summary.csv and periods.csv to --out. A person whose recordings cannot be
+    /// read is a summary row with the error (exit 1); the others are written.
+    Monitor(MonitorArgs),
     /// Score the pipeline against simulator ground truth: `ldh simulate` output (with
     /// truth.json per subject) is analysed with both attitude models and the event and
     /// stride accuracy is printed as a Markdown table.
@@ -224,6 +234,25 @@ pub struct AnalyzeArgs {
     /// the summary. The outputs are unchanged.
     #[arg(long)]
     pub timings: bool,
+}
+
+#[derive(Debug, Args)]
+pub struct MonitorArgs {
+    /// Inputs (see above).
+    #[arg(required = true)]
+    pub inputs: Vec<PathBuf>,
+    /// Output folder.
+    #[arg(short, long, default_value = "ldh-monitor")]
+    pub out: PathBuf,
+    /// Subject id of two files given directly (default: the common stem of their names).
+    #[arg(long)]
+    pub subject: Option<String>,
+    /// Monitoring parameters as a TOML file (the fields of `MonitorParams`, docs/free-living.md).
+    #[arg(long)]
+    pub params: Option<PathBuf>,
+    /// Worker threads (default: all cores).
+    #[arg(short, long)]
+    pub jobs: Option<usize>,
 }
 
 #[derive(Debug, Args)]

@@ -40,6 +40,7 @@ where
     commands::set_verbosity(cli.verbosity);
     let r = match cli.command {
         Command::Analyze(a) => commands::analyze::run(a),
+        Command::Monitor(a) => commands::monitor::run(a),
         Command::Report(a) => commands::report::run(a),
         Command::Evaluate(a) => commands::evaluate::run(a),
         Command::Agree(a) => commands::agree::run(a),

@@ -38,6 +38,7 @@ pub mod gait;
 pub mod guard;
 pub mod io;
 pub mod ml;
+pub mod monitor;
 pub mod nonlinear;
 pub mod output;
 pub mod pipeline;

@@ -10,6 +10,7 @@
 //! * [`stats`]: the scipy.stats look-alikes;
 //! * [`nonlinear`]: the nolds look-alikes (Lyapunov exponents);
 //! * [`ml`]: cross-validation, training, prediction;
+//! * [`monitor`]: `ldh.monitor`, days of free-living recordings;
 //! * [`agreement`]: `ldh.agree`, an analysis against a laboratory's reference files, and
 //!   `ldh.reliability`, the test–retest table of repeated trials;
 //! * [`errors`]: core errors as the `ldh` exception family; [`convert`]: values in and out.
@@ -27,6 +28,7 @@ mod convert;
 mod errors;
 mod io;
 mod ml;
+mod monitor;
 mod nonlinear;
 mod pipeline;
 mod stats;
@@ -52,6 +54,7 @@ fn _ldh(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(io::write_demo, m)?)?;
     m.add_function(wrap_pyfunction!(io::simulate_cohort, m)?)?;
     m.add_function(wrap_pyfunction!(pipeline::analyze, m)?)?;
+    m.add_function(wrap_pyfunction!(monitor::monitor, m)?)?;
     m.add_function(wrap_pyfunction!(pipeline::analyze_pair, m)?)?;
     m.add_function(wrap_pyfunction!(pipeline::analyze_recording, m)?)?;
     m.add_function(wrap_pyfunction!(nonlinear::lyap_r, m)?)?;

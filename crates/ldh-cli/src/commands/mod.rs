@@ -33,6 +33,7 @@ pub mod demo;
 pub mod evaluate;
 pub mod formats;
 pub mod inspect;
+pub mod monitor;
 pub mod predict;
 pub mod report;
 pub mod simulate;

@@ -138,7 +138,7 @@ impl DateTime {
     }
 
     /// Seconds since 1970-01-01 00:00:00 of this date and time read as UTC.
-    fn unix_s(&self) -> i64 {
+    pub(crate) fn unix_s(&self) -> i64 {
         days_from_civil(
             i64::from(self.year),
             i64::from(self.month),

@@ -22,7 +22,7 @@ const HEAD_BYTES: usize = 1 << 16;
 /// and one more `\r` removed, a NUL byte and invalid UTF-8 refused with the line, a UTF-8
 /// byte-order mark skipped, a line longer than [`MAX_LINE_BYTES`] refused, and the bytes
 /// counted against the file-size limit.
-pub(super) struct Lines<'p, R> {
+pub(crate) struct Lines<'p, R> {
     src: std::io::Chain<std::io::Cursor<Vec<u8>>, R>,
     buf: Vec<u8>,
     path: &'p Path,
@@ -245,7 +245,7 @@ fn utf16_order(bytes: &[u8]) -> Option<bool> {
 }
 
 /// The most frequent of `,` `;` tab in a header line (ties: tab, `;`, `,`).
-pub(super) fn detect_delimiter(line: &str) -> u8 {
+pub(crate) fn detect_delimiter(line: &str) -> u8 {
     let count = |c: char| line.chars().filter(|&x| x == c).count();
     let (t, s, c) = (count('\t'), count(';'), count(','));
     if t >= s && t >= c && t > 0 {

@@ -17,6 +17,7 @@ from ._errors import (
 from ._agreement import Agreement, agree, reliability
 from ._io import butter_filtfilt, preprocess, read_recording, simulate_cohort, write_demo
 from ._ml import cross_validate, predict, train
+from ._monitor import MonitorResult, monitor
 from ._nonlinear import lyap_e, lyap_r
 from ._pipeline import analyze, analyze_many, analyze_pair, analyze_recording
 from ._result import Result
@@ -56,6 +57,8 @@ __all__ = [
     "analyze_many",
     "analyze_recording",
     "analyze_pair",
+    "monitor",
+    "MonitorResult",
     "Result",
     "lyap_r",
     "lyap_e",

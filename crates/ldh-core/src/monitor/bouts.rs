@@ -1,0 +1,253 @@
+//! Each paired walking span through the lab pipeline — [`crate::pipeline::Analysis::pair`],
+//! the one code path of `ldh analyze` (attitude, events, strides, the parameters, the quality
+//! checks and their withholding, turns allowed) — and the bout it gives: its start and end
+//! from the first and last heel strike of either leg, its steps (heel strikes of both legs;
+//! twice one leg's when only one sensor saw the walk), and its parameters.
+//!
+//! A span is a walking bout when the pipeline finds at least `min_strides` strides in it
+//! (both legs' strides counted, as mobgap's stride list holds both feet's; Kluge et al. 2021,
+//! Micó-Amigo et al. 2023: ≥ 4 strides). The bout's cadence, speed, stride time, stride
+//! length and stride-time CV are the mean of the legs' values the pipeline vouches for; the
+//! step-time asymmetry is |STT_L − STT_R| / mean(STT_L, STT_R) × 100 and needs both legs.
+
+use serde::{Deserialize, Serialize};
+
+use super::leg::LegStream;
+use super::pair::Plan;
+use super::store::SpanStore;
+use super::stream::Sample;
+use crate::domain::Parameter;
+use crate::pipeline::{Analysis, LegResult, LoadedLeg, SubjectInput};
+use crate::recording::{Recording, Side};
+
+/// One walking bout: a row of bouts.csv.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+pub struct BoutRow {
+    /// Bout number within the subject's period, from 1 (in time order).
+    pub bout: usize,
+    /// First heel strike, s on the left sensor's clock (the right's when only it was worn).
+    pub start_s: f64,
+    /// Last heel strike, s.
+    pub end_s: f64,
+    /// `end_s − start_s`, s.
+    pub duration_s: f64,
+    /// Heel strikes of both legs (twice one leg's with one sensor).
+    pub steps: usize,
+    /// Which legs saw the bout: `both`, `left` or `right`.
+    pub legs: String,
+    /// Strides of the left leg.
+    pub strides_left: usize,
+    /// Strides of the right leg.
+    pub strides_right: usize,
+    /// Cadence, steps/min (60 × the step frequency, SF).
+    pub cadence_steps_per_min: f64,
+    /// Walking speed, m/s (SS).
+    pub speed_mps: f64,
+    /// Stride time, s (ST).
+    pub stride_time_s: f64,
+    /// Stride length, m (SL).
+    pub stride_length_m: f64,
+    /// Stride-time variability, SD / mean (STV).
+    pub stride_time_cv: f64,
+    /// Step-time asymmetry, % of the mean step time.
+    pub step_time_asymmetry_pct: f64,
+    /// Right − left clock at this bout, s.
+    pub clock_offset_s: f64,
+    /// The walk went on past the longest span held (`max_span_s`): the next bout continues it.
+    pub continues: bool,
+    /// Values withheld and why: `column: reason; …`.
+    pub withheld: String,
+}
+
+/// A span the pipeline did not confirm as a walk (kept for the notes).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Refused {
+    /// Start of the span, s.
+    pub start_s: f64,
+    /// Why.
+    pub reason: String,
+}
+
+fn recording(samples: &[Sample], fs: f64, t0_s: f64, side: Side, label: &str) -> LoadedLeg {
+    let first = samples.first().ok_or("empty span")?.t_s;
+    let last = samples.last().ok_or("empty span")?.t_s;
+    let n = ((last - first) * fs).floor() as usize + 1;
+    let mut acc: [Vec<f64>; 3] = Default::default();
+    let mut gyro: [Vec<f64>; 3] = Default::default();
+    let mut j = 0;
+    // Linear interpolation onto the uniform grid of the leg's rate.
+    for i in 0..n {
+        let t = first + i as f64 / fs;
+        while j + 2 < samples.len() && samples[j + 1].t_s <= t {
+            j += 1;
+        }
+        let (a, b) = (&samples[j], &samples[(j + 1).min(samples.len() - 1)]);
+        let f = if b.t_s > a.t_s {
+            ((t - a.t_s) / (b.t_s - a.t_s)).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        for k in 0..3 {
+            acc[k].push(a.acc_g[k] + f * (b.acc_g[k] - a.acc_g[k]));
+            gyro[k].push(a.gyro_dps[k] + f * (b.gyro_dps[k] - a.gyro_dps[k]));
+        }
+    }
+    let mut rec = Recording::new(fs, acc, gyro, vec![])
+        .map_err(|e| e.to_string())?
+        .with_side(side);
+    rec.t0_s = t0_s;
+    rec.source = Some(label.into());
+    let report = crate::pipeline::memory_report(&rec);
+    Ok((rec, report, label.to_string()))
+}
+
+/// Analyse one plan; `Err` when the span is not a walking bout (with why).
+pub fn analyse(
+    plan: &Plan,
+    legs: [&LegStream; 2],
+    store: &SpanStore,
+    input: &SubjectInput,
+    analysis: &Analysis<'_>,
+    min_strides: usize,
+) -> Result<BoutRow, Refused> {
+    let load = |k: usize, idx: Option<usize>, side: Side| -> (LoadedLeg, Option<f64>) {
+        let Some(i) = idx else {
+            return (Err(format!("no {side} walk at this time")), None);
+        };
+        let span = &legs[k].spans[i];
+        let samples = match store.get(&span.at) {
+            Ok(s) => s,
+            Err(e) => return (Err(e.to_string()), None),
+        };
+        // The right leg placed on the left leg's clock.
+        let t0 = if k == 1 {
+            span.at.t0_s - plan.offset_s
+        } else {
+            span.at.t0_s
+        };
+        (
+            recording(&samples, legs[k].fs_hz, t0, side, &legs[k].label),
+            Some(span.walk_s.0),
+        )
+    };
+    let (l, lt) = load(0, plan.left, Side::Left);
+    let (r, rt) = load(1, plan.right, Side::Right);
+    let at = lt.or(rt.map(|t| t - plan.offset_s)).unwrap_or(0.0);
+    let res = analysis.pair(input, l, r);
+    let legs_ok: Vec<&LegResult> = [&res.left, &res.right]
+        .into_iter()
+        .filter_map(|x| x.as_ref().ok())
+        .collect();
+    let strides: [usize; 2] =
+        [&res.left, &res.right].map(|x| x.as_ref().map_or(0, |l| l.parameters.strides_total));
+    if strides[0] + strides[1] < min_strides || legs_ok.is_empty() {
+        let why = [&res.left, &res.right]
+            .iter()
+            .filter_map(|x| x.as_ref().err().cloned())
+            .collect::<Vec<_>>()
+            .join("; ");
+        return Err(Refused {
+            start_s: at,
+            reason: format!(
+                "{} stride(s) found, {min_strides} needed{}",
+                strides[0] + strides[1],
+                if why.is_empty() {
+                    String::new()
+                } else {
+                    format!(" ({why})")
+                }
+            ),
+        });
+    }
+    Ok(bout_row(&res.left, &res.right, strides, plan))
+}
+
+fn bout_row(
+    left: &Result<LegResult, String>,
+    right: &Result<LegResult, String>,
+    strides: [usize; 2],
+    plan: &Plan,
+) -> BoutRow {
+    let legs: Vec<&LegResult> = [left, right]
+        .into_iter()
+        .filter_map(|x| x.as_ref().ok())
+        .collect();
+    let hs: Vec<f64> = legs
+        .iter()
+        .flat_map(|l| l.events.hs_s.iter().map(move |h| h + l.t0_s))
+        .collect();
+    let start = hs.iter().copied().fold(f64::INFINITY, f64::min);
+    let end = hs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let steps = if legs.len() == 2 {
+        hs.len()
+    } else {
+        2 * hs.len()
+    };
+    let mut withheld: Vec<String> = Vec::new();
+    let mut mean_of = |p: Parameter, column: &str, factor: f64| -> f64 {
+        let vals: Vec<f64> = legs
+            .iter()
+            .map(|l| l.parameters.value(p))
+            .filter(|v| v.is_finite())
+            .collect();
+        if vals.is_empty() {
+            let why: Vec<String> = legs
+                .iter()
+                .filter_map(|l| {
+                    l.parameters
+                        .withheld
+                        .reason(p)
+                        .map(|r| format!("{}: {r}", l.side))
+                })
+                .collect();
+            let why = if why.is_empty() {
+                "not measured in this bout".to_string()
+            } else {
+                why.join(", ")
+            };
+            withheld.push(format!("{column}: {why}"));
+            return f64::NAN;
+        }
+        factor * vals.iter().sum::<f64>() / vals.len() as f64
+    };
+    let cadence = mean_of(Parameter::StepFrequency, "cadence_steps_per_min", 60.0);
+    let speed = mean_of(Parameter::Speed, "speed_mps", 1.0);
+    let stride_time = mean_of(Parameter::StrideTime, "stride_time_s", 1.0);
+    let stride_length = mean_of(Parameter::StrideLength, "stride_length_m", 1.0);
+    let stv = mean_of(Parameter::StrideTimeCv, "stride_time_cv", 1.0);
+    let stt = [left, right].map(|x| x.as_ref().map_or(f64::NAN, |l| l.parameters.step_time_s));
+    let asym = if stt.iter().all(|v| v.is_finite() && *v > 0.0) {
+        (stt[0] - stt[1]).abs() / (0.5 * (stt[0] + stt[1])) * 100.0
+    } else {
+        withheld.push(if legs.len() < 2 {
+            "step_time_asymmetry_pct: needs both legs; one sensor saw this bout".into()
+        } else {
+            "step_time_asymmetry_pct: a leg's step time is not measured".into()
+        });
+        f64::NAN
+    };
+    BoutRow {
+        bout: 0,
+        start_s: start,
+        end_s: end,
+        duration_s: end - start,
+        steps,
+        legs: match (left.is_ok(), right.is_ok()) {
+            (true, true) => "both",
+            (true, false) => "left",
+            _ => "right",
+        }
+        .into(),
+        strides_left: strides[0],
+        strides_right: strides[1],
+        cadence_steps_per_min: cadence,
+        speed_mps: speed,
+        stride_time_s: stride_time,
+        stride_length_m: stride_length,
+        stride_time_cv: stv,
+        step_time_asymmetry_pct: asym,
+        clock_offset_s: plan.offset_s,
+        continues: false,
+        withheld: withheld.join("; "),
+    }
+}

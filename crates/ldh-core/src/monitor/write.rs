@@ -1,0 +1,259 @@
+//! The monitor's tables: bouts.csv, days.csv, summary.csv and periods.csv (one row per
+//! bout, day, period of a person and visit, and wear/rest period), written with the `csv`
+//! crate. A withheld value is an empty cell; its reason is in the row's `withheld` cell.
+
+use std::path::Path;
+
+use super::days::GAIT_AGGREGATES;
+use super::MonitorResult;
+use crate::error::{LdhError, Result};
+
+fn num(v: f64) -> String {
+    if v.is_finite() {
+        let s = format!("{v:.4}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        if s.is_empty() || s == "-0" {
+            "0".into()
+        } else {
+            s.to_string()
+        }
+    } else {
+        String::new()
+    }
+}
+
+fn id_cells(r: &MonitorResult) -> Vec<String> {
+    vec![r.subject_id.clone(), r.visit.clone().unwrap_or_default()]
+}
+
+/// Header of bouts.csv.
+pub const BOUT_COLUMNS: [&str; 19] = [
+    "subject_id",
+    "visit",
+    "bout",
+    "day",
+    "start_s",
+    "end_s",
+    "duration_s",
+    "steps",
+    "legs",
+    "strides_left",
+    "strides_right",
+    "cadence_steps_per_min",
+    "speed_mps",
+    "stride_time_s",
+    "stride_length_m",
+    "stride_time_cv",
+    "step_time_asymmetry_pct",
+    "clock_offset_s",
+    "withheld",
+];
+
+fn gait_columns(prefix: &str) -> Vec<String> {
+    let mut v = Vec::new();
+    for c in GAIT_AGGREGATES {
+        v.push(format!("{prefix}{c}_median"));
+        v.push(format!("{prefix}{c}_p90"));
+    }
+    v
+}
+
+fn gait_cells(med: &[f64; 6], p90: &[f64; 6]) -> Vec<String> {
+    (0..6).flat_map(|k| [num(med[k]), num(p90[k])]).collect()
+}
+
+type Rows = Vec<Vec<String>>;
+
+/// The four tables' headers and rows.
+pub fn tables(results: &[MonitorResult]) -> [(&'static str, Vec<String>, Rows); 4] {
+    let mut bouts = Vec::new();
+    let mut days = Vec::new();
+    let mut summary = Vec::new();
+    let mut periods = Vec::new();
+    for r in results {
+        let day_of = |t: f64| {
+            r.days
+                .iter()
+                .rev()
+                .find(|d| d.start_s <= t)
+                .map_or(String::new(), |d| d.day.to_string())
+        };
+        for b in &r.bouts {
+            let mut row = id_cells(r);
+            row.extend([
+                b.bout.to_string(),
+                day_of(b.start_s),
+                num(b.start_s),
+                num(b.end_s),
+                num(b.duration_s),
+                b.steps.to_string(),
+                b.legs.clone(),
+                b.strides_left.to_string(),
+                b.strides_right.to_string(),
+                num(b.cadence_steps_per_min),
+                num(b.speed_mps),
+                num(b.stride_time_s),
+                num(b.stride_length_m),
+                num(b.stride_time_cv),
+                num(b.step_time_asymmetry_pct),
+                num(b.clock_offset_s),
+                b.withheld.clone(),
+            ]);
+            bouts.push(row);
+        }
+        for d in &r.days {
+            let mut row = id_cells(r);
+            row.extend([
+                d.day.to_string(),
+                d.date.clone(),
+                num(d.start_s),
+                d.valid.to_string(),
+                num(d.recorded_h),
+                num(d.wear_h),
+                num(d.waking_wear_h),
+                num(d.non_wear_h),
+                num(d.lying_h),
+                num(d.sitting_h),
+                num(d.standing_h),
+                num(d.cycling_min),
+                num(d.running_min),
+                num(d.walking_min),
+                num(d.steps),
+                num(d.bouts),
+                num(d.bouts_10_30s),
+                num(d.bouts_30_60s),
+                num(d.bouts_over_60s),
+                num(d.longest_bout_s),
+                d.long_bouts.to_string(),
+            ]);
+            row.extend(gait_cells(&d.gait_median, &d.gait_p90));
+            row.push(d.withheld.clone());
+            days.push(row);
+        }
+        let s = &r.summary;
+        let mut row = id_cells(r);
+        row.extend([
+            s.days.to_string(),
+            s.valid_days.to_string(),
+            s.valid.to_string(),
+            num(s.wear_h_per_day),
+            num(s.walking_min_per_day),
+            num(s.steps_per_day),
+            num(s.bouts_per_day),
+            num(s.longest_bout_s),
+            s.long_bouts.to_string(),
+        ]);
+        row.extend(gait_cells(&s.gait_median, &s.gait_p90));
+        row.extend([
+            num(s.drift_ppm),
+            num(s.drift_s_per_day),
+            r.bouts.len().to_string(),
+            s.withheld.clone(),
+            r.errors.join("; "),
+        ]);
+        summary.push(row);
+        for p in &r.periods {
+            let mut row = id_cells(r);
+            row.extend([
+                num(p.start_s),
+                num(p.end_s),
+                num(p.duration_min),
+                p.state.clone(),
+            ]);
+            periods.push(row);
+        }
+    }
+    let head = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+    let mut day_head = head(&[
+        "subject_id",
+        "visit",
+        "day",
+        "date",
+        "start_s",
+        "valid",
+        "recorded_h",
+        "wear_h",
+        "waking_wear_h",
+        "non_wear_h",
+        "lying_h",
+        "sitting_h",
+        "standing_h",
+        "cycling_min",
+        "running_min",
+        "walking_min",
+        "steps",
+        "bouts",
+        "bouts_10_30s",
+        "bouts_30_60s",
+        "bouts_over_60s",
+        "longest_bout_s",
+        "long_bouts",
+    ]);
+    day_head.extend(gait_columns("long_bout_"));
+    day_head.push("withheld".into());
+    let mut sum_head = head(&[
+        "subject_id",
+        "visit",
+        "days",
+        "valid_days",
+        "valid",
+        "wear_h_per_day",
+        "walking_min_per_day",
+        "steps_per_day",
+        "bouts_per_day",
+        "longest_bout_s",
+        "long_bouts",
+    ]);
+    sum_head.extend(gait_columns("long_bout_"));
+    sum_head.extend(head(&[
+        "drift_ppm",
+        "drift_s_per_day",
+        "bouts_total",
+        "withheld",
+        "errors",
+    ]));
+    [
+        ("bouts.csv", head(&BOUT_COLUMNS), bouts),
+        ("days.csv", day_head, days),
+        ("summary.csv", sum_head, summary),
+        (
+            "periods.csv",
+            head(&[
+                "subject_id",
+                "visit",
+                "start_s",
+                "end_s",
+                "duration_min",
+                "state",
+            ]),
+            periods,
+        ),
+    ]
+}
+
+/// Write the four tables into `dir` (created if missing); returns the files written.
+pub fn write_tables(dir: &Path, results: &[MonitorResult]) -> Result<Vec<std::path::PathBuf>> {
+    std::fs::create_dir_all(dir).map_err(|source| LdhError::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let mut files = Vec::new();
+    for (name, head, rows) in tables(results) {
+        let path = dir.join(name);
+        let mut buf = Vec::new();
+        {
+            let mut w = csv::Writer::from_writer(&mut buf);
+            w.write_record(&head)?;
+            for r in rows {
+                w.write_record(&r)?;
+            }
+            w.flush().map_err(|source| LdhError::Io {
+                path: path.clone(),
+                source,
+            })?;
+        }
+        crate::io::write_atomic(&path, &buf)?;
+        files.push(path);
+    }
+    Ok(files)
+}
