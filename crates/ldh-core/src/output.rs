@@ -186,11 +186,15 @@ pub struct RecordingRow {
     /// `overground`, `treadmill`, or empty when not said (analysed as overground).
     #[serde(default, with = "empty_is_none")]
     pub setting: Option<Label<crate::Setting>>,
-    /// Start of the steady walking the means and CVs are of, s (heel strike of its first
-    /// stride; empty when the rule is off or found no steady walking; docs/pipeline.md).
+    /// The walk's cadence, steps/min, both legs' steps ([`crate::domain::WalkValue::Cadence`]):
+    /// one value per walk, the same on both legs' rows.
+    #[serde(default)]
+    pub walk_cadence_steps_per_min: Option<f64>,
+    /// Start of the walk's steady window the means and CVs are of, s on the left recording's
+    /// clock ([`crate::domain::WalkValue::SteadyStart`]), the same on both legs' rows.
     #[serde(default)]
     pub steady_start_s: Option<f64>,
-    /// End of the steady walking, s (heel strike ending its last stride).
+    /// End of the walk's steady window, s ([`crate::domain::WalkValue::SteadyEnd`]).
     #[serde(default)]
     pub steady_end_s: Option<f64>,
     /// Valid strides excluded at the start as not steady (speeding up).
@@ -212,6 +216,15 @@ pub struct RecordingRow {
 }
 
 impl RecordingRow {
+    /// A value of the walk this row's leg belongs to (the same on both legs' rows).
+    pub fn walk(&self, v: crate::domain::WalkValue) -> Option<f64> {
+        use crate::domain::WalkValue;
+        match v {
+            WalkValue::Cadence => self.walk_cadence_steps_per_min,
+            WalkValue::SteadyStart => self.steady_start_s,
+            WalkValue::SteadyEnd => self.steady_end_s,
+        }
+    }
     /// The recording was analysed (`status` is `ok` or `no_valid_strides`, not `error`).
     pub fn is_ok(&self) -> bool {
         matches!(
@@ -253,6 +266,15 @@ pub fn stride_rows(results: &[SubjectResult]) -> Vec<StrideRow> {
         }
     }
     out
+}
+
+/// The walk's cadence of a subject, steps/min, from its legs' final mean stride times
+/// ([`crate::domain::walk_cadence_steps_per_min`]), rounded as the table writes it.
+fn walk_cadence(r: &SubjectResult) -> Option<f64> {
+    let st = |leg: &std::result::Result<crate::pipeline::LegResult, String>| {
+        leg.as_ref().ok().map(|l| l.parameters.stride_time_s)
+    };
+    crate::domain::walk_cadence_steps_per_min(st(&r.left), st(&r.right)).and_then(|c| num(c, 2))
 }
 
 /// The per-recording rows of a set of results (failed legs included, with their error).
@@ -310,6 +332,7 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
                 clipped_samples: None,
                 trial_id: r.trial_id.clone().unwrap_or_default(),
                 setting: r.setting.map(Label::from),
+                walk_cadence_steps_per_min: walk_cadence(r),
                 steady_start_s: None,
                 steady_end_s: None,
                 steady_excluded_start: None,

@@ -102,6 +102,16 @@ pub struct SubjectParams {
     /// earlier subjects keep their bytes).
     #[serde(default, skip_serializing_if = "is_zero_s")]
     pub ramp_s: f64,
+    /// Slowing down before the walk ends, s before the last step: strides that end within it
+    /// are longer, by [`RAMP_STRIDE_EXTRA`] at the last step falling linearly to 0 at
+    /// `slowdown_s` before it (the mirror of `ramp_s`). Default 0 (then not serialised).
+    #[serde(default, skip_serializing_if = "is_zero_s")]
+    pub slowdown_s: f64,
+    /// A trend in stride time over the whole walk: the last stride is `1 + trend_share` times
+    /// the first, linearly in between (−0.25: a walker who speeds up throughout, 2.0 → 1.5 s).
+    /// Default 0 (then not serialised).
+    #[serde(default, skip_serializing_if = "is_zero_s")]
+    pub trend_share: f64,
     /// Left leg.
     pub left: LegParams,
     /// Right leg.
@@ -129,6 +139,8 @@ impl SubjectParams {
             toe_off_foot_angle_deg: 55.0,
             turn: true,
             ramp_s: 0.0,
+            slowdown_s: 0.0,
+            trend_share: 0.0,
             left: LegParams::default(),
             right: LegParams::default(),
         }
@@ -338,6 +350,13 @@ impl SubjectParams {
             0.0,
             (0.5 * (self.duration_s - 2.0 * self.standing_s)).max(0.0),
         )?;
+        range(
+            "slowdown_s",
+            self.slowdown_s,
+            0.0,
+            (0.5 * (self.duration_s - 2.0 * self.standing_s)).max(0.0),
+        )?;
+        range("trend_share", self.trend_share, -0.5, 0.5)?;
         range("stride_time_s", self.stride_time_s, 0.7, 2.0)?;
         range("stride_length_m", self.stride_length_m, 0.3, 2.2)?;
         range("stride_time_cv", self.stride_time_cv, 0.0, 0.1)?;

@@ -40,6 +40,10 @@ pub struct StrideTruth {
     /// written when false, so truths without a ramp keep their bytes).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub accelerating: bool,
+    /// Ends while the walker slows down before the end ([`super::SubjectParams::slowdown_s`];
+    /// not written when false).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub decelerating: bool,
 }
 
 /// What was drawn for one sensor.

@@ -6,14 +6,18 @@
 //! - [`parameter`]: [`Parameter`], every gait parameter once with its code, column, plain
 //!   name, unit and meaning (the model is gaitmap's one vocabulary, `gaitmap/utils/consts.py`);
 //! - [`measured`]: [`Reason`] (a typed code with its message), [`Measured`], [`PerParameter`],
-//!   [`Withheld`] (the withheld parameters and why, keyed by [`Parameter`]).
+//!   [`Withheld`] (the withheld parameters and why, keyed by [`Parameter`]);
+//! - [`walk`]: [`WalkValue`], the values of a walk rather than a leg (its cadence and steady
+//!   window, one value on both legs' rows), each with its column, unit and meaning.
 
 pub mod labels;
 pub mod measured;
 pub mod parameter;
 mod unsure;
+pub mod walk;
 
 pub use labels::{AffectedSide, EventKind, Group, Setting, Side};
 pub use measured::{Measured, PerParameter, Reason, ReasonCode, Withheld};
 pub use parameter::{Definition, Parameter, UnknownParameter};
 pub use unsure::UnsureEvent;
+pub use walk::{walk_cadence_steps_per_min, WalkValue};

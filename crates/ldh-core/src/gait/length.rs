@@ -48,7 +48,7 @@
 //! [`MAX_CLIP_STEP_SHARE`] of the length, or the ankle does not come back to the floor level
 //! (within [`MAX_VERTICAL_M`] and [`MAX_VERTICAL_SHARE`] of the length) — or when the length
 //! disagrees with a shank-pendulum estimate from the pitch excursion in stance by more than a
-//! factor 2 (0.45–2.2). The bout-level checks (a stride far from its bout's median, left and
+//! factor 2 (0.45–2.2). The bout-level checks (a stride far from the local median of its bout, left and
 //! right disagreeing over the walk) are in [`super::mod`] and [`crate::pipeline`].
 
 use nalgebra::{Matrix3, Rotation3, Vector3};

@@ -49,12 +49,12 @@ pub use length::{
 pub use params::{check_stride_range, StrideParams, ValidStrideParams, DEFAULT_SENSOR_HEIGHT_M};
 pub use segment::{
     lengths_at_heights, strides, strides_at_heights, strides_with_turns, LengthsAtHeights,
-    TurnTest, ACC_ONLY_LENGTH,
+    TurnTest, ACC_ONLY_LENGTH, LOCAL_LENGTH_STRIDES,
 };
 pub use side::{side_parameters, withhold_unvouched_lengths, MIN_LENGTH_SHARE, MIN_LENGTH_STRIDES};
 pub use steady::{
-    exclude_unsteady, steady_window, SteadyParams, SteadySpan, SteadyWindow, ValidSteadyParams,
-    STEADY_REASON, TOO_LITTLE_STEADY,
+    exclude_unsteady, exclude_unsteady_walk, walk_window, SteadyParams, SteadySpan,
+    ValidSteadyParams, WalkWindow, STEADY_REASON, TOO_LITTLE_STEADY,
 };
 
 /// One stride of one leg: a row of the per-stride table (SPEC §6).
@@ -115,7 +115,7 @@ pub enum LengthCheck {
     Floor,
     /// The length disagrees with the shank-pendulum estimate.
     Pendulum,
-    /// Far from its bout's median length.
+    /// Far from the median length of the strides around it in its bout.
     BoutMedian,
     /// Contradicted by the other leg's strides over the same time.
     OtherLeg,
@@ -133,7 +133,7 @@ impl LengthCheck {
             LengthCheck::TiltCorrection => "attitude tilt correction too large",
             LengthCheck::Floor => "ankle off the floor level",
             LengthCheck::Pendulum => "disagrees with the shank-pendulum estimate",
-            LengthCheck::BoutMedian => "far from its bout's median",
+            LengthCheck::BoutMedian => "far from the median of the strides around it",
             LengthCheck::OtherLeg => "contradicted by the other leg's strides",
             LengthCheck::NotIntegrable => "not integrable",
         }

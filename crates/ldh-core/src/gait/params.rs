@@ -33,7 +33,8 @@ pub struct StrideParams {
     pub drop_bout_edges: bool,
     /// How the zero-velocity instant of each stance is found. Default foot-flat.
     pub zero_velocity: ZeroVelocity,
-    /// A stride whose length differs from its bout's median by more than this fraction is
+    /// A stride whose length differs from the median of the strides around it in its bout
+    /// (10 valid strides on each side, `gait::LOCAL_LENGTH_STRIDES`) by more than this fraction is
     /// invalid (stride length withheld). Default 0.25.
     pub max_length_deviation: f64,
 }

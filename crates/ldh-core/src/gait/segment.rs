@@ -119,7 +119,7 @@ fn strides_with_turns_at(
 
 /// The lengths of a leg's strides with the sensor at other heights, as the segmentation
 /// measured them ([`strides_at_heights`]): per height, per stride, the length after the
-/// stride's own checks (NaN where they withhold it), before its bout's median check.
+/// stride's own checks (NaN where they withhold it), before its local median check.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LengthsAtHeights {
     /// The heights, m.
@@ -145,7 +145,7 @@ impl LengthsAtHeights {
 
     /// Per height, the lengths of `strides` (the strides these lengths were measured with,
     /// after any later check) as [`lengths_at_heights`] gives them: each valid stride's length
-    /// through its bout's median check, NaN where withheld and for invalid strides.
+    /// through its local median check, NaN where withheld and for invalid strides.
     pub fn checked(&self, strides: &[Stride], max_length_deviation: f64) -> Vec<Vec<f64>> {
         self.lengths_m
             .iter()
@@ -415,7 +415,7 @@ struct Span {
 /// The lengths of `strides` (segmented from these signals by [`strides`] or
 /// [`strides_with_turns`] with `params`) recomputed with the sensor at each of `heights_m`
 /// instead, m: per height, each valid stride's length through the same per-stride checks (the
-/// integration's, then its bout's median), NaN where withheld and for invalid strides. The
+/// integration's, then the local median of its bout), NaN where withheld and for invalid strides. The
 /// zero-velocity spans are found once more per stride here and the acceleration rotated once
 /// more, for all heights (they do not depend on the height); the attitude, the bouts and which
 /// strides are valid are the strides' own. The pipeline does not call this: it measures the
@@ -490,32 +490,41 @@ fn flag_bout_edges(out: &mut [Stride], bouts: &[Option<usize>]) {
     }
 }
 
-/// Valid strides whose length differs from the median length of their bout's valid strides by
-/// more than `max_dev` (fraction): the length (and speed) is withheld with the reason; the
-/// stride stays valid for its timing and angles. Bouts with fewer than 3 lengths are left alone
-/// (no median to trust).
+/// Valid strides of a bout on each side of a stride whose lengths give the median it is judged
+/// against (10: the local median follows a walker who speeds up or slows down, so a trend in
+/// stride length does not withhold both ends of the walk; issue 50).
+pub const LOCAL_LENGTH_STRIDES: usize = 10;
+
+/// Valid strides whose length differs from the median length of the valid strides around them
+/// in their bout (up to [`LOCAL_LENGTH_STRIDES`] on each side) by more than `max_dev`
+/// (fraction): the length (and speed) is withheld with the reason; the stride stays valid for
+/// its timing and angles. Neighbourhoods with fewer than 3 lengths are left alone (no median
+/// to trust).
 fn withhold_length_outliers(out: &mut [Stride], max_dev: f64) {
     // The valid strides of each bout, in order (one pass: linear in the strides).
     let mut bouts: std::collections::BTreeMap<usize, Vec<usize>> = Default::default();
     for (k, s) in out.iter().enumerate().filter(|(_, s)| s.valid) {
         bouts.entry(s.bout).or_default().push(k);
     }
+    let mut l = Vec::with_capacity(2 * LOCAL_LENGTH_STRIDES + 1);
     for members in bouts.values() {
-        let mut l: Vec<f64> = members
-            .iter()
-            .map(|&k| out[k].stride_length_m)
-            .filter(|l| l.is_finite())
-            .collect();
-        if l.len() < 3 {
-            continue;
-        }
-        let med = crate::stats::median(&mut l, crate::stats::EvenMedian::Upper).expect("3 or more");
-        for &k in members {
+        // Judged against the lengths as measured (none withheld by a neighbour's verdict).
+        let lengths: Vec<f64> = members.iter().map(|&k| out[k].stride_length_m).collect();
+        for (j, &k) in members.iter().enumerate() {
+            let around = j.saturating_sub(LOCAL_LENGTH_STRIDES)
+                ..(j + LOCAL_LENGTH_STRIDES + 1).min(members.len());
+            l.clear();
+            l.extend(lengths[around].iter().copied().filter(|x| x.is_finite()));
+            if l.len() < 3 {
+                continue;
+            }
+            let med =
+                crate::stats::median(&mut l, crate::stats::EvenMedian::Upper).expect("3 or more");
             let s = &mut out[k];
             let dev = (s.stride_length_m - med) / med;
             if s.stride_length_m.is_finite() && dev.abs() > max_dev {
                 let r = format!(
-                    "stride length withheld: {:.2} m is {:+.0} % from its bout's median {med:.2} m",
+                    "stride length withheld: {:.2} m is {:+.0} % from the median {med:.2} m of the strides around it",
                     s.stride_length_m,
                     dev * 100.0
                 );

@@ -8,7 +8,7 @@
 use std::borrow::Cow;
 use std::fmt::Write;
 
-use crate::domain::Parameter;
+use crate::domain::{Parameter, WalkValue};
 
 /// Which output table a column belongs to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -59,6 +59,11 @@ const fn c(table: Table, name: &'static str, unit: &'static str, meaning: &'stat
     Entry::C(table, name, unit, meaning)
 }
 
+/// A walk value's column of recordings.csv, from its one definition ([`WalkValue`]).
+const fn w(v: WalkValue) -> Entry {
+    Entry::C(R, v.column(), v.unit(), v.description())
+}
+
 use Entry::P;
 use Table::{Events as E, Recordings as R, Strides as S};
 
@@ -86,10 +91,11 @@ const LAYOUT: &[Entry] = &[
     c(R, "clipped_samples", "samples", "Samples at the sensor's range (clipped)."),
     c(R, "trial_id", "", "The trial of the person (manifest `trial_id`); empty for a single recording pair. Statistics and classifiers average a person's trials first."),
     c(R, "setting", "", "`overground`, `treadmill`, or empty (analysed as overground)."),
-    c(R, "steady_start_s", "s", "Start of the steady walking the means and CVs are of (heel strike of its first stride); empty when the rule is off or found none (docs/pipeline.md)."),
-    c(R, "steady_end_s", "s", "End of the steady walking (heel strike ending its last stride)."),
-    c(R, "steady_excluded_start", "strides", "Valid strides excluded at the start as not steady (speeding up: belt start-up, gait initiation)."),
-    c(R, "steady_excluded_end", "strides", "Valid strides excluded at the end as not steady (slowing down)."),
+    w(WalkValue::Cadence),
+    w(WalkValue::SteadyStart),
+    w(WalkValue::SteadyEnd),
+    c(R, "steady_excluded_start", "strides", "Valid strides of this leg excluded before the walk's steady window (speeding up: belt start-up, gait initiation)."),
+    c(R, "steady_excluded_end", "strides", "Valid strides of this leg excluded after the walk's steady window (slowing down, or walking at another pace)."),
     c(R, "belt_speed_mps", "m/s", "Treadmill belt speed as given in the manifest (`belt_speed_mps`); empty when not given."),
     c(R, "visit", "", "The visit of the recording as given in the manifest (`visit`: a label or a date); empty when not given."),
     c(R, "recorded_at", "", "When the recording started, as its file says it (a header line such as `// Start Time:` or `# start:`, Xsens' `UTC_Year` … `UTC_Second` columns, the first ISO 8601 or Unix timestamp), ISO 8601 to the second, `Z` when UTC; empty when the file does not say (docs/input.md)."),

@@ -145,19 +145,22 @@ pub(super) fn pair_legs(
     } else {
         (None, None)
     };
-    // Every finding applied once, in the order of `finalize` (the leg's own findings again:
-    // the strides may have been re-segmented for turns since the leg checks ran).
-    for a in [l.as_mut(), r.as_mut()].into_iter().flatten() {
-        finalize::finalize_strides(&mut a.leg, &warnings, Some(v.steady()));
-    }
     // Not when the pair's checks doubt they are one walk (what withholds the step time).
     let one_walk = overlapping
         && !warnings
             .iter()
             .any(|w| w.withholds(crate::domain::Parameter::StepTime));
+    // One steady window for both legs of one walk (issue 50); else each leg its own.
+    let walk = one_walk && l.is_ok() && r.is_ok();
+    // Every finding applied once, in the order of `finalize` (the leg's own findings again:
+    // the strides may have been re-segmented for turns since the leg checks ran).
+    for a in [l.as_mut(), r.as_mut()].into_iter().flatten() {
+        finalize::finalize_strides(&mut a.leg, &warnings, (!walk).then(|| v.steady()));
+    }
     if let (Ok(AnalysedLeg { leg: ll, .. }), Ok(AnalysedLeg { leg: rl, .. }), true) =
-        (l.as_mut(), r.as_mut(), one_walk)
+        (l.as_mut(), r.as_mut(), walk)
     {
+        quality::apply_steady_walk(ll, rl, v.steady());
         let shift_s = rl.t0_s - ll.t0_s;
         quality::withhold_disagreeing_lengths(&mut ll.strides, &mut rl.strides, shift_s);
     }

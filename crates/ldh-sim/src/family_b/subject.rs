@@ -392,6 +392,7 @@ fn stride_truth(
                 turning: walk.turn.is_some_and(|(a, b)| next > a && hs < b),
                 bout_edge: k == 0 || k == n - 1,
                 accelerating: false,
+                decelerating: false,
             }
         })
         .collect()

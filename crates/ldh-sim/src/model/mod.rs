@@ -126,6 +126,7 @@ fn simulate_leg(
         &kin.fine,
         &timeline.heading,
         timeline.ramp_end_s,
+        timeline.slowdown_start_s,
     );
     let m = measure(
         sensor,

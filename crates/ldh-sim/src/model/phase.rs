@@ -108,6 +108,9 @@ pub(super) struct Timeline {
     /// End of the belt start-up, s (`standing_s + ramp_s`; None without a ramp): strides that
     /// begin before it are accelerating.
     pub(super) ramp_end_s: Option<f64>,
+    /// Start of the slowing down before the end, s (None without one): strides that end after
+    /// it are decelerating.
+    pub(super) slowdown_start_s: Option<f64>,
 }
 
 impl Timeline {
@@ -130,8 +133,9 @@ impl Timeline {
         let walk_s = params.duration_s
             - 2.0 * params.standing_s
             - 1.8 * big_t
-            - 0.5 * RAMP_STRIDE_EXTRA * params.ramp_s;
-        let n = (walk_s / big_t).floor() as usize + 1; // heel strikes of the left leg
+            - 0.5 * RAMP_STRIDE_EXTRA * (params.ramp_s + params.slowdown_s);
+        // A trend makes the mean stride 1 + trend_share / 2 times the first.
+        let n = (walk_s / (big_t * (1.0 + 0.5 * params.trend_share))).floor() as usize + 1; // heel strikes of the left leg
         if n < 4 {
             return Err(LdhError::param(
                 "duration_s",
@@ -156,6 +160,21 @@ impl Timeline {
                 }
             }
             durations.push(d.clamp(0.6 * big_t, 1.6 * big_t));
+        }
+        if params.trend_share != 0.0 {
+            let last = durations.len().saturating_sub(1).max(1) as f64;
+            for (k, d) in durations.iter_mut().enumerate() {
+                *d *= 1.0 + params.trend_share * k as f64 / last;
+            }
+        }
+        if params.slowdown_s > 0.0 {
+            // The walk ends 0.9 strides after the last heel strike (the mirror of the ramp).
+            let mut elapsed = 0.9 * big_t;
+            for d in durations.iter_mut().rev() {
+                let left = (1.0 - elapsed / params.slowdown_s).max(0.0);
+                *d *= 1.0 + RAMP_STRIDE_EXTRA * left;
+                elapsed += *d;
+            }
         }
         if params.ramp_s > 0.0 {
             // The first heel strike comes 0.9 strides after the walk starts.
@@ -188,6 +207,8 @@ impl Timeline {
             phase,
             heading,
             ramp_end_s: (params.ramp_s > 0.0).then_some(t0 + params.ramp_s),
+            slowdown_start_s: (params.slowdown_s > 0.0)
+                .then(|| t0 + 1.8 * big_t + durations.iter().sum::<f64>() - params.slowdown_s),
         })
     }
 }

@@ -11,13 +11,15 @@ use super::phase::Heading;
 /// them: pitch extremes over the stride and the roll range from toe off to the next heel strike
 /// from the integration grid (`fine`), the stride length from the two heel contact points
 /// (NaN when one is missing), `turning` when the stride overlaps the turn, `bout_edge` for the
-/// first and last stride, `accelerating` when it begins before `ramp_end_s` (belt start-up).
+/// first and last stride, `accelerating` when it begins before `ramp_end_s` (belt start-up),
+/// `decelerating` when it ends after `slowdown_start_s`.
 pub(super) fn stride_truth(
     leg: &LegModel,
     events: &LegEvents,
     fine: &FineTrack,
     heading: &Heading,
     ramp_end_s: Option<f64>,
+    slowdown_start_s: Option<f64>,
 ) -> Vec<StrideTruth> {
     let (hs_times, to_times) = (&events.hs, &events.to);
     let j_first = leg.first_stride();
@@ -67,6 +69,7 @@ pub(super) fn stride_truth(
             turning,
             bout_edge,
             accelerating: ramp_end_s.is_some_and(|e| t_hs < e),
+            decelerating: slowdown_start_s.is_some_and(|s| t_next > s),
         });
     }
     strides

@@ -1,34 +1,47 @@
-//! Steady-state walking in the pipeline (issue 36): a simulated treadmill walk whose belt
-//! starts up (`ldh simulate --ramp-s`) loses its start-up strides, and its stride-time CV is
-//! the steady truth's.
+//! Steady-state walking in the pipeline (issues 36 and 50): a simulated treadmill walk whose belt
+//! starts up (`SubjectParams::ramp_s`), whose walker slows down before the end (`slowdown_s`)
+//! or both loses those strides on both legs at once (one window per walk), and its stride-time
+//! CV is the steady truth's within 0.3 points; a walker who speeds up or slows down throughout
+//! (`trend_share`) never becomes steady, and his variability is withheld.
 
 use ldh_core::gait::STEADY_REASON;
 use ldh_core::pipeline::*;
-use ldh_sim::{analyze_simulated, CohortParams, SimSubject, StrideTruth};
+use ldh_sim::{
+    analyze_simulated, simulate_subject, CohortParams, SimSubject, StrideTruth, SubjectParams,
+};
 
 /// Stride-time CV (SD with n − 1 / mean) of the truth's steady strides.
 fn steady_truth_cv(strides: &[StrideTruth]) -> f64 {
-    let t: Vec<f64> = strides
+    cv(&strides
         .iter()
-        .filter(|s| !s.accelerating && !s.bout_edge && !s.turning)
+        .filter(|s| !s.accelerating && !s.decelerating && !s.bout_edge && !s.turning)
         .map(|s| s.stride_time_s)
-        .collect();
+        .collect::<Vec<_>>())
+}
+
+fn cv(t: &[f64]) -> f64 {
     let n = t.len() as f64;
     let mean = t.iter().sum::<f64>() / n;
     let var = t.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
     var.sqrt() / mean
 }
 
-fn treadmill(ramp_s: f64) -> CohortParams {
+fn treadmill() -> CohortParams {
     CohortParams {
         healthy: 2,
         ldh: 2,
         duration_s: 90.0,
         seed: 36,
         turn: false,
-        ramp_s,
         ..CohortParams::default()
     }
+}
+
+/// Subject `i` of `c` with its parameters changed by `f` (the same random stream).
+fn simulate(c: &CohortParams, i: usize, f: impl Fn(&mut SubjectParams)) -> SimSubject {
+    let (mut p, mut rng) = c.draw(i);
+    f(&mut p);
+    simulate_subject(&p, &c.sensor, &mut rng).unwrap()
 }
 
 fn analyse(s: &SimSubject, steady: bool) -> SubjectResult {
@@ -41,89 +54,153 @@ fn analyse(s: &SimSubject, steady: bool) -> SubjectResult {
     analyze_simulated(s, &p)
 }
 
-#[test]
-fn belt_start_up_is_excluded_and_the_cv_is_the_steady_truths() {
-    let c = treadmill(10.0);
+/// Every subject of the treadmill cohort with `f` applied: both legs' windows are one, the
+/// transients are out, and the CV is the steady truth's. Returns |CV − truth| per leg.
+fn transients_are_excluded(name: &str, f: impl Fn(&mut SubjectParams)) -> Vec<f64> {
+    let c = treadmill();
     let mut errors = Vec::new();
     for i in 0..c.len() {
-        let s = c.simulate(i).unwrap();
+        let s = simulate(&c, i, &f);
         let id = &s.params.subject_id;
         let t = s.truth();
-        let on = analyse(&s, true);
-        let off = analyse(&s, false);
-        for ((leg, leg_off), tr) in [(&on.left, &off.left), (&on.right, &off.right)]
+        let (on, off) = (analyse(&s, true), analyse(&s, false));
+        let (l, r) = (on.left.as_ref().unwrap(), on.right.as_ref().unwrap());
+        let (wl, wr) = (l.steady.unwrap(), r.steady.unwrap());
+        // One window per walk (both recordings start together here).
+        assert_eq!(
+            (wl.start_s, wl.end_s),
+            (wr.start_s, wr.end_s),
+            "{name} {id}"
+        );
+        for ((leg, leg_off), tr) in [(l, &off.left), (r, &off.right)]
             .into_iter()
             .zip([&t.left, &t.right])
         {
-            let (leg, leg_off) = (leg.as_ref().unwrap(), leg_off.as_ref().unwrap());
+            let leg_off = leg_off.as_ref().unwrap();
             let truth = steady_truth_cv(&tr.strides);
-            let cv = leg.parameters.stride_time_cv;
+            let cv_on = leg.parameters.stride_time_cv;
             let cv_off = leg_off.parameters.stride_time_cv;
-            let ramp_end = tr
-                .strides
-                .iter()
-                .filter(|x| x.accelerating)
-                .map(|x| x.next_hs_time_s)
-                .fold(0.0, f64::max);
-            let ideal: Vec<f64> = leg_off
-                .strides
-                .iter()
-                .filter(|x| x.valid && x.hs_time_s > ramp_end - 0.2)
-                .map(|x| x.stride_time_s)
-                .collect();
-            let n = ideal.len() as f64;
-            let m = ideal.iter().sum::<f64>() / n;
-            let ideal_cv =
-                (ideal.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (n - 1.0)).sqrt() / m;
+            let w = leg.steady.unwrap();
             eprintln!(
-                "{id} {:?}: truth {:.2} %, ldh {:.2} %, ldh on the true window {:.2} %, without the rule {:.2} %, window {:?} ramp end {ramp_end:.2}",
+                "{name} {id} {:?}: truth {:.2} %, ldh {:.2} %, without the rule {:.2} %, window {:.1}–{:.1} s, excluded {} + {}",
                 tr.side,
                 100.0 * truth,
-                100.0 * cv,
-                100.0 * ideal_cv,
+                100.0 * cv_on,
                 100.0 * cv_off,
-                leg.steady
+                w.start_s,
+                w.end_s,
+                w.excluded_start,
+                w.excluded_end
             );
-            // The rule's own error: against ldh's strides on the truth's steady window.
+            // Issue 50: within 0.3 points on average; what the event timing adds on the true
+            // window (≤ 0.28 points on these legs, issue 36) is in it, so 0.4 per leg.
             assert!(
-                (cv - ideal_cv).abs() <= 0.003,
-                "{id} {:?}: CV {cv} against {ideal_cv} on the true window",
+                (cv_on - truth).abs() <= 0.004,
+                "{name} {id} {:?}: CV {cv_on} against the steady truth {truth}",
                 tr.side
             );
-            // Against the truth (issue 36: 0.3 points); what the event timing adds on the true
-            // window (≤ 0.28 points on these legs) is in it, so 0.4 per leg, 0.3 on average.
+            errors.push((cv_on - truth).abs());
+            // The transients are what the rule removed: without it the CV is far off.
             assert!(
-                (cv - truth).abs() <= 0.004,
-                "{id} {:?}: CV {cv} against the steady truth {truth}",
+                cv_off - truth > 0.004,
+                "{name} {id} {:?}: {cv_off} {truth}",
                 tr.side
             );
-            errors.push((cv - truth).abs());
-            // The start-up is what the rule removed: without it the CV is far off.
-            assert!(
-                cv_off - truth > 0.005,
-                "{id} {:?}: {cv_off} {truth}",
-                tr.side
-            );
-            let w = leg.steady.unwrap();
-            assert!(w.excluded_start >= 2, "{id} {:?}: {w:?}", tr.side);
-            assert!(w.enough);
-            // The first half of the start-up (strides ≥ 12.5 % longer) is out, with its reason.
-            let half = s.params.standing_s + 0.5 * c.ramp_s;
-            for st in leg.strides.iter().filter(|x| x.hs_time_s < half) {
-                assert!(!st.valid, "{id} {:?}: {st:?}", tr.side);
+            assert!(w.enough && !w.never_steady, "{w:?}");
+            // No stride of the first or last half of a transient is steady.
+            let early = s.params.standing_s + 0.5 * s.params.ramp_s;
+            let last_hs = tr.hs_times_s.last().copied().unwrap_or(f64::MAX);
+            let late = last_hs - 0.5 * s.params.slowdown_s;
+            for st in leg.strides.iter().filter(|x| {
+                (s.params.ramp_s > 0.0 && x.hs_time_s < early)
+                    || (s.params.slowdown_s > 0.0 && x.next_hs_time_s > late)
+            }) {
+                assert!(!st.valid, "{name} {id} {:?}: {st:?}", tr.side);
             }
             assert!(leg.strides.iter().any(|x| x.reason.contains(STEADY_REASON)));
             assert!(leg.warnings.iter().any(|x| x.code == codes::STEADY_WINDOW));
         }
     }
     let mean = errors.iter().sum::<f64>() / errors.len() as f64;
-    eprintln!("mean |CV − steady truth| {:.3} points", 100.0 * mean);
-    assert!(mean <= 0.003, "{errors:?}");
+    eprintln!(
+        "{name}: mean |CV − steady truth| {:.3} points, largest {:.3}",
+        100.0 * mean,
+        100.0 * errors.iter().fold(0.0_f64, |a, &b| a.max(b))
+    );
+    assert!(mean <= 0.003, "{name}: {errors:?}");
+    errors
+}
+
+#[test]
+fn belt_start_up_is_excluded_on_both_legs_and_the_cv_is_the_steady_truths() {
+    transients_are_excluded("ramp 10 s", |p| p.ramp_s = 10.0);
+}
+
+#[test]
+fn a_long_belt_start_up_is_excluded() {
+    // Issue 50's walk: steady only after ≈ 30 s.
+    transients_are_excluded("ramp 30 s", |p| p.ramp_s = 30.0);
+}
+
+#[test]
+fn slowing_down_before_the_end_is_excluded() {
+    transients_are_excluded("slow-down 10 s", |p| p.slowdown_s = 10.0);
+    transients_are_excluded("ramp 10 s + slow-down 10 s", |p| {
+        p.ramp_s = 10.0;
+        p.slowdown_s = 10.0;
+    });
+}
+
+#[test]
+fn a_walker_who_speeds_up_or_slows_down_throughout_never_becomes_steady() {
+    let c = treadmill();
+    for trend in [-0.25, 0.25] {
+        for i in 0..c.len() {
+            let s = simulate(&c, i, |p| p.trend_share = trend);
+            let id = &s.params.subject_id;
+            let on = analyse(&s, true);
+            for leg in [&on.left, &on.right] {
+                let leg = leg.as_ref().unwrap();
+                let w = leg.steady.unwrap();
+                eprintln!("trend {trend} {id} {:?}: {w:?}", leg.side);
+                assert!(w.never_steady && !w.enough, "{id} {:?}: {w:?}", leg.side);
+                assert!(w.start_s.is_nan() && w.end_s.is_nan());
+                // Nothing excluded as not steady; the variability withheld, with the reason.
+                assert!(!leg.strides.iter().any(|x| x.reason.contains(STEADY_REASON)));
+                let p = &leg.parameters;
+                assert!(p.stride_time_cv.is_nan() && p.stride_length_cv.is_nan());
+                let why = p
+                    .withheld
+                    .get(ldh_core::domain::Parameter::StrideTimeCv)
+                    .unwrap();
+                assert!(why.message.contains("never steady"), "{why:?}");
+                assert!(leg.warnings.iter().any(|x| x.code == codes::NEVER_STEADY));
+                // The trend's stride lengths are kept at both ends (a local median).
+                let kept = |a: usize, b: usize| {
+                    leg.strides[a..b]
+                        .iter()
+                        .filter(|x| x.valid && x.stride_length_m.is_finite())
+                        .count()
+                };
+                let n = leg.strides.len();
+                assert!(
+                    kept(0, n / 5) >= n / 10,
+                    "{id} {:?}: early lengths dropped",
+                    leg.side
+                );
+                assert!(
+                    kept(n - n / 5, n) >= n / 10,
+                    "{id} {:?}: late lengths dropped",
+                    leg.side
+                );
+            }
+        }
+    }
 }
 
 #[test]
 fn a_steady_walk_loses_nothing() {
-    let c = treadmill(0.0);
+    let c = treadmill();
     let s = c.simulate(0).unwrap();
     let on = analyse(&s, true);
     let off = analyse(&s, false);

@@ -48,7 +48,7 @@ pub use pair::{pair_warnings, CANONICAL_MOUNT_DEG, LR_STRIDE_LENGTH_TOL, LR_STRI
 pub use sensor::{
     sensor_checks, SensorFindings, GYRO_CLIP_SHARE, SCALE_FAULT_SHARE, SHANK_MAX_DPS,
 };
-pub use steady::{apply_steady, steady_warning};
+pub use steady::{apply_steady, apply_steady_walk, steady_warning};
 pub use warning::{codes, flat, params, Severity, Warning, WarningList, WithheldList};
 
 /// Shortest median stride time of walking, s (0.7 s = 171 steps/min, beyond the fastest

@@ -1,56 +1,93 @@
-//! What the steady-state rule ([`crate::gait::exclude_unsteady`]) says about a leg: the window
-//! it kept when it excluded strides (a note), or too little steady walking for the variability
-//! (a warning that withholds the CVs).
+//! What the steady-state rule ([`crate::gait::exclude_unsteady_walk`]) says about a walk's legs:
+//! the window it kept when it excluded strides (a note), too little steady walking for the
+//! variability, or a walk that never becomes steady (warnings that withhold the CVs).
+//!
+//! A subject's two legs are one walk: they get one window, from both legs' strides on the left
+//! recording's clock ([`apply_steady_walk`]); a leg alone, or legs the pair's checks doubt
+//! are one walk, get their own ([`apply_steady`]).
 
 use super::warning::{codes, params, Severity, Warning};
-use crate::gait::{exclude_unsteady, SteadySpan, Stride, ValidSteadyParams};
+use super::LegResult;
+use crate::gait::{exclude_unsteady_walk, SteadySpan, Stride, ValidSteadyParams};
 
-/// Apply the steady-state rule to a leg's strides ([`exclude_unsteady`], idempotent) and put
-/// its finding among the leg's `warnings` in place of an earlier one (most severe first).
+/// Apply the steady-state rule to one leg's strides, the leg being the walk (idempotent), and
+/// put its finding among the leg's `warnings` in place of an earlier one (most severe first).
 pub fn apply_steady(
     strides: &mut [Stride],
     warnings: &mut Vec<Warning>,
     p: &ValidSteadyParams,
 ) -> Option<SteadySpan> {
-    let span = exclude_unsteady(strides, p);
-    warnings.retain(|w| w.code != codes::STEADY_WINDOW && w.code != codes::TOO_LITTLE_STEADY);
-    if let Some(w) = span.as_ref().and_then(steady_warning) {
+    let span = exclude_unsteady_walk(&mut [(strides, 0.0)], p)
+        .pop()
+        .flatten();
+    set_warning(warnings, span.as_ref());
+    span
+}
+
+/// Apply the steady-state rule to both legs of one walk: one window from both legs' strides
+/// (the right leg's times shifted onto the left recording's clock by the difference of the
+/// files' first samples, `t0_s`), each leg's strides outside it excluded, each leg's `steady`
+/// and finding set. Idempotent.
+pub fn apply_steady_walk(left: &mut LegResult, right: &mut LegResult, p: &ValidSteadyParams) {
+    let shift_s = right.t0_s - left.t0_s;
+    let mut spans = exclude_unsteady_walk(
+        &mut [(&mut left.strides, 0.0), (&mut right.strides, shift_s)],
+        p,
+    );
+    let (r, l) = (spans.pop().flatten(), spans.pop().flatten());
+    for (leg, span) in [(left, l), (right, r)] {
+        set_warning(&mut leg.warnings, span.as_ref());
+        leg.steady = span;
+    }
+}
+
+/// Put the rule's finding about a leg among its warnings in place of an earlier one.
+fn set_warning(warnings: &mut Vec<Warning>, span: Option<&SteadySpan>) {
+    warnings.retain(|w| {
+        ![
+            codes::STEADY_WINDOW,
+            codes::TOO_LITTLE_STEADY,
+            codes::NEVER_STEADY,
+        ]
+        .contains(&w.code.as_str())
+    });
+    if let Some(w) = span.and_then(steady_warning) {
         warnings.push(w);
         warnings.sort_by_key(|x| std::cmp::Reverse(x.severity));
     }
-    span
 }
 
 /// The finding of the steady-state rule on one leg (`None`: every stride steady and enough of
 /// them).
 pub fn steady_warning(s: &SteadySpan) -> Option<Warning> {
-    if s.steady_strides == 0 {
+    if s.never_steady {
         return Some(
             Warning::new(
-                codes::TOO_LITTLE_STEADY,
+                codes::NEVER_STEADY,
                 Severity::Warning,
-                "no steady walking found (no three consecutive strides within the walk's own band of stride times): stride-time and stride-length variability withheld; the means are of the whole walk",
+                format!(
+                    "the walk never becomes steady: its stride time changes throughout (speeding up, slowing down or changing pace; the longest stretch at one pace holds {:.0} % of the strides, fewer than half), so stride-time and stride-length variability are withheld; the means are of the whole walk",
+                    100.0 * s.longest_share
+                ),
             )
             .withholding(&params::VARIABILITY),
         );
     }
     if !s.enough {
+        let message = match excluded(s) {
+            _ if !s.start_s.is_finite() => "fewer than 10 steady strides: no valid stride, so stride-time and stride-length variability (CV) are withheld".to_string(),
+            Some(e) => format!(
+                "fewer than 10 steady strides: {} (steady walking from {:.1} s to {:.1} s; {e}), so stride-time and stride-length variability (CV) are withheld",
+                s.steady_strides, s.start_s, s.end_s
+            ),
+            None => format!(
+                "fewer than 10 steady strides: {} valid (walking from {:.1} s to {:.1} s), so stride-time and stride-length variability (CV) are withheld; a longer straight walk gives more",
+                s.steady_strides, s.start_s, s.end_s
+            ),
+        };
         return Some(
-            Warning::new(
-                codes::TOO_LITTLE_STEADY,
-                Severity::Warning,
-                match excluded(s) {
-                    Some(e) => format!(
-                        "fewer than 10 steady strides: {} (steady walking from {:.1} s to {:.1} s; {e}), so stride-time and stride-length variability (CV) are withheld",
-                        s.steady_strides, s.start_s, s.end_s
-                    ),
-                    None => format!(
-                        "fewer than 10 steady strides: {} valid (walking from {:.1} s to {:.1} s), so stride-time and stride-length variability (CV) are withheld; a longer straight walk gives more",
-                        s.steady_strides, s.start_s, s.end_s
-                    ),
-                },
-            )
-            .withholding(&params::VARIABILITY),
+            Warning::new(codes::TOO_LITTLE_STEADY, Severity::Warning, message)
+                .withholding(&params::VARIABILITY),
         );
     }
     excluded(s).map(|e| {
@@ -71,9 +108,11 @@ fn excluded(s: &SteadySpan) -> Option<String> {
     match (s.excluded_start, s.excluded_end) {
         (0, 0) => None,
         (a, 0) => Some(format!("{a} stride(s) at the start excluded (speeding up)")),
-        (0, b) => Some(format!("{b} stride(s) at the end excluded (slowing down)")),
+        (0, b) => Some(format!(
+            "{b} stride(s) at the end excluded (slowing down or a change of pace)"
+        )),
         (a, b) => Some(format!(
-            "{a} stride(s) at the start (speeding up) and {b} at the end (slowing down) excluded"
+            "{a} stride(s) at the start (speeding up) and {b} at the end (slowing down or a change of pace) excluded"
         )),
     }
 }
@@ -90,6 +129,8 @@ mod tests {
             excluded_end: b,
             steady_strides: steady,
             enough: steady >= 10,
+            never_steady: false,
+            longest_share: 0.8,
         }
     }
 
@@ -105,7 +146,7 @@ mod tests {
         assert!(w.affects.is_empty());
         let w = steady_warning(&span(6, 2, 1)).unwrap();
         assert_eq!(w.code, codes::TOO_LITTLE_STEADY);
-        assert_eq!(w.message, "fewer than 10 steady strides: 6 (steady walking from 12.0 s to 80.0 s; 2 stride(s) at the start (speeding up) and 1 at the end (slowing down) excluded), so stride-time and stride-length variability (CV) are withheld");
+        assert_eq!(w.message, "fewer than 10 steady strides: 6 (steady walking from 12.0 s to 80.0 s; 2 stride(s) at the start (speeding up) and 1 at the end (slowing down or a change of pace) excluded), so stride-time and stride-length variability (CV) are withheld");
         assert_eq!(
             w.reason(),
             "too little steady (fewer than 10 steady strides)"
@@ -118,11 +159,26 @@ mod tests {
         let none = SteadySpan {
             start_s: f64::NAN,
             end_s: f64::NAN,
+            never_steady: true,
+            longest_share: 0.31,
             ..span(0, 0, 0)
         };
-        assert!(steady_warning(&none)
-            .unwrap()
-            .message
-            .starts_with("no steady walking found"));
+        let w = steady_warning(&none).unwrap();
+        assert_eq!(w.code, codes::NEVER_STEADY);
+        assert!(
+            w.message.contains("holds 31 % of the strides"),
+            "{}",
+            w.message
+        );
+        assert_eq!(w.reason(), "never steady (the walk never becomes steady)");
+        assert_eq!(w.affects, params::VARIABILITY);
+        let empty = SteadySpan {
+            never_steady: false,
+            ..none
+        };
+        assert_eq!(
+            steady_warning(&empty).unwrap().code,
+            codes::TOO_LITTLE_STEADY
+        );
     }
 }

@@ -189,6 +189,10 @@ pub mod codes {
     pub const STEADY_WINDOW: &str = "steady_window";
     /// Too little steady walking for the variability (CVs withheld).
     pub const TOO_LITTLE_STEADY: &str = "too_little_steady";
+    /// The walk never becomes steady: its stride time changes throughout (a trend, or more than
+    /// one change of pace), so its variability is withheld (CVs withheld, means of the whole
+    /// walk).
+    pub const NEVER_STEADY: &str = "never_steady";
     /// One channel frozen, dropped to zero or spiking for part of the walk, named with its
     /// span; the strides overlapping it are withheld ([`crate::pipeline::quality::detect_faults`]).
     pub const CHANNEL_FAULT: &str = "channel_fault";
