@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Write the fuzz seeds (fuzz/seeds/<target>/) from data-fixtures/cohort/H01/left.csv.
+"""Write the fuzz seeds (fuzz/seeds/<target>/) from data-fixtures/cohort/H01/left.csv.gz (the demo cohort).
 
 Run from the repository root: python3 fuzz/make_seeds.py. The seeds are committed; this
 script only documents how they were made. Each CSV seed is a real recording of just over 4 s
@@ -8,6 +8,7 @@ that format for the target's second, explicit-format read (ldh_fuzz::read_csv:
 format = len % 7, reader parameters = (len / 7) % 4).
 """
 import math
+import gzip
 import os
 import struct
 
@@ -18,7 +19,7 @@ FORMATS = ["ldh", "xsens-mtmanager", "shimmer-consensys", "raw-counts", "fuzz-is
 
 
 def rows(n, step=1):
-    with open(os.path.join(ROOT, "data-fixtures/cohort/H01/left.csv")) as f:
+    with gzip.open(os.path.join(ROOT, "data-fixtures/cohort/H01/left.csv.gz"), "rt") as f:
         lines = f.read().splitlines()[1:]
     out = []
     for line in lines[: n * step : step]:

@@ -45,14 +45,14 @@ fn summary_on_stdout_json_for_scripts_and_quiet() {
     let o = ldh_ok(&["analyze", "-o", out.to_str().unwrap(), "-j", "2"]);
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(
-        stdout.starts_with("8 recordings (4 people, model fusion): 8 ok, 0 failed;"),
+        stdout.starts_with("26 recordings (13 people, model fusion): 26 ok, 0 failed;"),
         "{stdout}"
     );
 
     let o = ldh_ok(&["analyze", "-o", out.to_str().unwrap(), "--json"]);
     let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    assert_eq!(j["recordings"], 8);
-    assert_eq!(j["ok"], 8);
+    assert_eq!(j["recordings"], 26);
+    assert_eq!(j["ok"], 26);
     assert_eq!(j["failed"], 0);
     assert!(j["valid_strides"].as_u64().unwrap() > 0);
     assert!(j["failures"].as_array().unwrap().is_empty());

@@ -235,8 +235,15 @@ fn demo_writes_the_embedded_cohort() {
     let d = tempfile::tempdir().unwrap();
     let o = ldh(&["demo", "--out", d.path().to_str().unwrap()]);
     assert!(o.status.success(), "{}", text(&o));
-    for s in ["H01", "H02", "L01", "L02"] {
-        assert!(d.path().join(s).join("left.csv").exists());
+    for s in ldh_core::demo::SUBJECTS {
+        for side in ["left", "right"] {
+            let f = d.path().join(s).join(format!("{side}.csv"));
+            let written = std::fs::read_to_string(&f).unwrap();
+            assert_eq!(
+                written,
+                ldh_core::demo::file(&format!("{s}/{side}.csv")).unwrap()
+            );
+        }
     }
     assert_eq!(
         std::fs::read_to_string(d.path().join("manifest.csv")).unwrap(),

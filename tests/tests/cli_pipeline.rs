@@ -9,14 +9,14 @@ fn analyze_without_input_runs_the_embedded_demo() {
     let out = d.path().join("out");
     let o = ldh(&["analyze", "--out", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", text(&o));
-    assert!(text(&o).contains("embedded demo cohort (4 people)"));
+    assert!(text(&o).contains("embedded demo cohort (13 people)"));
     let strides = std::fs::read_to_string(out.join("strides.csv")).unwrap();
     assert!(strides.starts_with(
         "subject_id,side,model,stride_index,bout,hs_time_s,to_time_s,next_hs_time_s,stride_time_s,stance_ratio,stride_length_m,speed_mps,wqk_deg,pbi_deg,bdk_deg,heading_change_deg,valid,reason,trial_id\n"
     ));
     let rec = json(&out.join("recordings.json"));
     let rows = rec.as_array().unwrap();
-    assert_eq!(rows.len(), 8);
+    assert_eq!(rows.len(), 26);
     for r in rows {
         assert_eq!(r["status"], "ok", "{r}");
         let st = r["stride_time_s"].as_f64().unwrap();
@@ -34,12 +34,12 @@ fn analyze_without_input_runs_the_embedded_demo() {
             "{r}"
         );
         assert!(r["sta_per_s"].as_f64().unwrap() > 0.0, "{r}");
-        assert!(r["strides_valid"].as_u64().unwrap() >= 6, "{r}");
+        assert!(r["strides_valid"].as_u64().unwrap() >= 10, "{r}");
         let role = r["side_role"].as_str().unwrap();
         assert!(["healthy", "affected", "unaffected"].contains(&role));
     }
     // The affected side of each LDH subject has the longer stance (simulated effect).
-    for id in ["L01", "L02"] {
+    for id in ["L01", "L02", "L03"] {
         let get = |role: &str| {
             rows.iter()
                 .find(|r| r["subject_id"] == id && r["side_role"] == role)
@@ -68,6 +68,80 @@ fn analyze_without_input_runs_the_embedded_demo() {
         .contains("first stride of a walking bout")));
 }
 
+/// Issue 51: the README's first command (`ldh analyze --report`, the embedded demo) shows the
+/// product working: no warning a technician would act on (notes, what the pipeline did, may
+/// remain), nothing withheld, every parameter measured and judged against the cohort's own
+/// healthy reference on every subject page, and group statistics on the cohort page.
+#[test]
+fn the_demo_shows_every_parameter_measured_and_judged() {
+    let d = tempfile::tempdir().unwrap();
+    let out = d.path().join("ldh-out");
+    let o = ldh(&["analyze", "--report", "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", text(&o));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !stderr.contains("warning") && !stderr.contains("error"),
+        "{stderr}"
+    );
+    let rec = json(&out.join("recordings.json"));
+    for r in rec.as_array().unwrap() {
+        let who = format!("{} {}", r["subject_id"], r["side"]);
+        let warnings = r["warnings"].as_array().unwrap();
+        assert!(
+            warnings.iter().all(|w| w["severity"] == "note"),
+            "{who}: {warnings:?}"
+        );
+        assert!(r["withheld"].as_object().unwrap().is_empty(), "{who}");
+        assert!(r["strides_valid"].as_u64().unwrap() >= 10, "{who}");
+    }
+    let codes: Vec<&str> = ldh_core::cohort::PARAMETERS
+        .iter()
+        .map(|p| p.code())
+        .collect();
+    assert_eq!(codes.len(), 12);
+    let reports = out.join("reports");
+    for id in ldh_core::demo::SUBJECTS {
+        let page = std::fs::read_to_string(reports.join(format!("subjects/{id}.html"))).unwrap();
+        // The parameter table of section 2: one row per parameter, its code first.
+        for code in &codes {
+            let start = format!("<tr><td>{code} — ");
+            let at = page
+                .find(&start)
+                .unwrap_or_else(|| panic!("{id}: no row for {code}"));
+            let row = &page[at..at + page[at..].find("</tr>").unwrap()];
+            for missing in ["not measured", "no reference", "not judged", "withheld"] {
+                assert!(!row.contains(missing), "{id} {code}: {row}");
+            }
+            assert!(
+                row.contains("(cohort healthy, n = 10)"),
+                "{id} {code}: {row}"
+            );
+            let judged = ["within normal", "above normal", "below normal"];
+            let sides = judged.iter().map(|j| row.matches(j).count()).sum::<usize>();
+            let one_value_per_walk = ["SF", "SS", "ST"].contains(code);
+            assert_eq!(
+                sides,
+                if one_value_per_walk { 1 } else { 2 },
+                "{id} {code}: {row}"
+            );
+        }
+        assert!(!page.contains("Record a longer walk"), "{id}");
+    }
+    let cohort = std::fs::read_to_string(reports.join("index.html")).unwrap();
+    assert!(!cohort.contains("No group statistics"));
+    let stats = &cohort[cohort
+        .find("1. Group statistics")
+        .expect("group statistics")..];
+    assert!(
+        stats.contains("Group ldh: n = 3 people, group healthy: n = 10 people"),
+        "{}",
+        &stats[..400]
+    );
+    for code in &codes {
+        assert!(stats.contains(&format!("<tr><td>{code}</td>")), "{code}");
+    }
+}
+
 #[test]
 fn a_bad_recording_is_reported_and_the_rest_is_written() {
     let d = tempfile::tempdir().unwrap();
@@ -86,7 +160,7 @@ fn a_bad_recording_is_reported_and_the_rest_is_written() {
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     let t = text(&o);
     assert!(
-        t.contains("8 recordings (4 people, model fusion): 6 ok, 2 failed"),
+        t.contains("26 recordings (13 people, model fusion): 24 ok, 2 failed"),
         "{t}"
     );
     assert!(

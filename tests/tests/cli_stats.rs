@@ -76,16 +76,29 @@ fn stats_on_a_simulated_cohort_finds_the_simulated_effects() {
 #[test]
 fn stats_refuses_cohorts_it_cannot_test_and_names_what_is_missing() {
     let d = tempfile::tempdir().unwrap();
-    // The demo has two subjects per group.
-    let o = ldh(&["stats", "--out", d.path().join("s").to_str().unwrap()]);
+    // The demo without its third LDH subject: two in that group.
+    ldh_core::demo::write_to(d.path()).unwrap();
+    let manifest = d.path().join("manifest.csv");
+    let two: String = ldh_core::demo::file("manifest.csv")
+        .unwrap()
+        .lines()
+        .filter(|l| !l.starts_with("L03,"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    std::fs::write(&manifest, two).unwrap();
+    let o = ldh(&[
+        "stats",
+        manifest.to_str().unwrap(),
+        "--out",
+        d.path().join("s").to_str().unwrap(),
+    ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(
-        text(&o).contains("has 2 usable subject(s) (both legs analysed"),
+        text(&o).contains("ldh group has 2 usable subject(s) (both legs analysed"),
         "{}",
         text(&o)
     );
     // Without a manifest there are no groups.
-    ldh_core::demo::write_to(d.path()).unwrap();
     std::fs::remove_file(d.path().join("manifest.csv")).unwrap();
     let o = ldh(&[
         "stats",

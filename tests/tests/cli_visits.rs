@@ -5,12 +5,12 @@
 mod common;
 use common::{ldh, ldh_ok, text};
 
-fn fixture(name: &str) -> String {
-    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../data-fixtures/cohort")
-        .join(name)
-        .display()
-        .to_string()
+/// A file of the embedded demo cohort, written under `dir` (once per test).
+fn fixture(dir: &std::path::Path, name: &str) -> String {
+    if !dir.join("manifest.csv").exists() {
+        ldh_core::demo::write_to(dir).unwrap();
+    }
+    dir.join(name).display().to_string()
 }
 
 /// The rows of the visits table of `html`, by parameter code, with their marks.
@@ -27,6 +27,7 @@ fn marks(html: &str, code: &str) -> usize {
 #[test]
 fn a_two_visit_report_marks_only_changes_beyond_the_mdc95() {
     let d = tempfile::tempdir().unwrap();
+    let demo = d.path().join("demo");
     // Person P: visit "pre" walks like H01, visit "post" like L01 (slower, shorter strides).
     let manifest = d.path().join("manifest.csv");
     std::fs::write(
@@ -34,10 +35,10 @@ fn a_two_visit_report_marks_only_changes_beyond_the_mdc95() {
         format!(
             "subject_id,trial_id,visit,group,affected_side,left,right,sensor_height_m\n\
              P,1,pre,ldh,left,{},{},0.08\nP,2,post,ldh,left,{},{},0.08\n",
-            fixture("H01/left.csv"),
-            fixture("H01/right.csv"),
-            fixture("L01/left.csv"),
-            fixture("L01/right.csv"),
+            fixture(&demo, "H01/left.csv"),
+            fixture(&demo, "H01/right.csv"),
+            fixture(&demo, "L01/left.csv"),
+            fixture(&demo, "L01/right.csv"),
         ),
     )
     .unwrap();

@@ -1,4 +1,4 @@
-//! Reading and preprocessing throughput (issue 2): one 25 s, 100 Hz recording of the demo
+//! Reading and preprocessing throughput (issue 2): one 35 s, 100 Hz recording of the demo
 //! cohort, from CSV bytes in memory (no disk) and preprocessing alone.
 //!
 //! Run: `cargo bench -p ldh-core --bench preprocess`

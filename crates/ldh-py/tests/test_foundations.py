@@ -81,7 +81,7 @@ def test_demo_and_simulation_are_deterministic(tmp_path):
     with pytest.raises(ldh.LdhParamError, match="at least 14 s"):
         ldh.simulate_cohort(tmp_path / "c", seconds=12)
     rec, report = ldh.read_recording(tmp_path / "demo" / "H01" / "left.csv")
-    assert abs(rec["fs_hz"] - 100.0) < 1e-9 and len(rec["time_s"]) == 2501
+    assert abs(rec["fs_hz"] - 100.0) < 1e-9 and len(rec["time_s"]) == 3501
 
 
 def test_slow_ldh_subjects_come_last_and_leave_the_others_unchanged(tmp_path):

@@ -44,11 +44,16 @@ def _run(block, cwd):
 def test_python_block_runs_as_printed(tmp_path):
     pytest.importorskip("pandas")
     out = _run(BLOCKS[0], tmp_path)
-    assert "<ldh.Result: 8 recordings (0 failed)" in out
+    assert "<ldh.Result: 26 recordings (0 failed)" in out
 
 
 def _cli():
-    for c in ["target/debug/ldh-under-test", "target/debug/ldh", "target/release/ldh", "target/ci/ldh"]:
+    """The `ldh` the wheel is compared with: $LDH_CLI (CI: the release archive's binary), else one
+    built in this tree."""
+    if os.environ.get("LDH_CLI"):
+        return pathlib.Path(os.environ["LDH_CLI"])
+    for c in ["target/ci/ldh-under-test", "target/debug/ldh-under-test", "target/debug/ldh",
+              "target/release/ldh", "target/ci/ldh"]:
         if (ROOT / c).exists():
             return ROOT / c
     return None
@@ -63,7 +68,7 @@ def test_dask_block_runs_as_printed_and_equals_ldh_analyze(tmp_path):
 
     _run(BLOCKS[1], tmp_path)
     dask = pd.read_csv(tmp_path / "recordings-dask.csv", keep_default_na=False, na_values=[""])
-    assert len(dask) == 8 and set(dask.group) == {"healthy", "ldh"}
+    assert len(dask) == 26 and set(dask.group) == {"healthy", "ldh"}
     cli = _cli()
     if cli is None:
         print("skipped CLI comparison: no ldh binary built")

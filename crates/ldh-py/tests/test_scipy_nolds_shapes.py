@@ -112,7 +112,8 @@ def test_analyze_returns_dataframes_or_arrays(tmp_path):
     assert isinstance(res, ldh.Result)
     for t in (res.strides, res.recordings, res.events):
         assert isinstance(t, pd.DataFrame)
-    assert list(res.recordings.subject_id) == ["H01", "H01", "H02", "H02", "L01", "L01", "L02", "L02"]
+    ids = [f"H{i:02}" for i in range(1, 11)] + ["L01", "L02", "L03"]
+    assert list(res.recordings.subject_id) == [s for s in ids for _ in ("left", "right")]
     assert res.recordings.stride_time_s.dtype == np.float64
     assert len(res.errors) == 0 and set(res.events.event) == {"HS", "TO"}
     plain = ldh.analyze(tmp_path / "manifest.csv", compute_sta=False, as_frame=False)

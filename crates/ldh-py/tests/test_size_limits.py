@@ -34,7 +34,7 @@ def test_the_defaults_accept_the_demo_data(demo):
     rec, report = ldh.read_recording(_first_recording(demo))
     assert len(rec["acc_x_g"]) == _rows(_first_recording(demo))
     res = ldh.analyze(demo, as_frame=False)
-    assert set(res.recordings["status"]) == {"ok"} and len(res.recordings["status"]) == 8
+    assert set(res.recordings["status"]) == {"ok"} and len(res.recordings["status"]) == 26
     assert len(res.errors["error"]) == 0
     many = ldh.analyze_many([demo], n_jobs=1, as_frame=False)
     assert set(many.recordings["status"]) == {"ok"}
@@ -75,9 +75,9 @@ def test_a_small_file_size_limit_refuses_the_file_naming_it(demo):
 def test_in_a_batch_each_recording_over_a_limit_is_an_error_row_naming_its_file(demo, fn, limit):
     res = fn([demo], n_jobs=1, as_frame=False, **limit)
     rec = res.recordings
-    assert len(rec["status"]) == 8 and set(rec["status"]) == {"error"}
+    assert len(rec["status"]) == 26 and set(rec["status"]) == {"error"}
     errors = list(res.errors["error"])
-    assert len(errors) == 8
+    assert len(errors) == 26
     files = sorted(str(p) for p in demo.glob("*/*.csv"))
     for f in files:
         assert sum(f in e for e in errors) == 1, (f, errors)
@@ -85,7 +85,7 @@ def test_in_a_batch_each_recording_over_a_limit_is_an_error_row_naming_its_file(
 
 
 def test_only_the_recordings_over_the_limit_fail(demo, tmp_path):
-    # Two subjects: a demo subject as written (2501 rows a leg) and one cut to 1500 rows a leg;
+    # Two subjects: a demo subject as written (3501 rows a leg) and one cut to 1500 rows a leg;
     # with max_samples=2000 only the first one's legs are error rows.
     long_dir, short_dir = tmp_path / "LONG", tmp_path / "SHORT"
     long_dir.mkdir()
@@ -101,7 +101,7 @@ def test_only_the_recordings_over_the_limit_fail(demo, tmp_path):
     errors = sorted(res.errors["error"])
     assert len(errors) == 2
     for side, e in zip(("left.csv", "right.csv"), errors):
-        assert str(long_dir / side) in e and "2501 data rows" in e and "limit of 2000" in e, e
+        assert str(long_dir / side) in e and "3501 data rows" in e and "limit of 2000" in e, e
 
 
 @pytest.mark.parametrize(

@@ -1,4 +1,4 @@
-//! Per-stage and end-to-end timing of the per-recording pipeline (issue 3) on one 25 s, 100 Hz
+//! Per-stage and end-to-end timing of the per-recording pipeline (issue 3) on one 35 s, 100 Hz
 //! recording of the embedded demo cohort, and (group `leg_30s`, issue 17) on one simulated 30 s
 //! leg at 100 Hz as `ldh analyze` reads it from CSV: the attitude, STA over the whole leg and
 //! the whole per-leg pipeline.

@@ -8,7 +8,7 @@ use anyhow::Result;
 use ldh_core::io::ReadParams;
 use ldh_core::output::{OutputRun, RecordingRow, RunKind};
 use ldh_core::pipeline::{
-    discover_with, Analysis, FolderOptions, FolderSummary, InputOptions, SensorHeights,
+    discover_with, Analysis, FolderOptions, FolderSummary, InputOptions, SensorHeights, Severity,
 };
 use ldh_report::{BuildSources, ReportParams, RunResults};
 
@@ -203,10 +203,15 @@ fn summary(
             a.out.display()
         );
         println!("{line}");
-        if !warned.is_empty() && !v.verbose {
+        // Notes (what the pipeline did, e.g. the steady window it chose) are not counted: the
+        // line is for what a technician should look at (`-v` lists notes too).
+        let to_see = warned
+            .iter()
+            .filter(|r| r.warnings.at_least(Severity::Warning).next().is_some())
+            .count();
+        if to_see > 0 && !v.verbose {
             eprintln!(
-                "{} recording(s) with warnings: see recordings.csv, or -v to list them",
-                warned.len()
+                "{to_see} recording(s) with warnings: see recordings.csv, or -v to list them"
             );
         }
     }

@@ -367,7 +367,7 @@ mod tests {
     use crate::align::{align, AlignParams, Aligned};
     use crate::preprocess::{preprocess, PreprocessParams};
 
-    /// The demo cohort's first leg (25 s at 100 Hz), aligned as the pipeline aligns it. (The
+    /// The demo cohort's first leg (35 s at 100 Hz), aligned as the pipeline aligns it. (The
     /// accuracy against the true pitch is tested in `ldh-sim`, tests/analysis/fusion.rs.)
     fn demo_walk() -> Aligned {
         let rec = crate::demo::recording("H01/left.csv").unwrap();

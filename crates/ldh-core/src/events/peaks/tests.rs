@@ -111,7 +111,7 @@ fn hugadb_recordings() {
     }
 }
 
-/// The embedded demo cohort's legs (four simulated subjects, family A; the simulator itself is
+/// The embedded demo cohort's legs (thirteen simulated subjects, family A; the simulator itself is
 /// `ldh-sim`'s, which `ldh-core` does not depend on).
 #[test]
 fn demo_legs() {
