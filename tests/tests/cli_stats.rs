@@ -31,8 +31,8 @@ fn stats_on_a_simulated_cohort_finds_the_simulated_effects() {
             .clone()
     };
     let f = |r: &serde_json::Value, k: &str| r[k].as_f64().unwrap();
-    // 13 parameters for each of the two models.
-    assert_eq!(rows.as_array().unwrap().len(), 26);
+    // 14 parameters (13 and double support, issue 49) for each of the two models.
+    assert_eq!(rows.as_array().unwrap().len(), 28);
     // Longer stance on the affected side, paired test significant.
     let stp = row("fusion", "STP");
     assert!(f(&stp, "ldhe_mean") > f(&stp, "ldhh_mean"));
@@ -189,7 +189,7 @@ fn stats_reliability_on_a_simulated_retest_cohort_writes_the_table() {
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(out.contains("| stride time (ST, s) | 4 × 3 | "), "{out}");
     let t = ldh_core::cohort::ReliabilityTable::read(&s.join("reliability.csv")).unwrap();
-    assert_eq!(t.rows.len(), 13);
+    assert_eq!(t.rows.len(), ldh_core::output::Parameter::ALL.len());
     let st = t.row(ldh_core::output::Parameter::StrideTime).unwrap();
     assert_eq!(
         (st.n_subjects, st.k_trials, st.withheld.as_str()),

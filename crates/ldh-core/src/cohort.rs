@@ -49,7 +49,7 @@ pub use table3::{
 pub use crate::output::{Parameter, UnknownParameter};
 
 /// The parameters, in the order of the paper's Table 3 (plus PBI).
-pub const PARAMETERS: [Parameter; 13] = Parameter::ALL;
+pub const PARAMETERS: [Parameter; 14] = Parameter::ALL;
 
 /// One person's row for one side: the row itself when the person has one trial; with several
 /// trials (rows sharing `subject_id`), the mean over the trials analysed (`status` ok) of each

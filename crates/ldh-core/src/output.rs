@@ -68,6 +68,8 @@ pub struct StrideRow {
     pub stride_time_s: Option<f64>,
     /// Stance ratio.
     pub stance_ratio: Option<f64>,
+    /// Double support ratio (issue 49).
+    pub double_support_ratio: Option<f64>,
     /// Stride length, m.
     pub stride_length_m: Option<f64>,
     /// Speed, m/s.
@@ -151,6 +153,8 @@ pub struct RecordingRow {
     pub stance_ratio: Option<f64>,
     /// SWP.
     pub swing_ratio: Option<f64>,
+    /// DS (issue 49).
+    pub double_support_ratio: Option<f64>,
     /// SL, m.
     pub stride_length_m: Option<f64>,
     /// SS, m/s.
@@ -252,6 +256,7 @@ pub fn stride_rows(results: &[SubjectResult]) -> Vec<StrideRow> {
                     next_hs_time_s: num(s.next_hs_time_s, 4),
                     stride_time_s: num(s.stride_time_s, 4),
                     stance_ratio: num(s.stance_ratio, 4),
+                    double_support_ratio: num(s.double_support_ratio, 4),
                     stride_length_m: num(s.stride_length_m, 4),
                     speed_mps: num(s.speed_mps, 4),
                     wqk_deg: num(s.wqk_deg, 3),
@@ -316,6 +321,7 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
                 step_frequency_steps_per_s: None,
                 stance_ratio: None,
                 swing_ratio: None,
+                double_support_ratio: None,
                 stride_length_m: None,
                 speed_mps: None,
                 stride_length_cv: None,
@@ -367,6 +373,7 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
                     row.step_frequency_steps_per_s = num(p.step_frequency_hz, 4);
                     row.stance_ratio = num(p.stance_ratio, 4);
                     row.swing_ratio = num(p.swing_ratio, 4);
+                    row.double_support_ratio = num(p.double_support_ratio, 4);
                     row.stride_length_m = num(p.stride_length_m, 4);
                     row.speed_mps = num(p.speed_mps, 4);
                     row.stride_length_cv = num(p.stride_length_cv, 4);
@@ -494,7 +501,7 @@ pub fn to_csv<T: Serialize>(rows: &[T], header_if_empty: &[&str]) -> Result<Stri
 }
 
 /// Column names of the per-stride table.
-pub const STRIDE_COLUMNS: [&str; 19] = [
+pub const STRIDE_COLUMNS: [&str; 20] = [
     "subject_id",
     "side",
     "model",
@@ -505,6 +512,7 @@ pub const STRIDE_COLUMNS: [&str; 19] = [
     "next_hs_time_s",
     "stride_time_s",
     "stance_ratio",
+    "double_support_ratio",
     "stride_length_m",
     "speed_mps",
     "wqk_deg",

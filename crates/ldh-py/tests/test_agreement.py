@@ -8,7 +8,8 @@ import ldh
 
 SUBJECTS = ["H01", "H02", "L01", "L02"]
 STRIDE_COLUMNS = ["subject_id", "side", "model", "stride_index", "bout", "hs_time_s", "to_time_s",
-                  "next_hs_time_s", "stride_time_s", "stance_ratio", "stride_length_m", "speed_mps",
+                  "next_hs_time_s", "stride_time_s", "stance_ratio", "double_support_ratio",
+                  "stride_length_m", "speed_mps",
                   "wqk_deg", "pbi_deg", "bdk_deg", "heading_change_deg", "valid", "reason", "trial_id"]
 
 

@@ -59,7 +59,7 @@ def folder(tmp_path):
 def test_a_results_folder_gives_the_weir_mdc95_of_the_walk_values(folder):
     df = ldh.reliability(folder)
     assert list(df.columns) == COLUMNS
-    assert len(df) == 13
+    assert len(df) == 14
     st = df.set_index("parameter").loc["stride_time_s"]
     assert (st["code"], st["unit"], st["n_subjects"], st["k_trials"], st["withheld"]) == ("ST", "s", 4, 3, "")
     icc, sem, mdc, between, within = _weir(TRUE)
@@ -81,7 +81,7 @@ def test_a_simulated_retest_cohort_in_memory(tmp_path):
     assert manifest.startswith("subject_id,trial_id,group,")
     res = ldh.analyze(tmp_path / "c")
     df = ldh.reliability(res)
-    assert len(df) == 13
+    assert len(df) == 14
     st = df.set_index("parameter").loc["stride_time_s"]
     assert (st["n_subjects"], st["k_trials"]) == (4, 3)
     # The walk values from the recordings table, people × trials, and Weir's MDC95 of them.

@@ -7,8 +7,10 @@
 //! published ranges are approximate (they pool ages and studies, and sensors differ): the
 //! cohort's own healthy subjects, measured with the same devices and protocol, are always
 //! preferred. STA and the shank angles (WQK, PBI, BDK) depend on the method and the sensor
-//! placement, and stance and swing on how toe off is timed, so no published range is used for
-//! them ([`NO_PUBLISHED`]).
+//! placement, so no published range is used for them ([`NO_PUBLISHED`]). Stance, swing and
+//! double support are judged against Perry & Burnfield's normal gait cycle again since issue 49
+//! (docs/reports.md "Reference ranges"): the default toe off puts healthy walkers' stance at
+//! 0.58–0.63 on HuGaDB's real walks, inside 0.57–0.65.
 
 use serde::{Deserialize, Serialize};
 
@@ -106,9 +108,12 @@ pub(crate) fn passes_every_check(x: &RecordingRow) -> bool {
 }
 
 /// Published ranges: (column, low, high, citation). Approximate ranges for healthy adults
-/// (about 20–79 years) walking at a self-selected speed. Stance and swing are not among them
-/// (see [`NO_PUBLISHED`]).
-pub const PUBLISHED: [(&str, f64, f64, &str); 7] = [
+/// (about 20–79 years) walking at a self-selected speed. Stance, swing and double support
+/// (issue 49): Perry & Burnfield's normal cycle, 60 % stance and 40 % swing at a customary
+/// speed with two double-support periods of ≈ 10 % each, stance longer as walking slows; the
+/// range 0.57–0.65 of stance, its complement for swing, and for double support 2 × stance − 1
+/// (its value for two symmetric legs), 0.14–0.30.
+pub const PUBLISHED: [(&str, f64, f64, &str); 10] = [
     ("step_frequency_steps_per_s", 1.6, 2.1, HOLLMAN),
     ("stride_length_m", 1.1, 1.6, OBERG),
     ("speed_mps", 1.0, 1.6, BOHANNON),
@@ -116,26 +121,21 @@ pub const PUBLISHED: [(&str, f64, f64, &str); 7] = [
     ("stride_time_s", 0.95, 1.25, HOLLMAN),
     ("stride_length_cv", 0.0, 0.05, HAUSDORFF),
     ("stride_time_cv", 0.0, 0.04, HAUSDORFF),
+    ("stance_ratio", 0.57, 0.65, PERRY),
+    ("swing_ratio", 0.35, 0.43, PERRY),
+    ("double_support_ratio", 0.14, 0.30, PERRY),
 ];
-
-/// Why a toe-off dependent parameter gets no published range.
-const TOE_OFF_METHOD: &str =
-    "shank sensors time toe off only to within ≈ 50 ms on real gait (docs/accuracy.md)";
 
 /// Why STA and the shank angles get no published range.
 const SENSOR_METHOD: &str = "depends on the method and on where the sensor sits";
 
 /// Parameters judged only against the cohort's own healthy subjects (same sensors, protocol and
-/// pipeline), never against a published range: (column, why). Stance and swing: published
-/// ranges time toe off with force plates or foot switches, and on HuGaDB's real walks, whose
-/// foot sensors bracket the moment the foot leaves the ground (its push-off peak and the end of
-/// its plantar flexion, ≈ 50 ms apart), ldh's toe off lies 31–54 ms after the push-off peak
-/// (docs/accuracy.md "Toe off against the feet of HuGaDB"); against Perry's 0.57–0.65 the stance
-/// of healthy walkers there read "above normal". The left–right asymmetry of stance, where the
-/// method's offset cancels, is still judged.
-pub const NO_PUBLISHED: [(&str, &str); 6] = [
-    ("stance_ratio", TOE_OFF_METHOD),
-    ("swing_ratio", TOE_OFF_METHOD),
+/// pipeline), never against a published range: (column, why). Stance and swing were among them
+/// from 2026-11-25 to issue 49, when ldh's toe off lay 31–54 ms after the foot's push-off peak
+/// on HuGaDB's healthy walks and their stance read "above normal" against Perry's 0.57–0.65
+/// (docs/accuracy.md "Toe off against the feet of HuGaDB"); with the bracket rule it lies
+/// 13–41 ms after it and their stance is 0.58–0.63.
+pub const NO_PUBLISHED: [(&str, &str); 4] = [
     ("sta_per_s", SENSOR_METHOD),
     ("wqk_deg", SENSOR_METHOD),
     ("pbi_deg", SENSOR_METHOD),
@@ -157,6 +157,8 @@ pub const HOLLMAN: &str = "Hollman JH, McDade EM, Petersen RC. Normative spatiot
 pub const OBERG: &str = "Öberg T, Karsznia A, Öberg K. Basic gait parameters: reference data for normal subjects, 10–79 years of age. J Rehabil Res Dev 1993;30(2):210–223";
 /// Citation.
 pub const BOHANNON: &str = "Bohannon RW, Williams Andrews A. Normal walking speed: a descriptive meta-analysis. Physiotherapy 2011;97(3):182–189";
+/// Citation (stance, swing and double support; issue 49).
+pub const PERRY: &str = "Perry J, Burnfield JM. Gait Analysis: Normal and Pathological Function. 2nd ed. Thorndike (NJ): SLACK; 2010 (ch. 1–2: the gait cycle)";
 /// Citation.
 pub const HAUSDORFF: &str =
     "Hausdorff JM. Gait variability: methods, modeling and meaning. J NeuroEng Rehabil 2005;2:19";

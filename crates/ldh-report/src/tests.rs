@@ -79,14 +79,22 @@ fn reference_from_the_cohort_needs_enough_healthy_subjects() {
             "{col}"
         );
     }
-    // Stance and swing neither: no force-plate range for a shank-sensor toe off.
-    for col in ["stance_ratio", "swing_ratio"] {
+    // Stance, swing and double support: Perry & Burnfield's normal cycle (issue 49).
+    for (col, lo, hi) in [
+        ("stance_ratio", 0.57, 0.65),
+        ("swing_ratio", 0.35, 0.43),
+        ("double_support_ratio", 0.14, 0.30),
+    ] {
         let x = r.ranges.iter().find(|x| x.column == col).unwrap();
         assert_eq!(
-            (x.source.clone(), x.low, x.z(0.7)),
-            (ReferenceSource::None, None, None)
+            (x.source.clone(), x.low, x.high),
+            (
+                ReferenceSource::Published(super::reference::PERRY.into()),
+                Some(lo),
+                Some(hi)
+            )
         );
-        assert!(super::reference::no_published_reason(col).is_some());
+        assert!(super::reference::no_published_reason(col).is_none());
     }
     // With enough healthy subjects the cohort's own range is used for them as for the rest.
     let mut rows = rows.clone();
@@ -425,12 +433,10 @@ fn the_summary_uses_clinical_units_and_plain_flags() {
         "96–126",
         // One walking speed per walk: the mean of both legs.
         ">0.90 ▼ <span class=\"flagword\">below normal</span>",
-        // Stance has no published range (toe off from shank sensors, docs/accuracy.md):
-        // never "above normal" against force-plate values, and the reason is given.
-        "62.0 <span class=\"flagword\">no reference</span>",
-        "70.0 <span class=\"flagword\">no reference</span>",
-        "too few healthy subjects; no published range (section 2)",
-        // but its asymmetry is judged all the same (the legs against each other, issue 50):
+        // Stance against Perry & Burnfield's 57–65 % (issue 49).
+        "62.0 <span class=\"flagword\">within normal</span>",
+        "70.0 ▲ <span class=\"flagword\">above normal</span>",
+        // and its asymmetry is judged too (the legs against each other, issue 50):
         // stance SI = 100·(0.62 − 0.70)/0.66.
         "-12.1 ◆ <span class=\"flagword\">asymmetric</span>",
         "published normal values [",
@@ -458,10 +464,9 @@ fn the_summary_uses_clinical_units_and_plain_flags() {
         "{html}"
     );
     assert!(
-        html.contains("No published range stands in for STP, SWP: shank sensors time toe off"),
+        !html.contains("No published range stands in for STP"),
         "{html}"
     );
-    assert!(!html.contains("stance above normal"));
 }
 
 /// A trace beyond the physical ranges is drawn clipped, and the captions say so.

@@ -92,12 +92,14 @@ use Scope::{Side as S, Walk as W};
 
 /// Every quantity of the page, in page order; the cadence is judged against the step
 /// frequency's range (in steps/min).
-pub(crate) const QUANTITIES: [Quantity; 12] = [
+pub(crate) const QUANTITIES: [Quantity; 13] = [
     q(P::StepFrequency, 0, W, None, false, true),
     q(P::Speed, 2, W, None, false, true),
     q(P::StrideTime, 2, W, None, false, true),
     q(P::StepTime, 2, S, Some(P::StepFrequency), true, true),
     q(P::StanceRatio, 1, S, Some(P::SwingRatio), true, true),
+    // Issue 49: double support, one value per walk (both legs' strides share its periods).
+    q(P::DoubleSupport, 1, W, None, false, false),
     q(P::StrideLength, 2, S, None, true, true),
     q(P::StrideTimeCv, 1, S, None, false, true),
     q(P::StrideLengthCv, 1, S, None, false, true),

@@ -253,7 +253,7 @@ mod tests {
         trial(&mut rows, "P3", "pre", "a", 3.0);
         let p = ValidAgreementParams::default();
         let t = reliability_table(&rows, &p);
-        assert_eq!(t.rows.len(), 13);
+        assert_eq!(t.rows.len(), Parameter::ALL.len());
         let want = test_retest(&table.map(|r| r.to_vec()), &p).unwrap();
         let st = t.row(Parameter::StrideTime).unwrap();
         assert_eq!((st.n_subjects, st.k_trials), (3, 2));

@@ -39,6 +39,8 @@ pub enum Parameter {
     Pbi,
     /// BDK, deg.
     Bdk,
+    /// DS, fraction of the gait cycle (ldh's addition, issue 49: double support).
+    DoubleSupport,
 }
 
 /// The definition of one parameter: everything any output says about it.
@@ -110,8 +112,8 @@ impl From<UnknownParameter> for LdhError {
 }
 
 impl Parameter {
-    /// Every parameter, in the order of the paper's Table 3 (plus PBI).
-    pub const ALL: [Parameter; 13] = [
+    /// Every parameter, in the order of the paper's Table 3 (plus PBI, then double support).
+    pub const ALL: [Parameter; 14] = [
         Parameter::StepFrequency,
         Parameter::StrideLength,
         Parameter::Speed,
@@ -125,15 +127,17 @@ impl Parameter {
         Parameter::Wqk,
         Parameter::Pbi,
         Parameter::Bdk,
+        Parameter::DoubleSupport, // issue 49
     ];
 
     /// Every parameter in the column order of the per-recording table (recordings.csv).
-    pub const TABLE_ORDER: [Parameter; 13] = [
+    pub const TABLE_ORDER: [Parameter; 14] = [
         Parameter::StrideTime,
         Parameter::StepTime,
         Parameter::StepFrequency,
         Parameter::StanceRatio,
         Parameter::SwingRatio,
+        Parameter::DoubleSupport, // issue 49
         Parameter::StrideLength,
         Parameter::Speed,
         Parameter::StrideLengthCv,
@@ -225,6 +229,13 @@ impl Parameter {
                 AS_IS_DEG,
                 "mean range of the shank's frontal-plane roll in swing (toe off to heel strike): sideways swing of the leg, e.g. circumduction.",
                 Some("Range of frontal-plane shank roll from toe off to the next heel strike (BDK)."),
+            ),
+            // Issue 49: double support (docs/quality.md "Stance, swing and double support").
+            DoubleSupport => d(
+                ("DS", "double_support_ratio", "double support", GAIT_CYCLE_FRACTION),
+                PER_CENT_OF_CYCLE,
+                "mean share of the stride both feet are on the ground: the initial (heel strike to the other leg's toe off) plus the terminal (the other leg's heel strike to this leg's toe off) double support, / stride time (× stride time = s); normal ≈ 0.20; empty with one leg.",
+                Some("(initial + terminal double support) / stride time, from the other leg's toe off and heel strike inside the stride; empty without them."),
             ),
         }
     }

@@ -26,6 +26,7 @@
 //! over valid strides and SV, STV (SD / mean), SF, STT (needs both legs) and STA
 //! ([`crate::nonlinear::gait_sta`]).
 
+mod double_support;
 mod height;
 mod length;
 mod params;
@@ -37,6 +38,12 @@ mod times;
 use serde::{Deserialize, Serialize};
 
 use crate::domain::{Measured, Parameter, Reason, Side, Withheld};
+
+/// NaN: the value of a field absent from what was read back (issue 49's double support).
+fn nan() -> f64 {
+    f64::NAN
+}
+pub use double_support::double_support;
 pub use height::{
     height_sensitivity, height_sensitivity_measured, heights_to_measure, HeightSensitivity,
     MAX_HEIGHT_SPREAD_SHARE, SENSOR_HEIGHT_RANGE_M,
@@ -72,6 +79,10 @@ pub struct Stride {
     pub stride_time_s: f64,
     /// Stance ratio (TO − HS) / stride time.
     pub stance_ratio: f64,
+    /// Double support (initial + terminal) / stride time, from the other leg's toe off and heel
+    /// strike inside the stride ([`double_support`]; issue 49); NaN without them.
+    #[serde(default = "nan")]
+    pub double_support_ratio: f64,
     /// Stride length, m (NaN when it could not be integrated).
     pub stride_length_m: f64,
     /// Speed, m/s.
@@ -249,6 +260,10 @@ pub struct SideParameters {
     pub stance_ratio: f64,
     /// SWP, 1 − STP.
     pub swing_ratio: f64,
+    /// DS, mean double support ratio of the valid strides that have one (issue 49); NaN with
+    /// one leg.
+    #[serde(default = "nan")]
+    pub double_support_ratio: f64,
     /// SL, mean stride length, m.
     pub stride_length_m: f64,
     /// SS, mean speed, m/s.
@@ -288,6 +303,7 @@ impl SideParameters {
             StrideTime => self.stride_time_s,
             StanceRatio => self.stance_ratio,
             SwingRatio => self.swing_ratio,
+            DoubleSupport => self.double_support_ratio,
             StrideLengthCv => self.stride_length_cv,
             StrideTimeCv => self.stride_time_cv,
             Sta => self.sta_per_s,
@@ -320,6 +336,7 @@ impl SideParameters {
             StrideTime => &mut self.stride_time_s,
             StanceRatio => &mut self.stance_ratio,
             SwingRatio => &mut self.swing_ratio,
+            DoubleSupport => &mut self.double_support_ratio,
             StrideLengthCv => &mut self.stride_length_cv,
             StrideTimeCv => &mut self.stride_time_cv,
             Sta => {

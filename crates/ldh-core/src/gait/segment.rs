@@ -289,6 +289,7 @@ impl<'a> Leg<'a> {
             next_hs_time_s: h1,
             stride_time_s: st,
             stance_ratio: (to - h0) / st,
+            double_support_ratio: f64::NAN,
             stride_length_m: length,
             speed_mps: length / st,
             wqk_deg: mx,

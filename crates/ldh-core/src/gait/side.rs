@@ -65,6 +65,7 @@ pub fn side_parameters(strides: &[Stride], other_hs_s: Option<&[f64]>) -> SidePa
         },
         stance_ratio: stance,
         swing_ratio: 1.0 - stance,
+        double_support_ratio: mean(&col(|s| s.double_support_ratio)),
         stride_length_m: mean(&sl),
         speed_mps: mean(&col(|s| s.speed_mps)),
         stride_length_cv: cv(&sl),

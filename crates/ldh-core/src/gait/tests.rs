@@ -44,6 +44,7 @@ fn leg(n: usize, with_length: usize) -> Vec<Stride> {
             next_hs_time_s: 1.1 * (k + 1) as f64,
             stride_time_s: 1.1,
             stance_ratio: 0.6,
+            double_support_ratio: f64::NAN,
             stride_length_m: if k < with_length { 1.3 } else { f64::NAN },
             speed_mps: if k < with_length { 1.3 / 1.1 } else { f64::NAN },
             wqk_deg: 30.0,

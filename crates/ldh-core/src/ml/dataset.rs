@@ -33,14 +33,22 @@ pub struct Dataset {
     pub dropped: Vec<String>,
 }
 
-/// The default features: the 13 parameters of Table 3 by their columns.
+/// The default features: the 13 parameters of Table 3 (with PBI) by their columns.
 pub fn default_features() -> Vec<String> {
-    Parameter::columns().into_iter().map(String::from).collect()
+    default_parameters()
+        .into_iter()
+        .map(|p| p.column().to_string())
+        .collect()
 }
 
-/// The default features as parameters.
+/// The default features as parameters: every parameter but double support (issue 49: added
+/// to the tables and reports; the classifiers keep the paper's features, `--features` can add
+/// it).
 pub fn default_parameters() -> Vec<Parameter> {
-    Parameter::ALL.to_vec()
+    Parameter::ALL
+        .into_iter()
+        .filter(|&p| p != Parameter::DoubleSupport)
+        .collect()
 }
 
 impl Dataset {

@@ -68,7 +68,7 @@ pub fn physical_range(p: Parameter) -> (f64, f64) {
         Speed => (0.0, 6.0),
         StepTime => (0.05, 10.0),
         StrideTime => (0.1, 20.0),
-        StanceRatio | SwingRatio => (0.0, 1.0),
+        StanceRatio | SwingRatio | DoubleSupport => (0.0, 1.0),
         StrideLengthCv | StrideTimeCv => (0.0, 5.0),
         Sta => (-50.0, 50.0),
         Wqk | Pbi | Bdk => (-360.0, 360.0),

@@ -221,23 +221,33 @@ impl Many<'_, '_> {
     }
 }
 
-/// The heel strikes one leg lends to the other leg's step time and frequency, s on the lending
-/// leg's own clock (empty when its gyroscope is faulty: its events are not lent).
+/// The events one leg lends to the other leg's step time and frequency and double support,
+/// s on the lending leg's own clock (empty when its gyroscope is faulty: its events are not
+/// lent).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct LentHeelStrikes {
     /// Heel strike times, s from the lending recording's first sample.
     pub hs_s: Vec<f64>,
+    /// Toe off times, s (issue 49: the other leg's double support).
+    pub to_s: Vec<f64>,
 }
 
 impl LentHeelStrikes {
     /// The heel strikes on the other leg's clock: `own_t0_s` is the lending file's first sample
     /// and `other_t0_s` the other file's (`None`: the same clock).
     pub fn on_clock(&self, own_t0_s: f64, other_t0_s: Option<f64>) -> Vec<f64> {
-        self.hs_s
-            .iter()
-            .map(|t| t + own_t0_s - other_t0_s.unwrap_or(own_t0_s))
-            .collect()
+        shift(&self.hs_s, own_t0_s - other_t0_s.unwrap_or(own_t0_s))
     }
+
+    /// The toe offs on the other leg's clock, as [`LentHeelStrikes::on_clock`].
+    pub fn to_on_clock(&self, own_t0_s: f64, other_t0_s: Option<f64>) -> Vec<f64> {
+        shift(&self.to_s, own_t0_s - other_t0_s.unwrap_or(own_t0_s))
+    }
+}
+
+/// Times shifted by `d_s`.
+fn shift(v: &[f64], d_s: f64) -> Vec<f64> {
+    v.iter().map(|t| t + d_s).collect()
 }
 
 /// One leg analysed: its result and the heel strikes it lends to the other leg.

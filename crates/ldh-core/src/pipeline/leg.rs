@@ -175,11 +175,12 @@ pub fn leg_back(
         t.lap(Stage::Sta, &mut clock);
     }
     withhold(&mut parameters, &checks.warnings);
-    // A faulty gyroscope's heel strikes are not lent to the other leg's step time.
-    let hs = if checks.gyro_fault {
-        Vec::new()
+    // A faulty gyroscope's events are not lent to the other leg's step time (nor, issue 49,
+    // to its double support).
+    let (hs, to) = if checks.gyro_fault {
+        (Vec::new(), Vec::new())
     } else {
-        ev.hs_s.clone()
+        (ev.hs_s.clone(), ev.to_s.clone())
     };
     let mut warnings = checks.warnings;
     if let Some(d) = ev.hs_impact_delay_s {
@@ -220,7 +221,7 @@ pub fn leg_back(
             warnings,
             steady,
         },
-        lent: LentHeelStrikes { hs_s: hs },
+        lent: LentHeelStrikes { hs_s: hs, to_s: to },
     })
 }
 

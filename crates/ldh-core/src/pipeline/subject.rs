@@ -145,6 +145,10 @@ pub(super) fn pair_legs(
     } else {
         (None, None)
     };
+    // Issue 49: the other leg's toe offs on this leg's clock, for its double support.
+    let shifted_to =
+        |x: &LegRun, to: Option<f64>| x.as_ref().ok().map(|a| a.lent.to_on_clock(a.leg.t0_s, to));
+    let (lto, rto) = (shifted_to(&l, rt0), shifted_to(&r, lt0));
     // Not when the pair's checks doubt they are one walk (what withholds the step time).
     let one_walk = overlapping
         && !warnings
@@ -165,13 +169,17 @@ pub(super) fn pair_legs(
         quality::withhold_disagreeing_lengths(&mut ll.strides, &mut rl.strides, shift_s);
     }
     // The parameters from the final strides, then what the findings withhold (`finalize`).
-    let finish = |x: LegRun, other: Option<Vec<f64>>| {
+    // Double support (issue 49) from the other leg's events, when the two are one walk.
+    let finish = |x: LegRun, other: Option<Vec<f64>>, other_to: Option<Vec<f64>>| {
         x.map(|AnalysedLeg { mut leg, .. }| {
+            if let (Some(hs), Some(to), true) = (&other, &other_to, one_walk) {
+                crate::gait::double_support(&mut leg.strides, hs, to);
+            }
             finalize::finalize_parameters(&mut leg, &warnings, other.as_deref());
             leg
         })
     };
-    let (mut left, mut right) = (finish(l, rhs), finish(r, lhs));
+    let (mut left, mut right) = (finish(l, rhs, rto), finish(r, lhs, lto));
     quality::check_length_variability(left.as_mut().ok(), right.as_mut().ok());
     let mut warnings = warnings;
     if input.affected_side_unknown {

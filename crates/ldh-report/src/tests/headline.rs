@@ -126,8 +126,8 @@ fn bounds_are_inclusive_and_compared_as_shown() {
     assert_eq!(judge(126.6, sf, 60.0, 0), Judgement::Above);
     assert_eq!(judge(95.5, sf, 60.0, 0), Judgement::Within);
     assert_eq!(judge(95.4, sf, 60.0, 0), Judgement::Below);
-    // Stance has no published range: no verdict on the value; its asymmetry (SI +12.1, the
-    // legs against each other) is judged all the same (issue 50).
+    // Stance against its published range (issue 49): 70 % is above 57–65 %, and its
+    // asymmetry is judged.
     let mut recs = uneven("S");
     recs[0].stance_ratio = Some(0.70);
     let (_, v, _) = page_parts(recs);
@@ -135,7 +135,7 @@ fn bounds_are_inclusive_and_compared_as_shown() {
     assert!(matches!(
         stance.cells[0],
         Cell::Value {
-            judgement: Judgement::NoReference,
+            judgement: Judgement::Above,
             ..
         }
     ));

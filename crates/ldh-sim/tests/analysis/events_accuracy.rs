@@ -24,14 +24,14 @@ use std::path::{Path, PathBuf};
 
 /// Summary of signed errors (ms): n, bias, SD, P95 of |error|.
 #[derive(Debug, Clone, Copy)]
-struct Summary {
-    n: usize,
-    bias: f64,
-    sd: f64,
-    p95: f64,
+pub(crate) struct Summary {
+    pub(crate) n: usize,
+    pub(crate) bias: f64,
+    pub(crate) sd: f64,
+    pub(crate) p95: f64,
 }
 
-fn summary(v: &[f64]) -> Summary {
+pub(crate) fn summary(v: &[f64]) -> Summary {
     let n = v.len();
     if n == 0 {
         return Summary {
@@ -49,11 +49,11 @@ fn summary(v: &[f64]) -> Summary {
     Summary { n, bias, sd, p95 }
 }
 
-fn fmt(s: Summary) -> String {
+pub(crate) fn fmt(s: Summary) -> String {
     format!("{:.1} / {:.1} / {:.1}", s.bias, s.sd, s.p95)
 }
 
-fn no_sta() -> AnalysisParams {
+pub(crate) fn no_sta() -> AnalysisParams {
     AnalysisParams {
         compute_sta: false,
         ..AnalysisParams::default()
@@ -89,7 +89,7 @@ fn sim_errors(subjects: &[SimSubject]) -> (Vec<f64>, Vec<f64>, usize, (usize, us
 }
 
 /// The simulated conditions: (name, subjects). Seeds 4949 (nothing was tuned on them).
-fn sim_conditions() -> Vec<(&'static str, Vec<SimSubject>)> {
+pub(crate) fn sim_conditions() -> Vec<(&'static str, Vec<SimSubject>)> {
     let a = |healthy, ldh, slow_ldh| {
         let c = CohortParams {
             healthy,

@@ -77,6 +77,7 @@ fn stride(i: usize, t: f64, stance: f64) -> ldh_core::gait::Stride {
         next_hs_time_s: (i + 1) as f64 * t,
         stride_time_s: t,
         stance_ratio: stance,
+        double_support_ratio: f64::NAN,
         stride_length_m: 1.4,
         speed_mps: 1.4 / t,
         wqk_deg: 40.0,

@@ -204,6 +204,7 @@ mod tests {
                 next_hs_time_s: t0 + i as f64 + 1.0,
                 stride_time_s: 1.0,
                 stance_ratio: 0.6,
+                double_support_ratio: f64::NAN,
                 stride_length_m: len,
                 speed_mps: len,
                 wqk_deg: 0.0,

@@ -197,6 +197,7 @@ mod tests {
                     next_hs_time_s: k as f64 + 1.0,
                     stride_time_s: 1.0,
                     stance_ratio: 0.6,
+                    double_support_ratio: f64::NAN,
                     stride_length_m: 1.3,
                     speed_mps: 1.3,
                     wqk_deg: wqk,

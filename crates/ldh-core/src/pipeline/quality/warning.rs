@@ -202,7 +202,7 @@ pub mod codes {
 pub mod params {
     use crate::domain::Parameter::{self, *};
     /// Every per-side parameter (in the table's column order).
-    pub const ALL: [Parameter; 13] = Parameter::TABLE_ORDER;
+    pub const ALL: [Parameter; 14] = Parameter::TABLE_ORDER;
     /// The shank angles (from the attitude).
     pub const ANGLES: [Parameter; 3] = [Wqk, Pbi, Bdk];
     /// The shank angles measured from the vertical (an error of the shank axis moves them).

@@ -318,7 +318,11 @@ fn lengths_measured_during_the_segmentation_are_those_recomputed_bit_for_bit() {
         assert_eq!(heights, SENSOR_HEIGHT_RANGE_M);
         let (mut st, measured) =
             strides_at_heights(Side::Left, al, att, ev, &assumed, heights).unwrap();
-        assert_eq!(st, strides(Side::Left, al, att, ev, &assumed).unwrap());
+        // Compared as printed: the double support is NaN until the pair sets it, and NaN ≠ NaN.
+        assert_eq!(
+            format!("{st:?}"),
+            format!("{:?}", strides(Side::Left, al, att, ev, &assumed).unwrap())
+        );
         for k in [1, st.len() / 2] {
             st[k].valid = false;
         }
