@@ -337,3 +337,53 @@ pub(crate) fn person_trials(
         (trial_table(&trials, &params))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ldh_core::cohort::{ReliabilityRow, ReliabilityTable};
+
+    fn walk(trial: &str, stride_s: f64, cv: f64) -> Vec<RecordingRow> {
+        ["left", "right"]
+            .iter()
+            .map(|side| {
+                let mut r = crate::tests::row("P", "ldh", side, 1.2);
+                r.trial_id = trial.into();
+                r.stride_time_s = Some(stride_s);
+                r.stride_time_cv = Some(cv);
+                r
+            })
+            .collect()
+    }
+
+    /// With a reliability table, only a difference beyond the MDC95 is named, with it; a
+    /// parameter the table has no MDC95 for is not named (issue 50 item 2).
+    #[test]
+    fn trials_are_said_to_disagree_only_beyond_the_mdc95() {
+        let mut recs = walk("t1", 1.03, 0.05);
+        recs.extend(walk("t2", 1.18, 0.13));
+        let mut row = ReliabilityRow::withheld(Parameter::StrideTime, 10, 3, String::new());
+        row.withheld.clear();
+        row.mdc95 = Some(0.08);
+        let ctx = crate::RunContext {
+            reliability: Some(ReliabilityTable { rows: vec![row] }),
+            ..Default::default()
+        };
+        assert_eq!(
+            disagreement(&recs, &ctx).as_deref(),
+            Some(
+                "The trials disagree by more than the measurement's own noise (MDC95 of the \
+                 reliability table): stride time 1.03 s in trial t1 against 1.18 s in trial t2, \
+                 MDC95 0.08 s. The page shows their mean; look at each trial below before \
+                 relying on it."
+            )
+        );
+        // 0.15 s inside an MDC95 of 0.20 s: the trials agree.
+        let mut ctx = ctx;
+        ctx.reliability.as_mut().unwrap().rows[0].mdc95 = Some(0.20);
+        assert_eq!(disagreement(&recs, &ctx), None);
+        // Without a table the 10 % rule names both.
+        let named = disagreement(&recs, &Default::default()).unwrap();
+        assert!(named.contains("stride time 1.03 s") && named.contains("5.0 % in trial t1"));
+    }
+}
