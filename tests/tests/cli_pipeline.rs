@@ -98,12 +98,13 @@ fn the_demo_shows_every_parameter_measured_and_judged() {
         .iter()
         .map(|p| p.code())
         .collect();
-    assert_eq!(codes.len(), 12);
+    assert!(codes.len() >= 12 && codes.contains(&"SWP"), "{codes:?}");
     let reports = out.join("reports");
     for id in ldh_core::demo::SUBJECTS {
         let page = std::fs::read_to_string(reports.join(format!("subjects/{id}.html"))).unwrap();
         // The parameter table of section 2: one row per parameter, its code first.
-        for code in &codes {
+        // Swing is the complement of stance: shown and judged in the stance row ("with SWP").
+        for code in codes.iter().map(|c| if *c == "SWP" { "STP" } else { *c }) {
             let start = format!("<tr><td>{code} — ");
             let at = page
                 .find(&start)
@@ -118,13 +119,14 @@ fn the_demo_shows_every_parameter_measured_and_judged() {
             );
             let judged = ["within normal", "above normal", "below normal"];
             let sides = judged.iter().map(|j| row.matches(j).count()).sum::<usize>();
-            let one_value_per_walk = ["SF", "SS", "ST"].contains(code);
+            let one_value_per_walk = ["SF", "SS", "ST"].contains(&code);
             assert_eq!(
                 sides,
                 if one_value_per_walk { 1 } else { 2 },
                 "{id} {code}: {row}"
             );
         }
+        assert!(page.contains("with SWP: "), "{id}");
         assert!(!page.contains("Record a longer walk"), "{id}");
     }
     let cohort = std::fs::read_to_string(reports.join("index.html")).unwrap();
@@ -281,7 +283,7 @@ fn results_are_byte_identical_whatever_the_jobs() {
     }
     let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let t = &j["timings"];
-    assert_eq!(t["recordings"], 8, "{t}");
+    assert_eq!(t["recordings"], 26, "{t}");
     assert!(t["sta_s"].as_f64().unwrap() > 0.0, "{t}");
     assert!(t["attitude_s"].as_f64().unwrap() > 0.0, "{t}");
     let total = t["total_s"].as_f64().unwrap();
