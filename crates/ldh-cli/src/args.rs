@@ -437,12 +437,29 @@ pub struct SimulateArgs {
     /// Output folder (created if missing).
     #[arg(short, long)]
     pub out: PathBuf,
-    /// Number of healthy subjects.
-    #[arg(long, default_value_t = 2)]
-    pub healthy: usize,
-    /// Number of LDH subjects.
-    #[arg(long, default_value_t = 2)]
-    pub ldh: usize,
+    /// Number of healthy subjects (default 2; with --free-living 1).
+    #[arg(long)]
+    pub healthy: Option<usize>,
+    /// Number of LDH subjects (default 2; with --free-living 0).
+    #[arg(long)]
+    pub ldh: Option<usize>,
+    /// Free-living days instead of lab walks: per subject a day (or --days N, --hours H) of
+    /// two shank sensors at home — nights, non-wear, sitting, standing, walking bouts, stairs,
+    /// running, cycling, fidgeting — streamed to <OUT>/<subject>/left.csv, right.csv with
+    /// truth_bouts.csv and truth.json; the right sensor's clock drifts (--drift-ppm).
+    /// docs/free-living.md.
+    #[arg(long)]
+    pub free_living: bool,
+    /// With --free-living: days per subject (default 1).
+    #[arg(long, requires = "free_living", conflicts_with = "hours")]
+    pub days: Option<f64>,
+    /// With --free-living: hours per subject.
+    #[arg(long, requires = "free_living")]
+    pub hours: Option<f64>,
+    /// With --free-living: the right clock's drift, ppm (default: drawn per subject in
+    /// ±20–50 ppm).
+    #[arg(long, requires = "free_living", allow_hyphen_values = true)]
+    pub drift_ppm: Option<f64>,
     /// Family a: number of slow, severely affected LDH subjects (0.28–0.75 m/s, strides of
     /// 1.35–2.0 s), written after the others as S01…; they count in the `ldh` group.
     #[arg(long, default_value_t = 0)]
@@ -474,7 +491,8 @@ pub struct SimulateArgs {
     /// [this, 1]; 1 (default) makes every LDH subject fully affected.
     #[arg(long, default_value_t = 1.0)]
     pub ldh_severity_min: f64,
-    /// Output format: a built-in format name or a TOML file.
+    /// Output format: a built-in format name or a TOML file (with --free-living: `ldh`, ldh's
+    /// CSV).
     #[arg(long, default_value = "ldh")]
     pub format: String,
     /// Simulator family: a (default, the original model) or b (the independently written family:

@@ -28,6 +28,7 @@ pub mod demo;
 mod draw;
 pub mod evaluate;
 pub mod family_b;
+pub mod free_living;
 pub mod jet;
 pub mod model;
 mod params;

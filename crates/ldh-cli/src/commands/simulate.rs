@@ -13,6 +13,10 @@ use crate::args::SimulateArgs;
 /// Run `ldh simulate`.
 pub fn run(a: SimulateArgs) -> Result<ExitCode> {
     super::check_out_dir(&a.out)?;
+    if a.free_living {
+        return free_living(&a);
+    }
+    let (healthy, ldh) = (a.healthy.unwrap_or(2), a.ldh.unwrap_or(2));
     let format = resolve_format(&a.format)?;
     match a.family {
         Family::A => {
@@ -21,8 +25,8 @@ pub fn run(a: SimulateArgs) -> Result<ExitCode> {
                 "--speed-mps and --setting apply to --family b"
             );
             let params = CohortParams {
-                healthy: a.healthy,
-                ldh: a.ldh,
+                healthy,
+                ldh,
                 slow_ldh: a.slow_ldh,
                 duration_s: a.seconds,
                 fs_hz: a.rate_hz,
@@ -37,12 +41,12 @@ pub fn run(a: SimulateArgs) -> Result<ExitCode> {
                 ),
                 sensor: family_a_sensor(&a),
             };
-            let ldh = if a.slow_ldh > 0 {
+            let ldh_words = if a.slow_ldh > 0 {
                 format!("LDH, of them {} slow", a.slow_ldh)
             } else {
                 "LDH".to_string()
             };
-            write(&params, &a, &format, "healthy", &ldh)
+            write(&params, &a, &format, [healthy, ldh], "healthy", &ldh_words)
         }
         Family::B => {
             anyhow::ensure!(
@@ -56,8 +60,8 @@ pub fn run(a: SimulateArgs) -> Result<ExitCode> {
                 "--no-turn, --ldh-severity-min, --slow-ldh, --ramp-s, --acc-range-g, --trials and --day-to-day-sd-fraction apply to --family a (family b: --setting treadmill walks without turns; its ranges are drawn per subject)"
             );
             let params = CohortParamsB {
-                healthy: a.healthy,
-                patients: a.ldh,
+                healthy,
+                patients: ldh,
                 duration_s: a.seconds,
                 fs_hz: a.rate_hz,
                 seed: a.seed,
@@ -74,6 +78,7 @@ pub fn run(a: SimulateArgs) -> Result<ExitCode> {
                 &params,
                 &a,
                 &format,
+                [healthy, ldh],
                 "family-b normal gait",
                 "slow hemiparetic as 'ldh'",
             )
@@ -99,6 +104,7 @@ fn write<C: Cohort>(
     params: &C,
     a: &SimulateArgs,
     format: &ldh_core::io::FormatSpec,
+    [n_healthy, n_ldh]: [usize; 2],
     healthy: &str,
     ldh: &str,
 ) -> Result<ExitCode> {
@@ -124,8 +130,50 @@ fn write<C: Cohort>(
     super::note!(
         "wrote {} ({} {healthy}, {} {ldh}{trials}) to {}",
         super::count(rows.len() / params.trials().max(1), "subject"),
-        a.healthy,
-        a.ldh + a.slow_ldh,
+        n_healthy,
+        n_ldh + a.slow_ldh,
+        a.out.display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `ldh simulate --free-living`: days at home per subject, streamed
+/// ([`ldh_sim::free_living::simulate_free_living`]).
+fn free_living(a: &SimulateArgs) -> Result<ExitCode> {
+    use ldh_sim::free_living::{simulate_free_living, FreeLivingParams, LongFormat};
+    anyhow::ensure!(
+        a.family == Family::A && a.trials == 1 && !a.reference && a.slow_ldh == 0,
+        "--free-living simulates family a's gait, one recording per subject (no --family b, --trials, --reference or --slow-ldh)"
+    );
+    let format = match a.format.as_str() {
+        "ldh" | "csv" => LongFormat::Csv,
+        other => anyhow::bail!("--free-living writes format 'ldh' (CSV), not '{other}'"),
+    };
+    let duration_h = match (a.days, a.hours) {
+        (_, Some(h)) => h,
+        (Some(d), None) => d * 24.0,
+        (None, None) => 24.0,
+    };
+    let params = FreeLivingParams {
+        healthy: a.healthy.unwrap_or(1),
+        ldh: a.ldh.unwrap_or(0),
+        duration_h,
+        fs_hz: a.rate_hz,
+        seed: a.seed,
+        drift_ppm: a.drift_ppm,
+        sensor: family_a_sensor(a).acc_range_g(a.acc_range_g.unwrap_or(16.0)),
+        format,
+        ..FreeLivingParams::default()
+    };
+    params.validate()?;
+    let pool = thread_pool(a.jobs)?;
+    let pb = progress(params.len() as u64, "simulate");
+    let subjects = pool.install(|| simulate_free_living(&params, &a.out, &|| pb.inc(1)))?;
+    pb.finish_and_clear();
+    super::note!(
+        "wrote {} of {duration_h} h each at {} Hz to {}",
+        super::count(subjects.len(), "free-living subject"),
+        params.fs_hz,
         a.out.display()
     );
     Ok(ExitCode::SUCCESS)
