@@ -197,7 +197,7 @@ fn not_measured(v: &Verdicts, sides: &[&RecordingRow]) -> Option<String> {
 /// The one thing to do, the first that applies: a leg that failed, a sensor fault, the
 /// sensor's height, quiet standing, a longer walk, the affected side.
 fn to_do(sides: &[&RecordingRow], anything_missing: bool) -> Option<String> {
-    let has = |code: &str| {
+    let has = |code: ldh_core::pipeline::WarningCode| {
         sides
             .iter()
             .any(|r| r.warnings.iter().any(|w| w.code == code))

@@ -6,14 +6,17 @@
 //! - [`parameter`]: [`Parameter`], every gait parameter once with its code, column, plain
 //!   name, unit and meaning (the model is gaitmap's one vocabulary, `gaitmap/utils/consts.py`);
 //! - [`measured`]: [`Reason`] (a typed code with its message), [`Measured`], [`PerParameter`],
-//!   [`Withheld`] (the withheld parameters and why, keyed by [`Parameter`]).
+//!   [`Withheld`] (the withheld parameters and why, keyed by [`Parameter`]);
+//! - [`warning_code`]: [`WarningCode`], the stable code of every quality finding.
 
 pub mod labels;
 pub mod measured;
 pub mod parameter;
 mod unsure;
+pub mod warning_code;
 
 pub use labels::{AffectedSide, EventKind, Group, Setting, Side};
 pub use measured::{Measured, PerParameter, Reason, ReasonCode, Withheld};
 pub use parameter::{Definition, Parameter, UnknownParameter};
 pub use unsure::UnsureEvent;
+pub use warning_code::{codes, UnknownWarningCode, WarningCode};
