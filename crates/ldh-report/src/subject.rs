@@ -109,7 +109,7 @@ fn header(s: &SubjectReport, sides: &[&RecordingRow]) -> Markup {
 
 /// Findings whose only effect is a value withheld (said in the headline's "could not be
 /// measured") or that change no number: they stay out of "Check before reading".
-const NOT_FOR_THE_BOX: [&str; 4] = [
+const NOT_FOR_THE_BOX: [ldh_core::pipeline::WarningCode; 4] = [
     ldh_core::pipeline::codes::SENSOR_HEIGHT_UNKNOWN,
     ldh_core::pipeline::codes::SV_NOISE,
     ldh_core::pipeline::codes::SV_UNCHECKED,
@@ -144,7 +144,7 @@ fn warning_box(sides: &[&RecordingRow]) -> Markup {
         for w in r
             .warnings
             .at_least(ldh_core::pipeline::Severity::Warning)
-            .filter(|w| !NOT_FOR_THE_BOX.contains(&w.code.as_str()))
+            .filter(|w| !NOT_FOR_THE_BOX.contains(&w.code))
         {
             let side = r.side.to_string();
             match found.iter_mut().find(|(m, _)| *m == w.message) {

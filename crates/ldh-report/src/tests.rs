@@ -334,7 +334,7 @@ fn the_reference_uses_only_legs_that_pass_every_check() {
     // A fifth healthy subject with a faulty sensor reading 9 m/s on one leg.
     let mut bad = row("H9", "healthy", "left", 9.0);
     bad.warnings = ldh_core::pipeline::WarningList(vec![ldh_core::pipeline::Warning::new(
-        "gyro_scale_fault",
+        ldh_core::pipeline::codes::GYRO_SCALE_FAULT,
         ldh_core::pipeline::Severity::Fault,
         "x",
     )]);

@@ -13,7 +13,7 @@ use super::Parameter;
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
 pub enum ReasonCode {
     /// A quality finding withheld it: its stable warning code (docs/quality.md).
-    Finding(String),
+    Finding(super::WarningCode),
     /// Too few of the leg's valid strides have a stride length that passed its checks
     /// ([`crate::gait::MIN_LENGTH_SHARE`], [`crate::gait::MIN_LENGTH_STRIDES`]).
     LengthNotVouched,

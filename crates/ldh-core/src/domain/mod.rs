@@ -9,15 +9,18 @@
 //!   [`Withheld`] (the withheld parameters and why, keyed by [`Parameter`]);
 //! - [`walk`]: [`WalkValue`], the values of a walk rather than a leg (its cadence and steady
 //!   window, one value on both legs' rows), each with its column, unit and meaning.
+//! - [`warning_code`]: [`WarningCode`], the stable code of every quality finding.
 
 pub mod labels;
 pub mod measured;
 pub mod parameter;
 mod unsure;
 pub mod walk;
+pub mod warning_code;
 
 pub use labels::{AffectedSide, EventKind, Group, Setting, Side};
 pub use measured::{Measured, PerParameter, Reason, ReasonCode, Withheld};
 pub use parameter::{Definition, Parameter, UnknownParameter};
 pub use unsure::UnsureEvent;
 pub use walk::{walk_cadence_steps_per_min, WalkValue};
+pub use warning_code::{codes, UnknownWarningCode, WarningCode};

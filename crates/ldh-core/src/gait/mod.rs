@@ -177,7 +177,7 @@ pub enum StrideCode {
     /// withholds the stride's length; `all`: it withholds every value (the stride is invalid).
     Finding {
         /// The warning code.
-        code: String,
+        code: crate::domain::WarningCode,
         /// Whether the stride length is withheld.
         length: bool,
     },

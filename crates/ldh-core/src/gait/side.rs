@@ -139,7 +139,7 @@ fn why_no_length(s: &Stride) -> String {
     s.findings
         .iter()
         .find_map(|f| match &f.code {
-            StrideCode::Finding { code, length: true } => Some(code.replace('_', " ")),
+            StrideCode::Finding { code, length: true } => Some(code.as_str().replace('_', " ")),
             _ => None,
         })
         .unwrap_or_else(|| LengthCheck::NotIntegrable.words().to_string())

@@ -94,7 +94,7 @@ fn a_side_length_blanked_by_a_finding_names_the_finding() {
     for s in st.iter_mut() {
         s.replace_findings(StrideFinding::new(
             StrideCode::Finding {
-                code: "lr_disagreement".into(),
+                code: crate::domain::codes::LR_DISAGREEMENT,
                 length: true,
             },
             "stride length withheld: lr disagreement",

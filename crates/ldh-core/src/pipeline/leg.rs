@@ -199,7 +199,7 @@ pub fn leg_back(
         // Why no stride was found (too slow for the mid-swing threshold, too short…).
         let reason = crate::events::no_strides_reason(&omega, &ev, v.events().params());
         warnings.push(quality::Warning::new(
-            "no_strides",
+            quality::codes::NO_STRIDES,
             quality::Severity::Warning,
             reason,
         ));

@@ -36,7 +36,8 @@ pub type GroupLabel = Group;
 pub use many::{bounded_jobs, check_output_names, FolderOptions, FolderSummary, KeptRun};
 pub use quality::{
     all_leg_warnings, codes, leg_checks, leg_warnings, pair_warnings, params as quality_params,
-    withhold, LegChecks, Severity, Warning, WarningList, WithheldList, RUNNING_STRIDE_TIME_S,
+    withhold, LegChecks, Severity, Warning, WarningCode, WarningList, WithheldList,
+    RUNNING_STRIDE_TIME_S,
 };
 pub use subject::{LoadedLeg, SubjectResult};
 

@@ -184,7 +184,7 @@ pub(super) fn pair_legs(
     let mut warnings = warnings;
     if input.affected_side_unknown {
         warnings.push(Warning::new(
-            "affected_side_unknown",
+            crate::domain::codes::AFFECTED_SIDE_UNKNOWN,
             Severity::Note,
             format!(
                 "affected side unknown (empty in the manifest for group '{}'): no affected/unaffected comparison for this subject",

@@ -150,7 +150,12 @@ fn warn(r: &mut RecordingRow, code: &str, cols: &[&str]) {
         .iter()
         .filter_map(|c| ldh_core::domain::Parameter::from_column(c).ok())
         .collect();
-    let w = Warning::new(code, Severity::Warning, format!("{code} message")).withholding(&ps);
+    let w = Warning::new(
+        code.parse().unwrap(),
+        Severity::Warning,
+        format!("{code} message"),
+    )
+    .withholding(&ps);
     for &p in &ps {
         r.set_value(p, None);
     }

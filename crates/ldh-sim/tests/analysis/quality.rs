@@ -59,7 +59,7 @@ fn sensors_rotated_about_the_shank_never_look_swapped() {
             let near_180 = (deg - 180.0).abs() <= CANONICAL_MOUNT_DEG + 15.0;
             let swap_ok =
                 w.code == codes::POSSIBLE_SWAP && near_180 && w.severity == Severity::Note;
-            if [codes::POSSIBLE_SWAP, codes::RUNNING, codes::UPSIDE_DOWN].contains(&w.code.as_str())
+            if [codes::POSSIBLE_SWAP, codes::RUNNING, codes::UPSIDE_DOWN].contains(&w.code)
                 && !swap_ok
             {
                 failures.push(format!("{deg} deg: false {}: {}", w.code, w.message));
@@ -91,7 +91,7 @@ fn stride(i: usize, t: f64, stance: f64) -> ldh_core::gait::Stride {
     }
 }
 
-fn codes_of(t: f64, stance: f64) -> Vec<String> {
+fn codes_of(t: f64, stance: f64) -> Vec<ldh_core::pipeline::quality::WarningCode> {
     let st: Vec<ldh_core::gait::Stride> = (0..20).map(|i| stride(i, t, stance)).collect();
     let p = ldh_core::gait::side_parameters(&st, None);
     let al = ldh_core::align::Alignment {

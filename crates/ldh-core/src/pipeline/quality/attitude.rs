@@ -151,6 +151,7 @@ mod tests {
     use super::*;
     use crate::align::Alignment;
     use crate::attitude::AttitudeModel;
+    use crate::domain::WarningCode;
 
     const FS: f64 = 100.0;
 
@@ -218,8 +219,8 @@ mod tests {
         (30.0, 45.0, 8.0)
     }
 
-    fn codes_of(w: &[Warning]) -> Vec<&str> {
-        w.iter().map(|w| w.code.as_str()).collect()
+    fn codes_of(w: &[Warning]) -> Vec<WarningCode> {
+        w.iter().map(|w| w.code).collect()
     }
 
     #[test]

@@ -298,7 +298,7 @@ pub(crate) fn withhold_span(st: &mut [Stride], w: &Warning) -> usize {
     };
     let f = StrideFinding::new(
         StrideCode::Finding {
-            code: w.code.clone(),
+            code: w.code,
             length: false,
         },
         w.reason(),

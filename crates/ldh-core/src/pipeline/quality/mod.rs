@@ -29,6 +29,7 @@ mod sensor;
 mod steady;
 mod warning;
 
+pub use crate::domain::WarningCode;
 pub use agreement::{withhold_disagreeing_lengths, MAX_LEG_DISAGREEMENT};
 pub use attitude::{
     attitude_checks, MAX_BDK_DEG, MAX_PITCH_DEG, MIN_PITCH_EXCURSION_DEG, OUT_OF_BOUNDS_SHARE,
@@ -200,7 +201,7 @@ pub fn discredits_attitude(w: &Warning) -> bool {
         codes::ATTITUDE_DIVERGENCE,
         codes::IMPLAUSIBLE_ANGLE,
     ]
-    .contains(&w.code.as_str())
+    .contains(&w.code)
         // A gyroscope channel fault (it withholds the angles; an accelerometer's does not).
         || (w.code == codes::CHANNEL_FAULT && !w.affects.is_empty())
 }
@@ -224,10 +225,10 @@ pub fn apply_to_strides(st: &mut [Stride], warnings: &[Warning]) {
                 s.valid = false;
                 s.replace_findings(StrideFinding::new(
                     StrideCode::Finding {
-                        code: w.code.clone(),
+                        code: w.code,
                         length: true,
                     },
-                    w.code.replace('_', " "),
+                    w.code.as_str().replace('_', " "),
                 ));
             }
             // A blanked cell says why (the strides table gets "an empty cell with a reason").
@@ -266,10 +267,10 @@ pub fn apply_to_strides(st: &mut [Stride], warnings: &[Warning]) {
             if let Some(what) = what {
                 s.push_once(StrideFinding::new(
                     StrideCode::Finding {
-                        code: w.code.clone(),
+                        code: w.code,
                         length: length && has(Parameter::StrideLength),
                     },
-                    format!("{what} withheld: {}", w.code.replace('_', " ")),
+                    format!("{what} withheld: {}", w.code.as_str().replace('_', " ")),
                 ));
             }
         }

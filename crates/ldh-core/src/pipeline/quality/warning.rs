@@ -4,7 +4,8 @@
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
-use crate::domain::{Parameter, Reason, ReasonCode, Withheld};
+pub use crate::domain::codes;
+use crate::domain::{Parameter, Reason, ReasonCode, WarningCode, Withheld};
 
 /// `Warning::affects` as the column names of recordings.csv.
 mod affects_columns {
@@ -56,8 +57,9 @@ impl Severity {
 /// One finding of a quality check (or of the reader), with a stable `code`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Warning {
-    /// Stable machine-readable code, e.g. `gyro_scale_fault` (docs/quality.md lists them).
-    pub code: String,
+    /// Stable machine-readable code, written as its text, e.g. `gyro_scale_fault`
+    /// (docs/quality.md lists them).
+    pub code: WarningCode,
     /// How serious it is.
     pub severity: Severity,
     /// What was found, with the numbers, in one readable sentence or two. Never contains " | "
@@ -77,9 +79,9 @@ pub struct Warning {
 
 impl Warning {
     /// A finding that withholds nothing (see [`Warning::withholding`]).
-    pub fn new(code: &str, severity: Severity, message: impl Into<String>) -> Warning {
+    pub fn new(code: WarningCode, severity: Severity, message: impl Into<String>) -> Warning {
         Warning {
-            code: code.into(),
+            code,
             severity,
             message: message.into().replace(" | ", " / "),
             affects: Vec::new(),
@@ -107,7 +109,7 @@ impl Warning {
     /// The reason it gives a parameter it withholds: its code, with [`Warning::reason`] as the
     /// message.
     pub fn withheld_reason(&self) -> Reason {
-        Reason::new(ReasonCode::Finding(self.code.clone()), self.reason())
+        Reason::new(ReasonCode::Finding(self.code), self.reason())
     }
     /// A reader warning (free text from the file checks) as a structured warning.
     pub fn from_reader(text: &str) -> Warning {
@@ -121,7 +123,7 @@ impl Warning {
             .next()
             .unwrap_or(&self.message)
             .trim();
-        format!("{} ({first})", self.code.replace('_', " "))
+        format!("{} ({first})", self.code.as_str().replace('_', " "))
     }
 }
 
@@ -135,67 +137,6 @@ impl fmt::Display for Warning {
             self.message
         )
     }
-}
-
-/// Stable warning codes (docs/quality.md).
-pub mod codes {
-    /// A reader finding (gap, constant or frozen channel, jitter …).
-    pub const INPUT: &str = "input";
-    /// Gyroscope rates beyond any walking human shank (e.g. amplified ×10).
-    pub const GYRO_SCALE_FAULT: &str = "gyro_scale_fault";
-    /// Gyroscope samples at the sensor's range.
-    pub const GYRO_CLIPPING: &str = "gyro_clipping";
-    /// Accelerometer samples at the sensor's range.
-    pub const ACC_CLIPPING: &str = "acc_clipping";
-    /// Cadence and stance that no human gait has at the declared sampling rate.
-    pub const IMPLAUSIBLE_CADENCE_FOR_RATE: &str = "implausible_cadence_for_rate";
-    /// Shank angles outside anatomical bounds.
-    pub const IMPLAUSIBLE_ANGLE: &str = "implausible_angle";
-    /// The attitude drifts: stance pitch inconsistent from stride to stride.
-    pub const ATTITUDE_DIVERGENCE: &str = "attitude_divergence";
-    /// Left and right disagree beyond what one walk allows.
-    pub const LR_DISAGREEMENT: &str = "lr_disagreement";
-    /// Left and right files carry the same signals.
-    pub const IDENTICAL_LEGS: &str = "identical_legs";
-    /// Left and right may be swapped.
-    pub const POSSIBLE_SWAP: &str = "possible_swap";
-    /// The gait looks like running.
-    pub const RUNNING: &str = "running";
-    /// The device is mounted upside down relative to its usual orientation.
-    pub const UPSIDE_DOWN: &str = "upside_down";
-    /// Too few valid strides.
-    pub const FEW_STRIDES: &str = "few_strides";
-    /// The sensor height was not given: the stride length used an assumed one (a note), or
-    /// depends on it too much to be reported (a warning).
-    pub const SENSOR_HEIGHT_UNKNOWN: &str = "sensor_height_unknown";
-    /// The two sensors' sampling rates differ.
-    pub const RATE_MISMATCH: &str = "rate_mismatch";
-    /// The two recordings do not overlap in time.
-    pub const NO_OVERLAP: &str = "no_overlap";
-    /// The two recordings differ in length or start.
-    pub const LENGTH_MISMATCH: &str = "length_mismatch";
-    /// Stride length variability mostly the measurement's own noise (from the two legs).
-    pub const SV_NOISE: &str = "sv_noise";
-    /// Stride length variability whose noise cannot be checked (no other leg to compare with,
-    /// or too few strides pairing up with the other leg's: a short walk).
-    pub const SV_UNCHECKED: &str = "sv_unchecked";
-    /// No quiet standing: the shank axis came from the mean acceleration of the walk and no
-    /// gyroscope bias was removed at rest; WQK and PBI are withheld (off by ≈ 10°).
-    pub const NO_QUIET_STANDING: &str = "no_quiet_standing";
-    /// The heel strikes were placed at their own impacts (a note: which rule placed them, and
-    /// the walk's median delay from the gyroscope's landmark to the impact).
-    pub const HS_AT_IMPACT: &str = "hs_at_impact";
-    /// Strides at the start or end of the walk excluded as not steady (a note with the window).
-    pub const STEADY_WINDOW: &str = "steady_window";
-    /// Too little steady walking for the variability (CVs withheld).
-    pub const TOO_LITTLE_STEADY: &str = "too_little_steady";
-    /// The walk never becomes steady: its stride time changes throughout (a trend, or more than
-    /// one change of pace), so its variability is withheld (CVs withheld, means of the whole
-    /// walk).
-    pub const NEVER_STEADY: &str = "never_steady";
-    /// One channel frozen, dropped to zero or spiking for part of the walk, named with its
-    /// span; the strides overlapping it are withheld ([`crate::pipeline::quality::detect_faults`]).
-    pub const CHANNEL_FAULT: &str = "channel_fault";
 }
 
 /// The parameters of recordings.csv, by what they are computed from.
@@ -304,7 +245,7 @@ fn parse_flat(s: &str) -> Warning {
             "fault" => Severity::Fault,
             _ => return None,
         };
-        Some(Warning::new(code, severity, message))
+        Some(Warning::new(code.parse().ok()?, severity, message))
     });
     parsed.unwrap_or_else(|| Warning::from_reader(s))
 }

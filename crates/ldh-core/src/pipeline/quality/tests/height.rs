@@ -198,7 +198,7 @@ fn a_shank_turning_at_mid_stance_withholds_the_length_without_a_height_and_not_w
     assert!(!h.vouched());
     let w = sensor_height_warning(&h);
     assert_eq!(
-        (w.code.as_str(), w.severity),
+        (w.code, w.severity),
         (codes::SENSOR_HEIGHT_UNKNOWN, Severity::Warning)
     );
     assert_eq!(w.affects, params::LENGTH);

@@ -121,7 +121,7 @@ const HUGADB: [(&str, bool, bool); 18] = [
 
 fn no_false_alarm(w: &[Warning]) -> Result<(), String> {
     for x in w {
-        if [codes::POSSIBLE_SWAP, codes::RUNNING, codes::UPSIDE_DOWN].contains(&x.code.as_str())
+        if [codes::POSSIBLE_SWAP, codes::RUNNING, codes::UPSIDE_DOWN].contains(&x.code)
             && x.severity > Severity::Note
         {
             return Err(format!("false {}: {}", x.code, x.message));
@@ -361,7 +361,7 @@ fn hugadb_format_maps_and_raw_reading_agree_on_the_attitude() {
                     // HuGaDB has no quiet standing: WQK and PBI are withheld on every leg
                     // (asserted below), whichever path read it
                     .filter(|w| w.code != codes::NO_QUIET_STANDING)
-                    .map(|w| w.code.clone())
+                    .map(|w| w.code.to_string())
                     .collect()
             };
             let pitch = |l| -> Vec<f64> { mid_stance_pitch(l).iter().map(|x| x.1).collect() };
