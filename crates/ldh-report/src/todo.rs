@@ -11,7 +11,6 @@
 
 use super::verdict::{Cell, Scope, Verdicts};
 use ldh_core::output::{Parameter, RecordingRow};
-use ldh_core::pipeline::quality::codes;
 use ldh_core::pipeline::{Group, Severity, Warning};
 
 /// What the technician can do about a withheld value, in the order the headline prefers them.
@@ -38,17 +37,18 @@ impl Action {
         if w.severity == Severity::Fault {
             return Some(Action::CheckSensor);
         }
-        Some(match w.code.as_str() {
-            codes::LR_DISAGREEMENT
-            | codes::IDENTICAL_LEGS
-            | codes::POSSIBLE_SWAP
-            | codes::NO_OVERLAP
-            | codes::LENGTH_MISMATCH
-            | codes::RATE_MISMATCH => Action::CheckFiles,
-            codes::SENSOR_HEIGHT_UNKNOWN => Action::MeasureHeight,
-            codes::NO_QUIET_STANDING => Action::StandStill,
-            codes::TOO_LITTLE_STEADY => Action::SteadyWalk,
-            codes::FEW_STRIDES | codes::SV_NOISE | codes::SV_UNCHECKED => Action::LongerWalk,
+        use ldh_core::pipeline::WarningCode as C;
+        Some(match w.code {
+            C::LrDisagreement
+            | C::IdenticalLegs
+            | C::PossibleSwap
+            | C::NoOverlap
+            | C::LengthMismatch
+            | C::RateMismatch => Action::CheckFiles,
+            C::SensorHeightUnknown => Action::MeasureHeight,
+            C::NoQuietStanding => Action::StandStill,
+            C::TooLittleSteady | C::NeverSteady => Action::SteadyWalk,
+            C::FewStrides | C::SvNoise | C::SvUnchecked => Action::LongerWalk,
             _ => return None,
         })
     }

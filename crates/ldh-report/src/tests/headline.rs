@@ -480,7 +480,7 @@ fn a_stride_length_withheld_for_a_left_right_disagreement_does_not_ask_for_the_h
         );
         // The height was assumed and moves the length little: a note, withholding nothing.
         r.warnings.0.push(Warning::new(
-            "sensor_height_unknown",
+            ldh_core::pipeline::quality::codes::SENSOR_HEIGHT_UNKNOWN,
             Severity::Note,
             "the sensor height was not given, so 0.10 m above the ankle was assumed",
         ));

@@ -49,7 +49,7 @@ fn set_warning(warnings: &mut Vec<Warning>, span: Option<&SteadySpan>) {
             codes::TOO_LITTLE_STEADY,
             codes::NEVER_STEADY,
         ]
-        .contains(&w.code.as_str())
+        .contains(&w.code)
     });
     if let Some(w) = span.and_then(steady_warning) {
         warnings.push(w);
