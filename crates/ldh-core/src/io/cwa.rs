@@ -514,7 +514,7 @@ impl<W: Write> CwaWriter<W> {
         let text = p.annotation.as_bytes();
         head[64..64 + text.len().min(448)].copy_from_slice(&text[..text.len().min(448)]);
         head[512..].fill(0xff);
-        out.write_all(&head).map_err(|e| werr(e))?;
+        out.write_all(&head).map_err(werr)?;
         Ok(CwaWriter {
             out,
             start_unix_s: unix_s(&p.start) as f64,
