@@ -6,6 +6,7 @@ mod channels;
 mod checks;
 mod column_info;
 mod columns;
+pub mod cwa;
 pub mod format;
 mod header;
 mod infer;
