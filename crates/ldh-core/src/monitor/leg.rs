@@ -113,6 +113,8 @@ struct Tracker<'a> {
     env_acc: (f64, usize),
     out: LegStream,
     back_jumps: u64,
+    /// The minute being summed (its number, its sums).
+    minute: (i64, MinuteStats),
 }
 
 struct Open {
@@ -173,6 +175,7 @@ pub fn stream_leg(
             ..LegStream::default()
         },
         back_jumps: 0,
+        minute: (i64::MIN, MinuteStats::default()),
     };
     for s in &first {
         t.push(*s)?;
@@ -184,6 +187,7 @@ pub fn stream_leg(
         }
     }
     t.close_span(false)?;
+    t.flush_minute();
     if t.back_jumps > 0 {
         t.out.notes.push(format!(
             "{}: {} sample(s) whose time did not increase (the clock jumped back) were dropped",
@@ -227,11 +231,12 @@ impl Tracker<'_> {
         }
         self.last_t = s.t_s;
         self.out.samples += 1;
-        self.out
-            .minutes
-            .entry((s.t_s / 60.0).floor() as i64)
-            .or_default()
-            .push(&s.acc_g);
+        let minute = (s.t_s / 60.0).floor() as i64;
+        if self.minute.0 != minute {
+            self.flush_minute();
+            self.minute.0 = minute;
+        }
+        self.minute.1.push(&s.acc_g);
         if self.win.n == 0 {
             self.win_start = s.t_s;
         }
@@ -262,6 +267,26 @@ impl Tracker<'_> {
             self.end_window(s.t_s)?;
         }
         Ok(())
+    }
+
+    /// Add the current minute's sums to the table.
+    fn flush_minute(&mut self) {
+        let (m, stats) = std::mem::take(&mut self.minute);
+        if stats.n == 0 {
+            return;
+        }
+        let e = self.out.minutes.entry(m).or_default();
+        if e.n == 0 {
+            e.min = stats.min;
+            e.max = stats.max;
+        }
+        e.n += stats.n;
+        for k in 0..3 {
+            e.sum[k] += stats.sum[k];
+            e.sum_sq[k] += stats.sum_sq[k];
+            e.min[k] = e.min[k].min(stats.min[k]);
+            e.max[k] = e.max[k].max(stats.max[k]);
+        }
     }
 
     fn reset_context(&mut self) {
