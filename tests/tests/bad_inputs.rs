@@ -95,6 +95,20 @@ fn generate(kind: &str, dir: &Path) -> Option<()> {
         }
         "two_hour" => write_two_hour(&corpus().join("baseline_ok"), dir),
         "nul_late" => std::fs::write(dir.join("data.csv"), nul_late()).unwrap(),
+        "legs_of_two_people" => {
+            // The demo is stored compressed: its two legs written out, with the manifest.
+            for (rel, name) in [
+                ("H01/left.csv", "h01_left.csv"),
+                ("L01/right.csv", "l01_right.csv"),
+            ] {
+                std::fs::write(dir.join(name), ldh_core::demo::file(rel).unwrap()).unwrap();
+            }
+            std::fs::write(
+                dir.join("manifest.csv"),
+                "subject_id,group,affected_side,left,right\nS1,healthy,none,h01_left.csv,l01_right.csv\n",
+            )
+            .unwrap();
+        }
         other => panic!("unknown generator {other}"),
     }
     Some(())

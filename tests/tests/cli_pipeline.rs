@@ -119,7 +119,7 @@ fn the_demo_shows_every_parameter_measured_and_judged() {
             );
             let judged = ["within normal", "above normal", "below normal"];
             let sides = judged.iter().map(|j| row.matches(j).count()).sum::<usize>();
-            let one_value_per_walk = ["SF", "SS", "ST"].contains(&code);
+            let one_value_per_walk = ["SF", "SS", "ST", "DS"].contains(&code);
             assert_eq!(
                 sides,
                 if one_value_per_walk { 1 } else { 2 },

@@ -203,7 +203,7 @@ fn stats_reliability_on_a_simulated_retest_cohort_writes_the_table() {
             .as_array()
             .unwrap()
             .len(),
-        13
+        14
     );
     assert!(std::fs::read_to_string(s.join("reliability.md"))
         .unwrap()

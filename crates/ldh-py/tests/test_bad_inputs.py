@@ -1,6 +1,7 @@
 """The bad-input corpus (data-fixtures/bad/, see its README.md) through the Python API: every
 case gives the outcome its expected.toml documents — the typed exception, or a result with its
 warnings — and never a crash. The Rust twin is tests/tests/bad_inputs.rs."""
+import gzip
 import os
 import pathlib
 import resource
@@ -84,6 +85,13 @@ def generate(kind, d):
         rows = [f"{i // 100}.{i % 100:02d},1.000,{'0.0' + chr(0) + '10' if i == 1999 else '0.010'},0.020,0.5,0.6,0.7"
                 for i in range(2500)]
         (d / "data.csv").write_text("time_s,acc_x,acc_y,acc_z,gyro_x,gyro_y,gyro_z\n" + "\n".join(rows) + "\n")
+    elif kind == "legs_of_two_people":
+        # The demo is stored compressed (data-fixtures/cohort/*/*.csv.gz): two people's legs.
+        for src, name in (("H01/left.csv.gz", "h01_left.csv"), ("L01/right.csv.gz", "l01_right.csv")):
+            with gzip.open(CORPUS.parent / "cohort" / src, "rt", encoding="utf-8") as fh:
+                (d / name).write_text(fh.read(), encoding="utf-8")
+        (d / "manifest.csv").write_text(
+            "subject_id,group,affected_side,left,right\nS1,healthy,none,h01_left.csv,l01_right.csv\n")
     else:
         raise AssertionError(f"unknown generator {kind}")
     return None

@@ -277,7 +277,7 @@ mod tests {
         );
         let files = t.files(0.95).unwrap();
         assert_eq!(files[0].0, "reliability.csv");
-        assert_eq!(files[0].1.lines().count(), 14);
+        assert_eq!(files[0].1.lines().count(), 15);
     }
 
     #[test]

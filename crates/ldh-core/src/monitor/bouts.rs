@@ -210,11 +210,23 @@ fn bout_row(
         }
         factor * vals.iter().sum::<f64>() / vals.len() as f64
     };
-    let cadence = mean_of(Parameter::StepFrequency, "cadence_steps_per_min", 60.0);
     let speed = mean_of(Parameter::Speed, "speed_mps", 1.0);
     let stride_time = mean_of(Parameter::StrideTime, "stride_time_s", 1.0);
     let stride_length = mean_of(Parameter::StrideLength, "stride_length_m", 1.0);
     let stv = mean_of(Parameter::StrideTimeCv, "stride_time_cv", 1.0);
+    // One cadence per bout from both legs' stride times (the walk cadence of `ldh analyze`),
+    // not the per-leg step frequency: that needs the two clocks aligned to a fraction of a step,
+    // which the envelope offset is not (docs/free-living.md).
+    let st = |x: &Result<LegResult, _>| {
+        x.as_ref()
+            .ok()
+            .map(|l| l.parameters.value(Parameter::StrideTime))
+    };
+    let cadence =
+        crate::domain::walk_cadence_steps_per_min(st(left), st(right)).unwrap_or_else(|| {
+            withheld.push("cadence_steps_per_min: no leg's stride time in this bout".into());
+            f64::NAN
+        });
     let stt = [left, right].map(|x| x.as_ref().map_or(f64::NAN, |l| l.parameters.step_time_s));
     let asym = if stt.iter().all(|v| v.is_finite() && *v > 0.0) {
         (stt[0] - stt[1]).abs() / (0.5 * (stt[0] + stt[1])) * 100.0

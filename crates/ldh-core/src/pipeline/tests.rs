@@ -21,7 +21,7 @@ fn manifests_are_parsed_and_bad_rows_named() {
     .unwrap();
     let e = read_manifest(&m).unwrap_err().to_string();
     assert!(e.contains("manifest.csv:2:3") && e.contains("'up'"), "{e}");
-    assert_eq!(discover(&[]).unwrap().len(), 4);
+    assert_eq!(discover(&[]).unwrap().len(), crate::demo::SUBJECTS.len());
     // A misspelt input is refused before any work, as "not found" (FileNotFoundError in
     // Python, exit 2 on the command line); a file a manifest lists fails per recording.
     let e = discover(&[d.path().join("nothing-here.csv")]).unwrap_err();

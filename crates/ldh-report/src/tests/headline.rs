@@ -372,8 +372,8 @@ fn leg_of(id: &str, side: &str, step_s: f64) -> RecordingRow {
     r
 }
 
-/// Issue 50 item 4: a 30 % stance asymmetry is named although stance has no reference range
-/// (71.6 % against 52.7 %, SI +30.4), with the swing it leaves.
+/// Issue 50 item 4: a 30 % stance asymmetry is named (71.6 % against 52.7 %, SI +30.4), with
+/// the swing it leaves, and each leg's stance is judged against its published range (issue 49).
 #[test]
 fn headline_of_a_30_pct_stance_asymmetry() {
     let mut recs = vec![leg_of("S", "left", 0.525), leg_of("S", "right", 0.525)];
@@ -386,7 +386,8 @@ fn headline_of_a_30_pct_stance_asymmetry() {
         h,
         Headline {
             findings: vec![
-                "Stance is uneven: the left leg stays on the ground 36 % longer than the right (71.6 % against 52.7 % of the gait cycle; swing 28.4 % against 47.3 %).".into()
+                "Stance is uneven: the left leg stays on the ground 36 % longer than the right (71.6 % against 52.7 % of the gait cycle; swing 28.4 % against 47.3 %).".into(),
+                "Stance is above normal on the left: 71.6 %; below normal on the right: 52.7 % (normal 57.0–65.0 %).".into(),
             ],
             ..Default::default()
         }

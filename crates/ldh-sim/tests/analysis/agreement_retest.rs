@@ -122,7 +122,7 @@ fn a_retest_cohort_of_10_people_by_3_trials_recovers_the_simulators_variances() 
     let rows = ldh_core::output::recording_rows(&results);
     let p = ValidAgreementParams::default();
     let table = reliability_table(&rows, &p);
-    assert_eq!(table.rows.len(), 13);
+    assert_eq!(table.rows.len(), 14);
     for (param, tight_between) in [
         (Parameter::StrideTime, 0.05),
         (Parameter::StrideLength, 0.15),
