@@ -396,7 +396,7 @@ pub fn envelope(samples: &[Sample], t0: f64) -> Vec<f32> {
             acc += raw[i];
             cnt += 1;
         }
-        if i >= 2 * half + 1 {
+        if i > 2 * half {
             acc -= raw[i - 2 * half - 1];
             cnt -= 1;
         }
