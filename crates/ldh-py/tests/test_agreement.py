@@ -39,7 +39,7 @@ def results(tmp_path):
             truth[(s, side)] = hs
             for k in range(20):
                 strides.append([s, side, "fusion", k, 0, hs[k], hs[k] + 0.6 * st, hs[k + 1], st, 0.6,
-                                1.2, 1.2 / st, "", "", "", "", "true", "", ""])
+                                "", 1.2, 1.2 / st, "", "", "", "", "true", "", ""])
             for t in hs:
                 events.append(f"{s},{t},{side},HS,,")
             recs.append(_recording(s, side, st + rng.normal(0, 0.01)))

@@ -73,7 +73,7 @@ def test_errors_are_typed_and_name_the_problem(tmp_path):
 
 
 def test_demo_and_simulation_are_deterministic(tmp_path):
-    assert ldh.write_demo(tmp_path / "demo") == 14
+    assert ldh.write_demo(tmp_path / "demo") == 2 * 13 + 2  # two legs of 13 people, manifest, cohort.json
     m1 = ldh.simulate_cohort(tmp_path / "a", healthy=1, ldh=1, seconds=14, seed=5)
     m2 = ldh.simulate_cohort(tmp_path / "b", healthy=1, ldh=1, seconds=14, seed=5)
     assert m1 == m2

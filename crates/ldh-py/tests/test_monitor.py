@@ -48,7 +48,7 @@ def test_monitor_finds_the_walks_and_returns_frames(files):
     bouts = r.bouts
     assert len(bouts["bout"]) == 3
     assert list(bouts["legs"]) == ["both"] * 3
-    assert all(15 < d < 25 for d in bouts["duration_s"])
+    assert all(20 < d < 33 for d in bouts["duration_s"]), list(bouts["duration_s"])  # the 35 s demo walks
     assert len(r.days["day"]) == 1 and len(r.summary["subject_id"]) == 1
     # Under 12 h worn: the day's amounts are withheld with the reason.
     assert "not a valid day" in list(r.days["withheld"])[0]
