@@ -8,10 +8,9 @@
 //! it: its **scatter** (the SD of rule − push-off peak per leg, after that leg's median) and its
 //! share of strides inside the bracket. The same landmarks as
 //! `data-fixtures/scripts/hugadb_foot_reference.py` (docs/accuracy.md "Toe off against the feet
-//! of HuGaDB"). It also asserts what ldh-core's `pipeline/quality/tests_hugadb_feet.rs` does
-//! for the default toe off (its median after the push-off peak and before the zero crossing on
-//! every leg, ≥ 90 % of the strides inside), whose foot reader and landmarks it repeats: that
-//! test can go once this one has run in CI.
+//! of HuGaDB"). It also asserts, for the default toe off, what a test of ldh-core did until
+//! 2026-12-02 with a copy of this foot reader: its median after the push-off peak and before the
+//! zero crossing on every leg, ≥ 90 % of the strides inside.
 //!
 //! `cargo test --profile ci -p ldh-sim --test analysis events_to_hugadb -- --nocapture`
 

@@ -4,7 +4,6 @@
 mod height;
 pub(crate) mod hugadb;
 mod hugadb_faults;
-mod hugadb_feet;
 mod stride_length;
 
 use super::*;

@@ -490,7 +490,7 @@ fn a_faulty_legs_heading_neither_decides_the_other_legs_turns_nor_is_reported() 
                         s.hs_time_s,
                         s.bout,
                         s.heading_change_deg,
-                        s.reason.contains("turning")
+                        s.has(&crate::gait::StrideCode::Turn)
                     )
                 })
                 .collect()
