@@ -49,7 +49,7 @@ pub use table3::{
 pub use crate::output::{Parameter, UnknownParameter};
 
 /// The parameters, in the order of the paper's Table 3 (plus PBI).
-pub const PARAMETERS: [Parameter; 14] = Parameter::ALL;
+pub const PARAMETERS: [Parameter; Parameter::COUNT] = Parameter::ALL;
 
 /// One person's row for one side: the row itself when the person has one trial; with several
 /// trials (rows sharing `subject_id`), the mean over the trials analysed (`status` ok) of each
@@ -72,7 +72,11 @@ pub fn person_row(rows: &[&RecordingRow], side: Side) -> Option<RecordingRow> {
     for p in PARAMETERS {
         out.set_value(p, mean(ok.iter().filter_map(|r| r.value(p)).collect()));
     }
-    out.sta_per_stride = mean(ok.iter().filter_map(|r| r.sta_per_stride).collect());
+    out.parameters.sta_per_stride = mean(
+        ok.iter()
+            .filter_map(|r| r.parameters.sta_per_stride)
+            .collect(),
+    );
     let sum = |f: fn(&RecordingRow) -> Option<usize>| ok.iter().map(|r| f(r)).sum();
     out.strides_total = sum(|r| r.strides_total);
     out.strides_valid = sum(|r| r.strides_valid);

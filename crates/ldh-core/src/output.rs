@@ -3,10 +3,8 @@
 //! empty CSV cell and a JSON `null`, never a made-up number; the `reason`, `sta_status` and
 //! `error` columns say why.
 //!
-//! Parameter codes (paper Table 2) → columns: ST `stride_time_s`, STT `step_time_s`, SF
-//! `step_frequency_steps_per_s`, STP `stance_ratio`, SWP `swing_ratio`, SL `stride_length_m`,
-//! SS `speed_mps`, SV `stride_length_cv`, STV `stride_time_cv`, STA `sta_per_s` /
-//! `sta_per_stride`, WQK `wqk_deg`, PBI `pbi_deg`, BDK `bdk_deg`.
+//! The parameters' columns are their definitions' ([`Parameter::definition`]; docs/columns.md
+//! lists them), written by one loop over [`Parameter::TABLE_ORDER`] ([`crate::domain::block`]).
 //!
 //! [`RecordingRow`] is the typed per-recording value that cohort, ml and report consume, and
 //! also its own serialisation (see its doc for why there is no separate `Features` struct):
@@ -14,15 +12,19 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::domain::{ParameterBlock, PerParameter};
 use crate::error::{LdhError, Result};
 use crate::pipeline::quality::flat;
 use crate::pipeline::{SubjectResult, Warning, WarningList, WithheldList};
 
 pub mod columns;
+#[cfg(all(test, feature = "dummy-parameter"))]
+mod dummy_parameter;
 pub mod labels;
 pub mod names;
 mod parameter;
 pub mod results;
+mod row_serde;
 pub mod run;
 mod sink;
 #[cfg(test)]
@@ -99,8 +101,11 @@ pub struct StrideRow {
 /// so typing its fields (labels as enums in [`labels`], parameters reached by
 /// [`Parameter`]) gives the consumers their types without a second struct and a
 /// conversion in each direction; serde attributes keep the bytes of the CSV and JSON as they
-/// were.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// were. The parameters are one [`ParameterBlock`] (a new parameter is a new column with no
+/// edit here); its columns sit between the row's other columns, so the row is written by
+/// [`row_serde`]'s hand-written `Serialize` (a derived `flatten` would write a map, which
+/// the CSV writer refuses) and read by the derived `Deserialize` (JSON only).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 pub struct RecordingRow {
     /// Subject.
     pub subject_id: String,
@@ -143,38 +148,11 @@ pub struct RecordingRow {
     pub strides_total: Option<usize>,
     /// Valid strides.
     pub strides_valid: Option<usize>,
-    /// ST, s.
-    pub stride_time_s: Option<f64>,
-    /// STT, s.
-    pub step_time_s: Option<f64>,
-    /// SF, steps/s.
-    pub step_frequency_steps_per_s: Option<f64>,
-    /// STP.
-    pub stance_ratio: Option<f64>,
-    /// SWP.
-    pub swing_ratio: Option<f64>,
-    /// DS (issue 49).
-    pub double_support_ratio: Option<f64>,
-    /// SL, m.
-    pub stride_length_m: Option<f64>,
-    /// SS, m/s.
-    pub speed_mps: Option<f64>,
-    /// SV.
-    pub stride_length_cv: Option<f64>,
-    /// STV.
-    pub stride_time_cv: Option<f64>,
-    /// STA, 1/s.
-    pub sta_per_s: Option<f64>,
-    /// STA per stride.
-    pub sta_per_stride: Option<f64>,
-    /// Why STA is empty.
-    pub sta_status: String,
-    /// WQK, deg.
-    pub wqk_deg: Option<f64>,
-    /// PBI, deg.
-    pub pbi_deg: Option<f64>,
-    /// BDK, deg.
-    pub bdk_deg: Option<f64>,
+    /// Every parameter's value (empty when not measured) with STA's per-stride value and
+    /// status: the columns of [`Parameter::TABLE_ORDER`], STA's followed by `sta_per_stride`
+    /// and `sta_status` ([`crate::domain::block`]). Read as the rest of the row's fields.
+    #[serde(flatten)]
+    pub parameters: ParameterBlock,
     /// Device mounted mirrored.
     pub mirrored: Option<bool>,
     /// Device rotation about the shank, deg.
@@ -277,7 +255,9 @@ pub fn stride_rows(results: &[SubjectResult]) -> Vec<StrideRow> {
 /// ([`crate::domain::walk_cadence_steps_per_min`]), rounded as the table writes it.
 fn walk_cadence(r: &SubjectResult) -> Option<f64> {
     let st = |leg: &std::result::Result<crate::pipeline::LegResult, String>| {
-        leg.as_ref().ok().map(|l| l.parameters.stride_time_s)
+        leg.as_ref()
+            .ok()
+            .map(|l| l.parameters[Parameter::StrideTime])
     };
     crate::domain::walk_cadence_steps_per_min(st(&r.left), st(&r.right)).and_then(|c| num(c, 2))
 }
@@ -316,22 +296,7 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
                 duration_s: None,
                 strides_total: None,
                 strides_valid: None,
-                stride_time_s: None,
-                step_time_s: None,
-                step_frequency_steps_per_s: None,
-                stance_ratio: None,
-                swing_ratio: None,
-                double_support_ratio: None,
-                stride_length_m: None,
-                speed_mps: None,
-                stride_length_cv: None,
-                stride_time_cv: None,
-                sta_per_s: None,
-                sta_per_stride: None,
-                sta_status: String::new(),
-                wqk_deg: None,
-                pbi_deg: None,
-                bdk_deg: None,
+                parameters: ParameterBlock::default(),
                 mirrored: None,
                 axial_rotation_deg: None,
                 outliers_replaced: None,
@@ -368,22 +333,11 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
                     if p.strides_valid == 0 {
                         row.status = Status::NoValidStrides.into();
                     }
-                    row.stride_time_s = num(p.stride_time_s, 4);
-                    row.step_time_s = num(p.step_time_s, 4);
-                    row.step_frequency_steps_per_s = num(p.step_frequency_hz, 4);
-                    row.stance_ratio = num(p.stance_ratio, 4);
-                    row.swing_ratio = num(p.swing_ratio, 4);
-                    row.double_support_ratio = num(p.double_support_ratio, 4);
-                    row.stride_length_m = num(p.stride_length_m, 4);
-                    row.speed_mps = num(p.speed_mps, 4);
-                    row.stride_length_cv = num(p.stride_length_cv, 4);
-                    row.stride_time_cv = num(p.stride_time_cv, 4);
-                    row.sta_per_s = num(p.sta_per_s, 4);
-                    row.sta_per_stride = num(p.sta_per_stride, 4);
-                    row.sta_status = p.sta_status.clone();
-                    row.wqk_deg = num(p.wqk_deg, 3);
-                    row.pbi_deg = num(p.pbi_deg, 3);
-                    row.bdk_deg = num(p.bdk_deg, 3);
+                    row.parameters = ParameterBlock {
+                        values: PerParameter::from_fn(|q| num(p[q], q.decimals())),
+                        sta_per_stride: num(p.sta_per_stride, 4),
+                        sta_status: p.sta_status.clone(),
+                    };
                     row.mirrored = Some(l.alignment.mirrored);
                     row.axial_rotation_deg = num(l.alignment.axial_rotation_deg, 1);
                     row.outliers_replaced = Some(l.outliers_replaced);

@@ -15,8 +15,8 @@ pub(crate) fn not_measured(r: &RecordingRow, p: Parameter) -> Option<String> {
     if r.value(p).is_some() {
         return None;
     }
-    if p == Parameter::Sta && !r.sta_status.is_empty() {
-        return Some(r.sta_status.clone());
+    if p == Parameter::Sta && !r.parameters.sta_status.is_empty() {
+        return Some(r.parameters.sta_status.clone());
     }
     Some(match r.strides_valid {
         Some(0) => "no valid stride".into(),

@@ -268,10 +268,10 @@ fn facts(r: &RecordingRow) -> [String; 11] {
             _ => "–".into(),
         },
         steady_fact(r),
-        if r.sta_status.is_empty() {
+        if r.parameters.sta_status.is_empty() {
             "computed".into()
         } else {
-            format!("not computed: {}", r.sta_status)
+            format!("not computed: {}", r.parameters.sta_status)
         },
     ]
 }

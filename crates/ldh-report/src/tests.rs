@@ -6,6 +6,7 @@ mod headline;
 mod vocabulary;
 
 use super::*;
+use ldh_core::domain::Parameter;
 use ldh_core::output::RecordingRow;
 
 /// A recording row of `id` with only its speed (m/s) measured (`ldh-core`'s ML tests have the same row, output/test_rows.rs).
@@ -22,7 +23,7 @@ pub(crate) fn row(id: &str, group: &str, side: &str, speed: f64) -> RecordingRow
         "outliers_replaced": 0, "clipped_samples": 0
     }))
     .unwrap();
-    r.speed_mps = Some(speed);
+    r.parameters[Parameter::Speed] = Some(speed);
     r
 }
 
@@ -99,7 +100,7 @@ fn reference_from_the_cohort_needs_enough_healthy_subjects() {
     // With enough healthy subjects the cohort's own range is used for them as for the rest.
     let mut rows = rows.clone();
     for (i, x) in rows.iter_mut().enumerate() {
-        x.stance_ratio = Some(0.60 + 0.01 * i as f64);
+        x.parameters[Parameter::StanceRatio] = Some(0.60 + 0.01 * i as f64);
     }
     let r = Reference::from_rows(&rows, &p);
     let x = r
@@ -363,10 +364,10 @@ fn a_finding_about_sv_alone_keeps_the_leg_in_the_reference() {
     for (i, v) in [1.0, 1.1, 1.2, 1.3].iter().enumerate() {
         for side in ["left", "right"] {
             let mut r = row(&format!("H{i}"), "healthy", side, *v);
-            r.stride_length_cv = Some(0.02 + 0.005 * i as f64);
+            r.parameters[Parameter::StrideLengthCv] = Some(0.02 + 0.005 * i as f64);
             if i == 3 {
                 let w = ldh_core::pipeline::quality::unchecked_warning(0.03, "too few strides");
-                r.stride_length_cv = None;
+                r.parameters[Parameter::StrideLengthCv] = None;
                 r.withheld.0.insert(
                     ldh_core::domain::Parameter::StrideLengthCv,
                     w.withheld_reason(),
@@ -401,14 +402,14 @@ fn the_summary_uses_clinical_units_and_plain_flags() {
         .check()
         .unwrap();
     let mut l = row("S1", "ldh", "left", 0.6);
-    l.step_frequency_steps_per_s = Some(1.5);
+    l.parameters[Parameter::StepFrequency] = Some(1.5);
     // 2 / (4/3 s) = 1.5 steps/s: 90 steps/min from both legs' stride times.
-    l.stride_time_s = Some(4.0 / 3.0);
-    l.stance_ratio = Some(0.62);
+    l.parameters[Parameter::StrideTime] = Some(4.0 / 3.0);
+    l.parameters[Parameter::StanceRatio] = Some(0.62);
     let mut r = row("S1", "ldh", "right", 1.2);
-    r.step_frequency_steps_per_s = Some(1.5);
-    r.stride_time_s = Some(4.0 / 3.0);
-    r.stance_ratio = Some(0.70);
+    r.parameters[Parameter::StepFrequency] = Some(1.5);
+    r.parameters[Parameter::StrideTime] = Some(4.0 / 3.0);
+    r.parameters[Parameter::StanceRatio] = Some(0.70);
     let s = SubjectReport {
         subject_id: "S1".into(),
         recordings: vec![l, r],

@@ -250,7 +250,7 @@ pub(crate) const NAMED_DIFFERENCE_SHARE: f64 = 0.10;
 /// `v` (the table's unit) in clinical units with its decimals ("1.03 s", "13.0 %").
 fn clinical(p: Parameter, v: f64) -> String {
     let (scale, unit) = p.display();
-    let d = super::verdict::QUANTITIES
+    let d = super::verdict::quantities()
         .iter()
         .find(|q| q.parameter == p)
         .map_or(2, |q| q.decimals);
@@ -349,8 +349,8 @@ mod tests {
             .map(|side| {
                 let mut r = crate::tests::row("P", "ldh", side, 1.2);
                 r.trial_id = trial.into();
-                r.stride_time_s = Some(stride_s);
-                r.stride_time_cv = Some(cv);
+                r.parameters[Parameter::StrideTime] = Some(stride_s);
+                r.parameters[Parameter::StrideTimeCv] = Some(cv);
                 r
             })
             .collect()

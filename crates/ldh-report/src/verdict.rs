@@ -90,8 +90,10 @@ const fn q(
 use Parameter as P;
 use Scope::{Side as S, Walk as W};
 
-/// Every quantity of the page, in page order; the cadence is judged against the step
-/// frequency's range (in steps/min).
+/// How the page lays out the parameters it has a layout for, in page order; the cadence is
+/// judged against the step frequency's range (in steps/min). The page shows every parameter
+/// of [`Parameter::ALL`] ([`quantities`]): one without a line here follows with
+/// [`default_layout`], so a new parameter reaches the page with no edit here.
 pub(crate) const QUANTITIES: [Quantity; 13] = [
     q(P::StepFrequency, 0, W, None, false, true),
     q(P::Speed, 2, W, None, false, true),
@@ -108,6 +110,30 @@ pub(crate) const QUANTITIES: [Quantity; 13] = [
     q(P::Bdk, 1, S, None, true, false),
     q(P::Sta, 3, S, None, false, false),
 ];
+
+/// The layout of a parameter without a line in [`QUANTITIES`]: 2 decimals, one value per
+/// side, no companion, no asymmetry, not in the clinical summary.
+pub(crate) const fn default_layout(parameter: Parameter) -> Quantity {
+    q(parameter, 2, S, None, false, false)
+}
+
+/// Every quantity of the page, in page order: [`QUANTITIES`], then every other parameter of
+/// [`Parameter::ALL`] that is no quantity's companion, with [`default_layout`].
+pub(crate) fn quantities() -> &'static [Quantity] {
+    static ALL: std::sync::LazyLock<Vec<Quantity>> = std::sync::LazyLock::new(|| {
+        let shown = |p: Parameter| {
+            QUANTITIES
+                .iter()
+                .any(|q| q.parameter == p || q.companion == Some(p))
+        };
+        let rest = Parameter::ALL
+            .into_iter()
+            .filter(|p| !shown(*p))
+            .map(default_layout);
+        QUANTITIES.into_iter().chain(rest).collect()
+    });
+    &ALL
+}
 
 /// Whether the asymmetry of `p` is judged against the threshold without a reference range: the
 /// relative timings and lengths of the two legs (module docs).
@@ -222,7 +248,7 @@ pub(crate) struct Row {
     pub asymmetry: Option<Asymmetry>,
 }
 
-/// Every verdict of a subject's page, in [`QUANTITIES`] order.
+/// Every verdict of a subject's page, in [`quantities`] order.
 #[derive(Debug)]
 pub(crate) struct Verdicts {
     /// One row per quantity.
@@ -322,7 +348,7 @@ pub(crate) fn verdicts(sides: &[&RecordingRow], reference: &Reference, limit_pct
         (_, Some(r)) if !r.is_ok() => Some("the right leg was not analysed (see above)".into()),
         _ => None,
     };
-    let rows = QUANTITIES
+    let rows = quantities()
         .iter()
         .map(|q| {
             let rr = reference.range(q.parameter);

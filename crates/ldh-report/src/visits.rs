@@ -209,7 +209,7 @@ mod tests {
                 let mut r = crate::tests::row(id, "ldh", side, speed);
                 r.trial_id = trial.into();
                 r.visit = visit.into();
-                r.stride_length_m = Some(length);
+                r.parameters[Parameter::StrideLength] = Some(length);
                 r
             })
             .collect()

@@ -7,10 +7,13 @@
 //!   name, unit and meaning (the model is gaitmap's one vocabulary, `gaitmap/utils/consts.py`);
 //! - [`measured`]: [`Reason`] (a typed code with its message), [`Measured`], [`PerParameter`],
 //!   [`Withheld`] (the withheld parameters and why, keyed by [`Parameter`]);
+//! - [`block`]: every parameter's value written (and read back) by one loop over
+//!   [`Parameter::TABLE_ORDER`], for a leg's parameters and the per-recording row;
 //! - [`walk`]: [`WalkValue`], the values of a walk rather than a leg (its cadence and steady
 //!   window, one value on both legs' rows), each with its column, unit and meaning.
 //! - [`warning_code`]: [`WarningCode`], the stable code of every quality finding.
 
+pub mod block;
 pub mod labels;
 pub mod measured;
 pub mod parameter;
@@ -18,6 +21,7 @@ mod unsure;
 pub mod walk;
 pub mod warning_code;
 
+pub use block::ParameterBlock;
 pub use labels::{AffectedSide, EventKind, Group, Setting, Side};
 pub use measured::{Measured, PerParameter, Reason, ReasonCode, Withheld};
 pub use parameter::{Definition, Parameter, UnknownParameter};

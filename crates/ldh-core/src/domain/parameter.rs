@@ -41,6 +41,10 @@ pub enum Parameter {
     Bdk,
     /// DS, fraction of the gait cycle (ldh's addition, issue 49: double support).
     DoubleSupport,
+    /// A made-up parameter (twice the stride time, s), only with the test-only feature
+    /// `dummy-parameter`: the proof that a parameter is its definition and its computation.
+    #[cfg(feature = "dummy-parameter")]
+    Dummy,
 }
 
 /// The definition of one parameter: everything any output says about it.
@@ -57,6 +61,9 @@ pub struct Definition {
     /// How a report shows it: the factor from [`Definition::unit`] and the unit it then has
     /// (the same quantity: a fraction × 100 is a per cent, steps/s × 60 steps/min).
     pub display: (f64, &'static str),
+    /// The values it can physically have, in [`Definition::unit`] (a classifier's feature
+    /// statistics outside it make a model file implausible, `ml::model_plausible`).
+    pub range: (f64, f64),
     /// What the per-side value means (the column dictionary, after the code).
     pub description: &'static str,
     /// What the per-stride value means, when the per-stride table has one (same column name).
@@ -73,6 +80,7 @@ pub const CV: &str = "SD / mean";
 const fn d(
     (code, column, name, unit): (&'static str, &'static str, &'static str, &'static str),
     display: (f64, &'static str),
+    range: (f64, f64),
     description: &'static str,
     per_stride: Option<&'static str>,
 ) -> Definition {
@@ -82,6 +90,7 @@ const fn d(
         name,
         unit,
         display,
+        range,
         description,
         per_stride,
     }
@@ -92,6 +101,10 @@ const AS_IS_M: (f64, &str) = (1.0, "m");
 const AS_IS_DEG: (f64, &str) = (1.0, "deg");
 const PER_CENT_OF_CYCLE: (f64, &str) = (100.0, "% of the gait cycle");
 const CV_PER_CENT: (f64, &str) = (100.0, "CV %");
+/// The range of a share of the gait cycle.
+const UNIT: (f64, f64) = (0.0, 1.0);
+/// The range of a shank angle, deg.
+const ANGLE: (f64, f64) = (-360.0, 360.0);
 
 /// A column name that is not a parameter of [`Parameter::ALL`].
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -113,7 +126,7 @@ impl From<UnknownParameter> for LdhError {
 
 impl Parameter {
     /// Every parameter, in the order of the paper's Table 3 (plus PBI, then double support).
-    pub const ALL: [Parameter; 14] = [
+    pub const ALL: [Parameter; Parameter::COUNT] = [
         Parameter::StepFrequency,
         Parameter::StrideLength,
         Parameter::Speed,
@@ -128,10 +141,15 @@ impl Parameter {
         Parameter::Pbi,
         Parameter::Bdk,
         Parameter::DoubleSupport, // issue 49
+        #[cfg(feature = "dummy-parameter")]
+        Parameter::Dummy,
     ];
 
+    /// How many parameters there are.
+    pub const COUNT: usize = 14 + cfg!(feature = "dummy-parameter") as usize;
+
     /// Every parameter in the column order of the per-recording table (recordings.csv).
-    pub const TABLE_ORDER: [Parameter; 14] = [
+    pub const TABLE_ORDER: [Parameter; Parameter::COUNT] = [
         Parameter::StrideTime,
         Parameter::StepTime,
         Parameter::StepFrequency,
@@ -146,6 +164,8 @@ impl Parameter {
         Parameter::Wqk,
         Parameter::Pbi,
         Parameter::Bdk,
+        #[cfg(feature = "dummy-parameter")]
+        Parameter::Dummy,
     ];
 
     /// The parameter's definition.
@@ -155,78 +175,91 @@ impl Parameter {
             StepFrequency => d(
                 ("SF", "step_frequency_steps_per_s", "cadence", "steps/s"),
                 (60.0, "steps/min"),
+                (0.1, 6.0),
                 "1 / mean step time (× 60 = steps/min of this side; the report's cadence is one value per walk from both legs).",
                 None,
             ),
             StrideLength => d(
                 ("SL", "stride_length_m", "stride length", "m"),
                 AS_IS_M,
+                (0.0, 4.0),
                 "mean distance the foot travels over a stride (both feet travel the same distance on a straight walk).",
                 Some("Stride length; empty when withheld (`reason` says why)."),
             ),
             Speed => d(
                 ("SS", "speed_mps", "walking speed", "m/s"),
                 (1.0, "m/s"),
+                (0.0, 6.0),
                 "mean walking speed, stride length / stride time.",
                 Some("Stride length / stride time."),
             ),
             StepTime => d(
                 ("STT", "step_time_s", "step time", "s"),
                 AS_IS_S,
+                (0.05, 10.0),
                 "mean step time (the other leg's heel strike to this leg's); empty with one leg.",
                 None,
             ),
             StrideTime => d(
                 ("ST", "stride_time_s", "stride time", "s"),
                 AS_IS_S,
+                (0.1, 20.0),
                 "mean stride time (heel strike to the next heel strike of the same leg).",
                 Some("Stride time."),
             ),
             StanceRatio => d(
                 ("STP", "stance_ratio", "stance", GAIT_CYCLE_FRACTION),
                 PER_CENT_OF_CYCLE,
+                UNIT,
                 "mean share of the stride the foot is on the ground (toe off − heel strike) / stride time; normal ≈ 0.60.",
                 Some("(toe off − heel strike) / stride time."),
             ),
             SwingRatio => d(
                 ("SWP", "swing_ratio", "swing", GAIT_CYCLE_FRACTION),
                 PER_CENT_OF_CYCLE,
+                UNIT,
                 "1 − stance ratio: the share of the stride the foot is in the air.",
                 None,
             ),
             StrideLengthCv => d(
                 ("SV", "stride_length_cv", "stride length variability", CV),
                 CV_PER_CENT,
+                (0.0, 5.0),
                 "stride-to-stride variability of stride length (× 100 = %).",
                 None,
             ),
             StrideTimeCv => d(
                 ("STV", "stride_time_cv", "stride time variability", CV),
                 CV_PER_CENT,
+                (0.0, 5.0),
                 "stride-to-stride variability of stride time (× 100 = %); healthy ≈ 0.01–0.03.",
                 None,
             ),
             Sta => d(
                 ("STA", "sta_per_s", "gait stability (Lyapunov exponent)", "1/s"),
                 (1.0, "1/s"),
+                (-50.0, 50.0),
                 "short-term largest Lyapunov exponent of the shank's sagittal angular velocity (Rosenstein): how fast nearby gait states diverge; higher = less stable.",
                 None,
             ),
             Wqk => d(
                 ("WQK", "wqk_deg", "shank swing (peak forward pitch)", "deg"),
                 AS_IS_DEG,
+                ANGLE,
                 "mean largest forward inclination of the shank in a stride (sagittal pitch maximum, the knee ahead of the ankle, late swing).",
                 Some("Largest forward shank inclination in the stride (WQK)."),
             ),
             Pbi => d(
                 ("PBI", "pbi_deg", "shank pitch back", "deg"),
                 AS_IS_DEG,
+                ANGLE,
                 "mean largest backward inclination of the shank in a stride (−pitch minimum, at push-off).",
                 Some("Largest backward shank inclination in the stride (PBI)."),
             ),
             Bdk => d(
                 ("BDK", "bdk_deg", "shank roll in swing", "deg"),
                 AS_IS_DEG,
+                ANGLE,
                 "mean range of the shank's frontal-plane roll in swing (toe off to heel strike): sideways swing of the leg, e.g. circumduction.",
                 Some("Range of frontal-plane shank roll from toe off to the next heel strike (BDK)."),
             ),
@@ -234,8 +267,17 @@ impl Parameter {
             DoubleSupport => d(
                 ("DS", "double_support_ratio", "double support", GAIT_CYCLE_FRACTION),
                 PER_CENT_OF_CYCLE,
+                UNIT,
                 "mean share of the stride both feet are on the ground: the initial (heel strike to the other leg's toe off) plus the terminal (the other leg's heel strike to this leg's toe off) double support, / stride time (× stride time = s); normal ≈ 0.20; empty with one leg.",
                 Some("(initial + terminal double support) / stride time, from the other leg's toe off and heel strike inside the stride; empty without them."),
+            ),
+            #[cfg(feature = "dummy-parameter")]
+            Dummy => d(
+                ("DUM", "dummy_s", "dummy", "s"),
+                AS_IS_S,
+                (0.0, 40.0),
+                "twice the mean stride time (a test-only parameter).",
+                None,
             ),
         }
     }
@@ -277,6 +319,15 @@ impl Parameter {
         c.next().map_or(String::new(), |f| {
             f.to_uppercase().collect::<String>() + c.as_str()
         })
+    }
+
+    /// The decimals the tables round a value to: 3 for an angle (deg), 4 for the rest.
+    pub fn decimals(self) -> i32 {
+        if self.unit() == "deg" {
+            3
+        } else {
+            4
+        }
     }
 
     /// What the per-side value means.

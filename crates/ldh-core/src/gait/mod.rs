@@ -37,7 +37,7 @@ mod times;
 
 use serde::{Deserialize, Serialize};
 
-use crate::domain::{Measured, Parameter, Reason, Side, Withheld};
+use crate::domain::{block, Measured, Parameter, PerParameter, Reason, Side, Withheld};
 
 /// NaN: the value of a field absent from what was read back (issue 49's double support).
 fn nan() -> f64 {
@@ -243,74 +243,107 @@ impl Stride {
     }
 }
 
-/// Per-side parameters (SPEC §3.6): means over valid strides.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// Per-side parameters (SPEC §3.6): means over valid strides, one value per [`Parameter`]
+/// (NaN when not measured). Written (a leg's `parameters` in Python) as `strides_total`,
+/// `strides_valid`, then every parameter under its column in the order of the per-recording
+/// table ([`crate::domain::block`]; SF under its historic key `step_frequency_hz`), then
+/// `withheld` when not empty.
+#[derive(Debug, Clone, PartialEq)]
 pub struct SideParameters {
     /// Strides found.
     pub strides_total: usize,
     /// Valid strides used.
     pub strides_valid: usize,
-    /// ST, mean stride time, s.
-    pub stride_time_s: f64,
-    /// STT, mean step time (contralateral HS to ipsilateral HS), s; NaN with one leg.
-    pub step_time_s: f64,
-    /// SF, step frequency, steps/s: 1 / mean STT, or 2 / mean ST with one leg.
-    pub step_frequency_hz: f64,
-    /// STP, mean stance ratio.
-    pub stance_ratio: f64,
-    /// SWP, 1 − STP.
-    pub swing_ratio: f64,
-    /// DS, mean double support ratio of the valid strides that have one (issue 49); NaN with
-    /// one leg.
-    #[serde(default = "nan")]
-    pub double_support_ratio: f64,
-    /// SL, mean stride length, m.
-    pub stride_length_m: f64,
-    /// SS, mean speed, m/s.
-    pub speed_mps: f64,
-    /// SV, SD / mean of stride length.
-    pub stride_length_cv: f64,
-    /// STV, SD / mean of stride time.
-    pub stride_time_cv: f64,
-    /// STA, short-term maximum Lyapunov exponent of ω_s, 1/s (NaN when not computed).
-    pub sta_per_s: f64,
+    /// Every parameter's value (NaN when not measured): its computation is in
+    /// [`side_parameters`] (STT: the other leg's last heel strike before each; SF: 1 / mean
+    /// STT, or 2 / mean ST with one leg; SWP: 1 − STP; SV, STV: SD / mean; STA from
+    /// [`crate::nonlinear::gait_sta`]; the rest the means of the valid strides).
+    pub values: PerParameter<f64>,
     /// STA per stride (λ · mean stride time).
     pub sta_per_stride: f64,
     /// Why STA is missing ("" when present).
     pub sta_status: String,
-    /// WQK, mean max pitch, deg.
-    pub wqk_deg: f64,
-    /// PBI, mean −min pitch, deg.
-    pub pbi_deg: f64,
-    /// BDK, mean roll excursion in swing, deg.
-    pub bdk_deg: f64,
     /// Parameters withheld by a quality check, with the typed reason (written as column →
     /// reason, as in recordings.csv). A withheld parameter's value is NaN and must be shown as
     /// "not measured: <reason>", never as a number. Empty when every parameter is vouched for.
-    #[serde(default, skip_serializing_if = "Withheld::is_empty")]
     pub withheld: Withheld,
+}
+
+/// The key of `p` in a leg's written parameters: its column, but SF's historic
+/// `step_frequency_hz` (the same steps/s; the Python dict has always used it).
+fn leg_key(p: Parameter) -> &'static str {
+    match p {
+        Parameter::StepFrequency => "step_frequency_hz",
+        _ => p.column(),
+    }
+}
+
+impl Serialize for SideParameters {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let with = usize::from(!self.withheld.is_empty());
+        let mut st = s.serialize_struct("SideParameters", 2 + block::BLOCK_FIELDS + with)?;
+        st.serialize_field("strides_total", &self.strides_total)?;
+        st.serialize_field("strides_valid", &self.strides_valid)?;
+        block::serialize_parameters(
+            &mut st,
+            &self.values,
+            leg_key,
+            &self.sta_per_stride,
+            &self.sta_status,
+        )?;
+        if with == 1 {
+            st.serialize_field("withheld", &self.withheld)?;
+        } else {
+            st.skip_field("withheld")?;
+        }
+        st.end()
+    }
+}
+
+impl<'de> Deserialize<'de> for SideParameters {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        let m = serde_json::Map::<String, serde_json::Value>::deserialize(d)?;
+        let count = |k: &str| -> Result<usize, D::Error> {
+            m.get(k)
+                .and_then(|v| v.as_u64())
+                .map(|n| n as usize)
+                .ok_or_else(|| D::Error::custom(format!("{k}: expected a count")))
+        };
+        let b = block::ParameterBlock::from_map::<D::Error>(&m, leg_key)?;
+        let withheld = match m.get("withheld") {
+            None => Withheld::default(),
+            Some(v) => Withheld::deserialize(v).map_err(D::Error::custom)?,
+        };
+        Ok(SideParameters {
+            strides_total: count("strides_total")?,
+            strides_valid: count("strides_valid")?,
+            values: PerParameter::from_fn(|p| b.values[p].unwrap_or(f64::NAN)),
+            sta_per_stride: b.sta_per_stride.unwrap_or(f64::NAN),
+            sta_status: b.sta_status,
+            withheld,
+        })
+    }
+}
+
+impl std::ops::Index<Parameter> for SideParameters {
+    type Output = f64;
+    fn index(&self, p: Parameter) -> &f64 {
+        &self.values[p]
+    }
+}
+
+impl std::ops::IndexMut<Parameter> for SideParameters {
+    fn index_mut(&mut self, p: Parameter) -> &mut f64 {
+        &mut self.values[p]
+    }
 }
 
 impl SideParameters {
     /// The value of `p` (NaN when not measured).
     pub fn value(&self, p: Parameter) -> f64 {
-        use Parameter::*;
-        match p {
-            StepFrequency => self.step_frequency_hz,
-            StrideLength => self.stride_length_m,
-            Speed => self.speed_mps,
-            StepTime => self.step_time_s,
-            StrideTime => self.stride_time_s,
-            StanceRatio => self.stance_ratio,
-            SwingRatio => self.swing_ratio,
-            DoubleSupport => self.double_support_ratio,
-            StrideLengthCv => self.stride_length_cv,
-            StrideTimeCv => self.stride_time_cv,
-            Sta => self.sta_per_s,
-            Wqk => self.wqk_deg,
-            Pbi => self.pbi_deg,
-            Bdk => self.bdk_deg,
-        }
+        self.values[p]
     }
 
     /// The value of `p`, or why it is withheld (`None`: neither measured nor withheld, e.g. the
@@ -327,27 +360,10 @@ impl SideParameters {
     /// Withhold `p` for `reason`: its value (for STA, both per second and per stride) becomes
     /// NaN; `replace` says whether the reason replaces an earlier one (a fault's does).
     pub fn withhold(&mut self, p: Parameter, reason: Reason, replace: bool) {
-        use Parameter::*;
-        let slot = match p {
-            StepFrequency => &mut self.step_frequency_hz,
-            StrideLength => &mut self.stride_length_m,
-            Speed => &mut self.speed_mps,
-            StepTime => &mut self.step_time_s,
-            StrideTime => &mut self.stride_time_s,
-            StanceRatio => &mut self.stance_ratio,
-            SwingRatio => &mut self.swing_ratio,
-            DoubleSupport => &mut self.double_support_ratio,
-            StrideLengthCv => &mut self.stride_length_cv,
-            StrideTimeCv => &mut self.stride_time_cv,
-            Sta => {
-                self.sta_per_stride = f64::NAN;
-                &mut self.sta_per_s
-            }
-            Wqk => &mut self.wqk_deg,
-            Pbi => &mut self.pbi_deg,
-            Bdk => &mut self.bdk_deg,
-        };
-        *slot = f64::NAN;
+        self.values[p] = f64::NAN;
+        if p == Parameter::Sta {
+            self.sta_per_stride = f64::NAN;
+        }
         if replace {
             self.withheld.insert(p, reason);
         } else {

@@ -4,7 +4,7 @@
 
 use super::times::SortedTimes;
 use super::{LengthCheck, SideParameters, Stride, StrideCode, StrideFinding};
-use crate::domain::{Parameter, Reason, ReasonCode};
+use crate::domain::{Parameter, PerParameter, Reason, ReasonCode};
 
 fn mean(v: &[f64]) -> f64 {
     if v.is_empty() {
@@ -53,29 +53,33 @@ pub fn side_parameters(strides: &[Stride], other_hs_s: Option<&[f64]>) -> SidePa
     };
     let mean_stt = mean(&stt);
     let stance = mean(&col(|s| s.stance_ratio));
+    // Each parameter's computation, one arm per parameter (a new parameter adds its arm).
+    let values = PerParameter::from_fn(|p| match p {
+        Parameter::StrideTime => mean_st,
+        Parameter::StepTime => mean_stt,
+        Parameter::StepFrequency if mean_stt.is_finite() => 1.0 / mean_stt,
+        Parameter::StepFrequency => 2.0 / mean_st,
+        Parameter::StanceRatio => stance,
+        Parameter::SwingRatio => 1.0 - stance,
+        Parameter::DoubleSupport => mean(&col(|s| s.double_support_ratio)),
+        Parameter::StrideLength => mean(&sl),
+        Parameter::Speed => mean(&col(|s| s.speed_mps)),
+        Parameter::StrideLengthCv => cv(&sl),
+        Parameter::StrideTimeCv => cv(&st),
+        // From the leg's angular velocity, later (`crate::nonlinear::gait_sta`).
+        Parameter::Sta => f64::NAN,
+        Parameter::Wqk => mean(&col(|s| s.wqk_deg)),
+        Parameter::Pbi => mean(&col(|s| s.pbi_deg)),
+        Parameter::Bdk => mean(&col(|s| s.bdk_deg)),
+        #[cfg(feature = "dummy-parameter")]
+        Parameter::Dummy => 2.0 * mean_st,
+    });
     let mut out = SideParameters {
         strides_total: strides.len(),
         strides_valid: valid.len(),
-        stride_time_s: mean_st,
-        step_time_s: mean_stt,
-        step_frequency_hz: if mean_stt.is_finite() {
-            1.0 / mean_stt
-        } else {
-            2.0 / mean_st
-        },
-        stance_ratio: stance,
-        swing_ratio: 1.0 - stance,
-        double_support_ratio: mean(&col(|s| s.double_support_ratio)),
-        stride_length_m: mean(&sl),
-        speed_mps: mean(&col(|s| s.speed_mps)),
-        stride_length_cv: cv(&sl),
-        stride_time_cv: cv(&st),
-        sta_per_s: f64::NAN,
+        values,
         sta_per_stride: f64::NAN,
         sta_status: "not computed".into(),
-        wqk_deg: mean(&col(|s| s.wqk_deg)),
-        pbi_deg: mean(&col(|s| s.pbi_deg)),
-        bdk_deg: mean(&col(|s| s.bdk_deg)),
         withheld: Default::default(),
     };
     withhold_side_length(&mut out, &valid, sl.len());

@@ -2,6 +2,7 @@
 //! `gait::withhold_unvouched_lengths`).
 
 use super::*;
+use crate::domain::Parameter;
 
 /// `n` valid 1.1 s strides of which the first `with_length` have a 1.30 m length.
 fn side(n: usize, with_length: usize) -> SideParameters {
@@ -20,7 +21,7 @@ fn survivors_of_an_unvouched_leg_lose_their_lengths_too() {
         .reason
         .contains("only 4 of the leg's 127 valid strides pass the integration checks"));
     let p = side_parameters(&st, None);
-    assert!(p.stride_length_m.is_nan());
+    assert!(p[Parameter::StrideLength].is_nan());
     // the leg's reason still counts the survivors as having passed their own checks
     assert_eq!(
         p.withheld.reason(Parameter::StrideLength).unwrap(),
@@ -72,19 +73,22 @@ fn leg(n: usize, with_length: usize) -> Vec<Stride> {
 fn a_side_length_needs_most_strides_vouched_for() {
     // 4 of 127 passing (HuGaDB 06_00's right leg): survivors, not a sample
     let p = side(127, 4);
-    assert!(p.stride_length_m.is_nan() && p.speed_mps.is_nan());
+    assert!(p[Parameter::StrideLength].is_nan() && p[Parameter::Speed].is_nan());
     assert_eq!(
         p.withheld.reason(Parameter::StrideLength).unwrap(),
         "stride length vouched for on 4 of 127 valid strides (velocity drift)"
     );
-    assert!((p.stride_time_s - 1.1).abs() < 1e-12, "timing stays");
+    assert!(
+        (p[Parameter::StrideTime] - 1.1).abs() < 1e-12,
+        "timing stays"
+    );
     // half of them: reported
     let p = side(20, 10);
-    assert!((p.stride_length_m - 1.3).abs() < 1e-12 && p.withheld.is_empty());
+    assert!((p[Parameter::StrideLength] - 1.3).abs() < 1e-12 && p.withheld.is_empty());
     // short legs: half, and at least one
-    assert!((side(4, 2).stride_length_m - 1.3).abs() < 1e-12);
-    assert!(side(4, 1).stride_length_m.is_nan());
-    assert!(side(10, 3).stride_length_m.is_nan());
+    assert!((side(4, 2)[Parameter::StrideLength] - 1.3).abs() < 1e-12);
+    assert!(side(4, 1)[Parameter::StrideLength].is_nan());
+    assert!(side(10, 3)[Parameter::StrideLength].is_nan());
 }
 
 #[test]
@@ -115,4 +119,57 @@ fn a_side_length_blanked_by_a_finding_names_the_finding() {
         .reason(Parameter::StrideLength)
         .unwrap()
         .ends_with("(not integrable)"));
+}
+
+/// A leg's parameters are written (Python's `analyze_leg(...)["parameters"]`) with the keys
+/// and in the order they had as named fields, and read back.
+#[test]
+fn side_parameters_keep_their_keys_and_order() {
+    let mut p = side(8, 8);
+    p.withhold(
+        Parameter::Sta,
+        crate::domain::Reason::read("too short"),
+        true,
+    );
+    let json = serde_json::to_string(&p).unwrap();
+    let keys: Vec<&str> = json
+        .split('"')
+        .collect::<Vec<_>>()
+        .windows(3)
+        .filter(|w| w[2].starts_with(':') && !w[1].is_empty())
+        .map(|w| w[1])
+        .collect();
+    assert_eq!(
+        keys,
+        [
+            "strides_total",
+            "strides_valid",
+            "stride_time_s",
+            "step_time_s",
+            "step_frequency_hz",
+            "stance_ratio",
+            "swing_ratio",
+            "double_support_ratio",
+            "stride_length_m",
+            "speed_mps",
+            "stride_length_cv",
+            "stride_time_cv",
+            "sta_per_s",
+            "sta_per_stride",
+            "sta_status",
+            "wqk_deg",
+            "pbi_deg",
+            "bdk_deg",
+            "withheld",
+            "sta_per_s",
+            "sta_per_stride"
+        ]
+    );
+    let back: SideParameters = serde_json::from_str(&json).unwrap();
+    assert_eq!(back.withheld, p.withheld);
+    assert_eq!(back[Parameter::StrideTime], p[Parameter::StrideTime]);
+    assert_eq!(back.sta_status, p.sta_status);
+    assert!(!serde_json::to_string(&side(8, 8))
+        .unwrap()
+        .contains("withheld"));
 }

@@ -369,10 +369,10 @@ impl ModelFile {
                             None => f.column().to_string(),
                         })
                         .collect();
-                    let sta = if r.sta_status.is_empty() {
+                    let sta = if r.parameters.sta_status.is_empty() {
                         String::new()
                     } else {
-                        format!(" (STA: {})", r.sta_status)
+                        format!(" (STA: {})", r.parameters.sta_status)
                     };
                     p.note = format!("missing {}{sta}", missing.join(", "));
                 }

@@ -59,20 +59,9 @@ pub fn probe_output(m: &ModelFile, x: &[f64]) -> Option<Vec<f64>> {
     }
 }
 
-/// Physical range of a feature that is one of the 13 parameters (by its column name).
+/// Physical range of a feature that is a parameter ([`crate::domain::Definition::range`]).
 pub fn physical_range(p: Parameter) -> (f64, f64) {
-    use Parameter::*;
-    match p {
-        StepFrequency => (0.1, 6.0),
-        StrideLength => (0.0, 4.0),
-        Speed => (0.0, 6.0),
-        StepTime => (0.05, 10.0),
-        StrideTime => (0.1, 20.0),
-        StanceRatio | SwingRatio | DoubleSupport => (0.0, 1.0),
-        StrideLengthCv | StrideTimeCv => (0.0, 5.0),
-        Sta => (-50.0, 50.0),
-        Wqk | Pbi | Bdk => (-360.0, 360.0),
-    }
+    p.definition().range
 }
 
 fn bad(origin: &str, what: impl Into<String>) -> ModelError {

@@ -227,7 +227,10 @@ fn bout_row(
             withheld.push("cadence_steps_per_min: no leg's stride time in this bout".into());
             f64::NAN
         });
-    let stt = [left, right].map(|x| x.as_ref().map_or(f64::NAN, |l| l.parameters.step_time_s));
+    let stt = [left, right].map(|x| {
+        x.as_ref()
+            .map_or(f64::NAN, |l| l.parameters[Parameter::StepTime])
+    });
     let asym = if stt.iter().all(|v| v.is_finite() && *v > 0.0) {
         (stt[0] - stt[1]).abs() / (0.5 * (stt[0] + stt[1])) * 100.0
     } else {

@@ -7,51 +7,14 @@ pub use crate::domain::{Parameter, UnknownParameter};
 use crate::error::LdhError;
 
 impl RecordingRow {
-    fn slot(&mut self, p: Parameter) -> &mut Option<f64> {
-        use Parameter::*;
-        match p {
-            StepFrequency => &mut self.step_frequency_steps_per_s,
-            StrideLength => &mut self.stride_length_m,
-            Speed => &mut self.speed_mps,
-            StepTime => &mut self.step_time_s,
-            StrideTime => &mut self.stride_time_s,
-            StanceRatio => &mut self.stance_ratio,
-            SwingRatio => &mut self.swing_ratio,
-            DoubleSupport => &mut self.double_support_ratio,
-            StrideLengthCv => &mut self.stride_length_cv,
-            StrideTimeCv => &mut self.stride_time_cv,
-            Sta => &mut self.sta_per_s,
-            Wqk => &mut self.wqk_deg,
-            Pbi => &mut self.pbi_deg,
-            Bdk => &mut self.bdk_deg,
-        }
-    }
-
     /// The value of `p`, when it is there and finite.
     pub fn value(&self, p: Parameter) -> Option<f64> {
-        use Parameter::*;
-        match p {
-            StepFrequency => self.step_frequency_steps_per_s,
-            StrideLength => self.stride_length_m,
-            Speed => self.speed_mps,
-            StepTime => self.step_time_s,
-            StrideTime => self.stride_time_s,
-            StanceRatio => self.stance_ratio,
-            SwingRatio => self.swing_ratio,
-            DoubleSupport => self.double_support_ratio,
-            StrideLengthCv => self.stride_length_cv,
-            StrideTimeCv => self.stride_time_cv,
-            Sta => self.sta_per_s,
-            Wqk => self.wqk_deg,
-            Pbi => self.pbi_deg,
-            Bdk => self.bdk_deg,
-        }
-        .filter(|v| v.is_finite())
+        self.parameters[p].filter(|v| v.is_finite())
     }
 
     /// Set the value of `p` (`None`: empty).
     pub fn set_value(&mut self, p: Parameter, v: Option<f64>) {
-        *self.slot(p) = v;
+        self.parameters[p] = v;
     }
 }
 

@@ -1,6 +1,7 @@
 //! A per-recording row for the tests of the tables built from rows (ML, cohort).
 
 use super::RecordingRow;
+use crate::domain::Parameter;
 
 /// A recording row of `id` with only its speed (m/s) measured .
 pub(crate) fn row(id: &str, group: &str, side: &str, speed: f64) -> RecordingRow {
@@ -16,6 +17,6 @@ pub(crate) fn row(id: &str, group: &str, side: &str, speed: f64) -> RecordingRow
         "outliers_replaced": 0, "clipped_samples": 0
     }))
     .unwrap();
-    r.speed_mps = Some(speed);
+    r.parameters[Parameter::Speed] = Some(speed);
     r
 }

@@ -22,6 +22,7 @@
 
 use super::quality::{self, Warning};
 use super::LegResult;
+use crate::domain::Parameter;
 use crate::gait::{side_parameters, withhold_unvouched_lengths, ValidSteadyParams};
 
 /// Step 1 for one leg: the findings about strides, the survivors, steady walking.
@@ -42,12 +43,12 @@ pub(crate) fn finalize_strides(
 /// strikes on this leg's clock), then what the leg's and the pair's findings withhold.
 pub(crate) fn finalize_parameters(leg: &mut LegResult, pair: &[Warning], other_hs: Option<&[f64]>) {
     let p = &leg.parameters;
-    let sta = (p.sta_per_s, p.sta_per_stride, p.sta_status.clone());
+    let sta = (p[Parameter::Sta], p.sta_per_stride, p.sta_status.clone());
     // Fewer survivors after the pair's check may leave the leg's lengths unvouched.
     withhold_unvouched_lengths(&mut leg.strides);
     leg.parameters = side_parameters(&leg.strides, other_hs);
     let p = &mut leg.parameters;
-    (p.sta_per_s, p.sta_per_stride, p.sta_status) = sta;
+    (p[Parameter::Sta], p.sta_per_stride, p.sta_status) = sta;
     quality::withhold(&mut leg.parameters, &leg.warnings);
     quality::withhold(&mut leg.parameters, pair);
 }

@@ -2,6 +2,7 @@
 //! → parameters (SPEC §3).
 
 use super::*;
+use crate::domain::Parameter;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 use std::time::Instant;
@@ -265,10 +266,10 @@ fn fill_sta(
         (st[a].hs_time_s * fs).round() as usize,
         ((st[b].next_hs_time_s * fs).round() as usize).min(omega.len()),
     );
-    let mean_st = p.stride_time_s;
+    let mean_st = p[Parameter::StrideTime];
     match gait_sta(&omega[i0..i1], fs, mean_st, params) {
         Ok(r) => {
-            p.sta_per_s = r.lambda_per_s;
+            p[Parameter::Sta] = r.lambda_per_s;
             p.sta_per_stride = r.lambda_per_stride;
             p.sta_status = String::new();
         }

@@ -6,21 +6,22 @@ use super::super::headline::{make, Headline};
 use super::super::verdict::{judge, verdicts, Asymmetry, Cell, Judgement, Verdicts};
 use super::super::*;
 use super::row;
+use ldh_core::domain::Parameter;
 use ldh_core::pipeline::{Severity, Warning, WarningList, WithheldList};
 
 /// A normal walk of `id`'s `side`: stride 1.05 s (114 steps/min), step time `step_s`, stance
 /// 62 %, stride 1.30 m at 1.24 m/s.
 fn leg(id: &str, side: &str, step_s: f64) -> RecordingRow {
     let mut r = row(id, "ldh", side, 1.24);
-    r.stride_time_s = Some(1.05);
-    r.step_time_s = Some(step_s);
+    r.parameters[Parameter::StrideTime] = Some(1.05);
+    r.parameters[Parameter::StepTime] = Some(step_s);
     // The pipeline's per-leg step frequency: 1 / step time (never the page's cadence).
-    r.step_frequency_steps_per_s = Some(1.0 / step_s);
-    r.stance_ratio = Some(0.62);
-    r.swing_ratio = Some(0.38);
-    r.stride_length_m = Some(1.30);
-    r.stride_time_cv = Some(0.02);
-    r.stride_length_cv = Some(0.03);
+    r.parameters[Parameter::StepFrequency] = Some(1.0 / step_s);
+    r.parameters[Parameter::StanceRatio] = Some(0.62);
+    r.parameters[Parameter::SwingRatio] = Some(0.38);
+    r.parameters[Parameter::StrideLength] = Some(1.30);
+    r.parameters[Parameter::StrideTimeCv] = Some(0.02);
+    r.parameters[Parameter::StrideLengthCv] = Some(0.03);
     r
 }
 
@@ -129,7 +130,7 @@ fn bounds_are_inclusive_and_compared_as_shown() {
     // Stance against its published range (issue 49): 70 % is above 57–65 %, and its
     // asymmetry is judged.
     let mut recs = uneven("S");
-    recs[0].stance_ratio = Some(0.70);
+    recs[0].parameters[Parameter::StanceRatio] = Some(0.70);
     let (_, v, _) = page_parts(recs);
     let stance = v.rows.iter().find(|r| r.q.label() == "Stance").unwrap();
     assert!(matches!(
@@ -215,7 +216,7 @@ fn headline_without_the_affected_side() {
 fn headline_when_the_gyroscope_bias_was_not_removed() {
     let mut recs = vec![leg("B", "left", 0.525), leg("B", "right", 0.525)];
     for r in recs.iter_mut() {
-        r.wqk_deg = Some(40.0);
+        r.parameters[Parameter::Wqk] = Some(40.0);
         warn(r, "no_quiet_standing", &["wqk_deg", "pbi_deg"]);
         r.affected_side = Some(ldh_core::output::AffectedSide::from(ldh_core::Side::Left).into());
     }
@@ -377,10 +378,10 @@ fn leg_of(id: &str, side: &str, step_s: f64) -> RecordingRow {
 #[test]
 fn headline_of_a_30_pct_stance_asymmetry() {
     let mut recs = vec![leg_of("S", "left", 0.525), leg_of("S", "right", 0.525)];
-    recs[0].stance_ratio = Some(0.716);
-    recs[0].swing_ratio = Some(0.284);
-    recs[1].stance_ratio = Some(0.527);
-    recs[1].swing_ratio = Some(0.473);
+    recs[0].parameters[Parameter::StanceRatio] = Some(0.716);
+    recs[0].parameters[Parameter::SwingRatio] = Some(0.284);
+    recs[1].parameters[Parameter::StanceRatio] = Some(0.527);
+    recs[1].parameters[Parameter::SwingRatio] = Some(0.473);
     let (html, v, h) = page_parts(recs);
     assert_eq!(
         h,
@@ -412,8 +413,8 @@ fn headline_of_two_disagreeing_trials() {
         ];
         for r in recs.iter_mut() {
             r.trial_id = t.into();
-            r.stride_time_s = Some(stride_s);
-            r.stride_time_cv = Some(cv);
+            r.parameters[Parameter::StrideTime] = Some(stride_s);
+            r.parameters[Parameter::StrideTimeCv] = Some(cv);
         }
         recs
     };

@@ -3,22 +3,21 @@
 //! the reliability table — takes its code, column, name and unit from
 //! `ldh_core::domain::Parameter::definition`, so a parameter has one name and one unit.
 //!
-//! Adding a parameter: its variant and definition (`domain/parameter.rs`, in `Parameter::ALL`
-//! and `TABLE_ORDER`) and its computation; the compiler's exhaustive matches then ask for its
-//! value in `SideParameters` (`value`, `withhold`) and in the per-recording row
-//! (`RecordingRow::value`, `set_value`, a field: the rows are still structs whose field order is
-//! the column order, so a new parameter's column is one field there, not derived). From then on
-//! the dictionary, the reliability table, Table 3 of the statistics, the classifiers' feature
-//! list and the report's change-between-visits table carry it with no further edit; a row on
-//! the report's parameter page is one line of `verdict::QUANTITIES` (decimals, scope,
-//! companion: how the page shows it, not what it is called). The test below checks, for every
+//! Adding a parameter is its variant and definition (`domain/parameter.rs`, in `Parameter::ALL`
+//! and `TABLE_ORDER`) and its computation (`gait/side.rs`); values are stored by `Parameter`
+//! (`PerParameter`), so the tables, the dictionary, the reliability table, Table 3 of the
+//! statistics, the classifiers' feature list, the report's change-between-visits table and its
+//! parameter page (`verdict::quantities`: a line of `verdict::QUANTITIES` says how the page
+//! lays a parameter out — decimals, scope, companion —, a parameter without one follows with
+//! the default layout) carry it with no further edit (docs/vocabulary.md "Adding a parameter";
+//! ldh-core's `output/dummy_parameter.rs` shows it). The test below checks, for every
 //! parameter, that each of these places says what its definition says.
 
 use ldh_core::cohort::{ReliabilityRow, ReliabilityTable};
 use ldh_core::domain::Parameter;
 use ldh_core::output::columns::{columns, Table};
 
-use super::super::verdict::QUANTITIES;
+use super::super::verdict::{quantities, QUANTITIES};
 
 #[test]
 fn every_parameter_is_named_from_its_one_definition_everywhere() {
@@ -49,8 +48,12 @@ fn every_parameter_is_named_from_its_one_definition_everywhere() {
             d.per_stride,
             "{p:?}"
         );
-        // The report's rows.
-        if let Some(q) = QUANTITIES.iter().find(|q| q.parameter == p) {
+        // The report's rows: every parameter is one, or a row's companion.
+        let q = quantities()
+            .iter()
+            .find(|q| q.parameter == p || q.companion == Some(p));
+        assert!(q.is_some(), "{p:?} not on the report's page");
+        if let Some(q) = q.filter(|q| q.parameter == p) {
             assert_eq!(q.label(), p.label());
             assert_eq!((q.scale(), q.unit()), d.display);
         }

@@ -1,3 +1,4 @@
+use ldh_core::domain::Parameter;
 use ldh_core::pipeline::*;
 use ldh_core::recording::Side;
 use ldh_sim::{analyze_simulated, CohortParams};
@@ -257,9 +258,9 @@ fn stride_length_variability_unchecked_is_withheld_with_its_reason() {
             .map(|w| w.message.clone())
     };
     // both legs, enough pairs: checked, reported
-    assert!(l0.parameters.stride_length_cv.is_finite() && code(&l0).is_none());
+    assert!(l0.parameters[Parameter::StrideLengthCv].is_finite() && code(&l0).is_none());
     let withheld = |leg: &LegResult, why: &str| {
-        assert!(leg.parameters.stride_length_cv.is_nan(), "{why}");
+        assert!(leg.parameters[Parameter::StrideLengthCv].is_nan(), "{why}");
         assert!(leg
             .parameters
             .withheld
@@ -274,7 +275,7 @@ fn stride_length_variability_unchecked_is_withheld_with_its_reason() {
     withheld(&l, "the right leg was not analysed");
     // the other leg without an SV
     let (mut l, mut r) = (l0.clone(), r0.clone());
-    r.parameters.stride_length_cv = f64::NAN;
+    r.parameters[Parameter::StrideLengthCv] = f64::NAN;
     check_length_variability(Some(&mut l), Some(&mut r));
     withheld(&l, "the right leg reports no stride length variability");
     assert!(code(&r).is_none());

@@ -4,6 +4,7 @@
 //! CV is the steady truth's within 0.3 points; a walker who speeds up or slows down throughout
 //! (`trend_share`) never becomes steady, and his variability is withheld.
 
+use ldh_core::domain::Parameter;
 use ldh_core::gait::STEADY_REASON;
 use ldh_core::pipeline::*;
 use ldh_sim::{
@@ -78,8 +79,8 @@ fn transients_are_excluded(name: &str, f: impl Fn(&mut SubjectParams)) -> Vec<f6
         {
             let leg_off = leg_off.as_ref().unwrap();
             let truth = steady_truth_cv(&tr.strides);
-            let cv_on = leg.parameters.stride_time_cv;
-            let cv_off = leg_off.parameters.stride_time_cv;
+            let cv_on = leg.parameters[Parameter::StrideTimeCv];
+            let cv_off = leg_off.parameters[Parameter::StrideTimeCv];
             let w = leg.steady.unwrap();
             eprintln!(
                 "{name} {id} {:?}: truth {:.2} %, ldh {:.2} %, without the rule {:.2} %, window {:.1}–{:.1} s, excluded {} + {}",
@@ -170,7 +171,9 @@ fn a_walker_who_speeds_up_or_slows_down_throughout_never_becomes_steady() {
                 // Nothing excluded as not steady; the variability withheld, with the reason.
                 assert!(!leg.strides.iter().any(|x| x.reason.contains(STEADY_REASON)));
                 let p = &leg.parameters;
-                assert!(p.stride_time_cv.is_nan() && p.stride_length_cv.is_nan());
+                assert!(
+                    p[Parameter::StrideTimeCv].is_nan() && p[Parameter::StrideLengthCv].is_nan()
+                );
                 let why = p
                     .withheld
                     .get(ldh_core::domain::Parameter::StrideTimeCv)

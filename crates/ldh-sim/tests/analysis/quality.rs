@@ -1,6 +1,7 @@
 //! The quality layer on the simulator and on synthetic strides (the HuGaDB checks are in
 //! `tests/hugadb.rs`).
 
+use ldh_core::domain::Parameter;
 use ldh_core::pipeline::quality::*;
 
 /// Both devices turned by `deg` about the shank axis (the device x axis): the mounting of real
@@ -45,7 +46,7 @@ fn sensors_rotated_about_the_shank_never_look_swapped() {
                 failures.push(format!("{deg} deg {side}: failed"));
                 continue;
             };
-            if leg.parameters.strides_valid < 5 || !leg.parameters.wqk_deg.is_finite() {
+            if leg.parameters.strides_valid < 5 || !leg.parameters[Parameter::Wqk].is_finite() {
                 failures.push(format!(
                     "{deg} deg {side}: not analysed: {:?}",
                     leg.warnings
@@ -157,7 +158,9 @@ fn a_walk_without_quiet_standing_withholds_its_inclinations() {
         .leg(&rec, side, Some(0.1))
         .unwrap()
         .leg;
-    assert!(full.parameters.wqk_deg.is_finite() && full.parameters.pbi_deg.is_finite());
+    assert!(
+        full.parameters[Parameter::Wqk].is_finite() && full.parameters[Parameter::Pbi].is_finite()
+    );
     assert!(full
         .warnings
         .iter()
@@ -178,7 +181,7 @@ fn a_walk_without_quiet_standing_withholds_its_inclinations() {
     assert_eq!(w.severity, Severity::Warning);
     assert_eq!(w.affects, params::INCLINATIONS);
     let p = &cut.parameters;
-    assert!(p.wqk_deg.is_nan() && p.pbi_deg.is_nan());
+    assert!(p[Parameter::Wqk].is_nan() && p[Parameter::Pbi].is_nan());
     assert!(
         p.withheld
             .reason(ldh_core::domain::Parameter::Wqk)
@@ -187,7 +190,7 @@ fn a_walk_without_quiet_standing_withholds_its_inclinations() {
         "{:?}",
         p.withheld
     );
-    assert!(p.bdk_deg.is_finite() && p.stride_time_s.is_finite());
+    assert!(p[Parameter::Bdk].is_finite() && p[Parameter::StrideTime].is_finite());
     assert!(cut.strides.iter().all(|s| s.wqk_deg.is_nan()));
     // A standing window longer than the recording finds none, and says which parameter.
     let mut long = params.clone();

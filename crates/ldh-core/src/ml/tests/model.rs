@@ -1,6 +1,7 @@
 //! Tampered model files (issue 19): each is refused with a [`ModelError`], never a panic and
 //! never a silent prediction.
 
+use crate::domain::Parameter;
 use serde_json::{json, Value};
 
 use super::super::dataset::{Dataset, Task};
@@ -275,7 +276,7 @@ fn a_missing_feature_is_named_with_the_reason_it_was_withheld() {
         let p = crate::output::Parameter::from_column(name).unwrap();
         r.set_value(p, Some(1.0));
     }
-    r.stride_length_cv = None;
+    r.parameters[Parameter::StrideLengthCv] = None;
     r.withheld.0.insert(
         crate::domain::Parameter::StrideLengthCv,
         crate::domain::Reason::read("sv unchecked (too few strides to check it against its noise)"),

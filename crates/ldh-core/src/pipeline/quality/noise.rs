@@ -24,6 +24,7 @@
 
 use super::warning::{codes, Severity, Warning};
 use super::LegResult;
+use crate::domain::Parameter;
 
 /// Most the per-stride length error may add to SV, as a CV (0.01 = one percentage point): the
 /// normal range is 0–5 % (Hausdorff 2005) and healthy walkers sit at 1.5–3 %, so an SV more than
@@ -139,7 +140,10 @@ pub fn check_length_variability(l: Option<&mut LegResult>, r: Option<&mut LegRes
         }
         (None, None) => return,
     };
-    let sv = [l.parameters.stride_length_cv, r.parameters.stride_length_cv];
+    let sv = [
+        l.parameters[Parameter::StrideLengthCv],
+        r.parameters[Parameter::StrideLengthCv],
+    ];
     match sv.map(f64::is_finite) {
         [true, true] => {}
         [true, false] => {
@@ -167,7 +171,7 @@ pub fn check_length_variability(l: Option<&mut LegResult>, r: Option<&mut LegRes
             "only {pairs} stride{s} of one leg pair up with the other leg's ({SV_MIN_PAIRS} needed each way): the walk is too short (record ≥ 30 s of walking), or too many of its strides were left out"
         );
         for leg in [l, r] {
-            let sv = leg.parameters.stride_length_cv;
+            let sv = leg.parameters[Parameter::StrideLengthCv];
             if sv.is_finite() {
                 let w = unchecked(sv, "too few strides to check it against its noise", &why);
                 super::withhold(&mut leg.parameters, std::slice::from_ref(&w));
@@ -213,7 +217,7 @@ fn unchecked(sv: f64, cause: &str, why: &str) -> Warning {
 /// Withhold `leg`'s SV, if it has one, with [`unchecked_warning`] (`why`: what is missing, e.g.
 /// "no other leg was given").
 pub fn withhold_unchecked(leg: &mut LegResult, why: &str) {
-    let sv = leg.parameters.stride_length_cv;
+    let sv = leg.parameters[Parameter::StrideLengthCv];
     if sv.is_finite() {
         let w = unchecked_warning(sv, why);
         super::withhold(&mut leg.parameters, std::slice::from_ref(&w));

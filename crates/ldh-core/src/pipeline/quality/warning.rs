@@ -143,7 +143,7 @@ impl fmt::Display for Warning {
 pub mod params {
     use crate::domain::Parameter::{self, *};
     /// Every per-side parameter (in the table's column order).
-    pub const ALL: [Parameter; 14] = Parameter::TABLE_ORDER;
+    pub const ALL: [Parameter; Parameter::COUNT] = Parameter::TABLE_ORDER;
     /// The shank angles (from the attitude).
     pub const ANGLES: [Parameter; 3] = [Wqk, Pbi, Bdk];
     /// The shank angles measured from the vertical (an error of the shank axis moves them).

@@ -2,6 +2,7 @@
 //! averaged per person before the statistics and the classifiers.
 
 use super::super::*;
+use crate::domain::Parameter;
 use crate::output::RecordingRow;
 use crate::recording::{Setting, Side};
 
@@ -238,14 +239,14 @@ fn a_persons_withheld_values_are_those_no_trial_measured() {
         .filter(|r| r.subject_id == "healthy0" && r.side == crate::Side::Left)
         .collect();
     assert_eq!(legs.len(), 2);
-    let sv2 = legs[1].stride_length_cv.unwrap();
-    legs[0].stride_length_cv = None;
+    let sv2 = legs[1].parameters[Parameter::StrideLengthCv].unwrap();
+    legs[0].parameters[Parameter::StrideLengthCv] = None;
     legs[0].withheld.0.insert(
         crate::domain::Parameter::StrideLengthCv,
         crate::domain::Reason::read("sv unchecked (short)"),
     );
     for (t, leg) in legs.iter_mut().enumerate() {
-        leg.sta_per_s = None;
+        leg.parameters[Parameter::Sta] = None;
         leg.withheld.0.insert(
             crate::domain::Parameter::Sta,
             crate::domain::Reason::read(format!("sta not computed {t}")),
@@ -253,7 +254,7 @@ fn a_persons_withheld_values_are_those_no_trial_measured() {
     }
     let refs: Vec<&RecordingRow> = legs.iter().collect();
     let p = crate::cohort::person_row(&refs, crate::Side::Left).unwrap();
-    assert_eq!(p.stride_length_cv, Some(sv2));
+    assert_eq!(p.parameters[Parameter::StrideLengthCv], Some(sv2));
     assert!(
         p.withheld
             .reason(crate::domain::Parameter::StrideLengthCv)
@@ -280,7 +281,7 @@ fn table3_says_when_a_cell_has_fewer_subjects_than_its_group() {
         .iter_mut()
         .filter(|r| r.subject_id == "ldh0" || r.subject_id == "ldh1")
     {
-        r.stride_length_cv = None;
+        r.parameters[Parameter::StrideLengthCv] = None;
     }
     let c = Cohort::from_rows(&rows).unwrap();
     let md = table3_markdown(&table3(&c), &c);

@@ -1,6 +1,7 @@
 //! TRIPOD's part of the harness (see the parent module): OptoGait per footfall on a treadmill.
 
 use super::*;
+use ldh_core::domain::Parameter;
 
 /// `LDH_REALDATA/tripod`, or `shared/realdata/tripod` in a folder above this crate.
 fn tripod_dir() -> Option<PathBuf> {
@@ -178,7 +179,7 @@ fn score_shank(leg: &LegResult, t0_s: f64, opto_s: &[f64], belt_mps: f64) -> Sha
     }
     ShankScore {
         hs: sc,
-        stv_reported_pct: 100.0 * leg.parameters.stride_time_cv,
+        stv_reported_pct: 100.0 * leg.parameters[Parameter::StrideTimeCv],
         length: summary(&len_err),
         lengths: len_err.len(),
         unsure: (

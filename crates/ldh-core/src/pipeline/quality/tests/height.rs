@@ -9,6 +9,7 @@
 use super::super::{apply_to_strides, codes, params, sensor_height_warning, withhold, Severity};
 use crate::align::{Aligned, Alignment};
 use crate::attitude::{Attitude, AttitudeModel};
+use crate::domain::Parameter;
 use crate::events::Events;
 use crate::gait::{
     height_sensitivity, height_sensitivity_measured, heights_to_measure, lengths_at_heights,
@@ -224,7 +225,11 @@ fn a_shank_turning_at_mid_stance_withholds_the_length_without_a_height_and_not_w
         .contains("stride length withheld: sensor height unknown")));
     let mut p = side_parameters(&st, None);
     withhold(&mut p, std::slice::from_ref(&w));
-    assert!(p.stride_length_m.is_nan() && p.speed_mps.is_nan() && p.stride_length_cv.is_nan());
+    assert!(
+        p[Parameter::StrideLength].is_nan()
+            && p[Parameter::Speed].is_nan()
+            && p[Parameter::StrideLengthCv].is_nan()
+    );
     // The leg's reason names the finding (its message, with the lengths, is the warning's).
     assert_eq!(
         p.withheld
@@ -233,7 +238,7 @@ fn a_shank_turning_at_mid_stance_withholds_the_length_without_a_height_and_not_w
         "stride length vouched for on 0 of 10 valid strides (sensor height unknown)"
     );
     assert!(w.reason().starts_with("sensor height unknown (the sensor height was not given and the stride length depends on it)"));
-    assert!(p.stride_time_s.is_finite() && p.wqk_deg.is_finite());
+    assert!(p[Parameter::StrideTime].is_finite() && p[Parameter::Wqk].is_finite());
 }
 
 #[test]

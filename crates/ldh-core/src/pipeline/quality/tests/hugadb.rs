@@ -2,6 +2,7 @@
 //! attitude through both reading paths, headings of faulty legs, alternation.
 
 use super::super::*;
+use crate::domain::Parameter;
 use crate::pipeline::{memory_report, Analysis, AnalysisParams, LoadedLeg, SubjectInput};
 use crate::recording::Side;
 use std::path::{Path, PathBuf};
@@ -181,9 +182,9 @@ fn hugadb_faulty_gyroscopes_are_flagged_and_clean_legs_analysed() {
                 " {side}: valid {}/{} ST {:.3} SL {:.3} WQK {:.1} withheld {} {:?};",
                 p.strides_valid,
                 p.strides_total,
-                p.stride_time_s,
-                p.stride_length_m,
-                p.wqk_deg,
+                p[Parameter::StrideTime],
+                p[Parameter::StrideLength],
+                p[Parameter::Wqk],
                 p.withheld.len(),
                 codes_
             ));
@@ -191,22 +192,11 @@ fn hugadb_faulty_gyroscopes_are_flagged_and_clean_legs_analysed() {
                 .warnings
                 .iter()
                 .any(|w| w.code == codes::GYRO_SCALE_FAULT && w.severity == Severity::Fault);
-            let values = [
-                p.stride_time_s,
-                p.step_time_s,
-                p.step_frequency_hz,
-                p.stance_ratio,
-                p.swing_ratio,
-                p.stride_length_m,
-                p.speed_mps,
-                p.stride_length_cv,
-                p.stride_time_cv,
-                p.sta_per_s,
-                p.sta_per_stride,
-                p.wqk_deg,
-                p.pbi_deg,
-                p.bdk_deg,
-            ];
+            let values: Vec<f64> = Parameter::ALL
+                .iter()
+                .map(|q| p[*q])
+                .chain([p.sta_per_stride])
+                .collect();
             if bad {
                 if !fault {
                     failures.push(format!("{name} {side}: corrupted gyroscope not flagged"));
@@ -220,7 +210,7 @@ fn hugadb_faulty_gyroscopes_are_flagged_and_clean_legs_analysed() {
                 if fault {
                     failures.push(format!("{name} {side}: clean gyroscope flagged"));
                 }
-                if !p.stride_time_s.is_finite() || p.strides_valid < 3 {
+                if !p[Parameter::StrideTime].is_finite() || p.strides_valid < 3 {
                     failures.push(format!("{name} {side}: clean leg not analysed: {p:?}"));
                 }
                 if let Err(e) = no_false_alarm(&l.warnings) {
@@ -233,7 +223,7 @@ fn hugadb_faulty_gyroscopes_are_flagged_and_clean_legs_analysed() {
                 .strides
                 .iter()
                 .flat_map(|s| [s.wqk_deg, s.pbi_deg, s.bdk_deg]);
-            let reported = [p.wqk_deg, p.pbi_deg, p.bdk_deg];
+            let reported = [p[Parameter::Wqk], p[Parameter::Pbi], p[Parameter::Bdk]];
             if let Some(a) = per_stride
                 .chain(reported)
                 .find(|a| a.is_finite() && a.abs() > 90.0)
@@ -368,12 +358,12 @@ fn hugadb_format_maps_and_raw_reading_agree_on_the_attitude() {
             let (pa, pb, pc) = (a.parameters.clone(), &b.parameters, &c.parameters);
             println!(
                 "{f} {side}: raw WQK {:.1} PBI {:.1} mid-stance spread {:.1} {:?} | format map WQK {:.1} PBI {:.1} spread {:.1} {:?} ({} acc samples replaced) | acc tilt spread {:.1}",
-                pa.wqk_deg,
-                pa.pbi_deg,
+                pa[Parameter::Wqk],
+                pa[Parameter::Pbi],
                 spread(&pitch(a)),
                 codes_of(a),
-                pb.wqk_deg,
-                pb.pbi_deg,
+                pb[Parameter::Wqk],
+                pb[Parameter::Pbi],
                 spread(&pitch(b)),
                 codes_of(b),
                 b.outliers_replaced,
@@ -391,14 +381,17 @@ fn hugadb_format_maps_and_raw_reading_agree_on_the_attitude() {
             // pitch and the strides' peak inclinations.
             for l in [a, b, c] {
                 let p = &l.parameters;
-                if !(p.wqk_deg.is_nan()
-                    && p.pbi_deg.is_nan()
+                if !(p[Parameter::Wqk].is_nan()
+                    && p[Parameter::Pbi].is_nan()
                     && p.withheld.reason(crate::domain::Parameter::Wqk).is_some()
                     && l.warnings
                         .iter()
                         .any(|w| w.code == codes::NO_QUIET_STANDING))
                 {
-                    failures.push(format!("{f} {side}: WQK {:.1} not withheld", p.wqk_deg));
+                    failures.push(format!(
+                        "{f} {side}: WQK {:.1} not withheld",
+                        p[Parameter::Wqk]
+                    ));
                 }
             }
             let med = |v: Vec<f64>| crate::pipeline::quality::finite_median(v).unwrap_or(f64::NAN);
@@ -428,7 +421,7 @@ fn hugadb_format_maps_and_raw_reading_agree_on_the_attitude() {
                 }
             }
             let s = spread(&pitch(b));
-            if !(s <= 12.0) || !pc.stride_time_s.is_finite() {
+            if !(s <= 12.0) || !pc[Parameter::StrideTime].is_finite() {
                 failures.push(format!("{f} {side}: mid-stance pitch spread {s:.1} deg"));
             }
         }
@@ -546,7 +539,7 @@ fn hugadb_stride_length_variability_is_withheld_where_the_noise_makes_it() {
             let l = l.as_ref().unwrap();
             let w = l.warnings.iter().find(|w| w.code == codes::SV_NOISE);
             assert!(w.is_some(), "{file} {}: {:?}", l.side, l.warnings);
-            assert!(l.parameters.stride_length_cv.is_nan());
+            assert!(l.parameters[Parameter::StrideLengthCv].is_nan());
             assert!(l
                 .parameters
                 .withheld
@@ -554,7 +547,7 @@ fn hugadb_stride_length_variability_is_withheld_where_the_noise_makes_it() {
                 .is_some());
             // the stride length itself stays reported
             assert!(
-                l.parameters.stride_length_m.is_finite(),
+                l.parameters[Parameter::StrideLength].is_finite(),
                 "{file} {}",
                 l.side
             );
@@ -581,8 +574,8 @@ fn hugadb_stride_length_variability_is_withheld_where_the_noise_makes_it() {
         .iter()
         .find(|w| w.code == codes::SV_UNCHECKED);
     assert!(w.is_some(), "{:?}", right.warnings);
-    assert!(right.parameters.stride_length_cv.is_nan());
-    assert!(right.parameters.stride_length_m.is_finite());
+    assert!(right.parameters[Parameter::StrideLengthCv].is_nan());
+    assert!(right.parameters[Parameter::StrideLength].is_finite());
     assert!(w
         .unwrap()
         .message

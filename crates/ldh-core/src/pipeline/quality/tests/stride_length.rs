@@ -14,6 +14,7 @@
 
 use super::super::codes;
 use super::hugadb::{hugadb_dir, read_hugadb_map, HUGADB_CLEAN};
+use crate::domain::Parameter;
 use crate::pipeline::{
     memory_report, Analysis, AnalysisParams, LegResult, LoadedLeg, Severity, SubjectInput,
 };
@@ -62,29 +63,29 @@ fn checked_median(name: &str, l: &LegResult, given: bool, failures: &mut Vec<Str
     let m = median(l.strides.iter().map(|s| s.stride_length_m).collect());
     println!(
         "{name}: stride length {:.3} m, median {m:.3} m, {} of {} valid strides with a length; {why}{}",
-        p.stride_length_m,
+        p[Parameter::StrideLength],
         l.strides.iter().filter(|s| s.valid && s.stride_length_m.is_finite()).count(),
         p.strides_valid,
         height.map_or(String::new(), |w| format!("\n    {w}")),
     );
-    if p.stride_length_m.is_nan() && why.is_empty() {
+    if p[Parameter::StrideLength].is_nan() && why.is_empty() {
         failures.push(format!("{name}: no stride length and no reason"));
     }
     match (given, height) {
         (true, Some(w)) => failures.push(format!("{name}: height given, yet {w}")),
-        (false, None) if p.stride_length_m.is_finite() => {
+        (false, None) if p[Parameter::StrideLength].is_finite() => {
             failures.push(format!("{name}: length from an assumed height, not said"))
         }
         (false, Some(w))
             if w.severity == Severity::Warning
-                && (p.stride_length_m.is_finite()
+                && (p[Parameter::StrideLength].is_finite()
                     || !l.strides.iter().all(|s| s.stride_length_m.is_nan())) =>
         {
             failures.push(format!("{name}: {w}, yet a length is reported"))
         }
         _ => {}
     }
-    if p.stride_length_m.is_finite() {
+    if p[Parameter::StrideLength].is_finite() {
         m
     } else {
         f64::NAN
