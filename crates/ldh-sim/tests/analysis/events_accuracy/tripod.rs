@@ -293,7 +293,7 @@ fn alternatives(
         })
         .collect();
     vec![
-        ("today: crossing + walk delay", ev.hs_s.clone()),
+        ("shipped: each strike at its impact", ev.hs_s.clone()),
         ("|da| onset, 0.12 T", per(&da, 0.12, 4.0, false)),
         ("|da| onset, 0.20 T", per(&da, 0.20, 4.0, false)),
         ("|da| peak, 0.20 T", per(&da, 0.20, 4.0, true)),
