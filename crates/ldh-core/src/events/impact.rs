@@ -15,8 +15,15 @@
 //! with its median over terminal swing ([0.15, 0.03] of the stride before the zero crossing): the
 //! largest change in the [`IMPACT_WINDOW_STRIDE`] of the stride after the zero crossing must be
 //! at least [`IMPACT_RATIO`] times that median and at least [`IMPACT_MIN_G`]; the impact is
-//! where |Δa| first reaches half of it (the onset of the step), interpolated linearly between
-//! the two changes around it (each change sits half-way between its two samples).
+//! where |Δa|, smoothed by the zero-phase kernel [1 2 1]/4, first reaches half of its own peak
+//! in the window (the onset of the step), interpolated linearly between the two changes around
+//! it, plus half a sample (each change sits half-way between its two samples, and the kernel
+//! leads an ideal one-sample step by half a sample: that step lands where the raw rule puts
+//! it). Where the smoothed step is already under way at the window's start, the raw |Δa|'s
+//! onset is kept. The smoothing (issue 49, 2026-12-02) was chosen on TRIPOD's first half of
+//! each run among five thresholds, three kernels, the axial component, |Δ|a||, peaks and a
+//! shrink toward the walk's median delay: the onset's scatter against OptoGait fell from 13.4
+//! to 12.2 ms on the second halves (docs/accuracy.md "Heel-strike precision on TRIPOD").
 //!
 //! **Each strike at its own impact (issue 49).** A walk uses impacts when at least
 //! [`IMPACT_SHARE`] of its heel strikes, both legs pooled (and at least
@@ -107,9 +114,39 @@ impl Impact {
     }
 }
 
+/// The onset of the step in the smoothed changes `sm` ([`smooth121`]) in the window
+/// `[w0, w1]`: where `sm` first reaches half its largest value there, interpolated linearly,
+/// plus half a sample (the kernel's lead: an ideal one-sample step is placed where the raw
+/// rule places it, half-way between its two samples). `None` when the smoothed step is already
+/// under way at the window's start.
+fn smoothed_onset_s(sm: &[f64], w0: usize, w1: usize, fs_hz: f64) -> Option<f64> {
+    let half = 0.5 * sm[w0..=w1].iter().copied().fold(0.0, f64::max);
+    let i = w0 + sm[w0..=w1].iter().position(|&d| d >= half)?;
+    let prev = sm[i - 1];
+    if prev >= half {
+        return None;
+    }
+    let frac = (half - prev) / (sm[i] - prev);
+    Some((i as f64 - 0.5 + frac) / fs_hz)
+}
+
+/// The changes `da` smoothed by the zero-phase kernel [1 2 1]/4 (the ends kept).
+fn smooth121(da: &[f64]) -> Vec<f64> {
+    let n = da.len();
+    (0..n)
+        .map(|i| {
+            if i == 0 || i + 1 == n {
+                da[i]
+            } else {
+                0.25 * da[i - 1] + 0.5 * da[i] + 0.25 * da[i + 1]
+            }
+        })
+        .collect()
+}
+
 /// The impact after the gyroscope's heel-strike landmark `zc_s` (s), or `None` (`da[i]` =
-/// |a_i − a_(i−1)|, g).
-fn impact_at(da: &[f64], fs_hz: f64, zc_s: f64, stride_s: f64) -> Option<Impact> {
+/// |a_i − a_(i−1)|, g; `sm`: the same smoothed, [`smooth121`]).
+fn impact_at(da: &[f64], sm: &[f64], fs_hz: f64, zc_s: f64, stride_s: f64) -> Option<Impact> {
     let idx = |t: f64| (t * fs_hz).round();
     let (b0, b1) = (idx(zc_s - 0.15 * stride_s), idx(zc_s - 0.03 * stride_s));
     // The first change that ends after the crossing.
@@ -139,13 +176,15 @@ fn impact_at(da: &[f64], fs_hz: f64, zc_s: f64, stride_s: f64) -> Option<Impact>
     if da[i - 1] >= half {
         return None;
     }
-    let prev = da[i - 1];
-    let frac = if da[i] > prev {
-        (half - prev) / (da[i] - prev)
-    } else {
-        1.0
-    };
-    let onset_s = (i as f64 - 1.0 + frac) / fs_hz;
+    let onset_s = smoothed_onset_s(sm, w0, w1, fs_hz).unwrap_or_else(|| {
+        let prev = da[i - 1];
+        let frac = if da[i] > prev {
+            (half - prev) / (da[i] - prev)
+        } else {
+            1.0
+        };
+        (i as f64 - 1.0 + frac) / fs_hz
+    });
     // A second candidate: after the first burst (from the onset until |Δa| falls below a
     // quarter of the burst's own largest change) and at least SECOND_CANDIDATE_GAP_S after the
     // onset, a change of at least the share of that largest one.
@@ -184,10 +223,11 @@ pub fn impacts(
             .sum::<f64>()
             .sqrt();
     }
+    let sm = smooth121(&da);
     let t = ev.median_stride_s;
     ev.hs_s
         .iter()
-        .map(|&hs| impact_at(&da, fs_hz, hs - hs_offset_s, t))
+        .map(|&hs| impact_at(&da, &sm, fs_hz, hs - hs_offset_s, t))
         .collect()
 }
 
@@ -272,9 +312,10 @@ mod tests {
         }
     }
 
-    /// The onset of the step at sample 54: the change 53→54 (≈ 1 g) is the first above half the
-    /// peak (0.9 g), barely: the contact lies late in [53, 54], at about 53.9 samples.
-    const ONSET_DELAY_S: f64 = 0.539 - 0.5;
+    /// The onset of the step at sample 54: the changes 53→54 (≈ 1 g) and 54→55 (≈ 1.8 g),
+    /// smoothed by [1 2 1]/4, first reach half their peak late in [53, 54] (raw: ≈ 53.9
+    /// samples; smoothed, with its half-sample lead put back, ≈ 54.2).
+    const ONSET_DELAY_S: f64 = 0.5419 - 0.5;
 
     /// Find the impacts of one leg and place its heel strikes by them alone.
     fn place(ev: &mut Events, acc: &[Vec<f64>; 3]) -> Option<f64> {
@@ -318,7 +359,7 @@ mod tests {
         let (mut acc, mut ev) = walk(|k| k != 5);
         ring(&mut acc, 560);
         place(&mut ev, &acc);
-        assert!((ev.hs_s[5] - 5.5 - 0.099).abs() < 2e-3, "{}", ev.hs_s[5]);
+        assert!((ev.hs_s[5] - 5.5 - 0.102).abs() < 2e-3, "{}", ev.hs_s[5]);
         assert!(
             (ev.hs_s[4] - 4.5 - ONSET_DELAY_S).abs() < 2e-3,
             "{}",
