@@ -17,6 +17,7 @@
 //! 2013); a valid day has ≥ 12 h of waking wear and a valid week ≥ 3 valid days (Mobilise-D).
 
 pub mod bouts;
+pub mod change;
 pub mod days;
 pub mod leg;
 pub mod pair;
@@ -32,6 +33,7 @@ mod tests;
 use serde::{Deserialize, Serialize};
 
 pub use bouts::BoutRow;
+pub use change::{visit_changes, VisitChange};
 pub use days::{DayRow, PeriodRow, SummaryRow};
 pub use pair::ClockDrift;
 pub use stream::{CsvSamples, MemorySamples, Sample, SampleSource};
