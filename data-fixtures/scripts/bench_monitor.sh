@@ -2,9 +2,12 @@
 # Time `ldh monitor` on simulated free-living pairs at 100 Hz (issue 52's performance targets,
 # docs/benchmarks.md "Free-living monitoring"): a 1 h, a 24 h and, with --week, a 7-day pair.
 # Each case: `ldh simulate --free-living` once (cached in $WORK), then
-# `/usr/bin/time -v ldh monitor LEFT RIGHT -o OUT -j 1`, reporting wall time and peak RSS.
+# `/usr/bin/time -v ldh monitor LEFT RIGHT -o OUT -j 1` REPEAT times (default 3), reporting the
+# medians of wall time, CPU time (user + system: less sensitive to a shared machine's load) and
+# peak RSS.
 #
-# Usage: data-fixtures/scripts/bench_monitor.sh [--week] [--ldh PATH] [--work DIR]
+# Usage: data-fixtures/scripts/bench_monitor.sh [--week] [--hours "1 24"] [--repeat N]
+#        [--ldh PATH] [--work DIR]
 # Needs: an ldh binary with the `monitor` command (default target/ci/ldh, then target/release/ldh),
 # GNU time at /usr/bin/time, about 3 GB of disk per simulated day (CSV).
 set -euo pipefail
@@ -12,12 +15,15 @@ set -euo pipefail
 LDH=""
 WORK="${TMPDIR:-/tmp}/ldh-bench-monitor"
 CASES=(1 24)
+REPEAT=3
 while [ $# -gt 0 ]; do
   case "$1" in
     --week) CASES=(1 24 168) ;;
+    --hours) read -r -a CASES <<<"$2"; shift ;;
+    --repeat) REPEAT="$2"; shift ;;
     --ldh) LDH="$2"; shift ;;
     --work) WORK="$2"; shift ;;
-    -h|--help) sed -n 2,9p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,12p "$0"; exit 0 ;;
     *) echo "unknown argument: $1" >&2; exit 2 ;;
   esac
   shift
@@ -35,24 +41,31 @@ if ! "$LDH" monitor --help >/dev/null 2>&1; then
   exit 3
 fi
 mkdir -p "$WORK"
-printf '%-8s %12s %14s %14s\n' hours samples wall_s peak_rss_mb
+median() { sort -g | awk '{ v[NR] = $1 } END { if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+printf '%-8s %12s %10s %10s %14s\n' hours samples wall_s cpu_s peak_rss_mb
 for h in "${CASES[@]}"; do
   sim="$WORK/sim-${h}h"
   if [ ! -f "$sim/H01/truth.json" ]; then
     rm -rf "$sim"
     "$LDH" simulate --free-living --hours "$h" --seed 52 --rate-hz 100 -o "$sim" -j 1 >/dev/null
   fi
-  out="$WORK/out-${h}h"
-  rm -rf "$out"
-  log="$WORK/time-${h}h.txt"
-  if ! /usr/bin/time -v "$LDH" monitor "$sim/H01/left.csv" "$sim/H01/right.csv" -o "$out" -j 1 \
-      >"$WORK/monitor-${h}h.log" 2>"$log"; then
-    echo "ldh monitor failed on the ${h} h pair; see $log" >&2
-    tail -n 30 "$log" >&2
-    exit 1
-  fi
-  wall=$(awk -F': ' '/Elapsed \(wall clock\)/ {print $2}' "$log" \
-    | awk -F: '{ if (NF == 3) print $1*3600 + $2*60 + $3; else print $1*60 + $2 }')
-  rss_kb=$(awk -F': ' '/Maximum resident set size/ {print $2}' "$log")
-  printf '%-8s %12s %14.1f %14.0f\n' "$h" "$((h * 360000))" "$wall" "$((rss_kb / 1024))"
+  walls=(); cpus=(); rsss=()
+  for r in $(seq 1 "$REPEAT"); do
+    out="$WORK/out-${h}h"
+    rm -rf "$out"
+    log="$WORK/time-${h}h-$r.txt"
+    if ! /usr/bin/time -v "$LDH" monitor "$sim/H01/left.csv" "$sim/H01/right.csv" -o "$out" -j 1 \
+        >"$WORK/monitor-${h}h.log" 2>"$log"; then
+      echo "ldh monitor failed on the ${h} h pair; see $log" >&2
+      tail -n 30 "$log" >&2
+      exit 1
+    fi
+    walls+=("$(awk -F': ' '/Elapsed \(wall clock\)/ {print $2}' "$log" \
+      | awk -F: '{ if (NF == 3) print $1*3600 + $2*60 + $3; else print $1*60 + $2 }')")
+    cpus+=("$(awk -F': ' '/User time/ {u = $2} /System time/ {s = $2} END {print u + s}' "$log")")
+    rsss+=("$(awk -F': ' '/Maximum resident set size/ {print $2 / 1024}' "$log")")
+  done
+  printf '%-8s %12s %10.1f %10.1f %14.0f\n' "$h" "$((h * 360000))" \
+    "$(printf '%s\n' "${walls[@]}" | median)" "$(printf '%s\n' "${cpus[@]}" | median)" \
+    "$(printf '%s\n' "${rsss[@]}" | median)"
 done

@@ -102,6 +102,23 @@ fn monitor_on_a_manifest_of_two_people_and_two_visits() {
         bouts.lines().filter(|l| l.starts_with("P1,post,")).count() == 3,
         "{bouts}"
     );
+    // A week page per person; P1's change between its two periods, withheld without valid
+    // days (a few minutes each), with the reason.
+    for p in ["P1", "P2", "P3"] {
+        assert!(out.join(format!("week_{p}.html")).is_file(), "{p}");
+    }
+    let changes = std::fs::read_to_string(out.join("changes.csv")).unwrap();
+    assert_eq!(changes.lines().count(), 5, "{changes}");
+    assert!(
+        changes
+            .lines()
+            .skip(1)
+            .all(|l| l.starts_with("P1,pre,post,")),
+        "{changes}"
+    );
+    let page = std::fs::read_to_string(out.join("week_P1.html")).unwrap();
+    assert!(page.contains("Change between the periods"), "{page}");
+    assert!(page.contains("not judged"), "{page}");
 }
 
 #[test]

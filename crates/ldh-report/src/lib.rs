@@ -48,6 +48,7 @@ pub use ldh_core::output::trace;
 mod trials;
 mod verdict;
 mod visits;
+mod week;
 
 use serde::{Deserialize, Serialize};
 
@@ -62,6 +63,7 @@ pub use reference::{Reference, ReferenceRange, ReferenceSource};
 pub use results::RunResults;
 pub use subject::subject_html;
 pub use trace::{LegTrace, SubjectTraces, TraceParams, ValidTraceParams};
+pub use week::week_html;
 
 /// Parameters of the reports.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -1,24 +1,26 @@
 //! `ldh monitor` (ldh_core::monitor) scored on simulated free-living hours against the
 //! simulator's truth (issue 52's targets: walking bouts ≥ 10 s found with recall ≥ 0.95,
 //! walking time and steps within 5 %, false walking in rest, non-wear and cycling ≤ 2 % of
-//! their time, drift within 0.5 s a day). The numbers are printed; the assertions are the
-//! bounds the monitor meets today (docs/free-living.md lists the targets and the measured
-//! values), so a regression fails and progress is seen in the printed line.
+//! their time, drift within 0.5 s a day). The rules were tuned on seed 7 and are reported on
+//! seed 11 (docs/free-living.md "Accuracy on simulated days"), where every target holds. On
+//! the tuning seed walking time and steps miss the 5 % target by its stairs, which the monitor
+//! counts as walking (no stair detector): there the bound is the target plus that share.
+//! `LDH_FL_DUMP=DIR` writes the truth and the bouts found for a closer look.
 
 use ldh_core::monitor::{monitor_subject, MonitorParams};
 use ldh_core::pipeline::{bare_subject, Source};
 use ldh_sim::free_living::{
     drift_error_s_per_day, read_truth_bouts, score, simulate_free_living, FoundBout,
-    FreeLivingParams, ScoreTargets,
+    FreeLivingParams, Score, ScoreTargets,
 };
 
-#[test]
-fn monitor_on_six_simulated_hours_scored_against_the_truth() {
+/// Six simulated hours of seed `seed` (right clock +40 ppm) through the monitor, scored.
+fn scored(seed: u64) -> (Score, f64) {
     let dir = tempfile::tempdir().unwrap();
     let params = FreeLivingParams {
         duration_h: 6.0,
         drift_ppm: Some(40.0),
-        seed: 7,
+        seed,
         ..FreeLivingParams::default()
     };
     let subjects = simulate_free_living(&params, dir.path(), &|| {}).unwrap();
@@ -41,15 +43,31 @@ fn monitor_on_six_simulated_hours_scored_against_the_truth() {
             steps: b.steps as f64,
         })
         .collect();
+    if let Ok(d) = std::env::var("LDH_FL_DUMP") {
+        let d = std::path::Path::new(&d).join(format!("seed{seed}"));
+        std::fs::create_dir_all(&d).unwrap();
+        std::fs::copy(s.dir.join("truth_bouts.csv"), d.join("truth_bouts.csv")).unwrap();
+        let mut out = String::from("start_s,end_s,steps,legs\n");
+        for b in &res.bouts {
+            out.push_str(&format!(
+                "{},{},{},{}\n",
+                b.start_s, b.end_s, b.steps, b.legs
+            ));
+        }
+        std::fs::write(d.join("found.csv"), out).unwrap();
+        std::fs::write(d.join("notes.txt"), res.notes.join("\n")).unwrap();
+    }
     let sc = score(&truth, &found);
     let drift_err = drift_error_s_per_day(s.truth.drift_ppm, res.drift.ppm());
     println!(
-        "free-living 6 h: recall(>=10 s) {:?} ({}/{}), walking time error {:?} %, steps error {:?} %, false walking {:?} % ({:?}), drift {:.1} ppm vs {:.1} true: {:.3} s/day error; misses: {:?}",
+        "free-living 6 h, seed {seed}: recall(>=10 s) {:?} ({}/{}), walking time error {:?} %, steps error {:?} %, found in stairs {:.1} s of {:.1} s, false walking {:?} % ({:?}), drift {:.1} ppm vs {:.1} true: {:.3} s/day error; misses: {:?}",
         sc.recall_10s,
         sc.found_bouts_10s,
         sc.true_bouts_10s,
         sc.walking_time_error_pct,
         sc.steps_error_pct,
+        sc.found_in_stairs_s,
+        sc.stairs_s,
         sc.false_walking_pct,
         sc.false_walking_pct_by_activity,
         res.drift.ppm(),
@@ -57,6 +75,40 @@ fn monitor_on_six_simulated_hours_scored_against_the_truth() {
         drift_err,
         sc.misses(&ScoreTargets::default())
     );
-    assert!(sc.recall_10s.unwrap_or(0.0) >= 0.5, "{sc:?}");
-    assert!(sc.false_walking_pct.unwrap_or(0.0) <= 10.0, "{sc:?}");
+    (sc, drift_err)
+}
+
+/// The targets met, and walking time and steps within `amount_pct`.
+fn check(sc: &Score, drift_err: f64, amount_pct: f64) {
+    let t = ScoreTargets::default();
+    assert!(sc.recall_10s.unwrap_or(0.0) >= t.recall_min, "{sc:?}");
+    assert!(
+        sc.false_walking_pct.unwrap_or(100.0) <= t.false_walking_pct_max,
+        "{sc:?}"
+    );
+    assert!(drift_err <= t.drift_error_s_per_day_max, "{drift_err}");
+    assert!(
+        sc.walking_time_error_pct.unwrap_or(100.0).abs() <= amount_pct,
+        "{sc:?}"
+    );
+    assert!(
+        sc.steps_error_pct.unwrap_or(100.0).abs() <= amount_pct,
+        "{sc:?}"
+    );
+}
+
+/// Walking time and steps on the tuning seed: the 5 % target plus its stairs (5.7 % of its
+/// walking time), which the monitor counts as walking.
+const WITH_STAIRS_PCT: f64 = 8.0;
+
+#[test]
+fn monitor_on_six_simulated_hours_tuning_seed() {
+    let (sc, d) = scored(7);
+    check(&sc, d, WITH_STAIRS_PCT);
+}
+
+#[test]
+fn monitor_on_six_simulated_hours_report_seed_meets_the_targets() {
+    let (sc, d) = scored(11);
+    check(&sc, d, ScoreTargets::default().walking_time_error_pct_max);
 }

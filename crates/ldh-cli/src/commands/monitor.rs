@@ -4,7 +4,8 @@ use std::process::ExitCode;
 
 use anyhow::Result;
 
-use ldh_core::monitor::{monitor_many, write::write_tables, MonitorParams};
+use ldh_core::monitor::write::{write_changes, write_tables};
+use ldh_core::monitor::{monitor_many, visit_changes, MonitorParams, MonitorResult};
 use ldh_core::pipeline::{discover_with, InputOptions};
 
 use crate::args::MonitorArgs;
@@ -27,6 +28,24 @@ pub fn run(a: MonitorArgs) -> Result<ExitCode> {
     let jobs = a.jobs.unwrap_or(0);
     let results = monitor_many(&inputs, &params, jobs)?;
     write_tables(&a.out, &results)?;
+    let changes = visit_changes(&results);
+    if !changes.is_empty() {
+        write_changes(&a.out, &changes)?;
+    }
+    let mut people: Vec<&str> = Vec::new();
+    for r in &results {
+        if !people.contains(&r.subject_id.as_str()) {
+            people.push(&r.subject_id);
+        }
+    }
+    for who in &people {
+        let mine: Vec<&MonitorResult> = results.iter().filter(|r| r.subject_id == *who).collect();
+        let path = a.out.join(format!(
+            "week_{}.html",
+            ldh_core::output::names::file_stem(who)
+        ));
+        ldh_core::io::write_atomic(&path, ldh_report::week_html(&mine, &changes).as_bytes())?;
+    }
     let mut failed = 0;
     for r in &results {
         let who = match &r.visit {
@@ -58,7 +77,13 @@ pub fn run(a: MonitorArgs) -> Result<ExitCode> {
         );
     }
     super::note!(
-        "wrote bouts.csv, days.csv, summary.csv and periods.csv to {}",
+        "wrote bouts.csv, days.csv, summary.csv, periods.csv{}, and {} week page(s) to {}",
+        if changes.is_empty() {
+            ""
+        } else {
+            ", changes.csv"
+        },
+        people.len(),
         a.out.display()
     );
     Ok(if failed == 0 {

@@ -14,8 +14,11 @@ use serde::{Deserialize, Serialize};
 
 use super::leg::LegStream;
 use super::pair::Plan;
+use super::steps::{heel_strike_peak_g, leg_heel_strikes};
 use super::store::SpanStore;
 use super::stream::Sample;
+use super::windows::WindowParams;
+use super::MonitorParams;
 use crate::domain::Parameter;
 use crate::pipeline::{Analysis, LegResult, LoadedLeg, SubjectInput};
 use crate::recording::{Recording, Side};
@@ -66,6 +69,35 @@ pub struct Refused {
     pub start_s: f64,
     /// Why.
     pub reason: String,
+    /// It was a run (else too few strides).
+    pub run: bool,
+}
+
+/// Each moment of walking counted once: a bout that another bout already covers for at least
+/// half its length (a span of one leg the pairing did not join to the other leg's span of the
+/// same walk) is dropped. Bouts seen by both legs are kept first, then longer ones.
+/// Returns the bouts kept, in time order, and how many were dropped.
+pub fn count_once(mut rows: Vec<BoutRow>) -> (Vec<BoutRow>, usize) {
+    rows.sort_by(|a, b| {
+        (b.legs == "both")
+            .cmp(&(a.legs == "both"))
+            .then(b.duration_s.total_cmp(&a.duration_s))
+    });
+    let mut kept: Vec<BoutRow> = Vec::with_capacity(rows.len());
+    let mut dropped = 0;
+    for b in rows {
+        let covered: f64 = kept
+            .iter()
+            .map(|k| (b.end_s.min(k.end_s) - b.start_s.max(k.start_s)).max(0.0))
+            .sum();
+        if covered >= 0.5 * b.duration_s.max(1e-9) {
+            dropped += 1;
+        } else {
+            kept.push(b);
+        }
+    }
+    kept.sort_by(|a, b| a.start_s.total_cmp(&b.start_s));
+    (kept, dropped)
 }
 
 fn recording(samples: &[Sample], fs: f64, t0_s: f64, side: Side, label: &str) -> LoadedLeg {
@@ -108,9 +140,11 @@ pub fn analyse(
     store: &SpanStore,
     input: &SubjectInput,
     analysis: &Analysis<'_>,
-    min_strides: usize,
+    mp: &MonitorParams,
 ) -> Result<BoutRow, Refused> {
-    let load = |k: usize, idx: Option<usize>, side: Side| -> (LoadedLeg, Option<f64>) {
+    let min_strides = mp.min_strides;
+    let mut acc_norm: [Vec<f64>; 2] = Default::default();
+    let mut load = |k: usize, idx: Option<usize>, side: Side| -> (LoadedLeg, Option<f64>) {
         let Some(i) = idx else {
             return (Err(format!("no {side} walk at this time")), None);
         };
@@ -119,6 +153,13 @@ pub fn analyse(
             Ok(s) => s,
             Err(e) => return (Err(e.to_string()), None),
         };
+        let rec = recording(&samples, legs[k].fs_hz, 0.0, side, &legs[k].label);
+        if let Ok((r, _, _)) = &rec {
+            let a = &r.acc_g;
+            acc_norm[k] = (0..a[0].len())
+                .map(|i| (a[0][i] * a[0][i] + a[1][i] * a[1][i] + a[2][i] * a[2][i]).sqrt())
+                .collect();
+        }
         // The right leg placed on the left leg's clock.
         let t0 = if k == 1 {
             span.at.t0_s - plan.offset_s
@@ -126,7 +167,10 @@ pub fn analyse(
             span.at.t0_s
         };
         (
-            recording(&samples, legs[k].fs_hz, t0, side, &legs[k].label),
+            rec.map(|(mut r, rep, label)| {
+                r.t0_s = t0;
+                (r, rep, label)
+            }),
             Some(span.walk_s.0),
         )
     };
@@ -157,9 +201,55 @@ pub fn analyse(
                     format!(" ({why})")
                 }
             ),
+            run: false,
         });
     }
-    Ok(bout_row(&res.left, &res.right, strides, plan))
+    let row = bout_row(&res.left, &res.right, strides, plan);
+    if let Some(why) = running(&res.left, &res.right, &acc_norm, &mp.windows) {
+        return Err(Refused {
+            start_s: at,
+            reason: why,
+            run: true,
+        });
+    }
+    Ok(row)
+}
+
+/// Why the bout is a run (`steps` module docs), or `None`.
+fn running(
+    left: &Result<LegResult, String>,
+    right: &Result<LegResult, String>,
+    acc_norm: &[Vec<f64>; 2],
+    w: &WindowParams,
+) -> Option<String> {
+    let legs = [left, right];
+    // The events' median stride time (between mid-swings): the stride-time parameter may
+    // be withheld by checks made for walking.
+    let st: Vec<f64> = legs
+        .iter()
+        .filter_map(|x| x.as_ref().ok())
+        .map(|l| l.events.median_stride_s)
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .collect();
+    let stride_s = st.iter().sum::<f64>() / st.len().max(1) as f64;
+    if st.is_empty() || stride_s >= w.running_max_stride_s {
+        return None;
+    }
+    let peaks: Vec<f64> = legs
+        .iter()
+        .zip(acc_norm)
+        .filter_map(|(x, a)| {
+            let l = x.as_ref().ok()?;
+            heel_strike_peak_g(&l.events.hs_s, a, l.signals.as_ref()?.fs_hz)
+        })
+        .collect();
+    let peak = peaks.iter().copied().fold(f64::NAN, f64::max);
+    (peak >= w.running_min_acc_g).then(|| {
+        format!(
+            "a run: stride time {stride_s:.2} s < {} s and heel strikes of {peak:.1} g ≥ {} g",
+            w.running_max_stride_s, w.running_min_acc_g
+        )
+    })
 }
 
 fn bout_row(
@@ -174,7 +264,7 @@ fn bout_row(
         .collect();
     let hs: Vec<f64> = legs
         .iter()
-        .flat_map(|l| l.events.hs_s.iter().map(move |h| h + l.t0_s))
+        .flat_map(|l| leg_heel_strikes(l).into_iter().map(move |h| h + l.t0_s))
         .collect();
     let start = hs.iter().copied().fold(f64::INFINITY, f64::min);
     let end = hs.iter().copied().fold(f64::NEG_INFINITY, f64::max);

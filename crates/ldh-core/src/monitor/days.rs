@@ -51,7 +51,8 @@ pub const GAIT_AGGREGATES: [&str; 6] = [
     "step_time_asymmetry_pct",
 ];
 
-fn gait_values(b: &BoutRow) -> [f64; 6] {
+/// A bout's values in [`GAIT_AGGREGATES`] order.
+pub fn gait_values(b: &BoutRow) -> [f64; 6] {
     [
         b.cadence_steps_per_min,
         b.speed_mps,
@@ -164,21 +165,7 @@ fn leg_states(leg: &LegStream, p: &MonitorParams, shift_s: f64) -> BTreeMap<i64,
         }
         let mut agg = MinuteStats::default();
         for k in m - half..m + half {
-            let s = get(k);
-            if s.n == 0 {
-                continue;
-            }
-            if agg.n == 0 {
-                agg.min = s.min;
-                agg.max = s.max;
-            }
-            agg.n += s.n;
-            for a in 0..3 {
-                agg.sum[a] += s.sum[a];
-                agg.sum_sq[a] += s.sum_sq[a];
-                agg.min[a] = agg.min[a].min(s.min[a]);
-                agg.max[a] = agg.max[a].max(s.max[a]);
-            }
+            agg.merge(get(k));
         }
         let n = agg.n as f64;
         let sd_low = (0..3).all(|a| {

@@ -35,6 +35,24 @@ pub struct MinuteStats {
 }
 
 impl MinuteStats {
+    /// Add another stretch's sums (its window counts are not added).
+    pub fn merge(&mut self, o: &MinuteStats) {
+        if o.n == 0 {
+            return;
+        }
+        if self.n == 0 {
+            self.min = o.min;
+            self.max = o.max;
+        }
+        self.n += o.n;
+        for k in 0..3 {
+            self.sum[k] += o.sum[k];
+            self.sum_sq[k] += o.sum_sq[k];
+            self.min[k] = self.min[k].min(o.min[k]);
+            self.max[k] = self.max[k].max(o.max[k]);
+        }
+    }
+
     fn push(&mut self, acc: &[f64; 3]) {
         if self.n == 0 {
             self.min = *acc;
@@ -275,18 +293,7 @@ impl Tracker<'_> {
         if stats.n == 0 {
             return;
         }
-        let e = self.out.minutes.entry(m).or_default();
-        if e.n == 0 {
-            e.min = stats.min;
-            e.max = stats.max;
-        }
-        e.n += stats.n;
-        for k in 0..3 {
-            e.sum[k] += stats.sum[k];
-            e.sum_sq[k] += stats.sum_sq[k];
-            e.min[k] = e.min[k].min(stats.min[k]);
-            e.max[k] = e.max[k].max(stats.max[k]);
-        }
+        self.out.minutes.entry(m).or_default().merge(&stats);
     }
 
     fn reset_context(&mut self) {

@@ -17,9 +17,11 @@
 //! 2013); a valid day has ≥ 12 h of waking wear and a valid week ≥ 3 valid days (Mobilise-D).
 
 pub mod bouts;
+pub mod change;
 pub mod days;
 pub mod leg;
 pub mod pair;
+pub mod steps;
 pub mod store;
 pub mod stream;
 pub mod windows;
@@ -31,6 +33,7 @@ mod tests;
 use serde::{Deserialize, Serialize};
 
 pub use bouts::BoutRow;
+pub use change::{visit_changes, VisitChange};
 pub use days::{DayRow, PeriodRow, SummaryRow};
 pub use pair::ClockDrift;
 pub use stream::{CsvSamples, MemorySamples, Sample, SampleSource};
@@ -288,7 +291,7 @@ fn aggregate(
     let results: Vec<_> = plans
         .par_iter()
         .map(|plan| {
-            bouts::analyse(plan, both, store, input, &analysis, mp.min_strides).map(|mut b| {
+            bouts::analyse(plan, both, store, input, &analysis, mp).map(|mut b| {
                 b.continues = plan
                     .left
                     .map(|i| lspans[i].continues)
@@ -299,10 +302,11 @@ fn aggregate(
         })
         .collect();
     let mut rows: Vec<BoutRow> = Vec::new();
-    let mut refused = 0;
+    let (mut refused, mut runs) = (0, 0);
     for res in results {
         match res {
             Ok(b) => rows.push(b),
+            Err(r) if r.run => runs += 1,
             Err(_) => refused += 1,
         }
     }
@@ -312,7 +316,17 @@ fn aggregate(
             mp.min_strides
         ));
     }
-    rows.sort_by(|a, b| a.start_s.total_cmp(&b.start_s));
+    if runs > 0 {
+        out.notes.push(format!(
+            "{runs} candidate span(s) were runs (short strides with running impacts), not counted as walking"
+        ));
+    }
+    let (mut rows, twice) = bouts::count_once(rows);
+    if twice > 0 {
+        out.notes.push(format!(
+            "{twice} bout(s) of one leg lay inside a bout of both legs (the same walk) and were counted once"
+        ));
+    }
     for (i, b) in rows.iter_mut().enumerate() {
         b.bout = i + 1;
     }

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use super::days::GAIT_AGGREGATES;
+use super::days::{gait_values, GAIT_AGGREGATES};
 use super::MonitorResult;
 use crate::error::{LdhError, Result};
 
@@ -90,15 +90,10 @@ pub fn tables(results: &[MonitorResult]) -> [(&'static str, Vec<String>, Rows); 
                 b.legs.clone(),
                 b.strides_left.to_string(),
                 b.strides_right.to_string(),
-                num(b.cadence_steps_per_min),
-                num(b.speed_mps),
-                num(b.stride_time_s),
-                num(b.stride_length_m),
-                num(b.stride_time_cv),
-                num(b.step_time_asymmetry_pct),
-                num(b.clock_offset_s),
-                b.withheld.clone(),
             ]);
+            // The six bout values in GAIT_AGGREGATES' order, as the header has them.
+            row.extend(gait_values(b).map(num));
+            row.extend([num(b.clock_offset_s), b.withheld.clone()]);
             bouts.push(row);
         }
         for d in &r.days {
@@ -136,13 +131,18 @@ pub fn tables(results: &[MonitorResult]) -> [(&'static str, Vec<String>, Rows); 
             s.days.to_string(),
             s.valid_days.to_string(),
             s.valid.to_string(),
-            num(s.wear_h_per_day),
-            num(s.walking_min_per_day),
-            num(s.steps_per_day),
-            num(s.bouts_per_day),
-            num(s.longest_bout_s),
-            s.long_bouts.to_string(),
         ]);
+        row.extend(
+            [
+                s.wear_h_per_day,
+                s.walking_min_per_day,
+                s.steps_per_day,
+                s.bouts_per_day,
+                s.longest_bout_s,
+            ]
+            .map(num),
+        );
+        row.push(s.long_bouts.to_string());
         row.extend(gait_cells(&s.gait_median, &s.gait_p90));
         row.extend([
             num(s.drift_ppm),
@@ -256,4 +256,54 @@ pub fn write_tables(dir: &Path, results: &[MonitorResult]) -> Result<Vec<std::pa
         files.push(path);
     }
     Ok(files)
+}
+
+/// Header of changes.csv.
+pub const CHANGE_COLUMNS: [&str; 13] = [
+    "subject_id",
+    "from_visit",
+    "to_visit",
+    "measure",
+    "unit",
+    "days_from",
+    "days_to",
+    "mean_from",
+    "mean_to",
+    "change",
+    "noise",
+    "beyond_noise",
+    "withheld",
+];
+
+/// Write changes.csv (one row per person, later period and daily measure) into `dir`.
+pub fn write_changes(dir: &Path, changes: &[super::VisitChange]) -> Result<std::path::PathBuf> {
+    let path = dir.join("changes.csv");
+    let mut buf = Vec::new();
+    {
+        let mut w = csv::Writer::from_writer(&mut buf);
+        w.write_record(CHANGE_COLUMNS)?;
+        for c in changes {
+            w.write_record([
+                c.subject_id.clone(),
+                c.from_visit.clone(),
+                c.to_visit.clone(),
+                c.measure.clone(),
+                c.unit.clone(),
+                c.days_from.to_string(),
+                c.days_to.to_string(),
+                num(c.mean_from),
+                num(c.mean_to),
+                num(c.change),
+                num(c.noise),
+                c.beyond_noise.map_or(String::new(), |b| b.to_string()),
+                c.withheld.clone(),
+            ])?;
+        }
+        w.flush().map_err(|source| LdhError::Io {
+            path: path.clone(),
+            source,
+        })?;
+    }
+    crate::io::write_atomic(&path, &buf)?;
+    Ok(path)
 }

@@ -83,6 +83,10 @@ pub struct Score {
     pub false_walking_pct: Option<f64>,
     /// The same per activity (sitting, standing, lying, non_wear, cycling), % of its time.
     pub false_walking_pct_by_activity: Vec<(Activity, f64)>,
+    /// True stairs time, s.
+    pub stairs_s: f64,
+    /// Found walking time inside stairs, s (stairs are not level walking).
+    pub found_in_stairs_s: f64,
 }
 
 fn overlap(a0: f64, a1: f64, b0: f64, b1: f64) -> f64 {
@@ -137,7 +141,16 @@ pub fn score(truth: &[TruthBout], found: &[FoundBout]) -> Score {
         false_s += f;
         against_s += t;
     }
+    let stairs: Vec<&TruthBout> = truth
+        .iter()
+        .filter(|b| b.activity == Activity::Stairs)
+        .collect();
     Score {
+        stairs_s: stairs.iter().map(|b| b.duration_s()).sum(),
+        found_in_stairs_s: stairs
+            .iter()
+            .map(|b| covered(&found, b.start_s, b.end_s))
+            .sum(),
         true_bouts_10s: long.len(),
         found_bouts_10s: hit,
         recall_10s: (!long.is_empty()).then(|| hit as f64 / long.len() as f64),
