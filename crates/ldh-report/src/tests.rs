@@ -404,10 +404,12 @@ fn the_summary_uses_clinical_units_and_plain_flags() {
     l.step_frequency_steps_per_s = Some(1.5);
     // 2 / (4/3 s) = 1.5 steps/s: 90 steps/min from both legs' stride times.
     l.stride_time_s = Some(4.0 / 3.0);
+    l.walk_cadence_steps_per_min = Some(90.0);
     l.stance_ratio = Some(0.62);
     let mut r = row("S1", "ldh", "right", 1.2);
     r.step_frequency_steps_per_s = Some(1.5);
     r.stride_time_s = Some(4.0 / 3.0);
+    r.walk_cadence_steps_per_min = Some(90.0);
     r.stance_ratio = Some(0.70);
     let s = SubjectReport {
         subject_id: "S1".into(),
