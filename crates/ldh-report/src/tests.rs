@@ -405,10 +405,12 @@ fn the_summary_uses_clinical_units_and_plain_flags() {
     l.parameters[Parameter::StepFrequency] = Some(1.5);
     // 2 / (4/3 s) = 1.5 steps/s: 90 steps/min from both legs' stride times.
     l.parameters[Parameter::StrideTime] = Some(4.0 / 3.0);
+    l.walk_cadence_steps_per_min = Some(90.0);
     l.parameters[Parameter::StanceRatio] = Some(0.62);
     let mut r = row("S1", "ldh", "right", 1.2);
     r.parameters[Parameter::StepFrequency] = Some(1.5);
     r.parameters[Parameter::StrideTime] = Some(4.0 / 3.0);
+    r.walk_cadence_steps_per_min = Some(90.0);
     r.parameters[Parameter::StanceRatio] = Some(0.70);
     let s = SubjectReport {
         subject_id: "S1".into(),

@@ -23,6 +23,7 @@
 
 use super::measured::not_measured;
 use super::{symmetry_index_pct, Reference, ReferenceRange};
+use ldh_core::domain::WalkValue;
 use ldh_core::output::{Parameter, RecordingRow};
 use ldh_core::Side;
 
@@ -299,22 +300,36 @@ fn side_value(r: Option<&RecordingRow>, p: Parameter) -> Result<f64, String> {
     }
 }
 
-/// The whole-walk value of `q` in the table's unit: (value, which leg alone gave it).
+/// The whole-walk value of `q` in the table's unit: (value, which leg alone gave it). The
+/// cadence is the run's own walk value (`walk_cadence_steps_per_min`, the same on both legs'
+/// rows: one computation, [`ldh_core::domain::walk_cadence_steps_per_min`]), never recomputed
+/// here; it names the leg alone when only one leg has a stride time.
 fn walk_value(
     q: &Quantity,
     l: Option<&RecordingRow>,
     r: Option<&RecordingRow>,
 ) -> Result<(f64, Option<Side>), String> {
-    // The cadence comes from the stride times: each leg strikes once per stride.
-    let cadence = q.parameter == P::StepFrequency;
-    let p = if cadence { P::StrideTime } else { q.parameter };
-    // One leg alone: the other leg walks as many strides (cadence = 2 / its stride time).
-    let one = |x: f64| if cadence { 2.0 / x } else { x };
+    if q.parameter == P::StepFrequency {
+        let alone = match (side_value(l, P::StrideTime), side_value(r, P::StrideTime)) {
+            (Ok(_), Err(_)) => Some(Side::Left),
+            (Err(_), Ok(_)) => Some(Side::Right),
+            (Err(a), Err(b)) if a == b => return Err(a),
+            (Err(a), Err(b)) => return Err(format!("left {a}; right {b}")),
+            (Ok(_), Ok(_)) => None,
+        };
+        let per_min = [l, r]
+            .into_iter()
+            .flatten()
+            .find_map(|x| x.walk(WalkValue::Cadence))
+            .ok_or_else(|| "not computable".to_string())?;
+        // The table's unit of step frequency is steps/s.
+        return Ok((per_min / 60.0, alone));
+    }
+    let p = q.parameter;
     match (side_value(l, p), side_value(r, p)) {
-        (Ok(a), Ok(b)) if cadence => Ok((1.0 / a + 1.0 / b, None)),
         (Ok(a), Ok(b)) => Ok((0.5 * (a + b), None)),
-        (Ok(a), Err(_)) => Ok((one(a), Some(Side::Left))),
-        (Err(_), Ok(b)) => Ok((one(b), Some(Side::Right))),
+        (Ok(a), Err(_)) => Ok((a, Some(Side::Left))),
+        (Err(_), Ok(b)) => Ok((b, Some(Side::Right))),
         (Err(a), Err(b)) if a == b => Err(a),
         (Err(a), Err(b)) => Err(format!("left {a}; right {b}")),
     }

@@ -14,6 +14,8 @@ use ldh_core::pipeline::{Severity, Warning, WarningList, WithheldList};
 fn leg(id: &str, side: &str, step_s: f64) -> RecordingRow {
     let mut r = row(id, "ldh", side, 1.24);
     r.parameters[Parameter::StrideTime] = Some(1.05);
+    // The run's walk cadence from both legs' strides (the report reads it, never recomputes).
+    r.walk_cadence_steps_per_min = Some(120.0 / 1.05);
     r.parameters[Parameter::StepTime] = Some(step_s);
     // The pipeline's per-leg step frequency: 1 / step time (never the page's cadence).
     r.parameters[Parameter::StepFrequency] = Some(1.0 / step_s);
@@ -167,16 +169,30 @@ fn warn(r: &mut RecordingRow, code: &str, cols: &[&str]) {
     r.warnings = WarningList(vec![w]);
 }
 
+/// Both legs of an even walk of `id` (`make`: [`leg`] or [`leg_of`]), each with the warning
+/// `code` withholding `cols`.
+fn both_warned(
+    make: fn(&str, &str, f64) -> RecordingRow,
+    id: &str,
+    code: &str,
+    cols: &[&str],
+) -> Vec<RecordingRow> {
+    ["left", "right"]
+        .into_iter()
+        .map(|side| {
+            let mut r = make(id, side, 0.525);
+            warn(&mut r, code, cols);
+            r
+        })
+        .collect()
+}
+
+/// The stride length's columns a withholding check takes.
+const LENGTH_COLUMNS: [&str; 3] = ["stride_length_m", "speed_mps", "stride_length_cv"];
+
 #[test]
 fn headline_without_the_sensor_height() {
-    let mut recs = vec![leg("H", "left", 0.525), leg("H", "right", 0.525)];
-    for r in recs.iter_mut() {
-        warn(
-            r,
-            "sensor_height_unknown",
-            &["stride_length_m", "speed_mps", "stride_length_cv"],
-        );
-    }
+    let recs = both_warned(leg, "H", "sensor_height_unknown", &LENGTH_COLUMNS);
     let (html, _, h) = page_parts(recs);
     assert_eq!(
         h,
@@ -214,12 +230,7 @@ fn headline_without_the_affected_side() {
 
 #[test]
 fn headline_when_the_gyroscope_bias_was_not_removed() {
-    let mut recs = vec![leg("B", "left", 0.525), leg("B", "right", 0.525)];
-    for r in recs.iter_mut() {
-        r.parameters[Parameter::Wqk] = Some(40.0);
-        warn(r, "no_quiet_standing", &["wqk_deg", "pbi_deg"]);
-        r.affected_side = Some(ldh_core::output::AffectedSide::from(ldh_core::Side::Left).into());
-    }
+    let recs = both_warned(leg_of, "B", "no_quiet_standing", &["wqk_deg", "pbi_deg"]);
     let (html, _, h) = page_parts(recs);
     assert_eq!(h.findings, Vec::<String>::new());
     // WQK and PBI are not in the summary: nothing of the summary is missing.
@@ -414,6 +425,7 @@ fn headline_of_two_disagreeing_trials() {
         for r in recs.iter_mut() {
             r.trial_id = t.into();
             r.parameters[Parameter::StrideTime] = Some(stride_s);
+            r.walk_cadence_steps_per_min = Some(120.0 / stride_s);
             r.parameters[Parameter::StrideTimeCv] = Some(cv);
         }
         recs
@@ -444,15 +456,8 @@ fn headline_of_two_disagreeing_trials() {
 /// so instead of reporting variability, and asks for a longer steady walk.
 #[test]
 fn headline_of_a_walk_that_never_becomes_steady() {
-    let mut recs = vec![leg_of("N", "left", 0.525), leg_of("N", "right", 0.525)];
-    for r in recs.iter_mut() {
-        warn(
-            r,
-            "too_little_steady",
-            &["stride_time_cv", "stride_length_cv"],
-        );
-    }
-    let (_, _, h) = page_parts(recs);
+    let cvs = ["stride_time_cv", "stride_length_cv"];
+    let (_, _, h) = page_parts(both_warned(leg_of, "N", "too_little_steady", &cvs));
     assert_eq!(
         h,
         Headline {
@@ -473,13 +478,8 @@ fn headline_of_a_walk_that_never_becomes_steady() {
 /// for the sensor height (given or not, it does not change the disagreement).
 #[test]
 fn a_stride_length_withheld_for_a_left_right_disagreement_does_not_ask_for_the_height() {
-    let mut recs = vec![leg_of("L", "left", 0.525), leg_of("L", "right", 0.525)];
+    let mut recs = both_warned(leg_of, "L", "lr_disagreement", &LENGTH_COLUMNS);
     for r in recs.iter_mut() {
-        warn(
-            r,
-            "lr_disagreement",
-            &["stride_length_m", "speed_mps", "stride_length_cv"],
-        );
         // The height was assumed and moves the length little: a note, withholding nothing.
         r.warnings.0.push(Warning::new(
             ldh_core::pipeline::quality::codes::SENSOR_HEIGHT_UNKNOWN,
