@@ -32,6 +32,8 @@ use crate::output::{AffectedSide, Label, RecordingRow};
 use crate::pipeline::Group;
 use crate::Side;
 
+#[cfg(all(test, feature = "dummy-parameter"))]
+mod dummy_parameter;
 mod offsets;
 mod outcome;
 pub mod reliability_table;

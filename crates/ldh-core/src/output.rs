@@ -18,8 +18,6 @@ use crate::pipeline::quality::flat;
 use crate::pipeline::{SubjectResult, Warning, WarningList, WithheldList};
 
 pub mod columns;
-#[cfg(all(test, feature = "dummy-parameter"))]
-mod dummy_parameter;
 pub mod labels;
 pub mod names;
 mod parameter;

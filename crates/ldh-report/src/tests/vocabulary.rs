@@ -10,7 +10,7 @@
 //! parameter page (`verdict::quantities`: a line of `verdict::QUANTITIES` says how the page
 //! lays a parameter out — decimals, scope, companion —, a parameter without one follows with
 //! the default layout) carry it with no further edit (docs/vocabulary.md "Adding a parameter";
-//! ldh-core's `output/dummy_parameter.rs` shows it). The test below checks, for every
+//! ldh-core's `cohort/dummy_parameter.rs` shows it). The test below checks, for every
 //! parameter, that each of these places says what its definition says.
 
 use ldh_core::cohort::{ReliabilityRow, ReliabilityTable};
