@@ -63,7 +63,7 @@ pub use reference::{Reference, ReferenceRange, ReferenceSource};
 pub use results::RunResults;
 pub use subject::subject_html;
 pub use trace::{LegTrace, SubjectTraces, TraceParams, ValidTraceParams};
-pub use week::week_html;
+pub use week::{week_html, write_week_pages};
 
 /// Parameters of the reports.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

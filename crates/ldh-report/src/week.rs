@@ -108,6 +108,29 @@ fn change_table(changes: &[&VisitChange]) -> Markup {
     }
 }
 
+/// Write one week page per person of `results` into `dir` (`week_<subject>.html`, the subject's
+/// file-safe stem), each with that person's periods in the order given and the `changes` between
+/// them; how many pages were written. What `ldh monitor` writes beside its tables.
+pub fn write_week_pages(
+    dir: &std::path::Path,
+    results: &[MonitorResult],
+    changes: &[VisitChange],
+) -> ldh_core::Result<usize> {
+    let mut people: Vec<&str> = Vec::new();
+    for r in results {
+        if !people.contains(&r.subject_id.as_str()) {
+            people.push(&r.subject_id);
+        }
+    }
+    for who in &people {
+        let mine: Vec<&MonitorResult> = results.iter().filter(|r| r.subject_id == *who).collect();
+        let stem = ldh_core::output::names::file_stem(who);
+        let path = dir.join(format!("week_{stem}.html"));
+        ldh_core::io::write_atomic(&path, week_html(&mine, changes).as_bytes())?;
+    }
+    Ok(people.len())
+}
+
 /// The week page of one person: `periods` are that person's monitoring periods (in visit
 /// order), `changes` the changes between them ([`ldh_core::monitor::visit_changes`]; others'
 /// rows are ignored).

@@ -5,7 +5,7 @@ use std::process::ExitCode;
 use anyhow::Result;
 
 use ldh_core::monitor::write::{write_changes, write_tables};
-use ldh_core::monitor::{monitor_many, visit_changes, MonitorParams, MonitorResult};
+use ldh_core::monitor::{monitor_many, visit_changes, MonitorParams};
 use ldh_core::pipeline::{discover_with, InputOptions};
 
 use crate::args::MonitorArgs;
@@ -32,20 +32,7 @@ pub fn run(a: MonitorArgs) -> Result<ExitCode> {
     if !changes.is_empty() {
         write_changes(&a.out, &changes)?;
     }
-    let mut people: Vec<&str> = Vec::new();
-    for r in &results {
-        if !people.contains(&r.subject_id.as_str()) {
-            people.push(&r.subject_id);
-        }
-    }
-    for who in &people {
-        let mine: Vec<&MonitorResult> = results.iter().filter(|r| r.subject_id == *who).collect();
-        let path = a.out.join(format!(
-            "week_{}.html",
-            ldh_core::output::names::file_stem(who)
-        ));
-        ldh_core::io::write_atomic(&path, ldh_report::week_html(&mine, &changes).as_bytes())?;
-    }
+    let pages = ldh_report::write_week_pages(&a.out, &results, &changes)?;
     let mut failed = 0;
     for r in &results {
         let who = match &r.visit {
@@ -83,7 +70,7 @@ pub fn run(a: MonitorArgs) -> Result<ExitCode> {
         } else {
             ", changes.csv"
         },
-        people.len(),
+        pages,
         a.out.display()
     );
     Ok(if failed == 0 {
