@@ -217,12 +217,29 @@ impl OutputLock {
     }
 }
 
+/// How long an empty lock file is read again before it is taken for a killed run's: a run
+/// writes its id right after creating the file, so it is empty only for that instant, or for
+/// good when the run was killed in between.
+const EMPTY_LOCK_WAIT_MS: u64 = 1000;
+
 /// The process id in the lock file `path` when that process may still run (per `/proc`; where
-/// `/proc` does not exist, or the file holds no id, it is taken to run); `None` for a killed
-/// run's lock.
+/// `/proc` does not exist, or the file holds something else than an id, it is taken to run);
+/// `None` for a killed run's lock, including one still empty after [`EMPTY_LOCK_WAIT_MS`].
 pub fn live_holder(path: &Path) -> Option<String> {
-    let holder = std::fs::read_to_string(path).unwrap_or_default();
-    let holder = holder.trim().to_string();
+    let read = || {
+        let holder = std::fs::read_to_string(path).unwrap_or_default();
+        holder.trim().to_string()
+    };
+    let mut holder = read();
+    let mut waited_ms = 0;
+    while holder.is_empty() && waited_ms < EMPTY_LOCK_WAIT_MS && path.exists() {
+        std::thread::sleep(std::time::Duration::from_millis(50));
+        waited_ms += 50;
+        holder = read();
+    }
+    if holder.is_empty() {
+        return None;
+    }
     let alive = match holder.parse::<u32>().ok() {
         Some(p) if Path::new("/proc/self").exists() => {
             Path::new("/proc").join(p.to_string()).exists()

@@ -8,8 +8,9 @@
 //!    earlier run's; a symbolic link anywhere in the folder, or any other file, refuses the run
 //!    with the names (ldh never follows, writes through or removes a link under `--out`, and
 //!    never deletes a file it did not write).
-//! 3. **Clear**: the earlier marker is removed first (so an interrupted clear leaves no complete
-//!    marker), an in-progress marker written, then the earlier run's files and folders removed.
+//! 3. **Clear**: the earlier marker is replaced first by an in-progress marker, in one rename
+//!    (an interrupted clear leaves no complete marker, and never no marker), then the earlier
+//!    run's files and folders removed.
 //! 4. **Write**: every file goes through [`OutputRun::write`] / [`OutputRun::create`]: its folders
 //!    are checked component by component with `symlink_metadata` (a link is refused), its
 //!    temporary file is created with `O_CREAT | O_EXCL` (never through a link) and renamed into
@@ -264,11 +265,11 @@ impl OutputRun {
                 ),
             });
         }
-        // The earlier marker goes first: from here on the folder holds no complete run.
+        // The earlier marker is replaced first, in one rename, by the in-progress one: from
+        // here on the folder holds no complete run, and never no marker at all (a run killed
+        // between a removal and the new marker's write left a folder that read as an older
+        // ldh's, issue 51's CI).
         let marker = dir.join(MARKER);
-        if std::fs::symlink_metadata(&marker).is_ok() {
-            std::fs::remove_file(&marker).map_err(|e| werr(&marker, e))?;
-        }
         let run = OutputRun {
             dir: dir.to_path_buf(),
             kind,

@@ -120,3 +120,20 @@ fn links_inside_the_folder_are_never_followed() {
     assert!(run.write("../x.json", b"{}").is_err());
     assert_eq!(std::fs::read_dir(&elsewhere).unwrap().count(), 0);
 }
+
+/// A run killed between creating `.ldh.lock` and writing its id leaves an empty lock: the next
+/// run takes it over (after a second's wait) instead of refusing the folder for good.
+#[test]
+fn an_empty_lock_left_by_a_killed_run_is_taken_over() {
+    let d = tempfile::tempdir().unwrap();
+    let lock = d.path().join(".ldh.lock");
+    std::fs::write(&lock, "").unwrap();
+    assert_eq!(crate::io::writer::live_holder(&lock), None);
+    let held = crate::io::writer::OutputLock::acquire(d.path()).unwrap();
+    assert_eq!(
+        std::fs::read_to_string(&lock).unwrap(),
+        std::process::id().to_string()
+    );
+    drop(held);
+    assert!(!lock.exists());
+}
