@@ -12,7 +12,7 @@ fn analyze_without_input_runs_the_embedded_demo() {
     assert!(text(&o).contains("embedded demo cohort (13 people)"));
     let strides = std::fs::read_to_string(out.join("strides.csv")).unwrap();
     assert!(strides.starts_with(
-        "subject_id,side,model,stride_index,bout,hs_time_s,to_time_s,next_hs_time_s,stride_time_s,stance_ratio,double_support_ratio,stride_length_m,speed_mps,wqk_deg,pbi_deg,bdk_deg,heading_change_deg,valid,reason,trial_id\n"
+        "subject_id,side,model,stride_index,bout,hs_time_s,to_time_s,next_hs_time_s,stride_time_s,stance_ratio,double_support_ratio,stride_length_m,speed_mps,wqk_deg,pbi_deg,bdk_deg,heading_change_deg,valid,reason,reason_codes,trial_id\n"
     ));
     let rec = json(&out.join("recordings.json"));
     let rows = rec.as_array().unwrap();

@@ -147,15 +147,13 @@ pub struct Alignment {
 impl Alignment {
     /// The alignment's note when it found no quiet standing (so no gyroscope bias was removed
     /// and the shank axis came from the mean acceleration of the whole recording); `None`
-    /// when it found one.
+    /// when it found one. The quiet-standing step writes the first note ([`align`]), so it is
+    /// found by its place, not by its text.
     pub fn no_standing_note(&self) -> Option<&str> {
         if self.quiet_standing_s.is_some() {
             return None;
         }
-        self.notes
-            .iter()
-            .find(|n| n.starts_with("no quiet standing"))
-            .map(String::as_str)
+        self.notes.first().map(String::as_str)
     }
 }
 
@@ -237,6 +235,7 @@ pub fn align(pre: &Preprocessed, params: &ValidAlignParams) -> Result<Aligned> {
     let fs = pre.fs_hz;
     let mut notes = Vec::new();
     let still = crate::preprocess::runs(&still_mask(pre, p));
+    // First: its note is the first (`Alignment::no_standing_note`).
     let quiet = quiet_standing(pre, p, &still, &mut notes);
     let e3 = shank_axis(quiet.gravity)?;
     let (e2, share) = sagittal_axis(pre, p, quiet.bias, e3)?;

@@ -84,8 +84,13 @@ pub struct StrideRow {
     pub heading_change_deg: Option<f64>,
     /// Used for the per-side means.
     pub valid: bool,
-    /// Why not valid.
+    /// Why not valid, or why a value is withheld: the reasons' text, joined by `; `.
     pub reason: String,
+    /// The same reasons as typed codes, in the same order ([`crate::gait::StrideCode`]; text
+    /// joined by `; `): what a program groups or filters strides by. Empty in a table
+    /// written before the column existed.
+    #[serde(default)]
+    pub reason_codes: crate::gait::StrideCodes,
     /// Trial of the person (manifest `trial_id`), empty for a single recording pair.
     #[serde(default)]
     pub trial_id: String,
@@ -241,6 +246,7 @@ pub fn stride_rows(results: &[SubjectResult]) -> Vec<StrideRow> {
                     heading_change_deg: num(s.heading_change_deg, 2),
                     valid: s.valid,
                     reason: s.reason.clone(),
+                    reason_codes: s.codes(),
                     trial_id: r.trial_id.clone().unwrap_or_default(),
                 });
             }
@@ -453,7 +459,7 @@ pub fn to_csv<T: Serialize>(rows: &[T], header_if_empty: &[&str]) -> Result<Stri
 }
 
 /// Column names of the per-stride table.
-pub const STRIDE_COLUMNS: [&str; 20] = [
+pub const STRIDE_COLUMNS: [&str; 21] = [
     "subject_id",
     "side",
     "model",
@@ -473,6 +479,7 @@ pub const STRIDE_COLUMNS: [&str; 20] = [
     "heading_change_deg",
     "valid",
     "reason",
+    "reason_codes",
     "trial_id",
 ];
 

@@ -127,7 +127,7 @@ def test_a_belt_start_up_is_simulated_and_left_out_of_the_means(tmp_path):
     # one window and one cadence per walk, the same on both legs' rows (issue 50)
     for col in ("steady_start_s", "steady_end_s", "walk_cadence_steps_per_min"):
         assert rec[col][0] == rec[col][1], (col, rec[col])
-    reasons = [r for r in st["reason"] if "not steady walking" in r]
+    reasons = [r for r in st["reason_codes"] if "not_steady" in r.split("; ")]
     assert len(reasons) >= 4, reasons
     with pytest.raises(ldh.LdhParamError, match="ramp_s"):
         ldh.simulate_cohort(tmp_path / "t", ramp_s=10.0)  # with the turn: refused

@@ -17,6 +17,7 @@ use super::visits::{visit_changes, visits_section};
 use super::{LegTrace, ValidReportParams};
 use super::{Reference, SubjectReport};
 use ldh_core::error::Result;
+use ldh_core::gait::StrideCode;
 use ldh_core::output::{RecordingRow, StrideRow};
 
 mod ident;
@@ -346,11 +347,19 @@ fn leg_notes(leg: &LegTrace) -> Vec<String> {
     notes
 }
 
-/// Strides excluded from the parameters, counted by reason (one row each) and side (a column
-/// each, in the order the sides first appear).
+/// Strides excluded from the parameters, counted by reason code (one row per code, in its
+/// plain wording [`StrideCode::plain`], never the stride's own text) and side (a column each,
+/// in the order the sides first appear). A stride excluded for several reasons counts under
+/// each, so a last row gives the strides excluded for any reason; a stride of a table written
+/// without `reason_codes` counts under "reason not recorded".
 fn excluded_strides(strides: &[StrideRow]) -> Markup {
     let mut sides: Vec<String> = Vec::new();
-    let mut excl: Vec<(String, Vec<usize>)> = Vec::new();
+    let mut excl: Vec<(Option<StrideCode>, Vec<usize>)> = Vec::new();
+    let mut any: Vec<usize> = Vec::new();
+    let count = |counts: &mut Vec<usize>, col: usize| {
+        counts.resize(counts.len().max(col + 1), 0);
+        counts[col] += 1;
+    };
     for st in strides.iter().filter(|st| !st.valid) {
         let side = st.side.to_string();
         let col = match sides.iter().position(|s| *s == side) {
@@ -360,18 +369,34 @@ fn excluded_strides(strides: &[StrideRow]) -> Markup {
                 sides.len() - 1
             }
         };
-        let reason = reason_kind(&st.reason);
-        let row = match excl.iter().position(|e| e.0 == reason) {
-            Some(r) => r,
-            None => {
-                excl.push((reason, Vec::new()));
-                excl.len() - 1
+        count(&mut any, col);
+        let mut codes: Vec<Option<StrideCode>> = Vec::new();
+        for c in st.reason_codes.excluding() {
+            if !codes.contains(&Some(*c)) {
+                codes.push(Some(*c));
             }
-        };
-        let counts = &mut excl[row].1;
-        counts.resize(counts.len().max(col + 1), 0);
-        counts[col] += 1;
+        }
+        if codes.is_empty() {
+            codes.push(None);
+        }
+        for code in codes {
+            let row = match excl.iter().position(|e| e.0 == code) {
+                Some(r) => r,
+                None => {
+                    excl.push((code, Vec::new()));
+                    excl.len() - 1
+                }
+            };
+            count(&mut excl[row].1, col);
+        }
     }
+    let total = |counts: &[usize]| counts.iter().sum::<usize>();
+    let several = excl.iter().map(|e| total(&e.1)).sum::<usize>() > total(&any);
+    let cells = |counts: &[usize]| -> Vec<usize> {
+        (0..sides.len())
+            .map(|c| counts.get(c).copied().unwrap_or(0))
+            .collect()
+    };
     html! {
         @if excl.is_empty() {
             p { "No stride was excluded." } "\n"
@@ -379,32 +404,23 @@ fn excluded_strides(strides: &[StrideRow]) -> Markup {
             h3 { "Strides excluded from the parameters" } "\n"
             table {
                 tr { th { "reason" } @for side in &sides { th { (side) " (strides)" } } } "\n"
-                @for (reason, counts) in &excl {
+                @for (code, counts) in &excl {
                     tr {
-                        td { (reason) }
-                        @for c in 0..sides.len() { td.num { (counts.get(c).copied().unwrap_or(0)) } }
+                        td { (code.map_or("reason not recorded".into(), |c| c.plain())) }
+                        @for n in cells(counts) { td.num { (n) } }
                     } "\n"
                 }
+                tr {
+                    td { b { "excluded for any reason" } }
+                    @for n in cells(&any) { td.num { b { (n) } } }
+                } "\n"
             }
             "\n"
+            @if several {
+                p.note { "A stride excluded for several reasons is counted under each." } "\n"
+            }
         }
     }
-}
-
-/// The kind of an exclusion reason: each "; "-separated reason without its numbers in
-/// parentheses ("turning (124 deg heading change)" → "turning"), so strides group by kind.
-fn reason_kind(reason: &str) -> String {
-    if reason.trim().is_empty() {
-        return "excluded".into();
-    }
-    let mut kinds: Vec<String> = Vec::new();
-    for part in reason.split("; ") {
-        let k = part.split(" (").next().unwrap_or(part).trim().to_string();
-        if !k.is_empty() && !kinds.contains(&k) {
-            kinds.push(k);
-        }
-    }
-    kinds.join("; ")
 }
 
 /// Section 5: the classifier's output, worded as decision support.

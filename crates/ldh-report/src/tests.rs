@@ -312,7 +312,7 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
     // Every left stride is excluded, grouped under one kind.
     assert!(
         html.contains(
-            "<tr><td>gyro scale fault</td><td class=\"num\">15</td><td class=\"num\">0</td></tr>"
+            "<tr><td>signal quality: gyro scale fault</td><td class=\"num\">15</td><td class=\"num\">0</td></tr>"
         ),
         "{}",
         &html[html.find("Strides excluded").unwrap_or(0)..][..600]

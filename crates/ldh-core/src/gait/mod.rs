@@ -26,6 +26,7 @@
 //! over valid strides and SV, STV (SD / mean), SF, STT (needs both legs) and STA
 //! ([`crate::nonlinear::gait_sta`]).
 
+mod code;
 mod double_support;
 mod height;
 mod length;
@@ -43,6 +44,9 @@ use crate::domain::{block, Measured, Parameter, PerParameter, Reason, Side, With
 fn nan() -> f64 {
     f64::NAN
 }
+pub use code::{
+    FindingEffect, LengthCheck, StrideCode, StrideCodes, StrideFinding, UnknownStrideCode,
+};
 pub use double_support::double_support;
 pub use height::{
     height_sensitivity, height_sensitivity_measured, heights_to_measure, HeightSensitivity,
@@ -110,99 +114,13 @@ pub struct Stride {
     pub findings: Vec<StrideFinding>,
 }
 
-/// What a stride's own length check found ([`LengthEstimate::check`], the segmentation and the
-/// checks between strides and legs).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum LengthCheck {
-    /// The ACC-only attitude: the acceleration is not integrated.
-    AccOnly,
-    /// The accelerometer clipped, and the reconstruction's drift could move the ankle too far.
-    Clipped,
-    /// Velocity drift over the stride (with or without a tilt to explain it).
-    Drift,
-    /// The attitude needed too large a tilt correction.
-    TiltCorrection,
-    /// The ankle ends off the floor level.
-    Floor,
-    /// The length disagrees with the shank-pendulum estimate.
-    Pendulum,
-    /// Far from the median length of the strides around it in its bout.
-    BoutMedian,
-    /// Contradicted by the other leg's strides over the same time.
-    OtherLeg,
-    /// The integration gave no finite length.
-    NotIntegrable,
-}
-
-impl LengthCheck {
-    /// The check in the words of a leg's withheld stride length ("… (velocity drift)").
-    pub fn words(self) -> &'static str {
-        match self {
-            LengthCheck::AccOnly => "the ACC-only attitude cannot separate gravity from motion",
-            LengthCheck::Clipped => "accelerometer clipped",
-            LengthCheck::Drift => "velocity drift",
-            LengthCheck::TiltCorrection => "attitude tilt correction too large",
-            LengthCheck::Floor => "ankle off the floor level",
-            LengthCheck::Pendulum => "disagrees with the shank-pendulum estimate",
-            LengthCheck::BoutMedian => "far from the median of the strides around it",
-            LengthCheck::OtherLeg => "contradicted by the other leg's strides",
-            LengthCheck::NotIntegrable => "not integrable",
-        }
-    }
-}
-
-/// Why a stride is not valid, or which of its values is withheld.
-#[derive(Debug, Clone, PartialEq, Eq, Hash)]
-pub enum StrideCode {
-    /// Stride time outside the stride range.
-    StrideTime,
-    /// No toe off, or several.
-    ToeOff,
-    /// Part of a turn.
-    Turn,
-    /// First or last stride of a walking bout.
-    BoutEdge,
-    /// Outside the steady walking ([`exclude_unsteady`]).
-    NotSteady,
-    /// Its length failed a check.
-    Length(LengthCheck),
-    /// Its length passed its own checks, but too few of the leg's did
-    /// ([`withhold_unvouched_lengths`]).
-    LengthNotVouched,
-    /// Its angles are outside anatomical bounds.
-    AnglesOutOfBounds,
-    /// Bounded by an event the signals cannot place well (docs/quality.md "Unsure events").
-    UnsureEvent(crate::domain::UnsureEvent),
-    /// A quality finding (its warning code) about the whole leg or a span of it; `length`: it
-    /// withholds the stride's length; `all`: it withholds every value (the stride is invalid).
-    Finding {
-        /// The warning code.
-        code: crate::domain::WarningCode,
-        /// Whether the stride length is withheld.
-        length: bool,
-    },
-}
-
-/// One reason of a stride: a typed code and its text.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct StrideFinding {
-    /// What it is.
-    pub code: StrideCode,
-    /// The text, as `strides.csv` writes it.
-    pub message: String,
-}
-
-impl StrideFinding {
-    /// A finding of `code` with `message`.
-    pub fn new(code: StrideCode, message: impl Into<String>) -> StrideFinding {
-        StrideFinding {
-            code,
-            message: message.into(),
-        }
-    }
-}
-
 impl Stride {
+    /// The codes of the stride's findings, in the order of `reason`'s reasons (the
+    /// `reason_codes` column).
+    pub fn codes(&self) -> StrideCodes {
+        StrideCodes(self.findings.iter().map(|f| f.code).collect())
+    }
+
     /// Whether a finding of `code` is among the stride's.
     pub fn has(&self, code: &StrideCode) -> bool {
         self.findings.iter().any(|f| &f.code == code)

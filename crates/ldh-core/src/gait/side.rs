@@ -143,7 +143,9 @@ fn why_no_length(s: &Stride) -> String {
     s.findings
         .iter()
         .find_map(|f| match &f.code {
-            StrideCode::Finding { code, length: true } => Some(code.as_str().replace('_', " ")),
+            StrideCode::Finding { code, effect } if effect.withholds_length() => {
+                Some(code.as_str().replace('_', " "))
+            }
             _ => None,
         })
         .unwrap_or_else(|| LengthCheck::NotIntegrable.words().to_string())

@@ -99,7 +99,7 @@ fn a_side_length_blanked_by_a_finding_names_the_finding() {
         s.replace_findings(StrideFinding::new(
             StrideCode::Finding {
                 code: crate::domain::codes::LR_DISAGREEMENT,
-                length: true,
+                effect: super::FindingEffect::Length,
             },
             "stride length withheld: lr disagreement",
         ));

@@ -111,6 +111,7 @@ const LAYOUT: &[Entry] = &[
     c(S, "heading_change_deg", "deg", "Change of walking direction over the stride (turn detection; not a clinical value)."),
     c(S, "valid", "", "`true` when the stride counts in the means; `false` with its reason (a turn, a bout's edge, not steady walking, a check)."),
     c(S, "reason", "", "Why the stride is not valid, or why one of its values is withheld; reasons joined by `; `."),
+    c(S, "reason_codes", "", "The same reasons as stable codes, one per reason in the same order, joined by `; ` (empty when `reason` is): `stride_time_out_of_range`, `toe_off`, `turn`, `bout_edge`, `not_steady`, `angles_out_of_bounds`, `unsure_hs_no_impact`, `unsure_hs_two_landings`, `unsure_to_two_push_offs` exclude the stride; `length_<check>` (`length_drift`, `length_clipped`, `length_tilt_correction`, `length_floor`, `length_pendulum`, `length_bout_median`, `length_other_leg`, `length_acc_only`, `length_not_integrable`) and `length_not_vouched` withhold its length only; a quality finding is its warning code (docs/quality.md) when it excludes the stride (`channel_fault`), else the code with what it withholds (`no_quiet_standing:angles`, `lr_disagreement:length`, `…:angles_and_length`). Group or filter strides by these, not by `reason`'s text."),
     c(S, "trial_id", "", "The trial of the person (manifest `trial_id`)."),
     c(E, "subject_id", "", "The person."),
     c(E, "time_s", "s", "Time of the event, from the recordings' first sample."),

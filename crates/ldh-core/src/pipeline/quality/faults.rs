@@ -299,7 +299,7 @@ pub(crate) fn withhold_span(st: &mut [Stride], w: &Warning) -> usize {
     let f = StrideFinding::new(
         StrideCode::Finding {
             code: w.code,
-            length: false,
+            effect: crate::gait::FindingEffect::Excludes,
         },
         w.reason(),
     );

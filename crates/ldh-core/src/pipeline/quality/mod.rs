@@ -15,7 +15,7 @@
 
 use crate::align::Alignment;
 use crate::domain::Parameter;
-use crate::gait::{SideParameters, Stride, StrideCode, StrideFinding};
+use crate::gait::{FindingEffect, SideParameters, Stride, StrideCode, StrideFinding};
 
 use super::LegResult;
 
@@ -226,7 +226,7 @@ pub fn apply_to_strides(st: &mut [Stride], warnings: &[Warning]) {
                 s.replace_findings(StrideFinding::new(
                     StrideCode::Finding {
                         code: w.code,
-                        length: true,
+                        effect: FindingEffect::Excludes,
                     },
                     w.code.as_str().replace('_', " "),
                 ));
@@ -254,21 +254,21 @@ pub fn apply_to_strides(st: &mut [Stride], warnings: &[Warning]) {
             if discredits_attitude(w) {
                 s.heading_change_deg = f64::NAN;
             }
-            let what = match (
+            let effect = match (
                 angles && has(Parameter::Wqk),
                 length && has(Parameter::StrideLength),
             ) {
                 _ if all => None,
-                (true, true) => Some("angles and stride length"),
-                (true, false) => Some("angles"),
-                (false, true) => Some("stride length"),
+                (true, true) => Some((FindingEffect::AnglesAndLength, "angles and stride length")),
+                (true, false) => Some((FindingEffect::Angles, "angles")),
+                (false, true) => Some((FindingEffect::Length, "stride length")),
                 (false, false) => None,
             };
-            if let Some(what) = what {
+            if let Some((effect, what)) = effect {
                 s.push_once(StrideFinding::new(
                     StrideCode::Finding {
                         code: w.code,
-                        length: length && has(Parameter::StrideLength),
+                        effect,
                     },
                     format!("{what} withheld: {}", w.code.as_str().replace('_', " ")),
                 ));
