@@ -19,20 +19,6 @@ fn hugadb() -> Option<PathBuf> {
     c.into_iter().find(|d| d.join("PROVENANCE.md").is_file())
 }
 
-fn read_csv(p: &Path) -> Vec<std::collections::HashMap<String, String>> {
-    let mut r = csv::Reader::from_path(p).unwrap();
-    let h = r.headers().unwrap().clone();
-    r.records()
-        .map(|x| {
-            let x = x.unwrap();
-            h.iter()
-                .zip(x.iter())
-                .map(|(a, b)| (a.to_string(), b.to_string()))
-                .collect()
-        })
-        .collect()
-}
-
 #[test]
 fn hugadb_original_files_are_analysed_per_leg_from_a_manifest() {
     let Some(data) = hugadb() else {

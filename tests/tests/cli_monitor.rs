@@ -3,7 +3,7 @@
 //! nothing lost).
 
 mod common;
-use common::{ldh, ldh_ok, text};
+use common::{ldh, ldh_ok, read_csv, text};
 use std::path::Path;
 
 /// One leg: 2 min still, then the demo walks of H01, L01 and H02 each followed by 1 min still.
@@ -141,4 +141,155 @@ fn monitor_refuses_a_file_that_is_not_ldh_csv_with_the_column_it_needs() {
     // The right leg's bouts are still there.
     let bouts = std::fs::read_to_string(out.join("bouts.csv")).unwrap();
     assert_eq!(bouts.lines().count(), 4, "{bouts}");
+}
+
+/// One monitoring period of person `who` simulated by ldh-sim's free-living generator: a day
+/// per seed of `days`, each one hour (11:00–12:00, between the simulator's morning and
+/// afternoon non-wear) at 50 Hz, the days' files joined into one recording per leg (a device
+/// recording an hour a day: 23 h without data between the days). `stride_time_factor` > 1 is
+/// slower walking. Returns the left and right files' names in `dir`.
+fn simulated_period(
+    dir: &Path,
+    name: &str,
+    who: u64,
+    days: &[u64],
+    stride_time_factor: f64,
+) -> (String, String) {
+    use ldh_sim::free_living::{simulate_free_living, FreeLivingParams};
+    let mut legs = [String::new(), String::new()];
+    for (d, &seed) in days.iter().enumerate() {
+        let params = FreeLivingParams {
+            duration_h: 1.0,
+            fs_hz: 50.0,
+            seed,
+            subject_seed: Some(who),
+            start: ldh_core::io::DateTime::new((2026, 3, 2 + d as i64), (11, 0, 0), false).unwrap(),
+            drift_ppm: Some(0.0),
+            stride_time_factor,
+            ..FreeLivingParams::default()
+        };
+        let sim = dir.join(format!("sim_{name}_{d}"));
+        let subjects = simulate_free_living(&params, &sim, &|| {}).unwrap();
+        for (leg, side) in legs.iter_mut().zip(["left", "right"]) {
+            let text =
+                std::fs::read_to_string(subjects[0].dir.join(format!("{side}.csv"))).unwrap();
+            for line in text.lines() {
+                let header = line.starts_with('#') || line.starts_with("time_s");
+                if header && d > 0 {
+                    continue;
+                }
+                match line.split_once(',') {
+                    Some((t, rest)) if !header => {
+                        let t: f64 = t.parse().unwrap();
+                        leg.push_str(&format!("{:.2},{rest}\n", t + d as f64 * 86_400.0));
+                    }
+                    _ => {
+                        leg.push_str(line);
+                        leg.push('\n');
+                    }
+                }
+            }
+        }
+        std::fs::remove_dir_all(&sim).unwrap();
+    }
+    let names = [format!("{name}_left.csv"), format!("{name}_right.csv")];
+    for (n, leg) in names.iter().zip(&legs) {
+        std::fs::write(dir.join(n), leg).unwrap();
+    }
+    let [l, r] = names;
+    (l, r)
+}
+
+#[test]
+fn monitor_finds_the_slower_walking_a_simulated_second_visit_put_in() {
+    let d = tempfile::tempdir().unwrap();
+    // P1 and P2: two days at each visit, walking 25 % slower (stride time × 1.25) at "post",
+    // on other days. P3: one day at each visit. The days' seeds have at least three walks over
+    // 36 s in their hour (the daily cadence is of walks over 30 s).
+    let mut manifest = String::from("subject_id,trial_id,visit,left,right\n");
+    let plan: [(&str, u64, [&[u64]; 2]); 3] = [
+        ("P1", 101, [&[40, 41], &[57, 58]]),
+        ("P2", 102, [&[30, 31], &[44, 35]]),
+        ("P3", 103, [&[75], &[66]]),
+    ];
+    for (p, who, days) in plan {
+        for ((v, factor), days) in [("pre", 1.0), ("post", 1.25)].into_iter().zip(days) {
+            let (l, r) = simulated_period(d.path(), &format!("{p}_{v}"), who, days, factor);
+            manifest.push_str(&format!("{p},{v},{v},{l},{r}\n"));
+        }
+    }
+    let m = d.path().join("manifest.csv");
+    std::fs::write(&m, manifest).unwrap();
+    // An hour a day: valid days from 30 min of waking wear, a period from two valid days, the
+    // daily cadence from one bout over 30 s.
+    let params = d.path().join("monitor.toml");
+    std::fs::write(
+        &params,
+        "min_wear_h = 0.5\nmin_valid_days = 2\nmin_long_bouts = 1\n",
+    )
+    .unwrap();
+    let out = d.path().join("out");
+    let o = ldh_ok(&[
+        "monitor",
+        m.to_str().unwrap(),
+        "--params",
+        params.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    let err = text(&o);
+    assert!(err.contains("changes.csv"), "{err}");
+
+    let summary = read_csv(&out.join("summary.csv"));
+    assert_eq!(summary.len(), 6, "{summary:?}");
+    for s in &summary {
+        let two = !s["subject_id"].starts_with("P3");
+        assert_eq!(s["valid_days"], if two { "2" } else { "1" }, "{s:?}");
+        assert_eq!(s["valid"], two.to_string(), "{s:?}");
+        assert!(s["bouts_total"].parse::<usize>().unwrap() >= 10, "{s:?}");
+    }
+    let days = read_csv(&out.join("days.csv"));
+    assert_eq!(days.len(), 10, "{days:?}");
+    assert!(days.iter().all(|r| r["valid"] == "true"), "{days:?}");
+    assert!(days.iter().any(|r| r["date"] == "2026-03-03"), "{days:?}");
+    let bouts = read_csv(&out.join("bouts.csv"));
+    let people: std::collections::BTreeSet<(&str, &str)> = bouts
+        .iter()
+        .map(|b| (b["subject_id"].as_str(), b["visit"].as_str()))
+        .collect();
+    assert_eq!(people.len(), 6, "{people:?}");
+    for p in ["P1", "P2", "P3"] {
+        let page = std::fs::read_to_string(out.join(format!("week_{p}.html"))).unwrap();
+        assert!(page.contains("Period “post”"), "{p}");
+        assert!(page.contains("Change between the periods"), "{p}");
+    }
+
+    // changes.csv: four daily measures per person. The cadence fell at "post" (the simulation
+    // made each stride 25 % longer: ≈ −20 %), beyond the day-to-day noise for P1 and P2; P3's
+    // change is withheld with the reason (one valid day a period).
+    let changes = read_csv(&out.join("changes.csv"));
+    assert_eq!(changes.len(), 12, "{changes:?}");
+    for c in changes
+        .iter()
+        .filter(|c| c["measure"] == "cadence_steps_per_min")
+    {
+        let (from, change): (f64, f64) = (
+            c["mean_from"].parse().unwrap(),
+            c["change"].parse().unwrap(),
+        );
+        println!(
+            "{} cadence {from:.1} → change {change:.1} (noise {})",
+            c["subject_id"], c["noise"]
+        );
+        assert!(change < -0.12 * from && change > -0.28 * from, "{c:?}");
+        if c["subject_id"] == "P3" {
+            assert_eq!(c["beyond_noise"], "", "{c:?}");
+            assert!(c["withheld"].contains("1 and 1 valid day(s)"), "{c:?}");
+        } else {
+            assert_eq!(c["beyond_noise"], "true", "{c:?}");
+            assert_eq!((c["days_from"].as_str(), c["days_to"].as_str()), ("2", "2"));
+        }
+    }
+    let page = std::fs::read_to_string(out.join("week_P3.html")).unwrap();
+    assert!(page.contains("not judged: 1 and 1 valid day(s)"), "{page}");
 }

@@ -164,33 +164,13 @@ pub fn week_html(periods: &[&MonitorResult], changes: &[VisitChange]) -> String 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use ldh_core::monitor::{visit_changes, DayRow};
-
-    fn period(visit: &str, steps: &[f64]) -> MonitorResult {
-        MonitorResult {
-            subject_id: "P<1>".into(),
-            visit: Some(visit.into()),
-            days: steps
-                .iter()
-                .enumerate()
-                .map(|(i, &s)| DayRow {
-                    day: i + 1,
-                    valid: true,
-                    steps: s,
-                    walking_min: s / 100.0,
-                    bouts: 10.0,
-                    gait_median: [f64::NAN; 6],
-                    ..DayRow::default()
-                })
-                .collect(),
-            ..MonitorResult::default()
-        }
-    }
+    use ldh_core::monitor::visit_changes;
+    use ldh_test_support::monitor_period;
 
     #[test]
     fn the_page_has_each_period_its_days_and_the_judged_change() {
-        let a = period("pre", &[4000.0, 4400.0, 3600.0]);
-        let b = period("post", &[6000.0, 6400.0, 5600.0]);
+        let a = monitor_period("P<1>", "pre", &[4000.0, 4400.0, 3600.0]);
+        let b = monitor_period("P<1>", "post", &[6000.0, 6400.0, 5600.0]);
         let changes = visit_changes(&[a.clone(), b.clone()]);
         let h = week_html(&[&a, &b], &changes);
         assert!(h.contains("A week at home: P&lt;1&gt;"), "escaped name");

@@ -1,12 +1,15 @@
 //! Test helpers shared by ldh's crates, so a fixture is written once (issue 48): a temporary
 //! folder to write test files into, a small simulated cohort analysed from its files with its
-//! truth, and `ldh agree` of results against reference texts. A dev-dependency of the crates
-//! whose tests need them (ldh-report's unit tests, ldh-sim's `tests/analysis/`); ldh-core's own
-//! unit tests cannot use it (it depends on ldh-core), so their fixtures stay beside them.
+//! truth, `ldh agree` of results against reference texts, and a monitoring period built from
+//! its daily steps. A dev-dependency of the crates whose tests need them (ldh-report's unit
+//! tests, ldh-sim's `tests/analysis/`, ldh-core's integration tests); ldh-core's own unit tests
+//! cannot use it (it depends on ldh-core), so their fixtures stay beside them or move to
+//! `crates/ldh-core/tests/`.
 
 use std::path::{Path, PathBuf};
 
 use ldh_core::agreement::{run, AgreementParams, AgreementReport, OffsetMode, Reference};
+use ldh_core::monitor::{DayRow, MonitorResult};
 use ldh_core::output::LdhResults;
 use ldh_core::pipeline::{AnalysisParams, SubjectResult};
 use ldh_core::reference::parse_reference;
@@ -88,4 +91,28 @@ pub fn agree_with(
     parse_reference(events, Path::new("ev.csv"), results, &p, &mut reference).unwrap();
     parse_reference(strides, Path::new("st.csv"), results, &p, &mut reference).unwrap();
     run(results, &reference, &p, mode).unwrap()
+}
+
+/// One person's monitoring period of valid days with `daily_steps` steps each, walking
+/// `steps / 100` minutes in 10 bouts a day, and no cadence measured (no bout over 30 s): the
+/// fixture of the visit change and the week page.
+pub fn monitor_period(subject_id: &str, visit: &str, daily_steps: &[f64]) -> MonitorResult {
+    MonitorResult {
+        subject_id: subject_id.into(),
+        visit: Some(visit.into()),
+        days: daily_steps
+            .iter()
+            .enumerate()
+            .map(|(i, &s)| DayRow {
+                day: i + 1,
+                valid: true,
+                steps: s,
+                walking_min: s / 100.0,
+                bouts: 10.0,
+                gait_median: [f64::NAN; 6],
+                ..DayRow::default()
+            })
+            .collect(),
+        ..MonitorResult::default()
+    }
 }

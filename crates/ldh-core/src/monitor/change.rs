@@ -9,6 +9,8 @@
 //! al., Med Sci Sports Exerc 2005). The change is *beyond the noise* when larger than that
 //! limit. Each is withheld with the reason when a period has fewer than
 //! [`MIN_DAYS_FOR_NOISE`] valid days measuring the value (one day has no day-to-day spread).
+//! Tests: `crates/ldh-core/tests/monitor_change.rs` (their fixture is shared with the week
+//! page's tests in ldh-test-support).
 
 use serde::{Deserialize, Serialize};
 
@@ -144,66 +146,4 @@ pub fn visit_changes(results: &[MonitorResult]) -> Vec<VisitChange> {
         }
     }
     out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn period(visit: &str, steps: &[f64]) -> MonitorResult {
-        MonitorResult {
-            subject_id: "P1".into(),
-            visit: Some(visit.into()),
-            days: steps
-                .iter()
-                .enumerate()
-                .map(|(i, &s)| DayRow {
-                    day: i + 1,
-                    valid: true,
-                    steps: s,
-                    walking_min: s / 100.0,
-                    bouts: 10.0,
-                    gait_median: [f64::NAN; 6],
-                    ..DayRow::default()
-                })
-                .collect(),
-            ..MonitorResult::default()
-        }
-    }
-
-    #[test]
-    fn a_change_beyond_the_days_spread_is_marked_and_one_inside_it_is_not() {
-        let before = period("pre", &[4000.0, 4400.0, 3600.0]);
-        let after = period("post", &[6000.0, 6400.0, 5600.0]);
-        let c = visit_changes(&[before.clone(), after]);
-        assert_eq!(c.len(), 4);
-        let steps = &c[1];
-        assert_eq!(
-            (steps.from_visit.as_str(), steps.to_visit.as_str()),
-            ("pre", "post")
-        );
-        assert!((steps.change - 2000.0).abs() < 1e-9);
-        // SD 400 in each: 1.96·√(2·400²/3) = 640.
-        assert!((steps.noise - 640.1).abs() < 0.1, "{}", steps.noise);
-        assert_eq!(steps.beyond_noise, Some(true));
-        let same = visit_change(&before, &period("post", &[4200.0, 3800.0, 4500.0]));
-        assert_eq!(same[1].beyond_noise, Some(false));
-        // Bouts do not vary at all: any change is beyond, none is not.
-        assert_eq!(same[2].beyond_noise, Some(false));
-        // Cadence is measured on no day: withheld with the reason.
-        assert_eq!(same[3].beyond_noise, None);
-        assert!(
-            same[3].withheld.contains("0 and 0 valid day(s)"),
-            "{}",
-            same[3].withheld
-        );
-    }
-
-    #[test]
-    fn one_valid_day_withholds_the_judgement() {
-        let c = visit_change(&period("a", &[5000.0]), &period("b", &[9000.0, 8000.0]));
-        assert_eq!(c[1].beyond_noise, None);
-        assert!(c[1].withheld.contains("1 and 2 valid day(s)"));
-        assert!((c[1].change - 3500.0).abs() < 1e-9);
-    }
 }

@@ -240,22 +240,27 @@ pub fn write_tables(dir: &Path, results: &[MonitorResult]) -> Result<Vec<std::pa
     let mut files = Vec::new();
     for (name, head, rows) in tables(results) {
         let path = dir.join(name);
-        let mut buf = Vec::new();
-        {
-            let mut w = csv::Writer::from_writer(&mut buf);
-            w.write_record(&head)?;
-            for r in rows {
-                w.write_record(&r)?;
-            }
-            w.flush().map_err(|source| LdhError::Io {
-                path: path.clone(),
-                source,
-            })?;
-        }
-        crate::io::write_atomic(&path, &buf)?;
+        write_csv(&path, &head, &rows)?;
         files.push(path);
     }
     Ok(files)
+}
+
+/// One table written atomically with the `csv` crate.
+fn write_csv<H: AsRef<[u8]>>(path: &Path, head: &[H], rows: &Rows) -> Result<()> {
+    let mut buf = Vec::new();
+    {
+        let mut w = csv::Writer::from_writer(&mut buf);
+        w.write_record(head)?;
+        for r in rows {
+            w.write_record(r)?;
+        }
+        w.flush().map_err(|source| LdhError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+    }
+    crate::io::write_atomic(path, &buf)
 }
 
 /// Header of changes.csv.
@@ -275,15 +280,13 @@ pub const CHANGE_COLUMNS: [&str; 13] = [
     "withheld",
 ];
 
-/// Write changes.csv (one row per person, later period and daily measure) into `dir`.
-pub fn write_changes(dir: &Path, changes: &[super::VisitChange]) -> Result<std::path::PathBuf> {
-    let path = dir.join("changes.csv");
-    let mut buf = Vec::new();
-    {
-        let mut w = csv::Writer::from_writer(&mut buf);
-        w.write_record(CHANGE_COLUMNS)?;
-        for c in changes {
-            w.write_record([
+/// changes.csv's rows (one per person, later period and daily measure) as text cells in
+/// [`CHANGE_COLUMNS`] order: what `ldh monitor` writes and `ldh.monitor` returns.
+pub fn change_rows(changes: &[super::VisitChange]) -> Rows {
+    changes
+        .iter()
+        .map(|c| {
+            vec![
                 c.subject_id.clone(),
                 c.from_visit.clone(),
                 c.to_visit.clone(),
@@ -297,13 +300,14 @@ pub fn write_changes(dir: &Path, changes: &[super::VisitChange]) -> Result<std::
                 num(c.noise),
                 c.beyond_noise.map_or(String::new(), |b| b.to_string()),
                 c.withheld.clone(),
-            ])?;
-        }
-        w.flush().map_err(|source| LdhError::Io {
-            path: path.clone(),
-            source,
-        })?;
-    }
-    crate::io::write_atomic(&path, &buf)?;
+            ]
+        })
+        .collect()
+}
+
+/// Write changes.csv (one row per person, later period and daily measure) into `dir`.
+pub fn write_changes(dir: &Path, changes: &[super::VisitChange]) -> Result<std::path::PathBuf> {
+    let path = dir.join("changes.csv");
+    write_csv(&path, &CHANGE_COLUMNS, &change_rows(changes))?;
     Ok(path)
 }

@@ -12,14 +12,19 @@ from ._util import PathLike, params_dict, path_list
 
 # Text columns; every other column is numeric (an empty cell is NaN: a value withheld, with its
 # reason in the row's ``withheld`` cell).
-_TEXT = {"subject_id", "visit", "legs", "withheld", "errors", "date", "state", "valid"}
+_TEXT = {
+    "subject_id", "visit", "legs", "withheld", "errors", "date", "state", "valid",
+    "from_visit", "to_visit", "measure", "unit", "beyond_noise",
+}
+# Yes/no columns: "true"/"false"; ``beyond_noise`` may be empty (not judged): None.
+_BOOL = {"valid", "beyond_noise"}
 
 
 def _frame(columns: List[str], rows: List[List[str]]) -> Any:
     cols: Dict[str, list] = {c: [r[i] for r in rows] for i, c in enumerate(columns)}
     for c, v in cols.items():
-        if c == "valid":
-            cols[c] = [x == "true" for x in v]
+        if c in _BOOL:
+            cols[c] = [None if x == "" else x == "true" for x in v]
         elif c not in _TEXT:
             cols[c] = [float(x) if x != "" else float("nan") for x in v]
     if have_pandas():
@@ -39,6 +44,10 @@ class MonitorResult:
         ``bouts.csv`` (one row per walking bout), ``days.csv`` (per day), ``summary.csv`` (per
         person and monitoring period) and ``periods.csv`` (wear and rest periods), as
         ``ldh monitor`` writes them (docs/free-living.md).
+    changes : pandas.DataFrame
+        ``changes.csv``: per person, later period and daily measure, the change from the first
+        period judged against the day-to-day noise (``beyond_noise`` True/False, or None with
+        the reason in ``withheld``); no rows when no person has two periods.
     notes, errors : list of list of str
         Per person and period: what the reader and the pairing found; errors that lost a leg.
     """
@@ -47,6 +56,7 @@ class MonitorResult:
     days: Any
     summary: Any
     periods: Any
+    changes: Any = None
     notes: List[List[str]] = field(default_factory=list)
     errors: List[List[str]] = field(default_factory=list)
 
@@ -89,6 +99,7 @@ def monitor(
         days=_frame(*out["days"]),
         summary=_frame(*out["summary"]),
         periods=_frame(*out["periods"]),
+        changes=_frame(*out["changes"]),
         notes=out["notes"],
         errors=out["errors"],
     )

@@ -95,6 +95,14 @@ pub struct FreeLivingParams {
     pub sensor: SensorModel,
     /// File format. Default CSV.
     pub format: LongFormat,
+    /// Every subject's stride time multiplied by this factor, stride length kept (cadence and
+    /// speed divided by it): a later monitoring period's slower (> 1) or faster (< 1) walking,
+    /// the change a visit comparison should find. Default 1.
+    pub stride_time_factor: f64,
+    /// The seed of the subjects' own gait (their draw from their group), when it is not
+    /// `seed`: the same people on other days (one `subject_seed`, a `seed` per day). Default
+    /// `None`: `seed`'s draw.
+    pub subject_seed: Option<u64>,
 }
 
 impl Default for FreeLivingParams {
@@ -110,6 +118,8 @@ impl Default for FreeLivingParams {
             right_clock_offset_s: 0.0,
             sensor: SensorModel::default().acc_range_g(16.0),
             format: LongFormat::Csv,
+            stride_time_factor: 1.0,
+            subject_seed: None,
         }
     }
 }
@@ -119,7 +129,7 @@ pub const MAX_DURATION_H: f64 = 336.0;
 
 impl FreeLivingParams {
     /// Check the parameters: at least one subject, 0.01–336 h, 20–500 Hz, |drift| ≤ 500 ppm,
-    /// |offset| ≤ 3600 s, a valid sensor model.
+    /// |offset| ≤ 3600 s, a stride-time factor in 0.5–2, a valid sensor model.
     pub fn validate(&self) -> Result<()> {
         let range = |name: &'static str, v: f64, lo: f64, hi: f64| {
             if v.is_finite() && (lo..=hi).contains(&v) {
@@ -144,6 +154,7 @@ impl FreeLivingParams {
         if let Some(d) = self.drift_ppm {
             range("drift_ppm", d, -500.0, 500.0)?;
         }
+        range("stride_time_factor", self.stride_time_factor, 0.5, 2.0)?;
         range(
             "right_clock_offset_s",
             self.right_clock_offset_s,

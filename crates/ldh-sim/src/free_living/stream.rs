@@ -38,7 +38,15 @@ pub(super) fn simulate_subject_to(
     };
     let mut rng = stream(0);
     let fs = params.fs_hz;
-    let base = SubjectParams::draw(id.clone(), group.clone(), fs, 25.0, &mut rng);
+    let mut base = SubjectParams::draw(id.clone(), group.clone(), fs, 25.0, &mut rng);
+    if let Some(seed) = params.subject_seed {
+        // The same person on another day: the gait drawn from the person's own stream, the
+        // day (drift, mounting, plan, noise) from `seed`'s.
+        let mut own = ChaCha8Rng::seed_from_u64(seed);
+        own.set_stream((2u64 << 32) + 3 * i as u64);
+        base = SubjectParams::draw(id.clone(), group.clone(), fs, 25.0, &mut own);
+    }
+    base.stride_time_s *= params.stride_time_factor;
     let drift_ppm = params.drift_ppm.unwrap_or_else(|| {
         let m = rng.gen_range(20.0..50.0);
         if rng.gen_bool(0.5) {
