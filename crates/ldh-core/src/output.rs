@@ -18,6 +18,7 @@ use crate::pipeline::quality::flat;
 use crate::pipeline::{SubjectResult, Warning, WarningList, WithheldList};
 
 pub mod columns;
+pub mod cycle;
 pub mod labels;
 pub mod names;
 mod parameter;

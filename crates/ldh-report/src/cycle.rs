@@ -8,9 +8,11 @@
 //! [`super::ReportParams::min_healthy_subjects`] of them; otherwise the caption says
 //! "no reference band (n = …)".
 //!
-//! The strides come from the plotted trace window ([`super::LegTrace`], 10 s by default), so a
-//! curve pools the valid strides that window holds, and says how many. A leg whose shank angles
-//! were withheld by a quality check gets no curve: the reason is written in place of it.
+//! The strides are every valid stride of the leg, those of the walk's steady window (the trace
+//! file's curve, [`ldh_core::output::cycle::pitch_cycle_of`]; issue 50: a curve of the 5
+//! strides of the plotted excerpt said little of 98), and the legend says how many. A leg
+//! whose shank angles were withheld by a quality check gets no curve: the reason is written in
+//! place of it.
 
 use maud::{html, Markup};
 use serde::{Deserialize, Serialize};
@@ -22,81 +24,19 @@ use crate::plots;
 use ldh_core::error::Result;
 use ldh_core::output::{RecordingRow, StrideRow};
 
-/// Points of a normalised cycle: 0, 1, …, 100 % of the cycle.
-pub const CYCLE_POINTS: usize = 101;
+pub use ldh_core::output::cycle::{time_normalise, CycleCurve, CYCLE_POINTS};
 
 /// Physical range of a shank angle, deg: values beyond are drawn at the edge and captioned.
 pub const SHANK_ANGLE_RANGE_DEG: (f64, f64) = (-90.0, 90.0);
 
-/// Resample `signal` (sampled at `fs_hz`, first sample at `t0_s`) over `[a_s, b_s]` onto `points`
-/// equally spaced instants (linear interpolation between samples). `None` when the interval is
-/// not inside the signal, is empty, or touches a non-finite sample, or `points < 2`.
-pub fn time_normalise(
-    signal: &[f64],
-    t0_s: f64,
-    fs_hz: f64,
-    a_s: f64,
-    b_s: f64,
-    points: usize,
-) -> Option<Vec<f64>> {
-    if points < 2 || !(fs_hz > 0.0) || signal.len() < 2 || !(b_s > a_s) {
-        return None;
-    }
-    let (ia, ib) = ((a_s - t0_s) * fs_hz, (b_s - t0_s) * fs_hz);
-    let last = (signal.len() - 1) as f64;
-    if !(ia >= -1e-9 && ib <= last + 1e-9) {
-        return None;
-    }
-    (0..points)
-        .map(|k| {
-            let x = (ia + (ib - ia) * k as f64 / (points - 1) as f64).clamp(0.0, last);
-            let i = (x.floor() as usize).min(signal.len() - 2);
-            let f = x - i as f64;
-            let v = signal[i] * (1.0 - f) + signal[i + 1] * f;
-            v.is_finite().then_some(v)
-        })
-        .collect()
-}
-
-/// Mean ± SD of curves over the gait cycle.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct CycleCurve {
-    /// Mean at 0, 1, …, 100 % of the cycle, deg.
-    pub mean_deg: Vec<f64>,
-    /// Sample SD (n − 1) at the same points, deg.
-    pub sd_deg: Vec<f64>,
-    /// Curves pooled (strides of one leg, or legs of a reference).
-    pub n: usize,
-}
-
-impl CycleCurve {
-    /// Mean ± SD of equally long curves; `None` with fewer than 2 (an SD needs two).
-    pub fn of(curves: &[Vec<f64>]) -> Option<CycleCurve> {
-        let n = curves.len();
-        let len = curves.first()?.len();
-        if n < 2 || curves.iter().any(|c| c.len() != len) {
-            return None;
-        }
-        let mean: Vec<f64> = (0..len)
-            .map(|k| curves.iter().map(|c| c[k]).sum::<f64>() / n as f64)
-            .collect();
-        let sd = (0..len)
-            .map(|k| {
-                let ss: f64 = curves.iter().map(|c| (c[k] - mean[k]).powi(2)).sum();
-                (ss / (n - 1) as f64).sqrt()
-            })
-            .collect();
-        Some(CycleCurve {
-            mean_deg: mean,
-            sd_deg: sd,
-            n,
-        })
-    }
-}
-
-/// The shank-pitch cycle of a leg: the valid strides of `strides` (this leg's side) whose heel
-/// strike and next heel strike both lie in the trace window. `None` with fewer than 2 strides.
+/// The shank-pitch cycle of a leg: the trace's own curve over every valid stride of the leg
+/// (those of the walk's steady window, [`LegTrace::cycle`]); for a trace written before it
+/// carried one, the valid strides of `strides` (this leg's side) whose heel strike and next
+/// heel strike both lie in the trace window. `None` with fewer than 2 strides.
 pub fn pitch_cycle(leg: &LegTrace, strides: &[StrideRow]) -> Option<CycleCurve> {
+    if let Some(c) = &leg.cycle {
+        return Some(c.clone());
+    }
     let curves: Vec<Vec<f64>> = strides
         .iter()
         .filter(|s| s.valid && s.side.as_str() == leg.side)
@@ -169,7 +109,7 @@ pub(crate) fn cycle_section(
             (Some(why), _) => Some(why),
             (None, None) => Some("no signal trace for this leg".into()),
             (None, Some(leg)) => match pitch_cycle(leg, &s.strides) {
-                None => Some("fewer than two valid strides in the plotted window".into()),
+                None => Some("fewer than two valid strides".into()),
                 Some(c) => {
                     let (lo, hi) = SHANK_ANGLE_RANGE_DEG;
                     let (m, k) = plots::clip_to(&c.mean_deg, lo, hi);
@@ -214,7 +154,7 @@ pub(crate) fn cycle_section(
         };
         figure(
             &svg,
-            &format!("Shank pitch (sagittal inclination) from heel strike (0 %) to the next heel strike (100 %) of the same leg: mean (line) ± 1 SD (band) over the valid strides of the plotted window; left blue, right orange. {band_text}{clip}"),
+            &format!("Shank pitch (sagittal inclination) from heel strike (0 %) to the next heel strike (100 %) of the same leg: mean (line) ± 1 SD (band) over the leg's valid strides, those of the steady window (n in the legend); left blue, right orange. {band_text}{clip}"),
             &[plots::CYCLE_X_LABEL, "shank pitch (deg)"],
             plots::CYCLE_PRINT,
         )
@@ -231,26 +171,41 @@ mod tests {
     use super::*;
 
     #[test]
-    fn strides_are_normalised_to_the_cycle() {
-        // A ramp sampled at 10 Hz from t = 1 s: value = t.
-        let sig: Vec<f64> = (0..50).map(|i| 1.0 + i as f64 / 10.0).collect();
-        let c = time_normalise(&sig, 1.0, 10.0, 2.0, 3.0, 11).unwrap();
-        for (k, v) in c.iter().enumerate() {
-            assert!((v - (2.0 + k as f64 / 10.0)).abs() < 1e-12);
-        }
-        // Between samples: linear interpolation.
-        let c = time_normalise(&sig, 1.0, 10.0, 2.05, 2.15, 3).unwrap();
-        assert!((c[1] - 2.1).abs() < 1e-12);
-        assert!(time_normalise(&sig, 1.0, 10.0, 0.5, 2.0, 11).is_none());
-        assert!(time_normalise(&sig, 1.0, 10.0, 3.0, 2.0, 11).is_none());
+    fn the_reference_band_needs_enough_legs() {
         let curve = CycleCurve::of(&[vec![1.0, 2.0], vec![3.0, 2.0]]).unwrap();
-        assert_eq!(curve.mean_deg, vec![2.0, 2.0]);
-        assert!((curve.sd_deg[0] - 2f64.sqrt()).abs() < 1e-12);
-        assert_eq!(curve.sd_deg[1], 0.0);
-        assert!(CycleCurve::of(&[vec![1.0]]).is_none());
         let r = CycleReference::from_legs(&[curve.clone(), curve.clone()], 3);
         assert_eq!((r.band.is_none(), r.n_legs), (true, 2));
         let r = CycleReference::from_legs(&[curve.clone(), curve], 2);
         assert_eq!(r.band.unwrap().n, 2);
+    }
+
+    #[test]
+    fn the_curve_is_the_traces_own_over_every_valid_stride() {
+        // Issue 50: a trace's curve over the walk's 98 steady strides, not the excerpt's 5.
+        let curve = CycleCurve {
+            mean_deg: vec![0.0; CYCLE_POINTS],
+            sd_deg: vec![1.0; CYCLE_POINTS],
+            n: 98,
+        };
+        let leg = LegTrace {
+            side: "left".into(),
+            fs_hz: 100.0,
+            start_s: 0.0,
+            acc_g: Default::default(),
+            gyro_dps: Default::default(),
+            roll_deg: vec![],
+            pitch_deg: vec![],
+            hs_s: vec![],
+            to_s: vec![],
+            stance_s: vec![],
+            read_notes: vec![],
+            alignment_notes: vec![],
+            gaps_s: vec![],
+            cycle: Some(curve),
+        };
+        assert_eq!(pitch_cycle(&leg, &[]).unwrap().n, 98);
+        // A trace without one (written before) pools the excerpt's strides: none here.
+        let old = LegTrace { cycle: None, ..leg };
+        assert!(pitch_cycle(&old, &[]).is_none());
     }
 }

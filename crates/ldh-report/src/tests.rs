@@ -493,6 +493,7 @@ fn clipped_figures_say_so_in_their_caption() {
         read_notes: vec![],
         alignment_notes: vec![],
         gaps_s: vec![],
+        cycle: None,
     };
     let s = SubjectReport {
         subject_id: "C".into(),

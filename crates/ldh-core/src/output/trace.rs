@@ -93,6 +93,11 @@ pub struct LegTrace {
     pub alignment_notes: Vec<String>,
     /// Gaps found in the file, as (time before the gap in the file clock s, length s).
     pub gaps_s: Vec<(f64, f64)>,
+    /// The shank-pitch gait cycle over every valid stride of the leg (those of the walk's
+    /// steady window), mean ± SD in deg at 2 decimals ([`super::cycle::pitch_cycle_of`]);
+    /// absent with fewer than 2 valid strides, and in traces written before 2026-12-02.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cycle: Option<super::cycle::CycleCurve>,
 }
 
 fn round(v: &[f64], dec: i32) -> Vec<f64> {
@@ -101,8 +106,11 @@ fn round(v: &[f64], dec: i32) -> Vec<f64> {
 }
 
 impl LegTrace {
-    /// The excerpt of an analysed leg: the window starts `lead_s` before the first heel strike
-    /// of the longest run of valid strides (the start of the recording when there is none).
+    /// The excerpt of an analysed leg: from `lead_s` before a heel strike in the middle of the
+    /// longest run of valid strides (inside the walk's steady window, whose edges are a
+    /// transient's end; issue 50: an excerpt of the belt's start-up), at the run's first heel
+    /// strike when the run is shorter than the window; the start of the recording when there
+    /// is no valid stride.
     /// `None` when the leg kept no signals (a result read back from JSON).
     pub fn of(leg: &LegResult, p: &ValidTraceParams) -> Option<LegTrace> {
         let p = &p.0;
@@ -128,7 +136,17 @@ impl LegTrace {
             }
         }
         let start_s = best
-            .map(|(a, _)| (leg.strides[a].hs_time_s - p.lead_s).max(0.0))
+            .map(|(a, b)| {
+                let run = &leg.strides[a..=b];
+                let (first, end) = (run[0].hs_time_s, run[run.len() - 1].next_hs_time_s);
+                let want = 0.5 * (first + end - p.window_s);
+                let hs = run
+                    .iter()
+                    .map(|s| s.hs_time_s)
+                    .find(|&t| t >= want)
+                    .unwrap_or(first);
+                (hs - p.lead_s).max(0.0)
+            })
             .unwrap_or(0.0);
         let i0 = ((start_s * fs).round() as usize).min(n - 1);
         let i1 = (i0 + (p.window_s * fs).round() as usize).min(n);
@@ -179,6 +197,7 @@ impl LegTrace {
             read_notes: leg.read.notes.clone(),
             alignment_notes: leg.alignment.notes.clone(),
             gaps_s: leg.read.gaps.iter().map(|g| (g.from_s, g.gap_s)).collect(),
+            cycle: super::cycle::pitch_cycle_of(leg).map(|c| c.rounded(2)),
         })
     }
 }

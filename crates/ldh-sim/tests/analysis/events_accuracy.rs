@@ -169,4 +169,4 @@ fn events_accuracy_on_the_simulators() {
     assert!(worst_hs <= 30.0, "{}", lines.join("\n"));
 }
 
-mod tripod;
+pub(crate) mod tripod;

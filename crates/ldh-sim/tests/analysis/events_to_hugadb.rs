@@ -27,7 +27,7 @@ const FS_HZ: f64 = 58.8;
 const CLEAN: [&str; 5] = ["01_00", "06_00", "08_02-Test", "10_00-Test", "11_03-Test"];
 
 /// `LDH_REALDATA/hugadb`, or `shared/realdata/hugadb` in a folder above this crate.
-fn hugadb_dir() -> Option<PathBuf> {
+pub(crate) fn hugadb_dir() -> Option<PathBuf> {
     let mut c: Vec<PathBuf> = Vec::new();
     if let Ok(d) = std::env::var("LDH_REALDATA") {
         c.push(Path::new(&d).join("hugadb"));

@@ -19,3 +19,4 @@ mod pipeline_inputs;
 mod pipeline_steady;
 mod quality;
 mod quality_faults;
+mod real_walks;

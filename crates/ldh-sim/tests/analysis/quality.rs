@@ -55,11 +55,10 @@ fn sensors_rotated_about_the_shank_never_look_swapped() {
             all.extend(leg.warnings.iter().cloned());
         }
         for w in &all {
-            // A turn of 180° makes identical lateral devices look exchanged: only then may the
-            // mounting note appear, and nothing is ever more than a note.
-            let near_180 = (deg - 180.0).abs() <= CANONICAL_MOUNT_DEG + 15.0;
-            let swap_ok =
-                w.code == codes::POSSIBLE_SWAP && near_180 && w.severity == Severity::Note;
+            // A turn of 180° makes identical lateral devices face inward, as exchanged files
+            // do: only with both faces more than MEDIAL_FACE_DEG inward may the swap appear.
+            let inward = (deg - 180.0).abs() < 90.0 - MEDIAL_FACE_DEG;
+            let swap_ok = w.code == codes::POSSIBLE_SWAP && inward;
             if [codes::POSSIBLE_SWAP, codes::RUNNING, codes::UPSIDE_DOWN].contains(&w.code)
                 && !swap_ok
             {
@@ -68,6 +67,41 @@ fn sensors_rotated_about_the_shank_never_look_swapped() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Issue 50: a manifest that names the right leg's file as left. Identical devices worn
+/// laterally (family A's right device mirrored) with the files exchanged: the swap warning, on
+/// every subject of a cohort; with the files as recorded: none.
+#[test]
+fn exchanged_files_are_warned_about() {
+    let c = ldh_sim::CohortParams {
+        healthy: 3,
+        ldh: 3,
+        duration_s: 25.0,
+        seed: 50,
+        ..ldh_sim::CohortParams::default()
+    };
+    for i in 0..c.len() {
+        let mut sub = c.simulate(i).unwrap();
+        let swap = |res: &ldh_core::pipeline::SubjectResult| {
+            res.warnings
+                .iter()
+                .find(|w| w.code == codes::POSSIBLE_SWAP)
+                .cloned()
+        };
+        let id = sub.params.subject_id.clone();
+        assert!(
+            swap(&ldh_sim::analyze_simulated(&sub, &without_sta())).is_none(),
+            "{id}"
+        );
+        let (l, r) = (sub.left.recording.clone(), sub.right.recording.clone());
+        sub.left.recording = r.with_side(ldh_core::recording::Side::Left);
+        sub.right.recording = l.with_side(ldh_core::recording::Side::Right);
+        let w = swap(&ldh_sim::analyze_simulated(&sub, &without_sta()));
+        let w = w.unwrap_or_else(|| panic!("{id}: no swap warning"));
+        assert_eq!(w.severity, Severity::Warning);
+        assert!(w.message.contains("may be swapped"), "{}", w.message);
+    }
 }
 
 fn stride(i: usize, t: f64, stance: f64) -> ldh_core::gait::Stride {

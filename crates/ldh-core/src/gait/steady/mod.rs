@@ -21,17 +21,20 @@
 //!    time (the slow wandering of a healthy walk's stride time, Hausdorff 2005, stays within
 //!    it).
 //! 5. Where that run stops short of an end of the walk, the transient it left out (a belt's
-//!    start-up, a slowing down) may go on inside the band: a 30 s ramp keeps its last 10 s
-//!    there. Its tail is cut by a CUSUM read from the run's edge inward (Page 1954,
-//!    Biometrika 41:100–115; Montgomery 2009 §9.1), on each leg: the leg's deviations from its
-//!    median stride time in the run, in the transient's direction and in units of the leg's
-//!    own moving-range σ (which a slow wander of a variable walker's pace does not shrink the
-//!    way it inflates the SD), less `cusum_allowance_sds` (½ σ) per stride; the window begins
-//!    after the stride where that sum peaks, when the peak exceeds `cusum_limit_sds` (2 σ).
-//!    The later of the legs' starts and the earlier of their ends make the one window. Only an
-//!    end where the run left something out is cut: a steady walk loses nothing.
-//! 6. A walk whose longest such run holds fewer than `min_steady_share` (half) of its valid
-//!    strides has no steady pace: it speeds up or slows down throughout, or changes its pace
+//!    start-up, a slowing down) may go on inside the band (a 30 s ramp keeps its last 10 s
+//!    there), and the run may also stop short of the transient by chance (a walk's level
+//!    brushes the band's edge: issue 50's L02 ended its run at 63 s of a walk that slowed down
+//!    from 76 s). So the transient is measured from the walk's end itself, over the strides up
+//!    to the run's middle, by a segmented regression (Muggeo 2003, Stat Med 22:3055–3071): a
+//!    ramp that meets a constant level (`level + β·(c − i)` over its first `c` strides) or a
+//!    step to it, fitted by least squares for every `c`. A model counts when its excursion at
+//!    the end lies beyond the band of step 4 (the walk's own variation stays inside) and it
+//!    reduces the squared error by more than `2 ln n` σ² (Schwarz 1978, Ann Stat 6:461–464,
+//!    for its two parameters); the window begins (ends) after the `c` strides of the one
+//!    that reduces it more. Only an end where the run left something out is cut: a steady
+//!    walk loses nothing.
+//! 6. A walk whose longest such run, or whose window, holds fewer than `min_steady_share`
+//!    (half) of its valid strides has no steady pace: it speeds up or slows down throughout, or changes its pace
 //!    more than once. So has a walk whose window still holds a trend: the least-squares line
 //!    of stride time across it changes by more than `max_trend_share` (8 %) of the median
 //!    (≈ 7 standard errors of that change on a 110-stride walk with a CV of 3.4 %, room for
@@ -90,11 +93,6 @@ pub struct SteadyParams {
     /// Largest change of stride time across the window along its least-squares line, as a
     /// share of the median; a window with more never becomes steady. Default 0.08.
     pub max_trend_share: f64,
-    /// Allowance of the CUSUM that finds where a transient's tail ends inside the band, in
-    /// short-term SDs σ per stride: deviations smaller than this are not the tail. Default 0.5.
-    pub cusum_allowance_sds: f64,
-    /// Decision limit of that CUSUM, in σ: a tail whose sum stays below it is kept. Default 2.
-    pub cusum_limit_sds: f64,
     /// Fewest steady strides of a leg for its variability (CV). Default 10.
     pub min_steady_strides: usize,
     /// Fewest valid strides per leg for the rule to exclude any: a shorter walk's median and
@@ -112,8 +110,6 @@ impl Default for SteadyParams {
             min_range_share: 0.06,
             min_steady_share: 0.5,
             max_trend_share: 0.08,
-            cusum_allowance_sds: 0.5,
-            cusum_limit_sds: 2.0,
             min_steady_strides: 10,
             min_strides_to_trim: 20,
         }
@@ -150,14 +146,6 @@ impl SteadyParams {
                 self.max_trend_share,
                 "must be > 0",
             ));
-        }
-        for (name, v) in [
-            ("cusum_allowance_sds", self.cusum_allowance_sds),
-            ("cusum_limit_sds", self.cusum_limit_sds),
-        ] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(LdhError::param(name, v, "must be > 0"));
-            }
         }
         if self.smooth_strides == 0 || self.smooth_strides.is_multiple_of(2) {
             return Err(LdhError::param(

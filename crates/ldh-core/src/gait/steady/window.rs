@@ -1,5 +1,6 @@
 //! The steady window of a walk's strides ([module docs](super): a control chart on a running
-//! median finds the longest stretch at one pace, a CUSUM on each leg trims its ends).
+//! median finds the longest stretch at one pace, a segmented regression from each end of the
+//! walk it did not reach finds where the transient there ends).
 
 use super::ValidSteadyParams;
 use crate::stats::{median, EvenMedian};
@@ -54,9 +55,10 @@ pub fn walk_window(stride_time_s: &[f64], leg: &[usize], p: &ValidSteadyParams) 
     let level = running_median(t, p.smooth_strides / 2);
     let core = longest_within(&level, range);
     let longest_share = (core.1 + 1 - core.0) as f64 / n as f64;
-    let (a, b) = trim_tails(t, leg, &level, core, &p);
+    let (a, b) = trim_transients(t, &level, core, range, sigma);
     if a > b
         || longest_share < p.min_steady_share
+        || ((b + 1 - a) as f64) < p.min_steady_share * n as f64
         || fitted_change(&t[a..=b]).abs() > p.max_trend_share * centre
     {
         return WalkWindow {
@@ -73,81 +75,90 @@ pub fn walk_window(stride_time_s: &[f64], leg: &[usize], p: &ValidSteadyParams) 
 }
 
 /// Step 5 of the [module docs](super): where the longest stretch at one pace (`core`) stops
-/// short of an end of the walk, the transient it left out may go on inside it, below the band.
-/// For each leg, from the core's edge inward to its middle, the deviations from the leg's
-/// median stride time in the core, in the transient's direction (the level just outside the
-/// core against the core's median) and in units of the leg's short-term SD σ (its moving
-/// range in the core), are summed less `cusum_allowance_sds` per stride ([`tail_length`]); the
-/// window starts (ends) after the strides where that sum peaks, when it peaks above
-/// `cusum_limit_sds`. Both legs' cuts apply to the one window.
-fn trim_tails(
+/// short of an end of the walk, the transient it left out (a start-up, a slowing down) is
+/// measured from that end of the walk to the core's middle by [`transient_length`], in the
+/// direction of the level just outside the core against the core's median. `range` is the band
+/// of step 4 (an excursion inside it is the walk's own variation) and `sigma` the short-term SD.
+/// Returns the window, `(0, n − 1)` when nothing is cut.
+fn trim_transients(
     t: &[f64],
-    leg: &[usize],
     level: &[f64],
     (core_a, core_b): (usize, usize),
-    p: &super::SteadyParams,
+    range: f64,
+    sigma: f64,
 ) -> (usize, usize) {
     let n = t.len();
-    let (mut a, mut b) = (core_a, core_b);
     let mid = (core_a + core_b) / 2;
     let Some(core_median) = median(&mut t[core_a..=core_b].to_vec(), EvenMedian::Mean) else {
-        return (a, b);
+        return (0, n - 1);
     };
-    // The direction of the transient left out at each end (None: nothing left out).
-    let dir = |k: Option<usize>| k.map(|k| if level[k] > core_median { 1.0 } else { -1.0 });
-    let head = dir(core_a.checked_sub(1));
-    let tail = dir((core_b + 1 < n).then_some(core_b + 1));
-    for l in 0..2 {
-        let mine: Vec<usize> = (core_a..=core_b).filter(|&i| leg[i].min(1) == l).collect();
-        let x: Vec<f64> = mine.iter().map(|&i| t[i]).collect();
-        let (Some(m), Some(s)) = (
-            median(&mut x.clone(), EvenMedian::Mean),
-            moving_range_sd(&x, &vec![0; x.len()]),
-        ) else {
-            continue;
-        };
-        if s <= 0.0 {
-            continue;
-        }
-        let (k, h) = (p.cusum_allowance_sds, p.cusum_limit_sds);
-        let split = mine.partition_point(|&i| i < mid);
-        if let Some(d) = head {
-            let inward = &mine[..split];
-            let j = tail_length(inward.iter().map(|&i| d * (t[i] - m) / s), k, h);
-            if j > 0 {
-                a = a.max(inward[j - 1] + 1);
-            }
-        }
-        if let Some(d) = tail {
-            let inward: Vec<usize> = mine[split..].iter().rev().copied().collect();
-            let j = tail_length(inward.iter().map(|&i| d * (t[i] - m) / s), k, h);
-            if j > 0 {
-                b = b.min(inward[j - 1].saturating_sub(1));
-            }
-        }
-    }
+    let dir = |k: usize| if level[k] > core_median { 1.0 } else { -1.0 };
+    let a = if core_a > 0 {
+        transient_length(&t[..=mid], dir(core_a - 1), range, sigma)
+    } else {
+        0
+    };
+    let b = if core_b + 1 < n {
+        let inward: Vec<f64> = t[mid..].iter().rev().copied().collect();
+        n - 1 - transient_length(&inward, dir(core_b + 1), range, sigma)
+    } else {
+        n - 1
+    };
     (a, b)
 }
 
-/// How many of `z` (standardised deviations in a transient's direction, from the edge of the
-/// window inward) are the transient's tail: the count after which the sum of `z − allowance`
-/// peaks (Page's CUSUM, Page 1954, Biometrika 41:100–115, read from the transient's end: its
-/// peak is the most likely change point of a shift of at least 2 × `allowance`; Montgomery
-/// 2009 §9.1), or 0 when the peak is not above `limit`.
-pub(super) fn tail_length(z: impl IntoIterator<Item = f64>, allowance: f64, limit: f64) -> usize {
-    let (mut sum, mut peak, mut at) = (0.0, 0.0, 0);
-    for (i, z) in z.into_iter().enumerate() {
-        sum += z - allowance;
-        if sum > peak {
-            peak = sum;
-            at = i + 1;
+/// How many strides of `y` (stride times from an end of the walk inward) are a transient in
+/// `direction` (+1: longer strides, −1: shorter). Two models of the transient's first `c`
+/// strides against a constant level after them are fitted by least squares for every `c`
+/// (segmented regression, Muggeo 2003, Stat Med 22:3055–3071): a ramp that meets the level at
+/// `c` (`level + β·(c − i)`, a belt's start-up or a slowing down) and a step (`level + β`, a
+/// different pace). A model counts when its excursion at the end of the walk (β·c, or β) lies
+/// beyond `range` (a transient, not the walk's own variation) and its reduction of the
+/// squared error exceeds `2 ln n` σ² (Schwarz's criterion for its two parameters, Schwarz
+/// 1978, Ann Stat 6:461–464); of those, the larger reduction gives the length, else 0.
+pub(super) fn transient_length(y: &[f64], direction: f64, range: f64, sigma: f64) -> usize {
+    let n = y.len();
+    if n < 5 || !(sigma > 0.0) {
+        return 0;
+    }
+    let nf = n as f64;
+    let mean = y.iter().sum::<f64>() / nf;
+    let penalty = 2.0 * nf.ln() * sigma * sigma;
+    // Prefix sums of the centred values d and of i·d.
+    let (mut p, mut q) = (0.0, 0.0);
+    let mut best = (0.0, 0usize);
+    for c in 1..n - 2 {
+        let d = y[c - 1] - mean;
+        p += d;
+        q += (c - 1) as f64 * d;
+        if c < 2 {
+            continue;
+        }
+        let cf = c as f64;
+        // Step: x = 1 for i < c. Ramp: x = c − i for i < c.
+        let step = (p, cf - cf * cf / nf, 1.0);
+        let sx = cf * (cf + 1.0) / 2.0;
+        let ramp = (
+            cf * p - q,
+            cf * (cf + 1.0) * (2.0 * cf + 1.0) / 6.0 - sx * sx / nf,
+            cf,
+        );
+        for (sxy, sxx, scale) in [step, ramp] {
+            if !(sxx > 0.0) {
+                continue;
+            }
+            let beta = sxy / sxx;
+            let gain = sxy * sxy / sxx;
+            if beta * direction > 0.0
+                && (beta * scale).abs() > range
+                && gain > penalty
+                && gain > best.0
+            {
+                best = (gain, c);
+            }
         }
     }
-    if peak > limit {
-        at
-    } else {
-        0
-    }
+    best.1
 }
 
 /// The short-term SD of the stride time: the median absolute difference of each leg's

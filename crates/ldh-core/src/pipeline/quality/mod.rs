@@ -45,7 +45,10 @@ pub use noise::{
     check_length_variability, noise_share, unchecked_warning, variability_warning, walk_noise,
     withhold_unchecked, SV_MAX_INFLATION, SV_MIN_PAIRS,
 };
-pub use pair::{pair_warnings, CANONICAL_MOUNT_DEG, LR_STRIDE_LENGTH_TOL, LR_STRIDE_TIME_TOL};
+pub use pair::{
+    pair_warnings, swapped_mounting, LR_STRIDE_LENGTH_TOL, LR_STRIDE_TIME_TOL, MEDIAL_FACE_DEG,
+    MIRROR_TOL_DEG,
+};
 pub use sensor::{
     sensor_checks, SensorFindings, GYRO_CLIP_SHARE, SCALE_FAULT_SHARE, SHANK_MAX_DPS,
 };

@@ -15,15 +15,21 @@ pub const LR_STRIDE_TIME_TOL: f64 = 0.05;
 /// a measurement error on at least one leg.
 pub const LR_STRIDE_LENGTH_TOL: f64 = 0.10;
 
-/// Mounting angle within which a device counts as aligned with a canonical direction (±y) for
-/// the swap check, deg.
-pub const CANONICAL_MOUNT_DEG: f64 = 20.0;
+/// Largest angle between a device axis (x, z) on one leg and the mirror image (in the sagittal
+/// plane) of the same axis on the other leg for the two devices to count as strapped the same
+/// way on each leg, deg (30).
+pub const MIRROR_TOL_DEG: f64 = 30.0;
+
+/// Smallest angle by which both devices' faces (their +z axes) must turn toward the other leg,
+/// away from straight ahead, for the swap check, deg (30): a strap turned a little round the
+/// front of the shin says nothing.
+pub const MEDIAL_FACE_DEG: f64 = 30.0;
 
 /// Warnings about a pair of legs read from two files: sampling rates that differ by more than
 /// 0.5 %, recordings that do not overlap in time (step time is then not computed), different
 /// lengths or starts (more than 1 s and 5 %), the same signals in both files, stride times or
-/// stride lengths that one walk cannot give, and a mounting that matches identical lateral
-/// devices with the sides exchanged (a note only: mounting alone is weak evidence). Returns the
+/// stride lengths that one walk cannot give, and two devices strapped the same way on
+/// each leg whose faces both point at the other leg (the files swapped, [`swapped_mounting`]). Returns the
 /// warnings and whether the legs share a time span (to pair their heel strikes).
 pub fn pair_warnings(l: &LegResult, r: &LegResult) -> (Vec<Warning>, bool) {
     let mut w = Vec::new();
@@ -55,24 +61,38 @@ pub fn pair_warnings(l: &LegResult, r: &LegResult) -> (Vec<Warning>, bool) {
     } else {
         w.extend(disagreement(l, r));
     }
-    if swapped_mounting(l, r) {
-        w.push(Warning::new(codes::POSSIBLE_SWAP, Severity::Note, format!(
-            "the left device is mounted with its y axis backwards ({:.0} deg) and the right one forwards ({:.0} deg): the mounting of identical devices worn on the lateral side of both shanks, with the files exchanged. If the devices were worn that way, check that the left and right files are not swapped; the results keep the sides as given",
-            l.alignment.axial_rotation_deg, r.alignment.axial_rotation_deg
+    if let Some((fl, fr)) = swapped_mounting(l, r) {
+        w.push(Warning::new(codes::POSSIBLE_SWAP, Severity::Warning, format!(
+            "the left and right files may be swapped: the two devices are strapped the same way on each leg (mirror images), but each faces the other leg (the left one {fl:.0}° toward the right, the right one {fr:.0}° toward the left), as the files of devices worn facing outwards do when they are exchanged. Check which file is which leg's; the results keep the sides as given"
         )));
     }
     (w, overlapping)
 }
 
-/// The left device's anterior direction within [`CANONICAL_MOUNT_DEG`] of −y and the right one's
-/// within it of +y: identical lateral devices with the files exchanged. A rotation about the
-/// shank axis (50-70° is common) leaves the mounting ambiguous and gives nothing.
-fn swapped_mounting(l: &LegResult, r: &LegResult) -> bool {
+/// The swap rule (docs/quality.md "Pair checks"): the two devices are mirror images of each
+/// other — each one's x and z axes within [`MIRROR_TOL_DEG`] of the other's reflected in the
+/// sagittal plane, as identical devices strapped at the same place on each shank are — and
+/// both faces (+z, the axis out of a device's face) point at the other leg by more than
+/// [`MEDIAL_FACE_DEG`]: the left device toward the right, the right one toward the left. A
+/// device is worn on the outside or the front of the shank, facing out, so two faces turned
+/// inward are the two files exchanged (or two devices worn face in, which the message names).
+/// Devices strapped differently on the two legs, or facing forward, give nothing. Returns how
+/// far each face turns inward, deg (left, right).
+pub fn swapped_mounting(l: &LegResult, r: &LegResult) -> Option<(f64, f64)> {
+    let axis = |a: &crate::align::Alignment, k: usize| {
+        let m = &a.r_f_from_device;
+        [m[0][k], m[1][k], m[2][k]]
+    };
     let (la, ra) = (&l.alignment, &r.alignment);
-    la.mirrored
-        && !ra.mirrored
-        && la.axial_rotation_deg.abs() <= CANONICAL_MOUNT_DEG
-        && ra.axial_rotation_deg.abs() <= CANONICAL_MOUNT_DEG
+    let cos_tol = MIRROR_TOL_DEG.to_radians().cos();
+    let mirrored = [0, 2].into_iter().all(|k| {
+        let (u, v) = (axis(la, k), axis(ra, k));
+        u[0] * v[0] - u[1] * v[1] + u[2] * v[2] >= cos_tol
+    });
+    // How far a face turns to the left (+) or right (−), deg.
+    let leftward = |a| axis(a, 2)[1].clamp(-1.0, 1.0).asin().to_degrees();
+    let (fl, fr) = (-leftward(la), leftward(ra));
+    (mirrored && fl > MEDIAL_FACE_DEG && fr > MEDIAL_FACE_DEG).then_some((fl, fr))
 }
 
 /// The same signals in both files (the same file given twice, or a copy): every stride time

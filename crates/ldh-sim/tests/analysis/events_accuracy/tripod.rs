@@ -4,7 +4,7 @@ use super::*;
 use ldh_core::domain::Parameter;
 
 /// `LDH_REALDATA/tripod`, or `shared/realdata/tripod` in a folder above this crate.
-fn tripod_dir() -> Option<PathBuf> {
+pub(crate) fn tripod_dir() -> Option<PathBuf> {
     let mut c: Vec<PathBuf> = Vec::new();
     if let Ok(d) = std::env::var("LDH_REALDATA") {
         c.push(Path::new(&d).join("tripod"));
@@ -20,7 +20,7 @@ fn tripod_dir() -> Option<PathBuf> {
 
 /// A Physilog export (7 header lines): time (s), acceleration (g), angular velocity (deg/s),
 /// rows up to `until_s`.
-fn read_physilog(path: &Path, until_s: f64) -> (Vec<f64>, [Vec<f64>; 3], [Vec<f64>; 3]) {
+pub(crate) fn read_physilog(path: &Path, until_s: f64) -> (Vec<f64>, [Vec<f64>; 3], [Vec<f64>; 3]) {
     let text = std::fs::read_to_string(path).unwrap();
     let (mut t, mut acc, mut gyro): (Vec<f64>, [Vec<f64>; 3], [Vec<f64>; 3]) = Default::default();
     for line in text.lines().skip(7) {
@@ -43,7 +43,7 @@ fn read_physilog(path: &Path, until_s: f64) -> (Vec<f64>, [Vec<f64>; 3], [Vec<f6
 
 /// ldh's frame from TRIPOD's shank sensors: x up the shank (the sensor's +y), y = −x, z = +z
 /// (the sagittal rotation is on the sensor's z): a rotation.
-fn to_ldh_frame(v: [Vec<f64>; 3]) -> [Vec<f64>; 3] {
+pub(crate) fn to_ldh_frame(v: [Vec<f64>; 3]) -> [Vec<f64>; 3] {
     let [x, y, z] = v;
     [y, x.iter().map(|a| -a).collect(), z]
 }
@@ -313,10 +313,11 @@ fn alternatives(
 }
 
 /// The three TRIPOD runs: (folder, belt speed m/s).
-const TRIPOD_RUNS: [(&str, f64); 3] = [("PWS-20", 0.833), ("PWS", 1.028), ("PWS+20", 1.222)];
+pub(crate) const TRIPOD_RUNS: [(&str, f64); 3] =
+    [("PWS-20", 0.833), ("PWS", 1.028), ("PWS+20", 1.222)];
 
 /// Only the first 125 s of a run (PROVENANCE.md: then the belt slows).
-const TRIPOD_UNTIL_S: f64 = 125.0;
+pub(crate) const TRIPOD_UNTIL_S: f64 = 125.0;
 
 /// TRIPOD's shank sensor height is not given: stride lengths are scored with this one (m; a
 /// mid-shank strap on a 172.5 cm adult, docs/accuracy.md).

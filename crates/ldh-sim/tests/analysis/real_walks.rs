@@ -1,0 +1,232 @@
+//! The steady window on real walks (issue 50): it must not cut steady walking. HuGaDB's
+//! overground walks (18 files, 17 healthy young adults) and TRIPOD's treadmill runs (one healthy
+//! adult at three belt speeds, steady by design for the first 125 s; then the belt slows to a
+//! stop), when `../shared/realdata` is present (one line when skipped). Each walk is analysed
+//! with and without the rule; the share of its valid strides the window keeps is printed per
+//! leg and asserted. The same walks check the swap warning: none on the files as labelled,
+//! and, printed, whether it fires with the two files exchanged.
+//!
+//! `cargo test --profile ci -p ldh-sim --test analysis real_walks -- --nocapture`
+
+use super::events_accuracy::tripod::{
+    read_physilog, to_ldh_frame, tripod_dir, TRIPOD_RUNS, TRIPOD_UNTIL_S,
+};
+use super::events_to_hugadb::hugadb_dir;
+use ldh_core::gait::STEADY_REASON;
+use ldh_core::io::{read_recording, FormatSpec, ReadParams};
+use ldh_core::pipeline::quality::{codes, swapped_mounting};
+use ldh_core::pipeline::{
+    memory_report, Analysis, AnalysisParams, LoadedLeg, SubjectInput, SubjectResult,
+};
+use ldh_core::recording::{Recording, Side};
+use std::path::Path;
+
+/// The default analysis without STA, the steady rule on or off.
+fn params(steady: bool) -> AnalysisParams {
+    let mut p = AnalysisParams {
+        compute_sta: false,
+        ..AnalysisParams::default()
+    };
+    p.steady.enabled = steady;
+    p
+}
+
+/// One HuGaDB file's shank on `side` through the built-in format map.
+pub(crate) fn hugadb_leg(dir: &Path, file: &str, side: &str) -> LoadedLeg {
+    let path = dir.join(format!("HuGaDB_v1_walking_{file}.txt"));
+    let spec = FormatSpec::builtin(&format!("hugadb-{side}-shank")).unwrap();
+    let rp = ReadParams::default().check().unwrap();
+    let rec = read_recording(&path, Some(&spec), &rp).unwrap().0;
+    let rep = memory_report(&rec);
+    Ok((rec, rep, format!("{file}/{side}")))
+}
+
+/// The HuGaDB files present (every `HuGaDB_v1_walking_*.txt`), by name.
+pub(crate) fn hugadb_files(dir: &Path) -> Vec<String> {
+    let mut f: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .filter_map(|e| {
+            let n = e.ok()?.file_name().into_string().ok()?;
+            Some(
+                n.strip_prefix("HuGaDB_v1_walking_")?
+                    .strip_suffix(".txt")?
+                    .to_string(),
+            )
+        })
+        .collect();
+    f.sort();
+    f
+}
+
+/// One TRIPOD shank (`LS.csv` / `RS.csv`) of `run`, rows up to `until_s`.
+pub(crate) fn tripod_leg(dir: &Path, run: &str, file: &str, side: Side, until_s: f64) -> LoadedLeg {
+    let imu = dir.join("Sub_FZ").join(run).join("IMU");
+    let (_, acc, gyro) = read_physilog(&imu.join(file), until_s);
+    let rec = Recording::new(128.0, to_ldh_frame(acc), to_ldh_frame(gyro), vec![])
+        .unwrap()
+        .with_side(side);
+    let rep = memory_report(&rec);
+    Ok((rec, rep, format!("{run}/{file}")))
+}
+
+/// Per leg of an analysed walk: (valid strides without the rule, strides the rule excluded).
+fn kept(on: &SubjectResult, off: &SubjectResult) -> Vec<(Side, usize, usize, String)> {
+    let mut out = Vec::new();
+    for (a, b) in [(&on.left, &off.left), (&on.right, &off.right)] {
+        let (Ok(a), Ok(b)) = (a.as_ref(), b.as_ref()) else {
+            continue;
+        };
+        let valid = b.strides.iter().filter(|s| s.valid).count();
+        let cut = a
+            .strides
+            .iter()
+            .filter(|s| s.reason.contains(STEADY_REASON))
+            .count();
+        let w = a.steady.map_or("no window".into(), |w| {
+            format!(
+                "window {:.1}–{:.1} s, excluded {} + {}{}",
+                w.start_s,
+                w.end_s,
+                w.excluded_start,
+                w.excluded_end,
+                if w.never_steady { ", never steady" } else { "" }
+            )
+        });
+        out.push((a.side, valid, cut, w));
+    }
+    out
+}
+
+/// `leg` given as the other side's file (a manifest with the files exchanged).
+fn as_side(leg: LoadedLeg, side: Side) -> LoadedLeg {
+    leg.map(|(rec, rep, name)| (rec.with_side(side), rep, name))
+}
+
+/// Whether the swap warning fires on a walk's result, and how far each device's face turns
+/// toward the other leg (deg; negative: away from it).
+fn swap_finding(res: &SubjectResult) -> (bool, String) {
+    let fired = res.warnings.iter().any(|w| w.code == codes::POSSIBLE_SWAP);
+    let faces = match (res.left.as_ref(), res.right.as_ref()) {
+        (Ok(l), Ok(r)) => {
+            let face = |a: &ldh_core::align::Alignment| {
+                a.r_f_from_device[1][2].clamp(-1.0, 1.0).asin().to_degrees()
+            };
+            format!(
+                "faces {:.0}° / {:.0}° inward{}",
+                -face(&l.alignment),
+                face(&r.alignment),
+                if swapped_mounting(l, r).is_some() {
+                    " (swap rule met)"
+                } else {
+                    ""
+                }
+            )
+        }
+        _ => "a leg failed".into(),
+    };
+    (fired, faces)
+}
+
+/// Analyse `input` with the two legs `leg()` gives, with and without the rule; print and return
+/// the per-leg kept shares. Also the swap check with the files as given (pushed to `false_swaps`
+/// when it fires) and exchanged.
+fn shares(
+    name: &str,
+    input: &SubjectInput,
+    leg: impl Fn(Side) -> LoadedLeg,
+    false_swaps: &mut Vec<String>,
+) -> Vec<f64> {
+    let run = |steady: bool| {
+        Analysis::new(params(steady).check().unwrap()).pair(
+            input,
+            leg(Side::Left),
+            leg(Side::Right),
+        )
+    };
+    let (on, off) = (run(true), run(false));
+    let exchanged = Analysis::new(params(true).check().unwrap()).pair(
+        input,
+        as_side(leg(Side::Right), Side::Left),
+        as_side(leg(Side::Left), Side::Right),
+    );
+    let ((fired, faces), (fired_x, _)) = (swap_finding(&on), swap_finding(&exchanged));
+    println!("{name}: swap warning as labelled {fired}, files exchanged {fired_x}; {faces}");
+    if fired {
+        false_swaps.push(name.to_string());
+    }
+    kept(&on, &off)
+        .into_iter()
+        .map(|(side, valid, cut, w)| {
+            let share = 1.0 - cut as f64 / valid.max(1) as f64;
+            println!(
+                "{name} {side}: {valid} valid strides, {cut} excluded as not steady, {:.1} % kept; {w}",
+                100.0 * share
+            );
+            share
+        })
+        .collect()
+}
+
+#[test]
+fn the_steady_window_keeps_steady_real_walking() {
+    let (Some(hu), Some(tr)) = (hugadb_dir(), tripod_dir()) else {
+        println!("skipped: ../shared/realdata (hugadb, tripod) not found (set LDH_REALDATA)");
+        return;
+    };
+    let mut all = Vec::new();
+    let mut false_swaps = Vec::new();
+    for file in hugadb_files(&hu) {
+        let input = SubjectInput {
+            subject_id: file.clone(),
+            ..SubjectInput::default()
+        };
+        let s = shares(
+            &format!("HuGaDB {file}"),
+            &input,
+            |side| hugadb_leg(&hu, &file, side.as_str()),
+            &mut false_swaps,
+        );
+        all.extend(s);
+    }
+    let hugadb_min = all.iter().fold(1.0_f64, |a, &b| a.min(b));
+    let mut tripod = Vec::new();
+    let mut full = Vec::new();
+    for (run, belt) in TRIPOD_RUNS {
+        let input = SubjectInput {
+            subject_id: format!("Sub_FZ {run}"),
+            setting: Some(ldh_core::Setting::Treadmill),
+            belt_speed_mps: Some(belt),
+            ..SubjectInput::default()
+        };
+        for (until, out) in [(TRIPOD_UNTIL_S, &mut tripod), (f64::INFINITY, &mut full)] {
+            let name = format!("TRIPOD {run} until {until} s");
+            let leg = |side: Side| {
+                let file = if side == Side::Left {
+                    "LS.csv"
+                } else {
+                    "RS.csv"
+                };
+                tripod_leg(&tr, run, file, side, until)
+            };
+            out.extend(shares(&name, &input, leg, &mut false_swaps));
+        }
+    }
+    let min = |v: &[f64]| v.iter().fold(1.0_f64, |a, &b| a.min(b));
+    println!(
+        "kept (smallest leg): HuGaDB {:.1} %, TRIPOD first 125 s {:.1} %, TRIPOD whole runs {:.1} %",
+        100.0 * hugadb_min,
+        100.0 * min(&tripod),
+        100.0 * min(&full)
+    );
+    // Measured 2026-12-02 (docs/accuracy.md "Steady walking"): HuGaDB 53.1 % (03_01, one leg
+    // of 32 strides whose first 15 are slower), TRIPOD 84.9 % (PWS: the first 24 s, strides
+    // 1.35 s shortening to 1.25 s, are a real start-up), 88.6 % on whole runs; the CUSUM rule
+    // before it kept 27.8 % of TRIPOD's PWS run.
+    assert!(hugadb_min >= 0.5, "HuGaDB {hugadb_min}");
+    // Issue 50: no swap warning on a correctly labelled real walk.
+    assert!(false_swaps.is_empty(), "{false_swaps:?}");
+    assert!(
+        min(&tripod) >= 0.8 && min(&full) >= 0.8,
+        "{tripod:?} {full:?}"
+    );
+}
