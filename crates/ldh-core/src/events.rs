@@ -22,8 +22,9 @@
 //!   (`events/impact.rs`; a strike without one at the crossing plus the walk's median delay,
 //!   unsure), else as in `GyroZeroCrossing`; every event with a confidence
 //!   (`events/confidence.rs`); TO at a fraction of
-//!   the bracket [t_s, t_p], raised on the leg whose landmark geometry and swing arc are both
-//!   stiffer than the subject's other leg's, placed per subject by [`place_bilateral`]
+//!   the bracket [t_s, t_p], raised on the leg whose swing arc is shorter than the subject's
+//!   other leg's (further when its landmark geometry is stiffer too), placed per subject by
+//!   [`place_bilateral`]
 //!   (`events/bracket.rs`).
 //!
 //! The offsets and coefficients were fitted on a simulated tuning cohort (family A seed 100)
@@ -51,7 +52,8 @@ mod tests_matching;
 
 pub use bracket::{
     bracket_fraction, bracket_toe_off_s, landmark_geometry, place_bilateral, LegGeometry,
-    BRACKET_K0, BRACKET_MAX, BRACKET_SLOPE, MIN_BRACKETS, SAME_WALK_STRIDE_TOLERANCE,
+    BRACKET_ARC_SLOPE, BRACKET_K0, BRACKET_MAX, BRACKET_SLOPE, MIN_BRACKETS,
+    SAME_WALK_STRIDE_TOLERANCE,
 };
 pub use calibration::{EventCalibration, MAX_CALIBRATION_SHIFT_S};
 pub use confidence::{hs_confidence_at, to_confidence_at, unsure_events, UnsureEvent};
@@ -86,8 +88,8 @@ pub enum EventDetector {
     GyroLandmarks,
     /// HS at each strike's impact where the walk shows impacts (else the ω_s zero crossing
     /// plus an offset), TO at a fraction of the bracket between the late-stance
-    /// peak of ω_s and the pitch peak, raised on the leg whose landmark geometry and swing arc
-    /// are both stiffer than the subject's other leg's (default).
+    /// peak of ω_s and the pitch peak, raised on the leg whose swing arc is shorter than the
+    /// subject's other leg's, further when its landmark geometry is stiffer too (default).
     #[default]
     GyroBracket,
 }

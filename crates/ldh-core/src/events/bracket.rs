@@ -17,9 +17,12 @@
 //! stiff-knee and paretic legs do (reduced knee flexion in swing; Kerrigan et al. 1991, Am J
 //! Phys Med Rehabil 70:294), so a leg is raised only when both signs say it is the stiffer.
 //!
-//! TO = t_s + k·(t_p − t_s), k = k₀ + s·max(0, ln(ρ/ρ_other)), clamped to [k₀, 1.5], when the
-//! leg's swing arc (−∫ω_s dt from t_p to the next heel strike) is shorter than the other leg's;
-//! else k = k₀. ρ and the arc are the leg's medians over its strides. With no other leg (or
+//! TO = t_s + k·(t_p − t_s), k = k₀ + s·max(0, ln(ρ/ρ_other)) + s_arc·ln(arc_other/arc),
+//! clamped to [k₀, 1.5], when the leg's swing arc (−∫ω_s dt from t_p to the next heel strike) is
+//! shorter than the other leg's; else k = k₀. The arc term (issue 49) raises a paretic leg
+//! whose stiff knee flattens its pitch peak: its bracket widens, its ρ can fall below the other
+//! leg's, and without the term its toe off came 25–40 ms early on family B; s_arc was fitted on
+//! family A alone (docs/accuracy.md "Toe off by the swing arc"). ρ and the arc are the leg's medians over its strides. With no other leg (or
 //! fewer than [`MIN_BRACKETS`] strides on either, or a partner whose gyroscope is faulty:
 //! `pipeline::subject` does not pass it) k = k₀; with too few arcs on either leg, ρ alone
 //! decides. k₀ and s are least squares on family A's tuning cohort (seed 100: 10 healthy, 10 LDH,
@@ -37,6 +40,13 @@ pub const BRACKET_K0: f64 = 0.38855;
 
 /// s: how much k rises per unit of ln(ρ/ρ_other) (least squares on family A seed 100).
 pub const BRACKET_SLOPE: f64 = 0.87179;
+
+/// s_arc: how much k rises per unit of ln(arc_other/arc) on the leg whose swing arc is the
+/// shorter (issue 49; least squares on family A seeds 100–103 with k₀ and s kept, weighted by
+/// the bracket width so that it minimises the error in ms; family B was not fitted on). A
+/// paretic leg whose pitch peak is flattened by its stiff knee can have the smaller ρ of the two
+/// and still leave the ground late in its bracket; its shorter arc says so.
+pub const BRACKET_ARC_SLOPE: f64 = 0.18231;
 
 /// Largest bracket fraction: half a bracket past the pitch peak. A guard against a partner leg
 /// whose landmarks are not gait (not fitted): stiff-knee legs of family B leave the ground up to
@@ -98,9 +108,11 @@ pub fn landmark_geometry(ev: &Events) -> Option<LegGeometry> {
     Some(LegGeometry { rho, swing_arc_deg })
 }
 
-/// The bracket fraction of a leg of geometry `own` whose other leg's is `other`: raised only
-/// when the leg is the stiffer of the two by both signs, a larger ρ and a shorter swing arc
-/// (by ρ alone when either arc is unknown).
+/// The bracket fraction of a leg of geometry `own` whose other leg's is `other`: raised by ρ
+/// only when the leg is the stiffer of the two by both signs, a larger ρ and a shorter swing arc
+/// (by ρ alone when either arc is unknown), and raised by the arc whenever its swing arc is the
+/// shorter: k = k₀ + s·max(0, ln(ρ/ρ_other)) + s_arc·ln(arc_other/arc), clamped to
+/// [k₀, [`BRACKET_MAX`]].
 pub fn bracket_fraction(own: Option<LegGeometry>, other: Option<LegGeometry>) -> f64 {
     let (Some(a), Some(b)) = (own, other) else {
         return BRACKET_K0;
@@ -108,14 +120,17 @@ pub fn bracket_fraction(own: Option<LegGeometry>, other: Option<LegGeometry>) ->
     if !(a.rho > 0.0 && b.rho > 0.0) {
         return BRACKET_K0;
     }
-    if let (Some(arc), Some(arc_other)) = (a.swing_arc_deg, b.swing_arc_deg) {
+    let by_rho = BRACKET_SLOPE * (a.rho / b.rho).ln().max(0.0);
+    let k = match (a.swing_arc_deg, b.swing_arc_deg) {
         // A sign, no margin: arcs within a gyroscope's gain tolerance (a few %) of each other
         // decide by chance; a 3 % margin cost family A (docs/accuracy.md).
-        if arc >= arc_other {
-            return BRACKET_K0;
+        (Some(arc), Some(arc_other)) if arc >= arc_other => BRACKET_K0,
+        (Some(arc), Some(arc_other)) if arc > 0.0 => {
+            BRACKET_K0 + by_rho + BRACKET_ARC_SLOPE * (arc_other / arc).ln()
         }
-    }
-    (BRACKET_K0 + BRACKET_SLOPE * (a.rho / b.rho).ln().max(0.0)).clamp(BRACKET_K0, BRACKET_MAX)
+        _ => BRACKET_K0 + by_rho,
+    };
+    k.clamp(BRACKET_K0, BRACKET_MAX)
 }
 
 /// The shank's swing arc from the pitch peak at `tp_s` (s) to the heel strike's zero crossing at
@@ -244,24 +259,44 @@ mod tests {
     }
 
     #[test]
-    fn a_leg_with_the_larger_rho_but_the_longer_swing_arc_keeps_k0() {
+    fn a_leg_with_the_larger_rho_but_the_longer_swing_arc_is_not_raised() {
         let p = EventParams::default().check().unwrap();
         let with_arc = |rho: f64, arc: f64| {
             let mut e = events(rho, 8);
             e.to_swing_arc_deg = vec![arc; 8];
             e
         };
-        // The larger ρ swings the shank through more: not the stiffer leg, neither is raised.
+        // The larger ρ swings the shank through more: not the stiffer leg, not raised; the
+        // other leg, with the shorter arc, is raised by its arc alone.
         let (mut l, mut r) = (with_arc(2.0, 70.0), with_arc(1.0, 60.0));
-        let before = (l.to_s.clone(), r.to_s.clone());
+        let before = l.to_s.clone();
         place_bilateral(Some(&mut l), Some(&mut r), &p);
-        assert_eq!((l.to_s.clone(), r.to_s.clone()), before);
-        // Both signs agree: raised as by ρ alone.
+        assert_eq!(l.to_s, before);
+        let k_r = BRACKET_K0 + BRACKET_ARC_SLOPE * (70.0f64 / 60.0).ln();
+        assert!(
+            (r.to_s[0] - (0.5 + 0.1 * k_r)).abs() < 1e-12,
+            "{}",
+            r.to_s[0]
+        );
+        // Both signs agree: raised by ρ and by the arc.
         let (mut l, mut r) = (with_arc(2.0, 50.0), with_arc(1.0, 60.0));
         place_bilateral(Some(&mut l), Some(&mut r), &p);
+        let k_arc = BRACKET_ARC_SLOPE * 1.2f64.ln();
         let k = BRACKET_K0 + BRACKET_SLOPE * 2f64.ln();
-        assert!((l.to_s[0] - (0.5 + 0.1 * k)).abs() < 1e-12, "{}", l.to_s[0]);
+        assert!(
+            (l.to_s[0] - (0.5 + 0.1 * (k + k_arc))).abs() < 1e-12,
+            "{}",
+            l.to_s[0]
+        );
+        // The shorter arc with the smaller ρ (a stiff knee's flattened pitch peak): raised by
+        // the arc alone; the other leg keeps k₀.
+        let (mut l, mut r) = (with_arc(1.0, 50.0), with_arc(2.0, 60.0));
+        place_bilateral(Some(&mut l), Some(&mut r), &p);
+        let want = 0.5 + 0.1 * (BRACKET_K0 + k_arc);
+        assert!((l.to_s[0] - want).abs() < 1e-12, "{}", l.to_s[0]);
+        assert!((r.to_s[0] - (0.5 + 0.1 * BRACKET_K0)).abs() < 1e-12);
         // Too few arcs on one leg (NaN: its heel strikes not found): ρ alone decides.
+        let k = BRACKET_K0 + BRACKET_SLOPE * 2f64.ln();
         let (mut l, mut r) = (with_arc(2.0, 70.0), with_arc(1.0, f64::NAN));
         place_bilateral(Some(&mut l), Some(&mut r), &p);
         assert!((l.to_s[0] - (0.5 + 0.1 * k)).abs() < 1e-12, "{}", l.to_s[0]);
