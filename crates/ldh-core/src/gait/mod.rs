@@ -109,9 +109,18 @@ pub struct Stride {
     /// [`Stride::findings`], for people: no code decides on it.
     pub reason: String,
     /// The same reasons as typed findings, in the same order (what the pipeline decides on);
-    /// not serialised (the tables write `reason`).
-    #[serde(skip)]
+    /// serialised as their codes, `reason_codes` (the column of strides.csv), and not read back.
+    #[serde(
+        rename = "reason_codes",
+        serialize_with = "serialize_codes",
+        skip_deserializing
+    )]
     pub findings: Vec<StrideFinding>,
+}
+
+/// A stride's findings written as their codes (`StrideCodes`' text), as strides.csv has them.
+fn serialize_codes<S: serde::Serializer>(f: &[StrideFinding], s: S) -> Result<S::Ok, S::Error> {
+    serde::Serialize::serialize(&StrideCodes(f.iter().map(|f| f.code).collect()), s)
 }
 
 impl Stride {
