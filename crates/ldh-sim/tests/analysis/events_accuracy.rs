@@ -90,13 +90,18 @@ fn sim_errors(subjects: &[SimSubject]) -> (Vec<f64>, Vec<f64>, usize, (usize, us
 
 /// The simulated conditions: (name, subjects). Seeds 4949 (nothing was tuned on them).
 pub(crate) fn sim_conditions() -> Vec<(&'static str, Vec<SimSubject>)> {
+    sim_conditions_at(4949)
+}
+
+/// The simulated conditions of [`sim_conditions`] drawn with `seed`.
+pub(crate) fn sim_conditions_at(seed: u64) -> Vec<(&'static str, Vec<SimSubject>)> {
     let a = |healthy, ldh, slow_ldh| {
         let c = CohortParams {
             healthy,
             ldh,
             slow_ldh,
             duration_s: 30.0,
-            seed: 4949,
+            seed,
             ..CohortParams::default()
         };
         (0..c.len()).map(|i| c.simulate(i).unwrap()).collect()
@@ -107,7 +112,7 @@ pub(crate) fn sim_conditions() -> Vec<(&'static str, Vec<SimSubject>)> {
             patients,
             speed_mps,
             duration_s: 30.0,
-            seed: 4949,
+            seed,
             ..CohortParamsB::default()
         };
         (0..c.len()).map(|i| c.simulate(i).unwrap()).collect()

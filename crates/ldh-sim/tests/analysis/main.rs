@@ -6,6 +6,7 @@ mod agreement_retest;
 mod agreement_run;
 mod events_accuracy;
 mod events_to_hugadb;
+mod events_to_legs;
 mod events_to_rules;
 mod fusion;
 mod io_columns;
