@@ -13,7 +13,7 @@ mod infer;
 mod inspect;
 mod labelled;
 pub(crate) mod limits;
-mod number;
+pub(crate) mod number;
 pub mod reader;
 mod recognise;
 mod rows;

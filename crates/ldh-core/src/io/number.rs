@@ -33,7 +33,7 @@ const POW10: [f64; 16] = [
 /// rounded — the value `str::parse` returns, which is correctly rounded for every input. A
 /// float-parsing crate would accept another grammar (which cells are refused must not change)
 /// and still need this check. The number parse was ≈ 40 % of reading a 30 s leg (issue 17).
-fn parse_plain_decimal(s: &str) -> Option<f64> {
+pub(crate) fn parse_plain_decimal(s: &str) -> Option<f64> {
     let b = s.as_bytes();
     let (neg, body) = match b.first()? {
         b'-' => (true, &b[1..]),

@@ -53,12 +53,30 @@ pub struct CsvSamples {
     /// Column of the time, then of each channel of [`CHANNELS`].
     cols: [usize; 7],
     start: Option<DateTime>,
-    /// A row that failed to parse, held until the next line says whether it was the last.
-    pending_bad: Option<(u64, String)>,
-    bad_rows: u64,
-    first_bad: Option<(u64, String)>,
-    truncated_last: Option<u64>,
+    bad: BadRows,
     done: bool,
+}
+
+/// The rows that were not a time and six numbers.
+#[derive(Default)]
+struct BadRows {
+    /// A row that failed to parse, held until the next line says whether it was the last.
+    pending: Option<(u64, String)>,
+    count: u64,
+    first: Option<(u64, String)>,
+    truncated_last: Option<u64>,
+}
+
+impl BadRows {
+    /// A line followed the pending row: it was a bad row, not a truncated last line.
+    fn settle(&mut self) {
+        if let Some((n, line)) = self.pending.take() {
+            self.count += 1;
+            if self.first.is_none() {
+                self.first = Some((n, crate::error::clip(&line).into_owned()));
+            }
+        }
+    }
 }
 
 impl CsvSamples {
@@ -119,33 +137,55 @@ impl CsvSamples {
             delim,
             cols,
             start,
-            pending_bad: None,
-            bad_rows: 0,
-            first_bad: None,
-            truncated_last: None,
+            bad: BadRows::default(),
             done: false,
         })
     }
+}
 
-    fn parse(&self, line: &str, fields: &mut Vec<f64>) -> bool {
-        fields.clear();
-        for cell in line.split(self.delim as char) {
-            match cell.trim().parse::<f64>() {
-                Ok(v) if v.is_finite() => fields.push(v),
-                _ => fields.push(f64::NAN),
-            }
-        }
-        self.cols
-            .iter()
-            .all(|&c| fields.get(c).is_some_and(|v| v.is_finite()))
+/// `s.trim()`, without scanning for Unicode whitespace when both ends are ASCII and not
+/// whitespace (every data row of ldh's CSV): the same slice in every case.
+fn trim_ws(s: &str) -> &str {
+    // char::is_whitespace among ASCII: \t \n \x0B \x0C \r and the space
+    let plain = |c: u8| c < 0x80 && !matches!(c, b' ' | b'\t'..=b'\r');
+    match s.as_bytes() {
+        [f, .., l] if plain(*f) && plain(*l) => s,
+        [c] if plain(*c) => s,
+        _ => s.trim(),
     }
+}
 
-    fn bad(&mut self, n: u64, line: String) {
-        self.bad_rows += 1;
-        if self.first_bad.is_none() {
-            self.first_bad = Some((n, crate::error::clip(&line).into_owned()));
-        }
+/// One cell as `cell.trim().parse::<f64>()` gives it, finite, else NaN; the common plain
+/// decimal (`[-]digits[.digits]`, no spaces) by the reader's exact fast path (the same bits).
+fn parse_cell(cell: &str) -> f64 {
+    if let Some(v) = crate::io::number::parse_plain_decimal(cell) {
+        return v;
     }
+    match cell.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() => v,
+        _ => f64::NAN,
+    }
+}
+
+/// A data row's sample: the time and six channels at `cols`, each a finite number; `None`
+/// otherwise. `fields` is scratch space.
+fn parse_row(line: &str, delim: u8, cols: &[usize; 7], fields: &mut Vec<f64>) -> Option<Sample> {
+    fields.clear();
+    // the cells after the last one used are never read
+    let used = cols.iter().max().map_or(0, |c| c + 1);
+    fields.extend(line.split(delim as char).take(used).map(parse_cell));
+    if !cols
+        .iter()
+        .all(|&c| fields.get(c).is_some_and(|v| v.is_finite()))
+    {
+        return None;
+    }
+    let f = |k: usize| fields[cols[k]];
+    Some(Sample {
+        t_s: f(0),
+        acc_g: [f(1), f(2), f(3)],
+        gyro_dps: [f(4), f(5), f(6)],
+    })
 }
 
 fn missing(path: &Path, line: u64, want: &str, names: &[String]) -> LdhError {
@@ -171,46 +211,36 @@ impl SampleSource for CsvSamples {
         while out.len() < max && !self.done {
             let Some((n, line)) = self.lines.next_line()? else {
                 self.done = true;
-                if let Some((n, _)) = self.pending_bad.take() {
-                    self.truncated_last = Some(n);
+                if let Some((n, _)) = self.bad.pending.take() {
+                    self.bad.truncated_last = Some(n);
                 }
                 break;
             };
-            let t = line.trim();
-            let skip = t.is_empty() || t.starts_with(['#', '/', '%', ';']);
-            let line = t.to_string();
-            if let Some((bn, bl)) = self.pending_bad.take() {
-                self.bad(bn, bl);
-            }
-            if skip {
+            let t = trim_ws(line);
+            self.bad.settle();
+            if t.is_empty() || t.starts_with(['#', '/', '%', ';']) {
                 continue;
             }
-            if !self.parse(&line, &mut fields) {
-                self.pending_bad = Some((n, line));
-                continue;
+            match parse_row(t, self.delim, &self.cols, &mut fields) {
+                Some(s) => out.push(s),
+                None => self.bad.pending = Some((n, t.to_string())),
             }
-            let c = self.cols;
-            out.push(Sample {
-                t_s: fields[c[0]],
-                acc_g: [fields[c[1]], fields[c[2]], fields[c[3]]],
-                gyro_dps: [fields[c[4]], fields[c[5]], fields[c[6]]],
-            });
         }
         Ok(out.len())
     }
     fn notes(&self) -> Vec<String> {
         let mut notes = Vec::new();
-        if let Some(n) = self.truncated_last {
+        if let Some(n) = self.bad.truncated_last {
             notes.push(format!(
                 "{}:{n}: the last line is incomplete (the recorder stopped mid-write); it was dropped",
                 self.path.display()
             ));
         }
-        if let Some((n, l)) = &self.first_bad {
+        if let Some((n, l)) = &self.bad.first {
             notes.push(format!(
                 "{}: {} row(s) were not six numbers and a time and were skipped, the first at line {n}: '{l}'",
                 self.path.display(),
-                self.bad_rows
+                self.bad.count
             ));
         }
         notes
@@ -257,5 +287,80 @@ impl SampleSource for MemorySamples {
     }
     fn notes(&self) -> Vec<String> {
         Vec::new()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{parse_cell, trim_ws};
+
+    /// The fast trim is `str::trim` on every kind of end: ASCII whitespace (the vertical tab
+    /// and form feed too), Unicode whitespace, non-ASCII text, one character, nothing.
+    #[test]
+    fn the_fast_trim_is_str_trim() {
+        for s in [
+            "",
+            " ",
+            "a",
+            "é",
+            "1.5,2",
+            " 1,2 ",
+            "\t1,2\r",
+            "\x0b1,2\x0c",
+            "1,2\u{a0}",
+            "\u{2003}1,2",
+            "é,1",
+            "1,é",
+            "\u{85}",
+            "x\u{3000}",
+            "#c",
+            "\x1f1,2",
+        ] {
+            assert_eq!(trim_ws(s), s.trim(), "{s:?}");
+        }
+    }
+
+    /// A cell gives `trim().parse::<f64>()`'s bits when finite, NaN otherwise.
+    #[test]
+    fn cells_parse_to_the_standard_librarys_bits() {
+        for c in [
+            "0",
+            "-0",
+            "-0.0000",
+            "1.25",
+            "12345.6789",
+            "0.1",
+            "-9.80665",
+            "123456789012345",
+            "1234567890123456",
+            "0.30000000000000004",
+            " 2.5",
+            "2.5 ",
+            "1e3",
+            "+1",
+            ".5",
+            "5.",
+            "1.2.3",
+            "--1",
+            "-",
+            "",
+            "nan",
+            "inf",
+            "-inf",
+            "1e400",
+            "abc",
+            "\u{a0}3.5",
+        ] {
+            let want = match c.trim().parse::<f64>() {
+                Ok(v) if v.is_finite() => v.to_bits(),
+                _ => f64::NAN.to_bits(),
+            };
+            let got = parse_cell(c);
+            if want == f64::NAN.to_bits() {
+                assert!(got.is_nan(), "{c:?}");
+            } else {
+                assert_eq!(got.to_bits(), want, "{c:?}");
+            }
+        }
     }
 }
