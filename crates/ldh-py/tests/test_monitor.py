@@ -48,6 +48,10 @@ def test_monitor_finds_the_walks_and_returns_frames(files):
     bouts = r.bouts
     assert len(bouts["bout"]) == 3
     assert list(bouts["legs"]) == ["both"] * 3
+    # Level walks: no bout labelled stairs, no median stride rising or falling like a stair
+    # (NaN, an empty cell, when no stride's rise was vouched for).
+    assert list(bouts["kind"]) == ["walking"] * 3
+    assert not any(abs(r) >= 0.15 for r in bouts["stride_rise_m"]), list(bouts["stride_rise_m"])
     assert all(20 < d < 33 for d in bouts["duration_s"]), list(bouts["duration_s"])  # the 35 s demo walks
     assert len(r.days["day"]) == 1 and len(r.summary["subject_id"]) == 1
     # Under 12 h worn: the day's amounts are withheld with the reason.

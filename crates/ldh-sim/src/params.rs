@@ -112,6 +112,11 @@ pub struct SubjectParams {
     /// Default 0 (then not serialised).
     #[serde(default, skip_serializing_if = "is_zero_s")]
     pub trend_share: f64,
+    /// Stairs: each step lands this much higher (ascent, > 0) or lower (descent, < 0) than the
+    /// other foot, m (a riser is 0.15–0.18 m; each foot rises two risers a stride). Default 0:
+    /// level ground (then not serialised).
+    #[serde(default, skip_serializing_if = "is_zero_s")]
+    pub stair_rise_m: f64,
     /// Left leg.
     pub left: LegParams,
     /// Right leg.
@@ -141,6 +146,7 @@ impl SubjectParams {
             ramp_s: 0.0,
             slowdown_s: 0.0,
             trend_share: 0.0,
+            stair_rise_m: 0.0,
             left: LegParams::default(),
             right: LegParams::default(),
         }
@@ -357,6 +363,7 @@ impl SubjectParams {
             (0.5 * (self.duration_s - 2.0 * self.standing_s)).max(0.0),
         )?;
         range("trend_share", self.trend_share, -0.5, 0.5)?;
+        range("stair_rise_m", self.stair_rise_m, -0.25, 0.25)?;
         range("stride_time_s", self.stride_time_s, 0.7, 2.0)?;
         range("stride_length_m", self.stride_length_m, 0.3, 2.2)?;
         range("stride_time_cv", self.stride_time_cv, 0.0, 0.1)?;

@@ -116,6 +116,13 @@ pub struct Stride {
         skip_deserializing
     )]
     pub findings: Vec<StrideFinding>,
+    /// The ankle's vertical displacement between the stride's two foot-flat instants, m
+    /// (positive up; ≈ 0 on level ground, ≈ ±0.3 on stairs; `length::LengthEstimate::vertical_m`),
+    /// NaN when not integrated or when the integration is not consistent (its drift, tilt or
+    /// clipping checks withheld the length). Read by the monitor's stair rule (`monitor::stairs`); not
+    /// serialised.
+    #[serde(skip, default = "nan")]
+    pub vertical_m: f64,
 }
 
 /// A stride's findings written as their codes (`StrideCodes`' text), as strides.csv has them.

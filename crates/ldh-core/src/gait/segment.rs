@@ -281,7 +281,8 @@ impl<'a> Leg<'a> {
         heights.push(self.height_m);
         heights.extend_from_slice(heights_m);
         let mut lengths = self.lengths(&span, &heights).into_iter();
-        let (length, length_note) = lengths.next().unwrap_or((f64::NAN, None));
+        let (length, length_note, vertical_m) =
+            lengths.next().unwrap_or((f64::NAN, None, f64::NAN));
         let mut stride = Stride {
             stride_index: k,
             hs_time_s: h0,
@@ -300,6 +301,7 @@ impl<'a> Leg<'a> {
             valid: true,
             reason: String::new(),
             findings: Vec::new(),
+            vertical_m,
         };
         for f in reasons {
             stride.push(f);
@@ -308,7 +310,7 @@ impl<'a> Leg<'a> {
             stride,
             length_note,
             turn,
-            at_heights_m: lengths.map(|(l, _)| l).collect(),
+            at_heights_m: lengths.map(|(l, _, _)| l).collect(),
         }
     }
 
@@ -367,8 +369,10 @@ impl<'a> Leg<'a> {
     }
 
     /// The stride length over `span`, m, with the sensor at each of `heights_m` above the
-    /// ankle, NaN with the reason where it is withheld.
-    fn lengths(&self, span: &Span, heights_m: &[f64]) -> Vec<(f64, Option<StrideFinding>)> {
+    /// ankle, NaN with the reason where it is withheld; and the ankle's vertical displacement,
+    /// m, NaN where the integration is not consistent (no zero-velocity span, an
+    /// accelerometer-only attitude, drift, tilt or clipping beyond the checks).
+    fn lengths(&self, span: &Span, heights_m: &[f64]) -> Vec<(f64, Option<StrideFinding>, f64)> {
         let ests = match span.zv {
             Some((z0, z1)) => stride_lengths(self.al, self.att, z0, z1, heights_m),
             None => vec![
@@ -399,7 +403,17 @@ impl<'a> Leg<'a> {
                 } else {
                     est.length_m
                 };
-                (length, note)
+                // The rise is vouched for when the integration is consistent: only the
+                // checks a stair stride fails by its rise (off the floor level, and a length
+                // unlike a level stride's pendulum) may have withheld the length.
+                let consistent = note.as_ref().is_none_or(|f| {
+                    matches!(
+                        f.code,
+                        StrideCode::Length(LengthCheck::Floor | LengthCheck::Pendulum)
+                    )
+                });
+                let vertical = if consistent { est.vertical_m } else { f64::NAN };
+                (length, note, vertical)
             })
             .collect()
     }
@@ -439,7 +453,7 @@ pub fn lengths_at_heights(
             let span = leg.span(s.hs_time_s, s.next_hs_time_s, s.to_time_s, a);
             leg.lengths(&span, heights_m)
                 .into_iter()
-                .map(|(l, _)| l)
+                .map(|(l, _, _)| l)
                 .collect()
         } else {
             vec![f64::NAN; heights_m.len()]

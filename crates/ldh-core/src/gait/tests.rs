@@ -56,6 +56,7 @@ fn leg(n: usize, with_length: usize) -> Vec<Stride> {
             valid: true,
             reason: String::new(),
             findings: Vec::new(),
+            vertical_m: f64::NAN,
         })
         .map(|mut s| {
             if !s.stride_length_m.is_finite() {

@@ -14,6 +14,7 @@ use serde::{Deserialize, Serialize};
 
 use super::leg::LegStream;
 use super::pair::Plan;
+use super::stairs::BoutKind;
 use super::steps::{heel_strike_peak_g, leg_heel_strikes};
 use super::store::SpanStore;
 use super::stream::Sample;
@@ -54,6 +55,14 @@ pub struct BoutRow {
     pub stride_time_cv: f64,
     /// Step-time asymmetry, % of the mean step time.
     pub step_time_asymmetry_pct: f64,
+    /// Level walking or stairs (`monitor::stairs`): a stair bout counts in walking time and
+    /// steps, not in the gait aggregates of daily life.
+    pub kind: BoutKind,
+    /// Strides (both legs) whose ankle rose or fell by at least `stairs.min_rise_m`.
+    pub stair_strides: usize,
+    /// Median vertical displacement of the ankle over a stride, m (+ up, − down; ≈ 0 on
+    /// level ground, NaN when no stride's was measured).
+    pub stride_rise_m: f64,
     /// Right − left clock at this bout, s.
     pub clock_offset_s: f64,
     /// The walk went on past the longest span held (`max_span_s`): the next bout continues it.
@@ -204,7 +213,13 @@ pub fn analyse(
             run: false,
         });
     }
-    let row = bout_row(&res.left, &res.right, strides, plan);
+    let mut row = bout_row(&res.left, &res.right, strides, plan);
+    let verdict = mp
+        .stairs
+        .classify(legs_ok.iter().flat_map(|l| l.strides.iter()));
+    row.kind = verdict.kind;
+    row.stair_strides = verdict.stair_strides;
+    row.stride_rise_m = verdict.stride_rise_m;
     if let Some(why) = running(&res.left, &res.right, &acc_norm, &mp.windows) {
         return Err(Refused {
             start_s: at,
@@ -351,6 +366,9 @@ fn bout_row(
         stride_length_m: stride_length,
         stride_time_cv: stv,
         step_time_asymmetry_pct: asym,
+        kind: BoutKind::Walking,
+        stair_strides: 0,
+        stride_rise_m: f64::NAN,
         clock_offset_s: plan.offset_s,
         continues: false,
         withheld: withheld.join("; "),

@@ -15,7 +15,8 @@
 //! **Gait in daily life** (Mobilise-D's digital mobility outcomes): over the bouts longer than
 //! 30 s, the median and 90th percentile of cadence, speed, stride time, stride length,
 //! stride-time variability and step-time asymmetry, withheld with fewer than
-//! `min_long_bouts` (3) such bouts measuring the value.
+//! `min_long_bouts` (3) such bouts measuring the value. Stair bouts (`super::stairs`) count in
+//! walking time, steps and bouts, not in these: they describe level walking.
 
 use std::collections::BTreeMap;
 
@@ -24,6 +25,7 @@ use serde::{Deserialize, Serialize};
 use super::bouts::BoutRow;
 use super::leg::{LegStream, MinuteStats};
 use super::pair::ClockDrift;
+use super::stairs::BoutKind;
 use super::windows::Activity;
 use super::MonitorParams;
 use crate::io::DateTime;
@@ -106,7 +108,7 @@ pub struct DayRow {
     pub bouts_over_60s: f64,
     /// Longest bout, s (a walk longer than a span joined).
     pub longest_bout_s: f64,
-    /// Bouts longer than 30 s the gait values are of.
+    /// Level-walking bouts longer than 30 s the gait values are of (stair bouts left out).
     pub long_bouts: usize,
     /// Median and 90th percentile of each of [`GAIT_AGGREGATES`] over the long bouts.
     pub gait_median: [f64; 6],
@@ -311,13 +313,17 @@ pub fn percentile(v: &mut [f64], q: f64) -> f64 {
     v[rank - 1]
 }
 
-/// Median and P90 of each gait value over bouts longer than 30 s; withheld with too few.
+/// Median and P90 of each gait value over level-walking bouts longer than 30 s (stair bouts
+/// are not level gait: `monitor::stairs`); withheld with too few.
 fn gait_of(
     bouts: &[&BoutRow],
     min: usize,
     withheld: &mut Vec<String>,
 ) -> (usize, [f64; 6], [f64; 6]) {
-    let long: Vec<&&BoutRow> = bouts.iter().filter(|b| b.duration_s > 30.0).collect();
+    let long: Vec<&&BoutRow> = bouts
+        .iter()
+        .filter(|b| b.duration_s > 30.0 && b.kind == BoutKind::Walking)
+        .collect();
     let mut med = [f64::NAN; 6];
     let mut p90 = [f64::NAN; 6];
     for (k, col) in GAIT_AGGREGATES.iter().enumerate() {
@@ -328,7 +334,7 @@ fn gait_of(
             .collect();
         if v.len() < min {
             withheld.push(format!(
-                "{col}: {} bout(s) over 30 s measure it, {min} needed",
+                "{col}: {} level bout(s) over 30 s measure it, {min} needed",
                 v.len()
             ));
             continue;

@@ -21,6 +21,7 @@ pub mod change;
 pub mod days;
 pub mod leg;
 pub mod pair;
+pub mod stairs;
 pub mod steps;
 pub mod store;
 pub mod stream;
@@ -36,6 +37,7 @@ pub use bouts::BoutRow;
 pub use change::{visit_changes, VisitChange};
 pub use days::{DayRow, PeriodRow, SummaryRow};
 pub use pair::ClockDrift;
+pub use stairs::{BoutKind, StairParams};
 pub use stream::{CsvSamples, MemorySamples, Sample, SampleSource};
 pub use windows::{Activity, WindowParams};
 
@@ -82,6 +84,8 @@ pub struct MonitorParams {
     pub min_valid_days: usize,
     /// Gait aggregates need this many bouts > 30 s [3].
     pub min_long_bouts: usize,
+    /// The stair rule (`stairs`).
+    pub stairs: StairParams,
     /// The per-bout analysis (STA off: a bout is too short for it and it is not aggregated).
     pub analysis: AnalysisParams,
 }
@@ -106,6 +110,7 @@ impl Default for MonitorParams {
             min_wear_h: 12.0,
             min_valid_days: 3,
             min_long_bouts: 3,
+            stairs: StairParams::default(),
             analysis: AnalysisParams {
                 compute_sta: false,
                 ..AnalysisParams::default()
@@ -160,6 +165,7 @@ impl MonitorParams {
                 "must exceed min_stride_s",
             ));
         }
+        self.stairs.check()?;
         if !(self.max_span_s >= 60.0 && self.max_span_s <= 7200.0) {
             return Err(LdhError::param(
                 "max_span_s",

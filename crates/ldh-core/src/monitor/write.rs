@@ -27,7 +27,7 @@ fn id_cells(r: &MonitorResult) -> Vec<String> {
 }
 
 /// Header of bouts.csv.
-pub const BOUT_COLUMNS: [&str; 19] = [
+pub const BOUT_COLUMNS: [&str; 22] = [
     "subject_id",
     "visit",
     "bout",
@@ -45,6 +45,9 @@ pub const BOUT_COLUMNS: [&str; 19] = [
     "stride_length_m",
     "stride_time_cv",
     "step_time_asymmetry_pct",
+    "kind",
+    "stair_strides",
+    "stride_rise_m",
     "clock_offset_s",
     "withheld",
 ];
@@ -93,7 +96,13 @@ pub fn tables(results: &[MonitorResult]) -> [(&'static str, Vec<String>, Rows); 
             ]);
             // The six bout values in GAIT_AGGREGATES' order, as the header has them.
             row.extend(gait_values(b).map(num));
-            row.extend([num(b.clock_offset_s), b.withheld.clone()]);
+            row.extend([
+                b.kind.to_string(),
+                b.stair_strides.to_string(),
+                num(b.stride_rise_m),
+                num(b.clock_offset_s),
+                b.withheld.clone(),
+            ]);
             bouts.push(row);
         }
         for d in &r.days {

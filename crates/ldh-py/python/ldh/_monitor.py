@@ -13,7 +13,7 @@ from ._util import PathLike, params_dict, path_list
 # Text columns; every other column is numeric (an empty cell is NaN: a value withheld, with its
 # reason in the row's ``withheld`` cell).
 _TEXT = {
-    "subject_id", "visit", "legs", "withheld", "errors", "date", "state", "valid",
+    "subject_id", "visit", "legs", "kind", "withheld", "errors", "date", "state", "valid",
     "from_visit", "to_visit", "measure", "unit", "beyond_noise",
 }
 # Yes/no columns: "true"/"false"; ``beyond_noise`` may be empty (not judged): None.

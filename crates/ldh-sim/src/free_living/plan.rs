@@ -19,7 +19,8 @@ use crate::SubjectParams;
 pub enum Activity {
     /// Level walking (the gait model).
     Walking,
-    /// Stair climbing: short strides, high swing clearance, more hip and knee flexion.
+    /// Stair climbing, up and down in turn: short slow strides, each step one riser up or down
+    /// (`SubjectParams::stair_rise_m`), high swing clearance, more hip and knee flexion.
     Stairs,
     /// Running: the fastest strides of the gait model with strong heel impacts.
     Running,
@@ -232,12 +233,14 @@ fn fidget_motion(rng: &mut ChaCha8Rng) -> Motion {
 
 /// A gait bout of `walk_s` of gait from the subject's `base` gait: stride time and length
 /// varied by N(0, 4 %) from bout to bout; stairs and running change the gait as
-/// [`Activity`] says. Returns the segment length too (walk plus standing at both ends).
+/// [`Activity`] says (`up`: a flight of stairs climbed, else descended). Returns the segment
+/// length too (walk plus standing at both ends).
 fn gait_motion(
     rng: &mut ChaCha8Rng,
     base: &SubjectParams,
     activity: Activity,
     walk_s: f64,
+    up: bool,
 ) -> (Motion, f64) {
     let mut p = base.clone();
     let f = normal_clamped(rng, 1.0, 0.04, 0.9, 1.1);
@@ -251,6 +254,14 @@ fn gait_motion(
         Activity::Stairs => {
             p.stride_time_s = normal_clamped(rng, 1.25, 0.06, 1.1, 1.45);
             p.stride_length_m = normal_clamped(rng, 0.6, 0.04, 0.5, 0.7);
+            // Two treads a stride (0.25–0.35 m each) and a riser of 0.17 m at 0.30 m treads
+            // (a tread/riser ratio kept: steeper stairs, shorter treads); descent a little
+            // quicker than ascent (Riener et al. 2002: cadence in descent ≈ 5–10 % higher).
+            let rise = 0.17 * p.stride_length_m / 0.6;
+            p.stair_rise_m = if up { rise } else { -rise };
+            if !up {
+                p.stride_time_s *= 0.92;
+            }
             for l in [&mut p.left, &mut p.right] {
                 l.hip_scale = 1.35;
                 l.knee_reduction = -0.25;
@@ -430,7 +441,15 @@ fn movement(
         push(segs, t, activity, m, want_s.min(left));
         return;
     }
-    let (motion, d) = gait_motion(rng, base, activity, want_s);
+    // Flights of stairs go up and down in turn (what goes up comes down): no draw, so the
+    // plan's random stream is that of the level stairs before them.
+    let up = segs
+        .iter()
+        .filter(|s| s.activity == Activity::Stairs)
+        .count()
+        % 2
+        == 0;
+    let (motion, d) = gait_motion(rng, base, activity, want_s, up);
     if d <= left {
         push(segs, t, activity, motion, d);
     } else {

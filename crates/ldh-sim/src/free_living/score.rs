@@ -7,7 +7,9 @@
 //! it (the overlap criterion of bout-level evaluation in Mobilise-D, Micó-Amigo et al.,
 //! J NeuroEng Rehabil 2023, there as IoU; coverage here so a bout found in two pieces
 //! counts). Walking time and steps compare totals over the recording (level walking only:
-//! stairs and running are not walking).
+//! stairs and running are not walking; found bouts labelled stairs are left out of the found
+//! side too). Stairs: a true flight counts as found when found stair bouts cover ≥ 50 % of it
+//! (recall), a found stair bout as right when ≥ 50 % of it lies in true stairs (precision).
 
 use serde::{Deserialize, Serialize};
 
@@ -23,6 +25,9 @@ pub struct FoundBout {
     pub end_s: f64,
     /// Steps of both legs counted in it.
     pub steps: f64,
+    /// The analysis labelled it stairs (not level walking). Default false.
+    #[serde(default)]
+    pub stairs: bool,
 }
 
 /// The shortest true walking bout scored for recall, s: 10.
@@ -87,6 +92,20 @@ pub struct Score {
     pub stairs_s: f64,
     /// Found walking time inside stairs, s (stairs are not level walking).
     pub found_in_stairs_s: f64,
+    /// True stair bouts (flights).
+    pub true_stair_bouts: usize,
+    /// Of them, covered ≥ 50 % by found bouts labelled stairs.
+    pub found_stair_bouts: usize,
+    /// `found_stair_bouts / true_stair_bouts` (`None` without true stairs).
+    pub stairs_recall: Option<f64>,
+    /// Found bouts labelled stairs.
+    pub labelled_stair_bouts: usize,
+    /// Of them, lying ≥ 50 % in true stairs.
+    pub right_stair_bouts: usize,
+    /// `right_stair_bouts / labelled_stair_bouts` (`None` without a found stair bout).
+    pub stairs_precision: Option<f64>,
+    /// Found stair time inside true level walking, % of the level walking time.
+    pub false_stairs_in_walking_pct: Option<f64>,
 }
 
 fn overlap(a0: f64, a1: f64, b0: f64, b1: f64) -> f64 {
@@ -107,6 +126,8 @@ fn covered(found: &[FoundBout], t0: f64, t1: f64) -> f64 {
 pub fn score(truth: &[TruthBout], found: &[FoundBout]) -> Score {
     let mut found: Vec<FoundBout> = found.to_vec();
     found.sort_by(|a, b| a.start_s.total_cmp(&b.start_s));
+    let (found_stairs, level): (Vec<FoundBout>, Vec<FoundBout>) =
+        found.iter().cloned().partition(|f| f.stairs);
     let walking: Vec<&TruthBout> = truth
         .iter()
         .filter(|b| b.activity == Activity::Walking)
@@ -120,9 +141,9 @@ pub fn score(truth: &[TruthBout], found: &[FoundBout]) -> Score {
         .filter(|b| covered(&found, b.start_s, b.end_s) >= MIN_COVERAGE * b.duration_s())
         .count();
     let true_walking_s: f64 = walking.iter().map(|b| b.duration_s()).sum();
-    let found_walking_s: f64 = found.iter().map(|f| (f.end_s - f.start_s).max(0.0)).sum();
+    let found_walking_s: f64 = level.iter().map(|f| (f.end_s - f.start_s).max(0.0)).sum();
     let true_steps: f64 = walking.iter().map(|b| b.steps() as f64).sum();
-    let found_steps: f64 = found.iter().map(|f| f.steps).sum();
+    let found_steps: f64 = level.iter().map(|f| f.steps).sum();
     let pct = |f: f64, t: f64| (t > 0.0).then(|| 100.0 * (f - t) / t);
     let mut by = Vec::new();
     let (mut false_s, mut against_s) = (0.0, 0.0);
@@ -145,7 +166,39 @@ pub fn score(truth: &[TruthBout], found: &[FoundBout]) -> Score {
         .iter()
         .filter(|b| b.activity == Activity::Stairs)
         .collect();
+    let stairs_hit = stairs
+        .iter()
+        .filter(|b| covered(&found_stairs, b.start_s, b.end_s) >= MIN_COVERAGE * b.duration_s())
+        .count();
+    let true_stairs: Vec<FoundBout> = stairs
+        .iter()
+        .map(|b| FoundBout {
+            start_s: b.start_s,
+            end_s: b.end_s,
+            steps: 0.0,
+            stairs: true,
+        })
+        .collect();
+    let right = found_stairs
+        .iter()
+        .filter(|f| {
+            covered(&true_stairs, f.start_s, f.end_s) >= MIN_COVERAGE * (f.end_s - f.start_s)
+        })
+        .count();
+    let stairs_in_walking: f64 = walking
+        .iter()
+        .map(|b| covered(&found_stairs, b.start_s, b.end_s))
+        .sum();
     Score {
+        true_stair_bouts: stairs.len(),
+        found_stair_bouts: stairs_hit,
+        stairs_recall: (!stairs.is_empty()).then(|| stairs_hit as f64 / stairs.len() as f64),
+        labelled_stair_bouts: found_stairs.len(),
+        right_stair_bouts: right,
+        stairs_precision: (!found_stairs.is_empty())
+            .then(|| right as f64 / found_stairs.len() as f64),
+        false_stairs_in_walking_pct: (true_walking_s > 0.0)
+            .then(|| 100.0 * stairs_in_walking / true_walking_s),
         stairs_s: stairs.iter().map(|b| b.duration_s()).sum(),
         found_in_stairs_s: stairs
             .iter()

@@ -194,6 +194,7 @@ fn score_of_the_truth_is_perfect_and_false_walking_is_counted() {
             start_s: b.start_s,
             end_s: b.end_s,
             steps: b.steps() as f64,
+            stairs: false,
         })
         .collect();
     let s = score(&truth, &found);
@@ -208,6 +209,7 @@ fn score_of_the_truth_is_perfect_and_false_walking_is_counted() {
         start_s: 150.0,
         end_s: 170.0,
         steps: 30.0,
+        stairs: false,
     });
     let s = score(&truth, &more);
     assert!((s.false_walking_pct.unwrap() - 100.0 * 20.0 / 205.0).abs() < 1e-9);
@@ -223,9 +225,48 @@ fn score_of_the_truth_is_perfect_and_false_walking_is_counted() {
         start_s: 100.0,
         end_s: 112.0,
         steps: 22.0,
+        stairs: false,
     }];
     assert_eq!(score(&truth, &part).recall_10s, Some(0.0));
     assert!((drift_error_s_per_day(30.0, 35.0) - 0.432).abs() < 1e-9);
+}
+
+#[test]
+fn stairs_are_scored_apart_from_level_walking() {
+    let truth = vec![
+        tb(0.0, 20.0, Activity::Walking, 36),
+        tb(20.0, 30.0, Activity::Standing, 0),
+        tb(30.0, 45.0, Activity::Stairs, 24),
+        tb(45.0, 60.0, Activity::Standing, 0),
+        tb(60.0, 75.0, Activity::Stairs, 26),
+    ];
+    let f = |a: f64, b: f64, steps: f64, stairs: bool| FoundBout {
+        start_s: a,
+        end_s: b,
+        steps,
+        stairs,
+    };
+    // The walk and the first flight found and told apart; the second flight found as walking.
+    let found = vec![
+        f(0.0, 20.0, 36.0, false),
+        f(30.0, 45.0, 24.0, true),
+        f(60.0, 75.0, 26.0, false),
+    ];
+    let s = score(&truth, &found);
+    assert_eq!((s.true_stair_bouts, s.found_stair_bouts), (2, 1));
+    assert_eq!(s.stairs_recall, Some(0.5));
+    assert_eq!((s.labelled_stair_bouts, s.right_stair_bouts), (1, 1));
+    assert_eq!(s.stairs_precision, Some(1.0));
+    assert_eq!(s.false_stairs_in_walking_pct, Some(0.0));
+    // Level walking compares the bouts not labelled stairs: the unlabelled flight is extra.
+    assert!((s.walking_time_error_pct.unwrap() - 75.0).abs() < 1e-9);
+    // A level walk labelled stairs: a wrong stair bout and level walking missed.
+    let wrong = vec![f(0.0, 20.0, 36.0, true)];
+    let s = score(&truth, &wrong);
+    assert_eq!((s.labelled_stair_bouts, s.right_stair_bouts), (1, 0));
+    assert_eq!(s.stairs_precision, Some(0.0));
+    assert_eq!(s.false_stairs_in_walking_pct, Some(100.0));
+    assert_eq!(s.walking_time_error_pct, Some(-100.0));
 }
 
 #[test]

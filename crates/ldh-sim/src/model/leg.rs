@@ -30,6 +30,11 @@ pub(super) struct LegModel {
     c: Vec<f64>,
     /// Heel contact position (progression frame) per stride index.
     pub(super) x_heel: Vec<f64>,
+    /// Height of the floor under each stride index's heel contact, m (0 on level ground;
+    /// the stair the foot stands on, [`SubjectParams::stair_rise_m`]).
+    pub(super) z_heel: Vec<f64>,
+    /// [`SubjectParams::stair_rise_m`], m.
+    stair_rise_m: f64,
     ramp_up_start: f64,
     ramp_down_end: f64,
     pub(super) p: LegParams,
@@ -97,6 +102,8 @@ pub(super) fn build_legs(
             offset: off,
             c,
             x_heel: vec![f64::NAN; n_idx],
+            z_heel: vec![0.0; n_idx],
+            stair_rise_m: params.stair_rise_m,
             ramp_up_start: 0.55 + off,
             ramp_down_end: n as f64 + 0.55 + off,
             p: lp,
@@ -112,7 +119,10 @@ pub(super) fn build_legs(
 /// Heel placements in time order: L0, R1, L1, R2, …, LN, R(N+1), in the progression frame, m.
 /// Each stride length is `stride_length_m · (1 + stride_length_cv · z)` (× 0.6 over the two
 /// turning strides), split into steps by the step-length asymmetry and scaled by the gait ramp.
-/// Draws `n` standard normals from `rng`.
+/// On stairs each heel contact lands one riser (`stair_rise_m`) above (ascent) or below
+/// (descent) the other foot's, step over step: the left heel k on riser 2k − 1, the right heel
+/// k + 1 on riser 2k, the last step bringing the feet together on one riser. Draws `n`
+/// standard normals from `rng`.
 pub(super) fn place_heels(
     legs: &mut [LegModel],
     params: &SubjectParams,
@@ -136,6 +146,9 @@ pub(super) fn place_heels(
         let step_l = 0.5 * l * (1.0 - params.step_length_asymmetry) * alpha_at(&legs[0], k as f64);
         let x = legs[1].x_heel[k] + step_l;
         legs[0].x_heel[k] = x;
+        let rise = params.stair_rise_m;
+        legs[0].z_heel[k] = (2 * k - 1) as f64 * rise;
+        legs[1].z_heel[k + 1] = (if k < n { 2 * k } else { 2 * k - 1 }) as f64 * rise;
         // Right heel strike k + 1 (right phase k + 1).
         if k < n {
             let step_r =
@@ -205,6 +218,27 @@ impl LegModel {
         a * b
     }
 
+    /// What stairs add to the shank pitch, deg, at the phase `qf` within the stride (0 on
+    /// level ground). Ascent: the foot lands on the next stair with hip and knee both flexed
+    /// ≈ 60°, the shank near vertical at contact (level walking: ≈ 20° backwards), so up to
+    /// 14° forwards around heel strike. Descent: the stance knee flexes to ≈ 85° lowering the
+    /// body onto the next stair while the hip stays near 20°, so the shank tilts up to 18° further
+    /// forwards in mid to late stance. Riener, Rabuffetti & Frigo, "Stair ascent and descent at
+    /// different inclinations", Gait & Posture 15:32–44 (2002); McFadyen & Winter, J Biomech
+    /// 21:733–744 (1988).
+    fn stair_pitch_deg(&self, qf: Jet) -> Jet {
+        if self.stair_rise_m > 0.0 {
+            let x = qf - (qf.v + 0.5).floor() + 0.5;
+            let (b, b1, b2) = bump(x.v, 0.5, 0.25);
+            x.compose(b, b1, b2).scale(14.0)
+        } else if self.stair_rise_m < 0.0 {
+            let (b, b1, b2) = bump(qf.v, 0.4, 0.25);
+            qf.compose(b, b1, b2).scale(18.0)
+        } else {
+            Jet::cst(0.0)
+        }
+    }
+
     /// Shank pitch θ (rad) and ZYX roll φ (rad) from the canonical phase.
     fn angles(&self, sh: &Shared, q: Jet, alpha: Jet) -> (Jet, Jet, Jet) {
         let qf = q - q.v.floor();
@@ -214,7 +248,8 @@ impl LegModel {
         let knee = knee * knee_w;
         let hip = (spline_jet(sh.hip, q) - curves::HIP_MEAN_DEG).scale(self.p.hip_scale)
             + curves::HIP_MEAN_DEG;
-        let theta = ((knee - hip) * alpha).scale(std::f64::consts::PI / 180.0);
+        let theta =
+            ((knee - hip + self.stair_pitch_deg(qf)) * alpha).scale(std::f64::consts::PI / 180.0);
         let (r, r1, r2) = bump(qf.v, 0.8, 0.2);
         let rho_deg =
             (qf.compose(r, r1, r2).scale(self.p.roll_swing_deg) + self.p.roll_stance_deg) * alpha;
@@ -227,6 +262,7 @@ impl LegModel {
     pub(super) fn stance_ankle(&self, q: Jet, j: usize, alpha: Jet) -> JetVec3 {
         let qf = q - j as f64;
         let xh = self.x_heel[j];
+        let zh = self.z_heel[j];
         if qf.v < FOOT_FLAT {
             let u = qf.v / FOOT_FLAT;
             let a = 1.0 - u;
@@ -239,13 +275,13 @@ impl LegModel {
             [
                 c.scale(dx) - s.scale(dz) + xh,
                 Jet::cst(0.0),
-                s.scale(dx) + c.scale(dz),
+                s.scale(dx) + c.scale(dz) + zh,
             ]
         } else if qf.v <= HEEL_OFF {
             [
                 Jet::cst(xh + HEEL_TO_ANKLE.0),
                 Jet::cst(0.0),
-                Jet::cst(HEEL_TO_ANKLE.1),
+                Jet::cst(HEEL_TO_ANKLE.1 + zh),
             ]
         } else {
             let span = TOE_OFF - HEEL_OFF;
@@ -260,7 +296,7 @@ impl LegModel {
             [
                 c.scale(dx) - s.scale(dz) + toe,
                 Jet::cst(0.0),
-                s.scale(dx) + c.scale(dz),
+                s.scale(dx) + c.scale(dz) + zh,
             ]
         }
     }

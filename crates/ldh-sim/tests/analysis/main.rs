@@ -21,3 +21,4 @@ mod pipeline_steady;
 mod quality;
 mod quality_faults;
 mod real_walks;
+mod stairs;

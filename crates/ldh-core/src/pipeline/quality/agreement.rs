@@ -222,6 +222,7 @@ mod tests {
                 valid: true,
                 reason: String::new(),
                 findings: Vec::new(),
+                vertical_m: f64::NAN,
             })
             .collect()
     }

@@ -27,6 +27,7 @@ fn stride(i: usize, t: f64, stance: f64) -> crate::gait::Stride {
         valid: true,
         reason: String::new(),
         findings: Vec::new(),
+        vertical_m: f64::NAN,
     }
 }
 
