@@ -58,7 +58,8 @@ pub const PARAMETERS: [Parameter; Parameter::COUNT] = Parameter::ALL;
 /// parameter of [`PARAMETERS`] (and STA per stride) that has a value, so a person counts once in
 /// every statistic, classifier and report whatever the number of trials. The aggregate's
 /// duration and stride counts are the trials' sums, its `source` and `warnings` each trial's
-/// (`t2: ...`), its `trial_id` says `mean of 2 trials (t1, t2)`. When no trial of that side was
+/// (`t2: ...`), its `trial_mean` names the trials and its `trial_id` says so
+/// (`mean of 2 trials (t1, t2)`). When no trial of that side was
 /// analysed, the first failed row (its error says why).
 pub fn person_row(rows: &[&RecordingRow], side: Side) -> Option<RecordingRow> {
     let all: Vec<&RecordingRow> = rows.iter().copied().filter(|r| r.side == side).collect();
@@ -116,14 +117,11 @@ pub fn person_row(rows: &[&RecordingRow], side: Side) -> Option<RecordingRow> {
         }
     }
     out.withheld = crate::pipeline::WithheldList(withheld);
-    out.trial_id = format!(
-        "mean of {} trials ({})",
-        ok.len(),
-        ok.iter()
-            .map(|r| r.trial_id.as_str())
-            .collect::<Vec<_>>()
-            .join(", ")
-    );
+    let mean = crate::output::TrialMean {
+        trial_ids: ok.iter().map(|r| r.trial_id.clone()).collect(),
+    };
+    out.trial_id = mean.to_string();
+    out.trial_mean = Some(mean);
     Some(out)
 }
 
@@ -222,7 +220,8 @@ impl Cohort {
         // Group names as the manifest writes them (`ldh`, `healthy`), never upper-cased; a
         // person is usable with both legs analysed, in one of the two groups (ldh: with an
         // affected side): the count says so, not "with both legs analysed" alone.
-        for (name, n) in [("ldh", c.ldh.len()), ("healthy", c.healthy.len())] {
+        for (group, n) in [(Group::Ldh, c.ldh.len()), (Group::Healthy, c.healthy.len())] {
+            let name = group.as_str();
             if n < MIN_GROUP_SIZE {
                 let why = if c.excluded.is_empty() {
                     String::new()
@@ -231,7 +230,7 @@ impl Cohort {
                 };
                 return Err(LdhError::signal(
                     "cohort statistics",
-                    format!("the {name} group has {n} usable subject(s) (both legs analysed, in group '{name}'{side}); at least {MIN_GROUP_SIZE} are needed{why}", side = if name == "ldh" { ", affected side given" } else { "" }),
+                    format!("the {name} group has {n} usable subject(s) (both legs analysed, in group '{name}'{side}); at least {MIN_GROUP_SIZE} are needed{why}", side = if group == Group::Ldh { ", affected side given" } else { "" }),
                 ));
             }
         }

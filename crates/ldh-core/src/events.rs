@@ -48,7 +48,7 @@ pub mod matching;
 pub mod offset;
 mod peaks;
 #[cfg(test)]
-mod tests_matching;
+mod tests;
 
 pub use bracket::{
     bracket_fraction, bracket_toe_off_s, landmark_geometry, place_bilateral, LegGeometry,

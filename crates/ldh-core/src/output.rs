@@ -199,6 +199,30 @@ pub struct RecordingRow {
     /// `io::RecordedAt`); empty when the file does not.
     #[serde(default)]
     pub recorded_at: String,
+    /// Set on a person's row that is the mean of several trials
+    /// ([`crate::cohort::person_row`]), whose `trial_id` is then this value's text. Not a
+    /// column: what a program tests instead of reading `trial_id`.
+    #[serde(skip)]
+    pub trial_mean: Option<TrialMean>,
+}
+
+/// A person's row made as the mean of several trials ([`crate::cohort::person_row`]): the
+/// trials averaged, in order. Shown as `mean of 2 trials (t1, t2)`.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct TrialMean {
+    /// The trials averaged (their `trial_id`).
+    pub trial_ids: Vec<String>,
+}
+
+impl std::fmt::Display for TrialMean {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "mean of {} trials ({})",
+            self.trial_ids.len(),
+            self.trial_ids.join(", ")
+        )
+    }
 }
 
 impl RecordingRow {
@@ -316,6 +340,7 @@ pub fn recording_rows(results: &[SubjectResult]) -> Vec<RecordingRow> {
                 belt_speed_mps: r.belt_speed_mps,
                 visit: r.visit.clone().unwrap_or_default(),
                 recorded_at: String::new(),
+                trial_mean: None,
             };
             match leg {
                 Err(e) => {

@@ -18,11 +18,18 @@ use crate::plots;
 use ldh_core::error::Result;
 use ldh_core::output::Parameter;
 
-use ldh_core::agreement::run::{AgreementReport, EventAgreement, ParameterResult};
+use ldh_core::agreement::run::{
+    AgreementReport, EventAgreement, Level, OffsetSource, ParameterResult, System,
+};
+use ldh_core::domain::{EventKind, Legs};
+use ldh_core::Side;
 
 /// The ICC(2,1) from which a parameter is said to agree with the reference (Koo & Li 2016,
 /// "good": 0.75–0.9, "excellent" above).
 pub const GOOD_ICC: f64 = 0.75;
+
+/// The event kinds, in the order of the page's tables and figures.
+const EVENT_KINDS: [EventKind; 2] = [EventKind::HeelStrike, EventKind::ToeOff];
 
 /// The parameter's name and unit for a column (the column itself when it is no parameter).
 fn name_unit(column: &str) -> (String, String) {
@@ -40,18 +47,17 @@ fn pct(x: Option<f64>) -> String {
     fmt(x.map(|v| v * 1e2), 1)
 }
 
-fn event_name(kind: &str) -> &'static str {
-    if kind == "HS" {
-        "heel strikes"
-    } else {
-        "toe offs"
+fn event_name(kind: EventKind) -> &'static str {
+    match kind {
+        EventKind::HeelStrike => "heel strikes",
+        EventKind::ToeOff => "toe offs",
     }
 }
 
 /// The summary in plain words: events matched, timing bias and limits, which parameters agree.
 fn summary(r: &AgreementReport) -> Markup {
     let k = r.params.loa_sd_multiplier;
-    let both: Vec<&EventAgreement> = r.events.iter().filter(|e| e.side == "both").collect();
+    let both: Vec<&EventAgreement> = r.events.iter().filter(|e| e.side == Legs::Both).collect();
     let events: Vec<String> = both
         .iter()
         .map(|e| {
@@ -69,7 +75,7 @@ fn summary(r: &AgreementReport) -> Markup {
                 "{} of {} reference {} were matched ({} %){}",
                 s.n_matched,
                 s.n_reference,
-                event_name(&e.event),
+                event_name(e.event),
                 pct(s.recall),
                 limits
             )
@@ -78,7 +84,7 @@ fn summary(r: &AgreementReport) -> Markup {
     let false_pos = r
         .unmatched_events
         .iter()
-        .filter(|u| u.system == "ldh")
+        .filter(|u| u.system == System::Ldh)
         .count();
     let label = |p: &ParameterResult| {
         let (n, _) = name_unit(&p.parameter);
@@ -139,20 +145,20 @@ fn event_table(r: &AgreementReport) -> Markup {
 
 /// Unmatched events per system, event kind and side.
 fn unmatched(r: &AgreementReport) -> Markup {
-    let count = |system: &str, event: &str, side: &str| {
+    let count = |system: System, event: EventKind, side: Side| {
         r.unmatched_events
             .iter()
             .filter(|u| u.system == system && u.event == event && u.side == side)
             .count()
     };
     html! {
-        p { "Unmatched events: " (r.unmatched_events.iter().filter(|u| u.system == "reference").count())
-            " reference events missed by ldh, " (r.unmatched_events.iter().filter(|u| u.system == "ldh").count())
+        p { "Unmatched events: " (r.unmatched_events.iter().filter(|u| u.system == System::Reference).count())
+            " reference events missed by ldh, " (r.unmatched_events.iter().filter(|u| u.system == System::Ldh).count())
             " ldh events without a reference partner (every one is listed in agreement.json)." }
         table {
             tr { th { "event" } th { "side" } th { "reference events missed" } th { "ldh events unpaired" } }
-            @for ev in ["HS", "TO"] { @for side in ["left", "right"] {
-                tr { td { (ev) } td { (side) } td.num { (count("reference", ev, side)) } td.num { (count("ldh", ev, side)) } }
+            @for ev in EVENT_KINDS { @for side in [Side::Left, Side::Right] {
+                tr { td { (ev) } td { (side) } td.num { (count(System::Reference, ev, side)) } td.num { (count(System::Ldh, ev, side)) } }
             } }
         }
     }
@@ -161,7 +167,7 @@ fn unmatched(r: &AgreementReport) -> Markup {
 /// The timing histograms of HS and TO.
 fn histograms(r: &AgreementReport) -> Result<Markup> {
     let mut figs = Vec::new();
-    for ev in ["HS", "TO"] {
+    for ev in EVENT_KINDS {
         let e: Vec<f64> = r
             .event_pairs
             .iter()
@@ -222,7 +228,7 @@ fn parameter_table(r: &AgreementReport) -> Markup {
 
 /// The points of a parameter's Bland–Altman plot, one series per side.
 pub fn bland_altman_points(p: &ParameterResult) -> Vec<plots::BlandAltmanSeries> {
-    ["left", "right"]
+    [Side::Left, Side::Right]
         .iter()
         .map(|side| {
             let pts = p
@@ -246,7 +252,7 @@ fn bland_altman(r: &AgreementReport) -> Result<Markup> {
         let x = format!("mean of ldh and reference ({unit})");
         let y = format!("ldh − reference ({unit})");
         let series = bland_altman_points(p);
-        let what = if p.level == "stride" {
+        let what = if p.level == Level::Stride {
             "stride"
         } else {
             "recording (one leg of one trial)"
@@ -287,7 +293,7 @@ pub fn agreement_html(r: &AgreementReport) -> Result<String> {
         p.meta { "Reference: " (file_names(r)) ". Events match within " (r.params.tolerance_s) " s. Differences are ldh − reference. "
                  @if !r.groups.is_empty() { "Subjects: " (r.groups.iter().map(|g| format!("{} {}", g.subjects, g.group)).collect::<Vec<_>>().join(", ")) "." } } "\n"
         (summary(r)) "\n"
-        @if r.offsets.iter().any(|o| o.source != "none") {
+        @if r.offsets.iter().any(|o| o.source != OffsetSource::None) {
             h2 { "Clock offsets" }
             table {
                 tr { th { "subject" } th { "trial" } th { "ldh − reference clock (s)" } th { "source" } }

@@ -173,7 +173,7 @@ fn cycle_reference(results: &RunResults, params: &ValidReportParams) -> CycleRef
     let legs: HashSet<(&str, &str)> = rows
         .iter()
         .filter(|r| {
-            matches!(r.group, Some(ldh_core::pipeline::GroupLabel::Healthy))
+            matches!(r.group, Some(ldh_core::pipeline::Group::Healthy))
                 && r.is_ok()
                 && passes_every_check(r)
         })

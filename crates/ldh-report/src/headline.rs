@@ -282,8 +282,7 @@ pub(crate) fn make(
         context: {
             let mean = sides
                 .iter()
-                .map(|r| r.trial_id.as_str())
-                .find(|t| t.starts_with("mean of"))
+                .find_map(|r| r.trial_mean.as_ref())
                 .map(|t| format!("The values are the {t} of this person."));
             match (mean, super::trials::disagreement(recordings, ctx)) {
                 (Some(m), Some(d)) => Some(format!("{m} {d}")),

@@ -85,8 +85,9 @@ fn header(s: &SubjectReport, sides: &[&RecordingRow]) -> Markup {
     let model = sides.first().map(|r| r.model.as_str()).unwrap_or("");
     let affected = sides
         .iter()
-        .map(|r| ldh_core::output::labels::text(&r.affected_side))
-        .find(|a| !a.is_empty() && *a != "none");
+        .filter_map(|r| r.affected_side.as_ref())
+        .find(|a| **a != ldh_core::output::AffectedSide::Neither)
+        .map(|a| a.as_str());
     html! {
         h1 { "Gait report: subject " (s.subject_id) } "\n"
         p.meta {
@@ -95,7 +96,7 @@ fn header(s: &SubjectReport, sides: &[&RecordingRow]) -> Markup {
                 "; group in the manifest: " b { (group) }
                 @if let Some(a) = affected { ", affected side " b { (a) } }
             }
-            @if let Some(t) = sides.iter().map(|r| r.trial_id.as_str()).find(|t| t.starts_with("mean of")) {
+            @if let Some(t) = sides.iter().find_map(|r| r.trial_mean.as_ref()) {
                 "; values are the " b { (t) } " (plots: trial "
                 (s.recordings.first().map_or("", |r| r.trial_id.as_str())) ")"
             }

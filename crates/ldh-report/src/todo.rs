@@ -95,7 +95,7 @@ pub(crate) fn actions<'a>(v: &Verdicts, sides: &[&'a RecordingRow]) -> Vec<(Acti
             Scope::Side => sides
                 .iter()
                 .filter(|r| {
-                    let i = usize::from(r.side.as_str() == "right");
+                    let i = usize::from(r.side == ldh_core::Side::Right);
                     matches!(row.cells.get(i), Some(Cell::NotMeasured(_)))
                 })
                 .collect(),

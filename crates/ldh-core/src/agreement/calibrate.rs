@@ -10,6 +10,7 @@
 //! the 15–20 ms SD of good detectors, docs/accuracy.md).
 
 use super::{AgreementError, AgreementReport};
+use crate::domain::{EventKind, Legs};
 use crate::error::Result;
 use crate::events::EventCalibration;
 use crate::pipeline::AnalysisParams;
@@ -20,11 +21,11 @@ pub const MIN_CALIBRATION_EVENTS: usize = 20;
 
 /// The mean error (ldh − reference, s) of `event` (`HS` or `TO`) over both legs, with at least
 /// [`MIN_CALIBRATION_EVENTS`] matches.
-fn bias_s(report: &AgreementReport, event: &str, what: &'static str) -> Result<(f64, usize)> {
+fn bias_s(report: &AgreementReport, event: EventKind, what: &'static str) -> Result<(f64, usize)> {
     let summary = report
         .events
         .iter()
-        .find(|e| e.event == event && e.side == "both")
+        .find(|e| e.event == event && e.side == Legs::Both)
         .map(|e| &e.summary);
     let n = summary.map_or(0, |s| s.n_matched);
     match summary.and_then(|s| s.bias_s) {
@@ -68,8 +69,12 @@ pub fn calibrated_params(
         Some(s) => format!("{s} ({files}"),
         None => format!("{files} ("),
     };
-    let (hs_bias, n_hs) = bias_s(report, "HS", "event calibration (heel strikes)")?;
-    let (to_bias, n_to) = bias_s(report, "TO", "event calibration (toe offs)")?;
+    let (hs_bias, n_hs) = bias_s(
+        report,
+        EventKind::HeelStrike,
+        "event calibration (heel strikes)",
+    )?;
+    let (to_bias, n_to) = bias_s(report, EventKind::ToeOff, "event calibration (toe offs)")?;
     let earlier = base.events.calibration.as_ref();
     let calibration = EventCalibration {
         hs_shift_s: earlier.map_or(0.0, |c| c.hs_shift_s) - hs_bias,
@@ -111,9 +116,9 @@ mod tests {
     use crate::agreement::{AgreementParams, MatchSummary};
 
     fn report(n: usize, hs_bias: f64, to_bias: f64) -> AgreementReport {
-        let ev = |event: &str, side: &str, bias: f64| EventAgreement {
-            event: event.into(),
-            side: side.into(),
+        let ev = |event: EventKind, side: Legs, bias: f64| EventAgreement {
+            event,
+            side,
             group: "all".into(),
             summary: MatchSummary {
                 n_ldh: n,
@@ -133,9 +138,9 @@ mod tests {
             reference_files: vec!["ref.csv".into()],
             offsets: vec![],
             events: vec![
-                ev("HS", "left", 0.5),
-                ev("HS", "both", hs_bias),
-                ev("TO", "both", to_bias),
+                ev(EventKind::HeelStrike, Legs::Left, 0.5),
+                ev(EventKind::HeelStrike, Legs::Both, hs_bias),
+                ev(EventKind::ToeOff, Legs::Both, to_bias),
             ],
             unmatched_events: vec![],
             reference_strides: 0,

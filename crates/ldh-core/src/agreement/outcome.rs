@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::domain::Legs;
 use crate::pipeline::EventKind;
 use crate::Side;
 
@@ -15,14 +16,74 @@ pub const ALL_GROUPS: &str = "all";
 /// The group of a subject whose manifest gives none.
 pub const UNLABELLED: &str = "unlabelled";
 
+/// A closed set of labels of `agreement.json`: each variant written as its lowercase name, read
+/// by serde and shown by `Display` as the same word, so code compares variants, never text.
+macro_rules! label {
+    ($(#[$m:meta])* $name:ident { $($(#[$vm:meta])* $v:ident => $s:literal,)+ }) => {
+        $(#[$m])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+        #[serde(rename_all = "lowercase")]
+        pub enum $name {
+            $($(#[$vm])* $v,)+
+        }
+        impl $name {
+            /// The label as `agreement.json` writes it.
+            pub fn as_str(self) -> &'static str {
+                match self {
+                    $($name::$v => $s,)+
+                }
+            }
+        }
+        impl std::fmt::Display for $name {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str(self.as_str())
+            }
+        }
+    };
+}
+
+label! {
+    /// Which system an unmatched event came from.
+    System {
+        /// ldh's event (a false positive).
+        Ldh => "ldh",
+        /// The reference's event (missed by ldh).
+        Reference => "reference",
+    }
+}
+
+label! {
+    /// Where a trial's clock offset came from.
+    OffsetSource {
+        /// An `offset_s` column of the reference file.
+        File => "file",
+        /// `--offset-s X`.
+        Given => "given",
+        /// Estimated from the events.
+        Estimated => "estimated",
+        /// No offset (0 s).
+        None => "none",
+    }
+}
+
+label! {
+    /// The level a parameter is compared at.
+    Level {
+        /// Per stride.
+        Stride => "stride",
+        /// Per recording.
+        Recording => "recording",
+    }
+}
+
 /// Detection rates and timing errors of one event kind on one side (or both), in one group
 /// (or all).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct EventAgreement {
     /// `HS` or `TO`.
-    pub event: String,
+    pub event: EventKind,
     /// `left`, `right` or `both`.
-    pub side: String,
+    pub side: Legs,
     /// `all`, or the subjects' group (`healthy`, `ldh`, another label, `unlabelled`).
     #[serde(default = "all_groups")]
     pub group: String,
@@ -38,7 +99,7 @@ fn all_groups() -> String {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct UnmatchedEvent {
     /// `ldh` (a false positive) or `reference` (a missed event).
-    pub system: String,
+    pub system: System,
     /// Subject.
     pub subject_id: String,
     /// Trial.
@@ -47,9 +108,9 @@ pub struct UnmatchedEvent {
     #[serde(default)]
     pub group: String,
     /// Leg.
-    pub side: String,
+    pub side: Side,
     /// `HS` or `TO`.
-    pub event: String,
+    pub event: EventKind,
     /// Time on the reference clock, s (ldh's with the offset removed).
     pub time_s: f64,
 }
@@ -64,9 +125,9 @@ pub struct MatchedEvent {
     /// The subject's group.
     pub group: String,
     /// Leg.
-    pub side: String,
+    pub side: Side,
     /// `HS` or `TO`.
-    pub event: String,
+    pub event: EventKind,
     /// The reference's time, s.
     pub reference_time_s: f64,
     /// ldh − reference, s (ldh's time with the offset removed).
@@ -94,7 +155,7 @@ pub struct TrialOffset {
     /// ldh clock − reference clock, s (subtracted from ldh's times).
     pub offset_s: f64,
     /// `file` (an `offset_s` column), `given` (`--offset-s X`), `estimated` or `none`.
-    pub source: String,
+    pub source: OffsetSource,
     /// The estimate, when estimated (`offset_s` is its best offset polished).
     pub estimate: Option<ClockOffset>,
 }
@@ -107,7 +168,7 @@ pub struct PairedValue {
     /// Trial.
     pub trial_id: String,
     /// Leg.
-    pub side: String,
+    pub side: Side,
     /// ldh's stride number (per-stride pairs).
     pub stride_index: Option<usize>,
     /// ldh's value (`None`: withheld or missing).
@@ -120,7 +181,7 @@ pub struct PairedValue {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ParameterResult {
     /// `stride` or `recording`.
-    pub level: String,
+    pub level: Level,
     /// The column, e.g. `stride_time_s`.
     pub parameter: String,
     /// The statistics, when they could be computed.

@@ -32,8 +32,8 @@ use crate::Side;
 
 pub(crate) use super::outcome::{offset_of, Trial, KINDS, SIDES};
 pub use super::outcome::{
-    AgreementReport, EventAgreement, GroupCount, MatchedEvent, PairedValue, ParameterResult,
-    TrialOffset, UnmatchedEvent, ALL_GROUPS, UNLABELLED,
+    AgreementReport, EventAgreement, GroupCount, Level, MatchedEvent, OffsetSource, PairedValue,
+    ParameterResult, System, TrialOffset, UnmatchedEvent, ALL_GROUPS, UNLABELLED,
 };
 use super::run_events::{event_train, group_counts};
 use super::{
@@ -191,7 +191,7 @@ fn trial_offset(
         subject_id: s.clone(),
         trial_id: t.clone(),
         offset_s: 0.0,
-        source: "none".into(),
+        source: OffsetSource::None,
         estimate: None,
     };
     if let Some(o) = reference
@@ -200,14 +200,14 @@ fn trial_offset(
         .find(|o| &o.subject_id == s && &o.trial_id == t)
     {
         out.offset_s = o.offset_s;
-        out.source = "file".into();
+        out.source = OffsetSource::File;
         return Ok(out);
     }
     match mode {
         OffsetMode::None => return Ok(out),
         OffsetMode::Fixed(x) => {
             out.offset_s = x;
-            out.source = "given".into();
+            out.source = OffsetSource::Given;
             return Ok(out);
         }
         OffsetMode::Estimate => {}
@@ -251,7 +251,7 @@ fn trial_offset(
         )));
     }
     out.offset_s = polish_offset(&views, est.best.offset_s, params).offset_s;
-    out.source = "estimated".into();
+    out.source = OffsetSource::Estimated;
     out.estimate = Some(est);
     Ok(out)
 }
@@ -270,7 +270,7 @@ impl Pairs {
 
     fn finish(
         mut self,
-        level: &str,
+        level: Level,
         params: &ValidAgreementParams,
         out: &mut Vec<ParameterResult>,
     ) {
@@ -285,7 +285,7 @@ impl Pairs {
                 Err(e) => (None, Some(e.to_string())),
             };
             out.push(ParameterResult {
-                level: level.into(),
+                level,
                 parameter: p.column().into(),
                 agreement,
                 not_computed,
@@ -351,7 +351,7 @@ fn strides(
                         PairedValue {
                             subject_id: trial.0.clone(),
                             trial_id: trial.1.clone(),
-                            side: side.to_string(),
+                            side,
                             stride_index: Some(s.stride_index),
                             ldh: stride_value(s, p),
                             reference: finite(x),
@@ -361,7 +361,7 @@ fn strides(
             }
         }
     }
-    pairs.finish("stride", params, &mut report.parameters);
+    pairs.finish(Level::Stride, params, &mut report.parameters);
     Ok(())
 }
 
@@ -392,7 +392,7 @@ fn recordings(
                     PairedValue {
                         subject_id: s.clone(),
                         trial_id: t.clone(),
-                        side: side.to_string(),
+                        side,
                         stride_index: None,
                         ldh: row.and_then(|r| r.value(p)).and_then(finite),
                         reference: finite(x),
@@ -401,7 +401,7 @@ fn recordings(
             }
         }
     }
-    pairs.finish("recording", params, &mut report.parameters);
+    pairs.finish(Level::Recording, params, &mut report.parameters);
 }
 
 /// Mean of each parameter over a leg's reference strides (empty cells skipped; NaN when none).

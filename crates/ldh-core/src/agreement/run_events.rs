@@ -6,13 +6,14 @@
 //! `unlabelled`). ldh's events are taken inside the span the reference covers (its first event
 //! − tolerance to its last + tolerance).
 
+use crate::domain::Legs;
 use crate::error::Result;
 use crate::pipeline::EventKind;
 use crate::Side;
 
 use super::outcome::{
-    offset_of, AgreementReport, EventAgreement, GroupCount, MatchedEvent, Trial, UnmatchedEvent,
-    ALL_GROUPS, KINDS, SIDES, UNLABELLED,
+    offset_of, AgreementReport, EventAgreement, GroupCount, MatchedEvent, System, Trial,
+    UnmatchedEvent, ALL_GROUPS, KINDS, SIDES, UNLABELLED,
 };
 use super::{match_events, summarize, EventMatch, ValidAgreementParams};
 use crate::output::results::LdhResults;
@@ -101,8 +102,8 @@ impl KindMatches {
                 .map(|x| x.2.clone())
                 .collect();
             out.push(EventAgreement {
-                event: kind.to_string(),
-                side: side.to_string(),
+                event: kind,
+                side: side.into(),
                 group: group.to_string(),
                 summary: summarize(&m),
             });
@@ -115,8 +116,8 @@ impl KindMatches {
             .map(|x| x.2.clone())
             .collect();
         out.push(EventAgreement {
-            event: kind.to_string(),
-            side: "both".into(),
+            event: kind,
+            side: Legs::Both,
             group: group.to_string(),
             summary: summarize(&both),
         });
@@ -151,32 +152,34 @@ pub(crate) fn events(
                     .filter(|x| *x >= first - tol && *x <= last + tol)
                     .collect();
                 let m = match_events(&l, &r, params)?;
-                let mut miss = |system: &str, time_s: f64| {
+                let mut miss = |system: System, time_s: f64| {
                     report.unmatched_events.push(UnmatchedEvent {
-                        system: system.into(),
+                        system,
                         subject_id: trial.0.clone(),
                         trial_id: trial.1.clone(),
                         group: group.clone(),
-                        side: side.to_string(),
-                        event: kind.to_string(),
+                        side,
+                        event: kind,
                         time_s,
                     })
                 };
-                m.unmatched_ldh.iter().for_each(|&i| miss("ldh", l[i]));
+                m.unmatched_ldh
+                    .iter()
+                    .for_each(|&i| miss(System::Ldh, l[i]));
                 for (&(_, j), &error_s) in m.pairs.iter().zip(&m.errors_s) {
                     report.event_pairs.push(MatchedEvent {
                         subject_id: trial.0.clone(),
                         trial_id: trial.1.clone(),
                         group: group.clone(),
-                        side: side.to_string(),
-                        event: kind.to_string(),
+                        side,
+                        event: kind,
                         reference_time_s: r[j],
                         error_s,
                     });
                 }
                 m.unmatched_reference
                     .iter()
-                    .for_each(|&j| miss("reference", r[j]));
+                    .for_each(|&j| miss(System::Reference, r[j]));
                 matches.all.push((group.clone(), k, m));
             }
         }

@@ -93,8 +93,8 @@ pub fn rows(report: &AgreementReport) -> Vec<AgreementRow> {
         let s = &e.summary;
         out.push(AgreementRow {
             level: "events".into(),
-            quantity: e.event.clone(),
-            side: e.side.clone(),
+            quantity: e.event.to_string(),
+            side: e.side.to_string(),
             group: e.group.clone(),
             n_ldh: Some(s.n_ldh),
             n_reference: Some(s.n_reference),
@@ -111,9 +111,9 @@ pub fn rows(report: &AgreementReport) -> Vec<AgreementRow> {
     }
     for p in &report.parameters {
         let mut row = AgreementRow {
-            level: p.level.clone(),
+            level: p.level.to_string(),
             quantity: p.parameter.clone(),
-            side: "both".into(),
+            side: crate::domain::Legs::Both.to_string(),
             group: super::run::ALL_GROUPS.into(),
             note: p.not_computed.clone().unwrap_or_default(),
             ..Default::default()
@@ -161,7 +161,11 @@ pub fn markdown(report: &AgreementReport) -> String {
         report.reference_files.join(", "),
         report.params.tolerance_s
     ));
-    if report.offsets.iter().any(|o| o.source != "none") {
+    if report
+        .offsets
+        .iter()
+        .any(|o| o.source != super::run::OffsetSource::None)
+    {
         s.push_str("| subject | trial | clock offset (s) | source |\n|---|---|---:|---|\n");
         for o in &report.offsets {
             s.push_str(&format!(

@@ -1,4 +1,4 @@
-//! The labels every stage shares (issue 48): which leg ([`Side`]), where the walk happened
+//! The labels every stage shares (issue 48): which leg ([`Side`]) or legs ([`Legs`]), where the walk happened
 //! ([`Setting`]), a subject's group ([`Group`]) and affected side ([`AffectedSide`]), and the
 //! kind of a gait event ([`EventKind`]). Each is defined once, here; the modules that used to
 //! hold them (`recording`, `pipeline`, `output`) re-export them.
@@ -48,6 +48,48 @@ impl std::str::FromStr for Side {
             "right" | "r" => Ok(Side::Right),
             other => Err(LdhError::param("side", other, "expected 'left' or 'right'")),
         }
+    }
+}
+
+/// Which legs a value is of: one leg, or both pooled (a bout both sensors saw, the pooled row
+/// of an event agreement). Written `left`, `right` or `both`.
+#[derive(
+    Debug, Clone, Copy, Default, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize,
+)]
+#[serde(rename_all = "lowercase")]
+pub enum Legs {
+    /// The left leg alone.
+    Left,
+    /// The right leg alone.
+    Right,
+    /// Both legs (the default).
+    #[default]
+    Both,
+}
+
+impl Legs {
+    /// `"left"`, `"right"` or `"both"`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Legs::Left => "left",
+            Legs::Right => "right",
+            Legs::Both => "both",
+        }
+    }
+}
+
+impl From<Side> for Legs {
+    fn from(s: Side) -> Self {
+        match s {
+            Side::Left => Legs::Left,
+            Side::Right => Legs::Right,
+        }
+    }
+}
+
+impl std::fmt::Display for Legs {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
     }
 }
 

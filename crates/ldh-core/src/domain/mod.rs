@@ -1,7 +1,7 @@
 //! The domain layer (issue 48): the vocabulary every stage shares, defined once at the bottom
 //! of ldh-core. It imports nothing above it (only `crate::error`), and every module may use it.
 //!
-//! - [`labels`]: [`Side`], [`Setting`], [`Group`] (the one group type of manifests, tables,
+//! - [`labels`]: [`Side`], [`Legs`], [`Setting`], [`Group`] (the one group type of manifests, tables,
 //!   statistics and the simulator), [`AffectedSide`], [`EventKind`];
 //! - [`parameter`]: [`Parameter`], every gait parameter once with its code, column, plain
 //!   name, unit and meaning (the model is gaitmap's one vocabulary, `gaitmap/utils/consts.py`);
@@ -22,7 +22,7 @@ pub mod walk;
 pub mod warning_code;
 
 pub use block::ParameterBlock;
-pub use labels::{AffectedSide, EventKind, Group, Setting, Side};
+pub use labels::{AffectedSide, EventKind, Group, Legs, Setting, Side};
 pub use measured::{Measured, PerParameter, Reason, ReasonCode, Withheld};
 pub use parameter::{Definition, Parameter, UnknownParameter};
 pub use unsure::UnsureEvent;

@@ -269,21 +269,29 @@ impl<'t> Row<'t> {
     /// Column `name` as a finite number; `None` for an empty cell. Errors:
     /// [`LdhError::NotANumber`], [`LdhError::NonFinite`].
     pub fn number(&self, name: &str) -> Result<Option<f64>> {
-        let s = self.get(name);
+        match self.table.column(name) {
+            Some(i) => self.number_at(i, name),
+            None => Ok(None),
+        }
+    }
+
+    /// Column `i`'s cell (0-based; errors name it `column`) as a finite number; `None` for an
+    /// empty cell. Errors: [`LdhError::NotANumber`], [`LdhError::NonFinite`].
+    pub fn number_at(&self, i: usize, column: &str) -> Result<Option<f64>> {
+        let s = self.at(i);
         if s.is_empty() {
             return Ok(None);
         }
-        let column = || name.to_string();
         let v = s.parse::<f64>().map_err(|_| LdhError::NotANumber {
-            loc: self.loc(name),
-            column: column(),
+            loc: self.loc_at(i),
+            column: column.to_string(),
             value: s.to_string(),
             hint: String::new(),
         })?;
         if !v.is_finite() {
             return Err(LdhError::NonFinite {
-                loc: self.loc(name),
-                column: column(),
+                loc: self.loc_at(i),
+                column: column.to_string(),
                 value: s.to_string(),
             });
         }

@@ -20,7 +20,7 @@ use super::store::SpanStore;
 use super::stream::Sample;
 use super::windows::WindowParams;
 use super::MonitorParams;
-use crate::domain::Parameter;
+use crate::domain::{Legs, Parameter};
 use crate::pipeline::{Analysis, LegResult, LoadedLeg, SubjectInput};
 use crate::recording::{Recording, Side};
 
@@ -38,7 +38,7 @@ pub struct BoutRow {
     /// Heel strikes of both legs (twice one leg's with one sensor).
     pub steps: usize,
     /// Which legs saw the bout: `both`, `left` or `right`.
-    pub legs: String,
+    pub legs: Legs,
     /// Strides of the left leg.
     pub strides_left: usize,
     /// Strides of the right leg.
@@ -88,8 +88,8 @@ pub struct Refused {
 /// Returns the bouts kept, in time order, and how many were dropped.
 pub fn count_once(mut rows: Vec<BoutRow>) -> (Vec<BoutRow>, usize) {
     rows.sort_by(|a, b| {
-        (b.legs == "both")
-            .cmp(&(a.legs == "both"))
+        (b.legs == Legs::Both)
+            .cmp(&(a.legs == Legs::Both))
             .then(b.duration_s.total_cmp(&a.duration_s))
     });
     let mut kept: Vec<BoutRow> = Vec::with_capacity(rows.len());
@@ -353,11 +353,10 @@ fn bout_row(
         duration_s: end - start,
         steps,
         legs: match (left.is_ok(), right.is_ok()) {
-            (true, true) => "both",
-            (true, false) => "left",
-            _ => "right",
-        }
-        .into(),
+            (true, true) => Legs::Both,
+            (true, false) => Legs::Left,
+            _ => Legs::Right,
+        },
         strides_left: strides[0],
         strides_right: strides[1],
         cadence_steps_per_min: cadence,

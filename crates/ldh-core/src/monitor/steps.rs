@@ -20,6 +20,7 @@
 //! is a run, not walking (the windows' rule at the bout's scale).
 
 use crate::pipeline::LegResult;
+use crate::stats::{median, EvenMedian};
 
 /// Least peak of an initiation or termination swing, share of the bout's median mid-swing
 /// peak: 0.15.
@@ -27,10 +28,6 @@ pub const EDGE_SWING_SHARE: f64 = 0.15;
 /// Least peak of an initiation or termination swing, deg/s: 30 (postural sway and weight
 /// shifts stay well below).
 pub const EDGE_SWING_MIN_DPS: f64 = 30.0;
-
-fn median(mut v: Vec<f64>) -> Option<f64> {
-    crate::stats::median(&mut v, crate::stats::EvenMedian::Mean)
-}
 
 /// The heel strikes of one leg in a bout, s from the leg's first sample: the pipeline's, plus
 /// the initiation step before its first mid-swing and the termination step after its last
@@ -45,10 +42,11 @@ pub fn leg_heel_strikes(l: &LegResult) -> Vec<f64> {
     let n = w.len();
     let at = |t: f64| ((t * fs).round().max(0.0) as usize).min(n.saturating_sub(1));
     let t_med = ev.median_stride_s;
-    let Some(height) = median(ev.midswing_s.iter().map(|&m| -w[at(m)]).collect()) else {
+    let mut heights: Vec<f64> = ev.midswing_s.iter().map(|&m| -w[at(m)]).collect();
+    let Some(height) = median(&mut heights, EvenMedian::Mean) else {
         return hs;
     };
-    let delays: Vec<f64> = ev
+    let mut delays: Vec<f64> = ev
         .midswing_s
         .iter()
         .filter_map(|&m| {
@@ -56,7 +54,7 @@ pub fn leg_heel_strikes(l: &LegResult) -> Vec<f64> {
             hs.get(j).map(|h| h - m).filter(|d| *d < 0.5 * t_med)
         })
         .collect();
-    let Some(delay) = median(delays) else {
+    let Some(delay) = median(&mut delays, EvenMedian::Mean) else {
         return hs;
     };
     let thr = EDGE_SWING_MIN_DPS.max(EDGE_SWING_SHARE * height);
@@ -91,7 +89,7 @@ pub fn leg_heel_strikes(l: &LegResult) -> Vec<f64> {
 /// the same first sample.
 pub fn heel_strike_peak_g(hs_s: &[f64], acc_norm_g: &[f64], fs_hz: f64) -> Option<f64> {
     let n = acc_norm_g.len();
-    let peaks: Vec<f64> = hs_s
+    let mut peaks: Vec<f64> = hs_s
         .iter()
         .filter_map(|&h| {
             let i0 = (((h - 0.05) * fs_hz).floor().max(0.0) as usize).min(n);
@@ -99,7 +97,7 @@ pub fn heel_strike_peak_g(hs_s: &[f64], acc_norm_g: &[f64], fs_hz: f64) -> Optio
             (i1 > i0).then(|| acc_norm_g[i0..i1].iter().copied().fold(0.0, f64::max))
         })
         .collect();
-    median(peaks)
+    median(&mut peaks, EvenMedian::Mean)
 }
 
 #[cfg(test)]

@@ -3,6 +3,7 @@
 //! segments; bad inputs. Accuracy on simulated free-living days is in ldh-sim's tests.
 
 use super::*;
+use crate::domain::Legs;
 use crate::pipeline::bare_subject;
 
 const FS: f64 = 100.0;
@@ -134,7 +135,7 @@ fn the_walks_are_found_and_cycling_sitting_and_lying_are_not() {
     // Each demo walk lasts 35 s: sitting 120 s, walk, 60 s, walk, 60 + 120 + 60 s, walk.
     let walks = [120.0, 215.0, 490.0];
     for (bout, start) in b.iter().zip(walks) {
-        assert_eq!(bout.legs, "both");
+        assert_eq!(bout.legs, Legs::Both);
         // The demo walks: 3 s standing, first heel strike at about 4 s, then about 27 s and
         // 54 steps of walking with a turn (H01's truth; the others alike).
         assert!((bout.start_s - start - 4.0).abs() < 1.0, "{bout:?}");
@@ -175,7 +176,7 @@ fn a_clock_offset_between_the_sensors_is_found_and_the_bouts_still_pair() {
     let res = run(day("left", 1), right);
     assert_eq!(res.bouts.len(), 3, "{:?}", res.notes);
     for b in &res.bouts {
-        assert_eq!(b.legs, "both");
+        assert_eq!(b.legs, Legs::Both);
         assert!((b.clock_offset_s - 2.5).abs() < 0.4, "{b:?}");
     }
 }
@@ -187,7 +188,7 @@ fn a_sensor_that_stops_leaves_the_other_legs_bouts() {
     right.truncate((300.0 * FS) as usize); // stops before the third walk
     let res = run(left, right);
     assert_eq!(res.bouts.len(), 3, "{:?}", res.notes);
-    assert_eq!(res.bouts[2].legs, "left");
+    assert_eq!(res.bouts[2].legs, Legs::Left);
     assert!(res.bouts[2].step_time_asymmetry_pct.is_nan());
     assert!(res.bouts[2]
         .withheld
@@ -251,7 +252,7 @@ fn legs_of_different_rates_are_each_read_at_their_own() {
     let res = run(left, right);
     assert_eq!(res.bouts.len(), 3, "{:?}", res.notes);
     assert!(
-        res.bouts.iter().all(|b| b.legs == "both"),
+        res.bouts.iter().all(|b| b.legs == Legs::Both),
         "{:?}",
         res.bouts
     );

@@ -90,7 +90,7 @@ pub fn tables(results: &[MonitorResult]) -> [(&'static str, Vec<String>, Rows); 
                 num(b.end_s),
                 num(b.duration_s),
                 b.steps.to_string(),
-                b.legs.clone(),
+                b.legs.to_string(),
                 b.strides_left.to_string(),
                 b.strides_right.to_string(),
             ]);

@@ -59,6 +59,7 @@ impl Serialize for RecordingRow {
             belt_speed_mps,
             visit,
             recorded_at,
+            trial_mean: _, // not a column: the mean's text is `trial_id`
         } = self;
         let mut st = s.serialize_struct("RecordingRow", HEAD + block::BLOCK_FIELDS + TAIL)?;
         st.serialize_field("subject_id", subject_id)?;

@@ -31,8 +31,6 @@ pub use inputs::{
 };
 pub use leg::{leg_back, leg_front, memory_report, LegFront, LegResult};
 pub use manifest::{is_manifest_text, MANIFEST_COLUMNS};
-/// The group's former name (before issue 48 made [`Group`] the one group type); the same type.
-pub type GroupLabel = Group;
 pub use many::{bounded_jobs, check_output_names, FolderOptions, FolderSummary, KeptRun};
 pub use quality::{
     all_leg_warnings, codes, leg_checks, leg_warnings, pair_warnings, params as quality_params,

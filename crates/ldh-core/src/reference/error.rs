@@ -5,7 +5,10 @@ use crate::error::{clip, clip_to, LdhError, Location};
 /// A reference file (`ldh agree --reference`) that cannot be used, or a comparison that cannot
 /// be made. Each case names the file and, where there is one, the line (and column): what
 /// `docs/agreement.md`, "Command line and Python", lists. [`crate::LdhError::Reference`] wraps
-/// it (boxed).
+/// it (boxed). A fault of the table itself — a missing or unknown column, a cell that is not
+/// what its column holds, a row of the wrong length — is not here: it is the one table
+/// reader's [`LdhError`] (`MissingColumn`, `UnknownColumn`, `InvalidValue`, `NotANumber`,
+/// `NonFinite`, `FieldCount`), worded as for every other table ldh reads.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum ReferenceError {
@@ -14,46 +17,6 @@ pub enum ReferenceError {
     Empty {
         /// The file.
         loc: Location,
-    },
-    /// A column the file needs is missing from its header.
-    #[error("{loc}: no column '{column}' ({why}); the header has: {header}")]
-    MissingColumn {
-        /// The file (line 1).
-        loc: Location,
-        /// The missing column.
-        column: &'static str,
-        /// Why it is needed.
-        why: &'static str,
-        /// The header as read.
-        header: String,
-    },
-    /// A header column that is neither a key nor a known parameter.
-    #[error("{loc}: unknown column '{}'; known: {known}", clip(column))]
-    UnknownColumn {
-        /// The file, line 1, the column.
-        loc: Location,
-        /// The column name.
-        column: String,
-        /// The columns a reference file may have.
-        known: String,
-    },
-    /// A cell that is not what its column holds (an unknown side or event, not a number), or
-    /// a cell of a walkway export that its column map cannot read (a side not listed, a number
-    /// that is not one).
-    #[error(
-        "{loc}: column '{}': '{}' is not {expected}",
-        clip(column),
-        clip(value)
-    )]
-    BadValue {
-        /// File, line, column (of the export, for a walkway export).
-        loc: Location,
-        /// The column (the export's name, for a walkway export).
-        column: String,
-        /// The cell.
-        value: String,
-        /// What the column holds.
-        expected: String,
     },
     /// A subject (or subject and trial) the results do not have.
     #[error(
@@ -148,15 +111,6 @@ pub enum ReferenceError {
         /// Why.
         reason: String,
     },
-    /// The file is not a well-formed CSV table (e.g. a row with more or fewer cells than the
-    /// header).
-    #[error("{loc}: not a CSV table: {}", clip(reason))]
-    Unreadable {
-        /// File and line.
-        loc: Location,
-        /// The CSV reader's message.
-        reason: String,
-    },
     /// A walkway column map (`--walkway-map`) that cannot be used with its export: the TOML
     /// itself, or a column it names that the export's header lacks.
     #[error("{loc}: walkway column map: {}", clip_to(reason, 400))]
@@ -178,7 +132,6 @@ impl ReferenceError {
         line: impl Fn(u64) -> u64,
         column: impl Fn(u32) -> Option<u32>,
     ) {
-        use std::num::{NonZeroU32, NonZeroU64};
         use ReferenceError::*;
         let cited = match self {
             OutOfOrder { previous_line, .. } => Some(previous_line),
@@ -190,24 +143,50 @@ impl ReferenceError {
         }
         let loc = match self {
             Empty { loc }
-            | MissingColumn { loc, .. }
-            | UnknownColumn { loc, .. }
-            | BadValue { loc, .. }
             | UnknownSubject { loc, .. }
             | AmbiguousTrial { loc, .. }
             | OutOfRange { loc, .. }
             | OutOfOrder { loc, .. }
             | Duplicate { loc, .. }
             | OffsetConflict { loc, .. }
-            | Unreadable { loc, .. }
             | Map { loc, .. } => loc,
             Offset { .. } => return,
         };
-        loc.line = loc.line.and_then(|l| NonZeroU64::new(line(l.get())));
-        loc.column = loc
-            .column
-            .and_then(|c| column(c.get()).and_then(NonZeroU32::new));
+        move_location(loc, line, column);
     }
+}
+
+/// [`ReferenceError::relocate`] for any error of the long-form reader: a reference error, or
+/// a table fault of the one table reader (its location moved the same way).
+pub(crate) fn relocate(
+    e: LdhError,
+    line: impl Fn(u64) -> u64,
+    column: impl Fn(u32) -> Option<u32>,
+) -> LdhError {
+    let mut e = e;
+    match &mut e {
+        LdhError::Reference(b) => b.relocate(line, column),
+        LdhError::MissingColumn { loc, .. }
+        | LdhError::UnknownColumn { loc, .. }
+        | LdhError::InvalidValue { loc, .. }
+        | LdhError::NotANumber { loc, .. }
+        | LdhError::NonFinite { loc, .. }
+        | LdhError::FieldCount { loc, .. } => move_location(loc, line, column),
+        _ => {}
+    }
+    e
+}
+
+fn move_location(
+    loc: &mut Location,
+    line: impl Fn(u64) -> u64,
+    column: impl Fn(u32) -> Option<u32>,
+) {
+    use std::num::{NonZeroU32, NonZeroU64};
+    loc.line = loc.line.and_then(|l| NonZeroU64::new(line(l.get())));
+    loc.column = loc
+        .column
+        .and_then(|c| column(c.get()).and_then(NonZeroU32::new));
 }
 
 fn trial_note(trial_id: &str) -> String {

@@ -21,7 +21,7 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-use crate::error::{Location, Result};
+use crate::error::{LdhError, Location, Result};
 use crate::io::table::{CsvFault, Row, Table, TableFormat};
 use crate::output::Parameter;
 use crate::pipeline::EventKind;
@@ -139,12 +139,7 @@ pub fn parse_reference(
         lowercase_header: true,
         ..TableFormat::default()
     };
-    let unreadable = |f: CsvFault| {
-        boxed(ReferenceError::Unreadable {
-            loc: f.loc,
-            reason: f.reason,
-        })
-    };
+    let unreadable = |f: CsvFault| f.into_error("");
     let table = Table::parse(text, file, &format).map_err(unreadable)?;
     let cols = columns(&table.header, file)?;
     let mut ctx = Checker::new(file, results, params);
@@ -211,21 +206,19 @@ fn columns(header: &[String], file: &Path) -> Result<Columns> {
         match Parameter::from_column(h) {
             Ok(p) => params.push((p, i)),
             Err(_) => {
-                return Err(boxed(ReferenceError::UnknownColumn {
+                return Err(LdhError::UnknownColumn {
                     loc: Location::cell(file, 1, i + 1),
                     column: h.clone(),
-                    known: known(),
-                }))
+                    what: "a reference file".into(),
+                    accepted: known(),
+                })
             }
         }
     }
-    let missing = |column: &'static str, why: &'static str| {
-        boxed(ReferenceError::MissingColumn {
-            loc: Location::line(file, 1),
-            column,
-            why,
-            header: header.join(","),
-        })
+    let missing = |column: &'static str, why: &'static str| LdhError::MissingColumn {
+        loc: Location::line(file, 1),
+        missing: vec![column.to_string()],
+        by: format!("{why}; the header has: {}", header.join(",")),
     };
     let cols = Columns {
         subject: find("subject_id").ok_or_else(|| missing("subject_id", "every row's subject"))?,
@@ -243,11 +236,12 @@ fn columns(header: &[String], file: &Path) -> Result<Columns> {
             return Err(missing("time_s", "an event file gives each event's time"));
         }
         if let Some(&(p, i)) = cols.params.first() {
-            return Err(boxed(ReferenceError::UnknownColumn {
+            return Err(LdhError::UnknownColumn {
                 loc: Location::cell(file, 1, i + 1),
                 column: p.column().to_string(),
-                known: "an event file has subject_id, trial_id, side, event, time_s, offset_s; give parameters in a file of their own".into(),
-            }));
+                what: "an event file (give parameters in a file of their own)".into(),
+                accepted: "subject_id, trial_id, side, event, time_s, offset_s".into(),
+            });
         }
     } else {
         if cols.params.is_empty() {
@@ -268,14 +262,12 @@ fn columns(header: &[String], file: &Path) -> Result<Columns> {
                 .iter()
                 .find(|(p, _)| !STRIDE_PARAMETERS.contains(p))
             {
-                return Err(boxed(ReferenceError::UnknownColumn {
+                return Err(LdhError::UnknownColumn {
                     loc: Location::cell(file, 1, i + 1),
                     column: p.column().to_string(),
-                    known: format!(
-                        "a per-stride file (with time_s or stride) may give {}",
-                        STRIDE_PARAMETERS.map(|p| p.column()).join(", ")
-                    ),
-                }));
+                    what: "a per-stride file (with time_s or stride)".into(),
+                    accepted: STRIDE_PARAMETERS.map(|p| p.column()).join(", "),
+                });
             }
         }
     }
@@ -325,25 +317,18 @@ impl<'a> Checker<'a> {
         column: &'static str,
         value: &str,
         expected: &'static str,
-    ) -> crate::LdhError {
-        boxed(ReferenceError::BadValue {
+    ) -> LdhError {
+        LdhError::InvalidValue {
             loc: Location::cell(self.file, line, col + 1),
             column: column.to_string(),
             value: value.to_string(),
             expected: expected.to_string(),
-        })
+        }
     }
 
     /// A finite number, `None` for an empty cell.
     fn number(&self, row: &Row, col: usize, column: &'static str) -> Result<Option<f64>> {
-        let (s, line) = (row.at(col), row.line);
-        if s.is_empty() {
-            return Ok(None);
-        }
-        match s.parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(Some(v)),
-            _ => Err(self.bad(line, col, column, s, "a finite number")),
-        }
+        row.number_at(col, column)
     }
 
     /// A time inside the trial's recording (± the largest clock offset).

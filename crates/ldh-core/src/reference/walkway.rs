@@ -87,19 +87,14 @@ impl Table {
 
     /// An error of the long-form reader moved back to the export's line and column.
     fn relocate(&self, e: LdhError, header_line: u64) -> LdhError {
-        match e {
-            LdhError::Reference(mut b) => {
-                b.relocate(
-                    |l| self.export_line(l, header_line),
-                    |c| {
-                        let i = self.origin.get(c as usize - 1).copied().flatten()?;
-                        u32::try_from(i + 1).ok()
-                    },
-                );
-                LdhError::Reference(b)
-            }
-            other => other,
-        }
+        super::error::relocate(
+            e,
+            |l| self.export_line(l, header_line),
+            |c| {
+                let i = self.origin.get(c as usize - 1).copied().flatten()?;
+                u32::try_from(i + 1).ok()
+            },
+        )
     }
 }
 
@@ -160,12 +155,7 @@ fn convert(
         flexible: true,
         ..TableFormat::default()
     };
-    let unreadable = |f: CsvFault| {
-        boxed(ReferenceError::Unreadable {
-            loc: f.loc,
-            reason: f.reason,
-        })
-    };
+    let unreadable = |f: CsvFault| f.into_error("");
     let table = CsvTable::parse(text, file, &format).map_err(unreadable)?;
     if table.header.is_empty() {
         return Err(boxed(ReferenceError::Empty {
@@ -282,24 +272,20 @@ impl<'a> Converter<'a> {
 
     /// A cell that the map cannot read.
     fn bad(&self, row: &Row, c: usize, expected: String) -> LdhError {
-        boxed(ReferenceError::BadValue {
+        LdhError::InvalidValue {
             loc: row.loc_at(c),
             column: self.header.get(c).map_or("", String::as_str).to_string(),
             value: row.at(c).to_string(),
             expected,
-        })
+        }
     }
 
     /// A number in ldh's unit, written back as text (`None`: an empty cell).
     fn number(&self, row: &Row, (c, divisor): (usize, f64)) -> Result<Option<String>> {
-        let s = row.at(c);
-        if s.is_empty() {
-            return Ok(None);
-        }
-        match s.parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(Some(format!("{}", v / divisor))),
-            _ => Err(self.bad(row, c, "a finite number".into())),
-        }
+        let column = self.header.get(c).map_or("", String::as_str);
+        Ok(row
+            .number_at(c, column)?
+            .map(|v| format!("{}", v / divisor)))
     }
 
     /// The foot of a row, `left` or `right`.
@@ -328,14 +314,12 @@ impl<'a> Converter<'a> {
     fn row(&mut self, row: &Row) -> Result<()> {
         let (rec, line) = (row.record, row.line);
         if rec.len() != self.header.len() {
-            return Err(boxed(ReferenceError::Unreadable {
+            return Err(LdhError::FieldCount {
                 loc: Location::line(self.file, line),
-                reason: format!(
-                    "{} cells under a header of {}",
-                    rec.len(),
-                    self.header.len()
-                ),
-            }));
+                found: rec.len(),
+                expected: self.header.len(),
+                hint: String::new(),
+            });
         }
         let id = |col: Option<usize>, given: &Option<String>| match col {
             Some(c) => row.at(c).to_string(),

@@ -5,6 +5,7 @@ use crate::agreement_page::{agreement_html, bland_altman_points, GOOD_ICC};
 use crate::plots::tests::smallest_printed_pt;
 use crate::plots::{self, PrintWidth, MIN_PRINT_TEXT_PT, TIMING_BAR_COLOUR};
 use ldh_core::agreement::OffsetMode;
+use ldh_core::domain::{EventKind, Legs};
 use ldh_core::output::LdhResults;
 use ldh_sim::evaluate::TruthScope;
 use ldh_test_support::{agree_with, simulated};
@@ -43,7 +44,10 @@ fn the_page_draws_every_pair_and_every_matched_event() {
         .collect();
     assert!(computed.len() >= 6, "{}", computed.len());
     assert_eq!(svgs.len(), 2 + computed.len());
-    for (k, ev) in ["HS", "TO"].iter().enumerate() {
+    for (k, ev) in [EventKind::HeelStrike, EventKind::ToeOff]
+        .iter()
+        .enumerate()
+    {
         let errors: Vec<f64> = rep
             .event_pairs
             .iter()
@@ -53,7 +57,7 @@ fn the_page_draws_every_pair_and_every_matched_event() {
         let matched = rep
             .events
             .iter()
-            .find(|e| e.event == *ev && e.side == "both")
+            .find(|e| e.event == *ev && e.side == Legs::Both)
             .unwrap()
             .summary
             .n_matched;
@@ -113,7 +117,7 @@ fn the_page_escapes_subject_ids_and_groups() {
     let (ev, st) = ldh_sim::evaluate::truth_reference(&truths, TruthScope::Steady, 0.0);
     let mut rep = agree_with(&ldh, &ev, &st, OffsetMode::None);
     rep.offsets[0].subject_id = "<script>alert(1)</script>".into();
-    rep.offsets[0].source = "given".into();
+    rep.offsets[0].source = ldh_core::agreement::run::OffsetSource::Given;
     rep.groups[0].group = "a&b\"<i>".into();
     let page = agreement_html(&rep).unwrap();
     assert!(!page.contains("<script>") && !page.contains("<i>"));

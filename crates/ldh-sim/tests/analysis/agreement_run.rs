@@ -3,8 +3,10 @@
 
 use std::path::Path;
 
+use ldh_core::agreement::run::Level;
 use ldh_core::agreement::ValidAgreementParams;
 use ldh_core::agreement::{run, OffsetMode, Reference, ReferenceError};
+use ldh_core::domain::{EventKind, Legs};
 use ldh_core::output::LdhResults;
 use ldh_core::reference::parse_reference;
 use ldh_core::LdhError;
@@ -28,14 +30,14 @@ fn agreement_with_the_exported_truth_reproduces_evaluate() {
     let ldh = LdhResults::from_results(&results);
     let (ev, st) = ldh_sim::evaluate::truth_reference(&truths, TruthScope::Steady, 0.0);
     let rep = agree_with(&ldh, &ev, &st, OffsetMode::None);
-    let event = |kind: &str| {
+    let event = |kind: EventKind| {
         rep.events
             .iter()
-            .find(|e| e.event == kind && e.side == "both")
+            .find(|e| e.event == kind && e.side == Legs::Both)
             .unwrap()
             .summary
     };
-    let (hs, to) = (event("HS"), event("TO"));
+    let (hs, to) = (event(EventKind::HeelStrike), event(EventKind::ToeOff));
     assert!(hs.n_reference > 50, "{hs:?}");
     let missed = (hs.n_reference - hs.n_matched) + (to.n_reference - to.n_matched);
     assert_eq!(missed, acc.missed_events);
@@ -50,7 +52,7 @@ fn agreement_with_the_exported_truth_reproduces_evaluate() {
     let param = |name: &str| {
         rep.parameters
             .iter()
-            .find(|p| p.level == "stride" && p.parameter == name)
+            .find(|p| p.level == Level::Stride && p.parameter == name)
             .unwrap()
     };
     let time = param("stride_time_s").agreement.clone().unwrap();
@@ -83,7 +85,7 @@ fn agreement_with_the_exported_truth_reproduces_evaluate() {
     let rec = rep
         .parameters
         .iter()
-        .find(|p| p.level == "recording" && p.parameter == "stride_time_s")
+        .find(|p| p.level == Level::Recording && p.parameter == "stride_time_s")
         .unwrap();
     assert_eq!(rec.pairs.len(), 2 * truths.len(), "one pair per leg");
 
@@ -122,7 +124,7 @@ fn a_clock_offset_of_0_75_s_is_found_and_removed() {
     let shifted = agree_with(&ldh, &ev_s, &st_s, OffsetMode::Estimate);
     assert_eq!(shifted.offsets.len(), truths.len());
     for o in &shifted.offsets {
-        assert_eq!(o.source, "estimated");
+        assert_eq!(o.source, run::OffsetSource::Estimated);
         assert!(!o.estimate.unwrap().ambiguous, "{o:?}");
         assert!(
             (o.offset_s + 0.75).abs() <= shifted.params.clock_offset_step_s,
@@ -182,7 +184,7 @@ fn strides_by_number_pair_with_that_stride_and_recordings_use_the_mean_of_a_leg(
     let st = rep
         .parameters
         .iter()
-        .find(|x| x.level == "stride" && x.parameter == "stride_time_s")
+        .find(|x| x.level == Level::Stride && x.parameter == "stride_time_s")
         .unwrap();
     let a = st.agreement.as_ref().unwrap();
     assert_eq!(a.n_pairs, shifts.len());
@@ -195,13 +197,13 @@ fn strides_by_number_pair_with_that_stride_and_recordings_use_the_mean_of_a_leg(
     let rec = rep
         .parameters
         .iter()
-        .find(|x| x.level == "recording" && x.parameter == "stride_time_s")
+        .find(|x| x.level == Level::Recording && x.parameter == "stride_time_s")
         .unwrap();
     for pair in &rec.pairs {
         let leg: Vec<f64> = reference
             .strides
             .iter()
-            .filter(|v| v.subject_id == pair.subject_id && v.side.as_str() == pair.side)
+            .filter(|v| v.subject_id == pair.subject_id && v.side == pair.side)
             .map(|v| v.values[0].1)
             .collect();
         let mean = leg.iter().sum::<f64>() / leg.len() as f64;
@@ -265,12 +267,12 @@ fn event_agreement_is_summarised_per_group() {
             .events_by_group
             .iter()
             .filter(|e| e.group == group)
-            .map(|e| (e.event.clone(), e.side.clone(), e.summary))
+            .map(|e| (e.event, e.side, e.summary))
             .collect();
         let theirs: Vec<_> = alone
             .events
             .iter()
-            .map(|e| (e.event.clone(), e.side.clone(), e.summary))
+            .map(|e| (e.event, e.side, e.summary))
             .collect();
         assert_eq!(mine, theirs, "{group}");
     }

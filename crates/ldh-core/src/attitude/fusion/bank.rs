@@ -10,7 +10,7 @@ use super::{acc_tilt, predict_n, Model, Sample, SinCos, M5, V5};
 /// Up to four filters side by side (a bank of n filters has ⌈n / 4⌉ groups; the unused lanes
 /// of the last one repeat its first filter and are never read).
 #[derive(Clone)]
-pub(super) struct Group {
+pub(super) struct FilterGroup {
     /// The filtered states, what the smoother stores of each step (one copy).
     pub(super) f: Filtered,
     /// The diagonal of the adapted R (its off-diagonal stays 0).
@@ -32,7 +32,7 @@ pub(super) struct Filtered {
     pub(super) p: Mat<L4>,
 }
 
-impl Group {
+impl FilterGroup {
     /// Predict to sample k (none at k = 0) and update with its tilt in the lanes that do not
     /// gate it out; `d_k` is the Sage–Husa weight of this sample.
     #[inline(always)]
@@ -116,10 +116,10 @@ impl Group {
     }
 }
 
-/// [`Group::step`] of every group, in an AVX2 clone (4 lanes per instruction instead of SSE2's
+/// [`FilterGroup::step`] of every group, in an AVX2 clone (4 lanes per instruction instead of SSE2's
 /// 2; the same IEEE operations, so the same numbers) where the CPU has it.
 #[multiversion::multiversion(targets("x86_64+avx2"))]
-fn step_groups(groups: &mut [Group], m: &Model, s: &Sample, k: usize, d_k: f64) {
+fn step_groups(groups: &mut [FilterGroup], m: &Model, s: &Sample, k: usize, d_k: f64) {
     for g in groups.iter_mut() {
         g.step(m, s, k, d_k);
     }
@@ -129,7 +129,7 @@ fn step_groups(groups: &mut [Group], m: &Model, s: &Sample, k: usize, d_k: f64) 
 /// carries from one sample to the next (a smoother checkpoint is a copy of it).
 #[derive(Clone)]
 pub(super) struct Bank {
-    pub(super) groups: Vec<Group>,
+    pub(super) groups: Vec<FilterGroup>,
     nf: usize,
     /// b^k, for the Sage–Husa weight d_k = (1 − b) / (1 − b^k).
     bpow: f64,
@@ -150,7 +150,7 @@ impl Bank {
         let gates = &p.gates_sigma;
         let groups = gates
             .chunks(LANES)
-            .map(|g| Group {
+            .map(|g| FilterGroup {
                 f: Filtered {
                     x: x0,
                     sc: SinCos::of_lanes(x0[0], x0[1]),

@@ -198,11 +198,9 @@ fn statistics_and_cv_count_each_person_once_whatever_the_trials() {
         );
         let step = 1.0 + 4.0 * 0.1; // stride_time_s is the 5th parameter: trial t adds t × 1.4
         assert!((x2 - (x1 + 0.5 * step)).abs() < 1e-9, "{x1} {x2}");
-        assert!(
-            b.a.trial_id.starts_with("mean of 2 trials"),
-            "{}",
-            b.a.trial_id
-        );
+        let mean = b.a.trial_mean.as_ref().expect("a mean of trials");
+        assert_eq!(mean.trial_ids.len(), 2);
+        assert_eq!(b.a.trial_id, mean.to_string());
     }
     for p in table3(&c2) {
         assert_eq!((p.h.n, p.ldhh.n, p.ldhe.n), (6, 6, 6), "{}", p.code);
