@@ -146,13 +146,13 @@ fn reports_are_well_formed_self_contained_and_label_every_axis() {
         "5. Recordings",
         "grouped 3-fold",
         "subjects/H01.html",
-        "Subjects, worst first",
-        "outside reference",
+        "Subjects, most findings first",
+        "outside the reference range",
     ] {
         assert!(index.contains(must), "cohort report: no '{must}'");
     }
     // The triage table comes before the group statistics, one row per subject.
-    let triage = &index[index.find("Subjects, worst first").unwrap()..];
+    let triage = &index[index.find("Subjects, most findings first").unwrap()..];
     assert!(triage.find("</table>").unwrap() < triage.find("1. Group statistics").unwrap());
     let triage = &triage[..triage.find("</table>").unwrap()];
     assert_eq!(triage.matches("<a href=\"subjects/").count(), 12);
