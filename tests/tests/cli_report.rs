@@ -250,14 +250,16 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_its_report() {
     // The per-side quantities: 5 in the summary, 9 in section 2.
     assert!(rows >= 5 + 9, "{rows} rows checked");
     assert_eq!(
-        s.matches("] not measured: gyro scale fault").count(),
+        s.matches("] not measured: gyroscope sensor fault").count(),
         1,
         "the reason once on the page"
     );
     // No gait-cycle curve for the faulty leg: it says why in place of the plot; the right leg
     // still has its curve.
     assert!(
-        s.contains("left leg: no gait-cycle curve — shank angles not measured: gyro scale fault"),
+        s.contains(
+            "left leg: no gait-cycle curve — shank angles not measured: gyroscope sensor fault"
+        ),
         "no reason for the missing curve"
     );
     assert!(s.contains("right (n = "), "the good leg's curve");

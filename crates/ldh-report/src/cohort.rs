@@ -164,7 +164,17 @@ fn triage_row<'a>(
         t.asymmetric = v.asymmetric();
         t.measured = values - v.not_measured();
         if t.measured == 0 {
-            t.status = "analysed, but no value measured".to_string();
+            t.status = if sides.iter().any(|r| {
+                r.warnings
+                    .at_least(ldh_core::pipeline::Severity::Fault)
+                    .next()
+                    .is_some()
+            }) {
+                "analysed, but every value withheld: a sensor fault (see the person's page)"
+            } else {
+                "analysed, but no value measured (see the person's page)"
+            }
+            .to_string();
         }
     }
     for r in &sides {
@@ -487,6 +497,30 @@ fn classifiers(cv: &[CvReport], n: &Sections) -> Result<Markup> {
     })
 }
 
+/// A recording's findings in plain words, each once, by severity ("fault: gyroscope fault;
+/// note: sensor height not given"): the messages with their codes are in recordings.csv and
+/// the person's technical appendix (a real walk's cell held 2000 characters of them).
+fn warnings_in_words(r: &RecordingRow) -> String {
+    use ldh_core::pipeline::Severity;
+    let mut parts: Vec<String> = Vec::new();
+    for sev in [Severity::Fault, Severity::Warning, Severity::Note] {
+        let mut words: Vec<&str> = Vec::new();
+        for w in r.warnings.iter().filter(|w| w.severity == sev) {
+            if !words.contains(&w.code.plain()) {
+                words.push(w.code.plain());
+            }
+        }
+        if !words.is_empty() {
+            parts.push(format!("{}: {}", sev.as_str(), words.join(", ")));
+        }
+    }
+    if parts.is_empty() {
+        "none".into()
+    } else {
+        parts.join("; ")
+    }
+}
+
 /// Every recording (one row per leg and trial), linked to its person's page; on screen only.
 fn recordings_table(c: &CohortReport, links: &HashMap<&str, &str>, n: &Sections) -> Markup {
     let trials = c.recordings.iter().any(|r| !r.trial_id.is_empty());
@@ -514,7 +548,7 @@ fn recordings_table(c: &CohortReport, links: &HashMap<&str, &str>, n: &Sections)
                     td { (labels::text(&r.group)) } td { (side_label(r)) } td { (base_name(&r.source)) }
                     td { (if r.is_ok() { "analysed" } else { &r.error }) }
                     td.num { (count(r.strides_valid)) } td.num { (fmt(r.duration_s, 1)) }
-                    td { (r.warnings) }
+                    td { (warnings_in_words(r)) }
                 }
                 "\n"
             }

@@ -105,8 +105,9 @@ fn a_persons_trials_stand_side_by_side_grouped_by_visit_with_their_difference() 
         ),
         "{s}"
     );
-    // Speed: 1.0 and 1.1 at the first visit (mean 1.05), 1.3 at the second: +0.250.
-    assert!(s.contains("<td class=\"num\">1.000</td><td class=\"num\">1.100</td><td class=\"num\">1.300</td><td class=\"num\">+0.250</td>"), "{s}");
+    // Speed: 1.0 and 1.1 at the first visit (mean 1.05), 1.3 at the second: +0.25 (the
+    // page's units and decimals).
+    assert!(s.contains("<td class=\"num\">1.00</td><td class=\"num\">1.10</td><td class=\"num\">1.30</td><td class=\"num\">+0.25</td>"), "{s}");
     // No change is marked; P2 (one trial) has no comparison.
     assert!(!s.contains('▲') && !s.contains('▼'));
     assert_eq!(c.matches("Trials of this person").count(), 1);
@@ -118,7 +119,7 @@ fn a_persons_trials_stand_side_by_side_grouped_by_visit_with_their_difference() 
     assert!(one.contains("3. Recordings") && !one.contains("Trials of one person"));
     let c = cohort(recs);
     assert!(
-        c.contains("<th>b − a</th>") && c.contains("<td class=\"num\">-0.100</td>"),
+        c.contains("<th>b − a</th>") && c.contains("<td class=\"num\">-0.10</td>"),
         "{c}"
     );
 }
