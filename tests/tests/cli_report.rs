@@ -146,13 +146,13 @@ fn reports_are_well_formed_self_contained_and_label_every_axis() {
         "5. Recordings",
         "grouped 3-fold",
         "subjects/H01.html",
-        "Subjects, worst first",
-        "outside reference",
+        "Subjects, most findings first",
+        "outside the reference range",
     ] {
         assert!(index.contains(must), "cohort report: no '{must}'");
     }
     // The triage table comes before the group statistics, one row per subject.
-    let triage = &index[index.find("Subjects, worst first").unwrap()..];
+    let triage = &index[index.find("Subjects, most findings first").unwrap()..];
     assert!(triage.find("</table>").unwrap() < triage.find("1. Group statistics").unwrap());
     let triage = &triage[..triage.find("</table>").unwrap()];
     assert_eq!(triage.matches("<a href=\"subjects/").count(), 12);
@@ -250,14 +250,16 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_its_report() {
     // The per-side quantities: 5 in the summary, 9 in section 2.
     assert!(rows >= 5 + 9, "{rows} rows checked");
     assert_eq!(
-        s.matches("] not measured: gyro scale fault").count(),
+        s.matches("] not measured: gyroscope sensor fault").count(),
         1,
         "the reason once on the page"
     );
     // No gait-cycle curve for the faulty leg: it says why in place of the plot; the right leg
     // still has its curve.
     assert!(
-        s.contains("left leg: no gait-cycle curve — shank angles not measured: gyro scale fault"),
+        s.contains(
+            "left leg: no gait-cycle curve — shank angles not measured: gyroscope sensor fault"
+        ),
         "no reason for the missing curve"
     );
     assert!(s.contains("right (n = "), "the good leg's curve");

@@ -80,7 +80,20 @@ pub fn person_row(rows: &[&RecordingRow], side: Side) -> Option<RecordingRow> {
             .filter_map(|r| r.parameters.sta_per_stride)
             .collect(),
     );
+    // The walk's values: the cadence is the trials' mean, like the parameters (the first
+    // trial's alone sat beside the mean stride time: 96 against 102 steps/min on TRIPOD's two
+    // belt speeds); a mean of trials has no one steady window, so none is given (each trial's
+    // is its own row's).
+    out.walk_cadence_steps_per_min = mean(
+        ok.iter()
+            .filter_map(|r| r.walk_cadence_steps_per_min)
+            .collect(),
+    );
+    out.steady_start_s = None;
+    out.steady_end_s = None;
     let sum = |f: fn(&RecordingRow) -> Option<usize>| ok.iter().map(|r| f(r)).sum();
+    out.steady_excluded_start = sum(|r| r.steady_excluded_start);
+    out.steady_excluded_end = sum(|r| r.steady_excluded_end);
     out.strides_total = sum(|r| r.strides_total);
     out.strides_valid = sum(|r| r.strides_valid);
     out.duration_s = ok.iter().map(|r| r.duration_s).sum();

@@ -89,18 +89,33 @@ fn failed_box(rows: &[RecordingRow]) -> Markup {
 struct TriageRow<'a> {
     id: &'a str,
     group: &'a str,
-    /// 0 nothing analysed, 1 one side missing or failed, 2 both sides analysed.
-    rank: u8,
     /// A recording of the person could not be analysed (the status cell is shaded; one leg
     /// given on purpose is not).
     failed: bool,
     status: String,
+    /// Values outside their reference range, of `judged`.
     abnormal: usize,
-    measured: usize,
+    /// Values judged against a range.
+    judged: usize,
     asymmetric: usize,
-    not_measured: usize,
+    /// Values measured, of `values` (the subject page's cells: one per walk value, one per
+    /// side of a per-side value).
+    measured: usize,
+    values: usize,
     warnings: usize,
     faults: usize,
+}
+
+impl TriageRow<'_> {
+    /// The findings a clinician looks at: values outside the range and asymmetries beyond
+    /// the threshold.
+    fn findings(&self) -> usize {
+        self.abnormal + self.asymmetric
+    }
+    /// Whether anything was measured: a person with nothing measured is not ranked.
+    fn ranked(&self) -> bool {
+        self.measured > 0
+    }
 }
 
 fn triage_row<'a>(
@@ -114,39 +129,53 @@ fn triage_row<'a>(
         .filter_map(|side| cohort::person_row(recs, side))
         .collect();
     let ok: Vec<&RecordingRow> = sides.iter().filter(|r| r.is_ok()).collect();
-    let (rank, status) = match (ok.len(), sides.len()) {
-        (0, _) => (0, "not analysed".to_string()),
+    let status = match (ok.len(), sides.len()) {
+        (0, _) => "not analysed (see above)".to_string(),
         (1, 2) => {
             let bad = sides
                 .iter()
                 .find(|r| !r.is_ok())
                 .map_or("", |r| r.side.as_str());
-            (1, format!("{bad} side failed"))
+            format!("{bad} side failed")
         }
-        (1, _) => (1, "one side only".to_string()),
-        _ => (2, "analysed".to_string()),
+        (1, _) => "one side only".to_string(),
+        _ => "analysed".to_string(),
     };
+    // The subject page's own verdicts.
+    let person: Vec<&RecordingRow> = sides.iter().collect();
+    let v = verdicts(&person, reference, limit_pct);
+    let values = v.rows.iter().map(|r| r.cells.len()).sum::<usize>();
     let mut t = TriageRow {
         id,
         group: recs.first().map_or("", |r| labels::text(&r.group)),
-        rank,
         failed: sides.iter().any(|r| !r.is_ok()),
         status,
         abnormal: 0,
-        measured: 0,
+        judged: 0,
         asymmetric: 0,
-        not_measured: 0,
+        measured: 0,
+        values,
         warnings: 0,
         faults: 0,
     };
-    // The subject page's own verdicts: only values with a reference are counted.
-    let person: Vec<&RecordingRow> = sides.iter().collect();
-    let v = verdicts(&person, reference, limit_pct);
     if !ok.is_empty() {
         t.abnormal = v.outside();
-        t.measured = v.judged();
+        t.judged = v.judged();
         t.asymmetric = v.asymmetric();
-        t.not_measured = v.not_measured();
+        t.measured = values - v.not_measured();
+        if t.measured == 0 {
+            t.status = if sides.iter().any(|r| {
+                r.warnings
+                    .at_least(ldh_core::pipeline::Severity::Fault)
+                    .next()
+                    .is_some()
+            }) {
+                "analysed, but every value withheld: a sensor fault (see the person's page)"
+            } else {
+                "analysed, but no value measured (see the person's page)"
+            }
+            .to_string();
+        }
     }
     for r in &sides {
         t.warnings += r
@@ -161,8 +190,27 @@ fn triage_row<'a>(
     t
 }
 
-/// The triage table: one row per subject, worst first (nothing analysed, then one side only,
-/// then by sensor faults, values outside the reference, warnings), each linked to its page.
+/// The triage order (docs/reports.md "Cohort report"): most findings first (values outside
+/// the reference range plus asymmetries beyond the threshold); among equal findings the
+/// smaller share of values measured first (fewer values measured vouch less for "normal", so
+/// missing values never move a person down the list of people to look at); then more sensor
+/// faults, more warnings, and the subject id. People with no value measured are not ranked:
+/// they come last, their status says why.
+fn triage_order(a: &TriageRow, b: &TriageRow) -> std::cmp::Ordering {
+    use std::cmp::Reverse;
+    // The share measured, compared without division: a.measured / a.values against b's.
+    let share = |t: &TriageRow, other: &TriageRow| t.measured * other.values.max(1);
+    (Reverse(a.ranked()), Reverse(a.findings()))
+        .cmp(&(Reverse(b.ranked()), Reverse(b.findings())))
+        .then(share(a, b).cmp(&share(b, a)))
+        .then((Reverse(a.faults), Reverse(a.warnings), a.id).cmp(&(
+            Reverse(b.faults),
+            Reverse(b.warnings),
+            b.id,
+        )))
+}
+
+/// The triage table: one row per subject in [`triage_order`], each linked to its page.
 /// Sorted here rather than by a script: the page has none.
 fn triage(c: &CohortReport, links: &HashMap<&str, &str>) -> Result<Markup> {
     let own;
@@ -180,28 +228,17 @@ fn triage(c: &CohortReport, links: &HashMap<&str, &str>) -> Result<Markup> {
         .into_iter()
         .map(|(id, recs)| triage_row(id, &recs, reference, limit))
         .collect();
-    // A value not measured cannot be called normal: it counts as a value to look at, so the
-    // person with least measured never ranks as the best (issue 50).
-    let key = |t: &TriageRow| {
-        (
-            t.rank,
-            std::cmp::Reverse((
-                t.faults,
-                t.abnormal + t.asymmetric + t.not_measured,
-                t.warnings,
-            )),
-        )
-    };
-    rows.sort_by(|a, b| (key(a), a.id).cmp(&(key(b), b.id)));
+    rows.sort_by(triage_order);
     Ok(html! {
-        h2 #triage { "Subjects, worst first" } "\n"
+        h2 #triage { "Subjects, most findings first" } "\n"
         p.meta {
-            "One row per subject, sorted: subjects with nothing analysed first, then one side only, then by sensor faults, then by the values to look at — outside the reference range, asymmetric beyond the threshold, or not measured (a value not measured is never counted as normal) — then by warnings. The verdicts are the subject pages' own. Reference: " (reference.description)
+            "One row per subject. A finding is a value outside the reference range or a left–right asymmetry beyond " (fmt(Some(limit), 0)) " %. Subjects with more findings come first; among equal findings, the one with fewer values measured comes first, as a missing value is never counted as normal; then by sensor faults and warnings. Subjects with no value measured come last. The counts are the subject pages' own."
         }
         "\n"
+        p.meta { "Reference: " (reference.description) } "\n"
         table.triage {
             "\n"
-            tr { th { "subject" } th { "group" } th { "status" } th { "outside reference (of those with one)" } th { "asymmetric" } th { "not measured" } th { "warnings (faults)" } } "\n"
+            tr { th { "subject" } th { "group" } th { "status" } th { "outside the reference range (of values judged)" } th { "asymmetric" } th { "values measured" } th { "warnings (faults)" } } "\n"
             @for t in &rows {
                 tr {
                     td {
@@ -209,10 +246,14 @@ fn triage(c: &CohortReport, links: &HashMap<&str, &str>) -> Result<Markup> {
                         @else { (t.id) }
                     }
                     td { (t.group) }
-                    td.bad[t.failed] { (t.status) }
-                    td.num.bad[t.abnormal > 0] { (t.abnormal) " of " (t.measured) }
-                    td.num.bad[t.asymmetric > 0] { (t.asymmetric) }
-                    td.num { (t.not_measured) }
+                    td.bad[t.failed || !t.ranked()] { (t.status) }
+                    @if t.ranked() {
+                        td.num.bad[t.abnormal > 0] { (t.abnormal) " of " (t.judged) }
+                        td.num.bad[t.asymmetric > 0] { (t.asymmetric) }
+                    } @else {
+                        td.num { "–" } td.num { "–" }
+                    }
+                    td.num { (t.measured) " of " (t.values) }
                     td.num.bad[t.faults > 0] { (t.warnings) " (" (t.faults) ")" }
                 }
                 "\n"
@@ -456,6 +497,30 @@ fn classifiers(cv: &[CvReport], n: &Sections) -> Result<Markup> {
     })
 }
 
+/// A recording's findings in plain words, each once, by severity ("fault: gyroscope fault;
+/// note: sensor height not given"): the messages with their codes are in recordings.csv and
+/// the person's technical appendix (a real walk's cell held 2000 characters of them).
+fn warnings_in_words(r: &RecordingRow) -> String {
+    use ldh_core::pipeline::Severity;
+    let mut parts: Vec<String> = Vec::new();
+    for sev in [Severity::Fault, Severity::Warning, Severity::Note] {
+        let mut words: Vec<&str> = Vec::new();
+        for w in r.warnings.iter().filter(|w| w.severity == sev) {
+            if !words.contains(&w.code.plain()) {
+                words.push(w.code.plain());
+            }
+        }
+        if !words.is_empty() {
+            parts.push(format!("{}: {}", sev.as_str(), words.join(", ")));
+        }
+    }
+    if parts.is_empty() {
+        "none".into()
+    } else {
+        parts.join("; ")
+    }
+}
+
 /// Every recording (one row per leg and trial), linked to its person's page; on screen only.
 fn recordings_table(c: &CohortReport, links: &HashMap<&str, &str>, n: &Sections) -> Markup {
     let trials = c.recordings.iter().any(|r| !r.trial_id.is_empty());
@@ -483,7 +548,7 @@ fn recordings_table(c: &CohortReport, links: &HashMap<&str, &str>, n: &Sections)
                     td { (labels::text(&r.group)) } td { (side_label(r)) } td { (base_name(&r.source)) }
                     td { (if r.is_ok() { "analysed" } else { &r.error }) }
                     td.num { (count(r.strides_valid)) } td.num { (fmt(r.duration_s, 1)) }
-                    td { (r.warnings) }
+                    td { (warnings_in_words(r)) }
                 }
                 "\n"
             }

@@ -31,13 +31,19 @@ pub(crate) struct Headline {
     pub not_measured: Option<String>,
     /// The one thing to do about it.
     pub to_do: Option<String>,
+    /// No value of the summary was measured: there is nothing to call normal ("No finding"
+    /// would be untrue).
+    pub nothing_measured: bool,
 }
 
 /// `v` with its decimals and unit.
 fn val(row: &Row, v: f64) -> String {
     let d = row.q.decimals;
     match row.q.parameter {
-        Parameter::StanceRatio => format!("{v:.d$} %"),
+        // "4.4 %", not "4.4 CV %": the sentence names the variability.
+        Parameter::StanceRatio | Parameter::StrideTimeCv | Parameter::StrideLengthCv => {
+            format!("{v:.d$} %")
+        }
         Parameter::Wqk | Parameter::Pbi | Parameter::Bdk => format!("{v:.d$}°"),
         _ => format!("{v:.d$} {}", row.q.unit()),
     }
@@ -292,6 +298,11 @@ pub(crate) fn make(
         findings: findings(v, reference),
         steady: steady(sides),
         to_do: super::todo::to_do(v, sides),
+        nothing_measured: v
+            .rows
+            .iter()
+            .filter(|r| r.q.in_summary)
+            .all(|r| r.cells.iter().all(|c| matches!(c, Cell::NotMeasured(_)))),
         not_measured,
     }
 }
@@ -304,7 +315,9 @@ pub(crate) fn headline(h: &Headline) -> Markup {
             @if let Some(c) = &h.context { p { (c) } "\n" }
             @if let Some(c) = &h.visits { p { (c) } "\n" }
             @if let Some(c) = &h.belt { p { (c) } "\n" }
-            @if h.findings.is_empty() {
+            @if h.nothing_measured {
+                p { b { "Nothing could be judged: " } "no value of this walk was measured (the reasons follow)." } "\n"
+            } @else if h.findings.is_empty() {
                 p { b { "No finding: " } "every measured value lies within its normal range and left and right are even." } "\n"
             } @else {
                 b { "Findings" } "\n"

@@ -280,19 +280,22 @@ fn facts(r: &RecordingRow) -> [String; 11] {
 
 /// The steady window of a side in words: "12.0–80.0 s (4 strides at the start excluded)".
 fn steady_fact(r: &RecordingRow) -> String {
-    let (Some(a), Some(b)) = (r.steady_start_s, r.steady_end_s) else {
-        return "–".into();
-    };
-    let ends = match (
+    let excluded = (
         r.steady_excluded_start.unwrap_or(0),
         r.steady_excluded_end.unwrap_or(0),
-    ) {
+    );
+    let ends = match excluded {
         (0, 0) => "the whole walk".to_string(),
         (x, 0) => format!("{x} stride(s) at the start excluded"),
         (0, y) => format!("{y} stride(s) at the end excluded"),
         (x, y) => format!("{x} stride(s) at the start and {y} at the end excluded"),
     };
-    format!("{a:.1}–{b:.1} s ({ends})")
+    match (r.steady_start_s, r.steady_end_s) {
+        (Some(a), Some(b)) => format!("{a:.1}–{b:.1} s ({ends})"),
+        // A mean of trials: each trial has its own window.
+        _ if excluded != (0, 0) => format!("each trial's own ({ends})"),
+        _ => "–".into(),
+    }
 }
 
 /// The rows of [`FACTS`] a clinician reads (section 1): the file, whether it was analysed, how

@@ -3,6 +3,7 @@
 mod agreement_page;
 mod cohort;
 mod headline;
+mod plain;
 mod vocabulary;
 
 use super::*;
@@ -297,13 +298,13 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
     }
     // Each reason once on the page, numbered, under the first table that cites it.
     assert_eq!(
-        html.matches("] not measured: gyro scale fault (gyroscope sensor fault)</div>")
+        html.matches("] not measured: gyroscope sensor fault</div>")
             .count(),
         1,
         "{html}"
     );
     assert_eq!(
-        html.matches("] not measured: left gyro scale fault (gyroscope sensor fault)</div>")
+        html.matches("] not measured: left leg: gyroscope sensor fault</div>")
             .count(),
         1
     );
@@ -312,7 +313,7 @@ fn a_faulty_gyroscope_leg_shows_no_number_in_the_report() {
     // Every left stride is excluded, grouped under one kind.
     assert!(
         html.contains(
-            "<tr><td>signal quality: gyro scale fault</td><td class=\"num\">15</td><td class=\"num\">0</td></tr>"
+            "<tr><td>signal quality: gyroscope fault</td><td class=\"num\">15</td><td class=\"num\">0</td></tr>"
         ),
         "{}",
         &html[html.find("Strides excluded").unwrap_or(0)..][..600]

@@ -53,11 +53,16 @@ impl Action {
         })
     }
 
-    /// The sentence; `side` is the leg concerned (the sensor to check).
-    fn sentence(self, side: &str) -> String {
+    /// The sentence; `sides` are the legs concerned (the sensors to check).
+    fn sentence(self, sides: &[&str]) -> String {
         match self {
+            Action::CheckSensor if sides.len() > 1 => {
+                "Check both sensors (they recorded faulty signals) and record the walk again."
+                    .into()
+            }
             Action::CheckSensor => format!(
-                "Check the {side} sensor (it recorded faulty signals) and record the walk again."
+                "Check the {} sensor (it recorded faulty signals) and record the walk again.",
+                sides.first().copied().unwrap_or("")
             ),
             Action::CheckFiles => "Check that the two files come from the same walk and that each is named for the leg it was worn on (the legs disagree, which no setting of the analysis explains), then analyse them again.".into(),
             Action::MeasureHeight => {
@@ -124,8 +129,11 @@ pub(crate) fn to_do(v: &Verdicts, sides: &[&RecordingRow]) -> Option<String> {
             r.side
         ));
     }
-    if let Some((a, side)) = actions(v, sides).first() {
-        return Some(a.sentence(side));
+    let acts = actions(v, sides);
+    if let Some((a, _)) = acts.first() {
+        // Every leg the first action is about (a fault on both legs names both sensors).
+        let legs: Vec<&str> = acts.iter().filter(|x| x.0 == *a).map(|x| x.1).collect();
+        return Some(a.sentence(&legs));
     }
     let ldh = sides.iter().any(|r| matches!(r.group, Some(Group::Ldh)));
     if ldh && sides.iter().all(|r| r.affected_side.is_none()) {

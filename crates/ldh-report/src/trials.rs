@@ -210,16 +210,30 @@ fn trial_table(trials: &[Trial], params: &[Parameter]) -> Markup {
             }
             "\n"
             @for &p in params {
+                @let (scale, unit, d) = shown(p);
                 tr {
-                    td { (p.code()) " — " (p.name()) } td { (p.unit()) }
-                    @for t in trials { td.num { (fmt(t.value(p), decimals(p))) } }
-                    td.num { (signed(difference(trials, p), decimals(p))) }
+                    td { (p.code()) " — " (p.name()) } td { (unit) }
+                    @for t in trials { td.num { (fmt(t.value(p).map(|v| v * scale), d)) } }
+                    td.num { (signed(difference(trials, p).map(|v| v * scale), d)) }
                 }
                 "\n"
             }
         }
         "\n"
     }
+}
+
+/// How the trials table shows `p`: in the clinical unit of the person's page (stance in % of
+/// the gait cycle, variability as CV %, step frequency in steps/min), with the page's decimals
+/// (one more for a value the page shows without decimals, so a small difference stays
+/// visible): (factor from the table's unit, unit, decimals).
+fn shown(p: Parameter) -> (f64, &'static str, usize) {
+    let (scale, unit) = p.display();
+    let d = super::verdict::quantities()
+        .iter()
+        .find(|q| q.parameter == p)
+        .map_or(2, |q| q.decimals.max(1));
+    (scale, unit, d)
 }
 
 /// `v` with its sign (`+0.012`), an en dash when missing.

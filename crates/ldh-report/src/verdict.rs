@@ -314,7 +314,7 @@ fn walk_value(
             (Ok(_), Err(_)) => Some(Side::Left),
             (Err(_), Ok(_)) => Some(Side::Right),
             (Err(a), Err(b)) if a == b => return Err(a),
-            (Err(a), Err(b)) => return Err(format!("left {a}; right {b}")),
+            (Err(a), Err(b)) => return Err(format!("left leg: {a}; right leg: {b}")),
             (Ok(_), Ok(_)) => None,
         };
         let per_min = [l, r]
@@ -331,7 +331,7 @@ fn walk_value(
         (Ok(a), Err(_)) => Ok((a, Some(Side::Left))),
         (Err(_), Ok(b)) => Ok((b, Some(Side::Right))),
         (Err(a), Err(b)) if a == b => Err(a),
-        (Err(a), Err(b)) => Err(format!("left {a}; right {b}")),
+        (Err(a), Err(b)) => Err(format!("left leg: {a}; right leg: {b}")),
     }
 }
 
@@ -393,8 +393,10 @@ pub(crate) fn verdicts(sides: &[&RecordingRow], reference: &Reference, limit_pct
                     side_value(left, q.parameter),
                     side_value(right, q.parameter),
                 ) {
-                    (Err(w), _) => Asymmetry::NotMeasured(format!("left {w}")),
-                    (_, Err(w)) => Asymmetry::NotMeasured(format!("right {w}")),
+                    // One reason for both legs: the same note as the legs' values.
+                    (Err(a), Err(b)) if a == b => Asymmetry::NotMeasured(a),
+                    (Err(w), _) => Asymmetry::NotMeasured(format!("left leg: {w}")),
+                    (_, Err(w)) => Asymmetry::NotMeasured(format!("right leg: {w}")),
                     (Ok(a), Ok(b)) => match symmetry_index_pct(a, b) {
                         Some(si) => {
                             let si = round(si, 1);

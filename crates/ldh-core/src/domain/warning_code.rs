@@ -95,6 +95,43 @@ warning_codes! {
     AffectedSideUnknown = "affected_side_unknown", AFFECTED_SIDE_UNKNOWN;
 }
 
+impl WarningCode {
+    /// The finding in a clinician's words, for the pages ("the two legs disagree"), never the
+    /// code: the code is the tables' and the technical appendix's (issue 50).
+    pub const fn plain(self) -> &'static str {
+        use WarningCode as W;
+        match self {
+            W::Input => "a problem in the recording file",
+            W::GyroScaleFault => "gyroscope fault",
+            W::GyroClipping => "gyroscope over its range",
+            W::AccClipping => "accelerometer over its range",
+            W::ImplausibleCadenceForRate => "a cadence no walk has at this sampling rate",
+            W::ImplausibleAngle => "shank angles beyond what a leg can do",
+            W::AttitudeDivergence => "the sensor's tilt estimate drifts",
+            W::LrDisagreement => "the two legs disagree",
+            W::IdenticalLegs => "the same recording given for both legs",
+            W::PossibleSwap => "left and right may be swapped",
+            W::Running => "running, not walking",
+            W::UpsideDown => "sensor worn upside down",
+            W::FewStrides => "too few strides",
+            W::SensorHeightUnknown => "sensor height not given",
+            W::RateMismatch => "the two sensors record at different rates",
+            W::NoOverlap => "the two recordings do not overlap in time",
+            W::LengthMismatch => "the two recordings differ in length",
+            W::SvNoise => "variability within the measurement's own noise",
+            W::SvUnchecked => "variability that cannot be checked against noise",
+            W::NoQuietStanding => "no quiet standing at the start",
+            W::HsAtImpact => "heel strikes placed at their impacts",
+            W::SteadyWindow => "start or end of the walk not steady",
+            W::TooLittleSteady => "too little steady walking",
+            W::NeverSteady => "the walk never becomes steady",
+            W::ChannelFault => "a sensor channel failed for part of the walk",
+            W::NoStrides => "no stride found",
+            W::AffectedSideUnknown => "affected side not given",
+        }
+    }
+}
+
 /// A text that is no [`WarningCode`].
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error("unknown warning code '{0}'")]

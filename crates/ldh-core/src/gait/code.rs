@@ -231,7 +231,7 @@ impl StrideCode {
             StrideCode::AnglesOutOfBounds => "shank angles outside anatomical bounds".into(),
             StrideCode::UnsureEvent(u) => u.as_str().into(),
             StrideCode::Finding { code, effect } => {
-                let what = code.as_str().replace('_', " ");
+                let what = code.plain();
                 match effect.words() {
                     None => format!("signal quality: {what}").into(),
                     Some(values) => format!("{values} withheld: {what}").into(),

@@ -144,7 +144,7 @@ fn why_no_length(s: &Stride) -> String {
         .iter()
         .find_map(|f| match &f.code {
             StrideCode::Finding { code, effect } if effect.withholds_length() => {
-                Some(code.as_str().replace('_', " "))
+                Some(code.plain().to_string())
             }
             _ => None,
         })
@@ -175,7 +175,7 @@ fn withhold_side_length(out: &mut SideParameters, valid: &[&Stride], with_length
         .map(|(r, _)| r.clone())
         .unwrap_or_default();
     let reason = format!(
-        "stride length vouched for on {passed} of {} valid strides ({top})",
+        "stride length passed its checks on only {passed} of {} strides (most often: {top})",
         valid.len()
     );
     for p in [

@@ -25,7 +25,7 @@ fn survivors_of_an_unvouched_leg_lose_their_lengths_too() {
     // the leg's reason still counts the survivors as having passed their own checks
     assert_eq!(
         p.withheld.reason(Parameter::StrideLength).unwrap(),
-        "stride length vouched for on 4 of 127 valid strides (velocity drift)"
+        "stride length passed its checks on only 4 of 127 strides (most often: velocity drift)"
     );
     // a vouched leg is left alone
     let mut st = leg(20, 12);
@@ -77,7 +77,7 @@ fn a_side_length_needs_most_strides_vouched_for() {
     assert!(p[Parameter::StrideLength].is_nan() && p[Parameter::Speed].is_nan());
     assert_eq!(
         p.withheld.reason(Parameter::StrideLength).unwrap(),
-        "stride length vouched for on 4 of 127 valid strides (velocity drift)"
+        "stride length passed its checks on only 4 of 127 strides (most often: velocity drift)"
     );
     assert!(
         (p[Parameter::StrideTime] - 1.1).abs() < 1e-12,
@@ -102,13 +102,13 @@ fn a_side_length_blanked_by_a_finding_names_the_finding() {
                 code: crate::domain::codes::LR_DISAGREEMENT,
                 effect: super::FindingEffect::Length,
             },
-            "stride length withheld: lr disagreement",
+            "stride length withheld: the two legs disagree",
         ));
     }
     let p = side_parameters(&st, None);
     assert_eq!(
         p.withheld.reason(Parameter::StrideLength).unwrap(),
-        "stride length vouched for on 0 of 10 valid strides (lr disagreement)"
+        "stride length passed its checks on only 0 of 10 strides (most often: the two legs disagree)"
     );
     // A length that was simply not finite, with no reason, is "not integrable".
     for s in st.iter_mut() {
@@ -119,7 +119,7 @@ fn a_side_length_blanked_by_a_finding_names_the_finding() {
         .withheld
         .reason(Parameter::StrideLength)
         .unwrap()
-        .ends_with("(not integrable)"));
+        .ends_with("(most often: not integrable)"));
 }
 
 /// A leg's parameters are written (Python's `analyze_leg(...)["parameters"]`) with the keys

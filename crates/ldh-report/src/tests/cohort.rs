@@ -6,6 +6,7 @@
 use super::super::trials::Counts;
 use super::super::*;
 use super::row;
+use ldh_core::domain::Parameter;
 
 /// `id`'s two legs of trial `trial` at visit `visit`, speed `speed` m/s, from machine paths.
 fn trial(id: &str, group: &str, trial: &str, visit: &str, speed: f64) -> Vec<RecordingRow> {
@@ -75,7 +76,7 @@ fn the_cohort_page_counts_people_trials_and_both_legs_and_keeps_labels_as_given(
         assert!(!c.contains(paper), "{paper}");
     }
     // Only the person with a failed recording has a shaded status.
-    let triage = &c[at("Subjects, worst first")..];
+    let triage = &c[at("Subjects, most findings first")..];
     let triage = &triage[..triage.find("</table>").unwrap()];
     assert_eq!(triage.matches("<td class=\"bad\">").count(), 1, "{triage}");
     assert!(triage.contains("<td class=\"bad\">right side failed</td>"));
@@ -104,8 +105,9 @@ fn a_persons_trials_stand_side_by_side_grouped_by_visit_with_their_difference() 
         ),
         "{s}"
     );
-    // Speed: 1.0 and 1.1 at the first visit (mean 1.05), 1.3 at the second: +0.250.
-    assert!(s.contains("<td class=\"num\">1.000</td><td class=\"num\">1.100</td><td class=\"num\">1.300</td><td class=\"num\">+0.250</td>"), "{s}");
+    // Speed: 1.0 and 1.1 at the first visit (mean 1.05), 1.3 at the second: +0.25 (the
+    // page's units and decimals).
+    assert!(s.contains("<td class=\"num\">1.00</td><td class=\"num\">1.10</td><td class=\"num\">1.30</td><td class=\"num\">+0.25</td>"), "{s}");
     // No change is marked; P2 (one trial) has no comparison.
     assert!(!s.contains('▲') && !s.contains('▼'));
     assert_eq!(c.matches("Trials of this person").count(), 1);
@@ -117,7 +119,7 @@ fn a_persons_trials_stand_side_by_side_grouped_by_visit_with_their_difference() 
     assert!(one.contains("3. Recordings") && !one.contains("Trials of one person"));
     let c = cohort(recs);
     assert!(
-        c.contains("<th>b − a</th>") && c.contains("<td class=\"num\">-0.100</td>"),
+        c.contains("<th>b − a</th>") && c.contains("<td class=\"num\">-0.10</td>"),
         "{c}"
     );
 }
@@ -183,4 +185,54 @@ fn the_subject_page_says_when_the_files_were_recorded_or_that_they_do_not_say() 
         "{html}"
     );
     assert!(!html.contains("not yet parsed"));
+}
+
+/// The triage order (issue 50 item 8): most findings first; among equal findings the person
+/// with fewer values measured first (a missing value never moves a person down); people with
+/// nothing measured last, their status saying why. The sentence on the order says only that;
+/// the reference is its own sentence, with no "(0 of 0 …)" count.
+#[test]
+fn the_triage_ranks_findings_first_and_never_rewards_a_value_not_measured() {
+    let mut recs = trial("Pnormal", "ldh", "t1", "", 1.2);
+    // More measured than Pnormal, none outside: after Pnormal.
+    let mut more = trial("Pmore", "ldh", "t1", "", 1.2);
+    for r in more.iter_mut() {
+        r.parameters[Parameter::StrideTime] = Some(1.1);
+    }
+    recs.extend(more);
+    // One value measured, below normal: first, though it has least measured of the analysed.
+    recs.extend(trial("Pslow", "ldh", "t1", "", 0.3));
+    let mut failed = trial("Pfailed", "ldh", "t1", "", 1.2);
+    for r in failed.iter_mut() {
+        r.status = ldh_core::output::Status::Error.into();
+        r.error = "unreadable".into();
+    }
+    recs.extend(failed);
+    let c = cohort(recs);
+    let triage = &c[c.find("Subjects, most findings first").unwrap()..];
+    let triage = &triage[..triage.find("</table>").unwrap()];
+    let at = |id: &str| {
+        triage
+            .find(&format!("<td>{id}</td>"))
+            .unwrap_or_else(|| panic!("no {id} in {triage}"))
+    };
+    assert!(at("Pslow") < at("Pnormal"), "{triage}");
+    assert!(at("Pnormal") < at("Pmore"), "{triage}");
+    assert!(at("Pmore") < at("Pfailed"), "{triage}");
+    assert!(
+        triage.contains("<td class=\"bad\">not analysed (see above)</td><td class=\"num\">–</td><td class=\"num\">–</td><td class=\"num\">0 of "),
+        "{triage}"
+    );
+    let order = &triage[..triage.find("</p>").unwrap()];
+    assert!(
+        order.contains("a missing value is never counted as normal")
+            && !order.contains("healthy legs"),
+        "{order}"
+    );
+    assert!(
+        triage.contains("<p class=\"meta\">Reference: Published normal values")
+            && triage.contains("and it has no analysed healthy leg.</p>")
+            && !triage.contains("0 of 0"),
+        "{triage}"
+    );
 }

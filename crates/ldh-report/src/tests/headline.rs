@@ -210,6 +210,7 @@ fn headline_without_the_sensor_height() {
                 "Measure the sensor's height above the ankle and re-run the analysis with it."
                     .into()
             ),
+            nothing_measured: false,
         }
     );
     // Only withholding: not a reason to distrust the other numbers.
@@ -360,6 +361,7 @@ fn headline_with_a_frozen_gyroscope_segment() {
                     .into()
             ),
             to_do: Some("The affected side is not given: add it to the manifest so the legs are compared as affected and unaffected.".into()),
+            nothing_measured: false,
         }
     );
     let at = html

@@ -147,7 +147,7 @@ fn clean_and_frozen(k: usize) -> (LegResult, LegResult) {
 /// returns the largest change of the others' (HS s, stride time s, stance, length m, WQK deg)
 /// (NaN-free values only) and the number withheld.
 fn compare(c: &LegResult, f: &LegResult, name: &str) -> ([f64; 5], usize) {
-    let reason = format!("channel fault (shank {name} frozen from 12.0 s to 15.0 s)");
+    let reason = format!("shank {name} frozen from 12.0 s to 15.0 s");
     let fault: Vec<_> = f
         .warnings
         .iter()

@@ -316,7 +316,7 @@ pub(crate) fn withhold_span(st: &mut [Stride], w: &Warning) -> usize {
 }
 
 /// Withhold the strides that overlap a fault: not valid, with the fault named in the reason
-/// ("channel fault (shank gyroscope z frozen from 12.3 s to 15.8 s)", as
+/// ("shank gyroscope z frozen from 12.3 s to 15.8 s", as
 /// [`Warning::reason`] of its [`fault_warning`]). Returns how many strides were withheld.
 pub fn withhold_faulty_strides(st: &mut [Stride], faults: &[ChannelFault]) -> usize {
     faults

@@ -231,7 +231,7 @@ pub fn apply_to_strides(st: &mut [Stride], warnings: &[Warning]) {
                         code: w.code,
                         effect: FindingEffect::Excludes,
                     },
-                    w.code.as_str().replace('_', " "),
+                    w.code.plain(),
                 ));
             }
             // A blanked cell says why (the strides table gets "an empty cell with a reason").
@@ -273,7 +273,7 @@ pub fn apply_to_strides(st: &mut [Stride], warnings: &[Warning]) {
                         code: w.code,
                         effect,
                     },
-                    format!("{what} withheld: {}", w.code.as_str().replace('_', " ")),
+                    format!("{what} withheld: {}", w.code.plain()),
                 ));
             }
         }

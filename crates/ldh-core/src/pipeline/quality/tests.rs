@@ -58,17 +58,17 @@ fn blanked_stride_cells_carry_the_findings_reason() {
     assert!(st.iter().all(|s| s.stride_length_m.is_nan()));
     assert_eq!(
         st[0].reason,
-        "angles and stride length withheld: attitude divergence"
+        "angles and stride length withheld: the sensor's tilt estimate drifts"
     );
     assert_eq!(
         st[1].reason,
-        "stride length withheld: velocity drift 1.00 m/s over the stride; angles withheld: attitude divergence"
+        "stride length withheld: velocity drift 1.00 m/s over the stride; angles withheld: the sensor's tilt estimate drifts"
     );
     // applied twice (leg, then pair): one reason
     apply_to_strides(&mut st, &[w]);
     assert_eq!(
         st[0].reason,
-        "angles and stride length withheld: attitude divergence"
+        "angles and stride length withheld: the sensor's tilt estimate drifts"
     );
     let all = Warning::new(
         codes::GYRO_SCALE_FAULT,
@@ -77,7 +77,5 @@ fn blanked_stride_cells_carry_the_findings_reason() {
     )
     .withholding(&params::ALL);
     apply_to_strides(&mut st, &[all]);
-    assert!(st
-        .iter()
-        .all(|s| !s.valid && s.reason == "gyro scale fault"));
+    assert!(st.iter().all(|s| !s.valid && s.reason == "gyroscope fault"));
 }

@@ -115,15 +115,16 @@ impl Warning {
     pub fn from_reader(text: &str) -> Warning {
         Warning::new(codes::INPUT, Severity::Warning, text)
     }
-    /// The short reason for withholding a parameter: the code and the first clause of the message.
+    /// The short reason for withholding a parameter: the message's first clause, in its own
+    /// words ("gyroscope sensor fault"), without the code — the reason reaches the clinical
+    /// pages, the code stays in `warnings` (issue 50: no codes on the clinical pages).
     pub fn reason(&self) -> String {
-        let first = self
-            .message
+        self.message
             .split([':', ';'])
             .next()
             .unwrap_or(&self.message)
-            .trim();
-        format!("{} ({first})", self.code.as_str().replace('_', " "))
+            .trim()
+            .to_string()
     }
 }
 
