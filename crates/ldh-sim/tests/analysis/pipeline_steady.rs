@@ -176,7 +176,13 @@ fn a_walker_who_speeds_up_or_slows_down_throughout_never_becomes_steady() {
                     .withheld
                     .get(ldh_core::domain::Parameter::StrideTimeCv)
                     .unwrap();
-                assert!(why.message.contains("never steady"), "{why:?}");
+                assert_eq!(
+                    why.code,
+                    ldh_core::domain::ReasonCode::Finding(
+                        ldh_core::domain::WarningCode::NeverSteady
+                    ),
+                    "{why:?}"
+                );
                 assert!(leg.warnings.iter().any(|x| x.code == codes::NEVER_STEADY));
                 // The trend's stride lengths are kept at both ends (a local median).
                 let kept = |a: usize, b: usize| {

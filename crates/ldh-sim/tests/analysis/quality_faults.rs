@@ -210,11 +210,10 @@ fn strides_over_a_frozen_gyroscope_are_withheld_and_the_others_kept() {
     }
     for p in params::ANGLES {
         assert!(
-            f.parameters
-                .withheld
-                .reason(p)
-                .unwrap()
-                .starts_with("channel fault"),
+            f.parameters.withheld.get(p).unwrap().code
+                == ldh_core::domain::ReasonCode::Finding(
+                    ldh_core::domain::WarningCode::ChannelFault
+                ),
             "{p}"
         );
     }
