@@ -6,19 +6,37 @@ use ldh_core::pipeline::{
     memory_report, Analysis, AnalysisParams, LoadedLeg, SubjectInput, SubjectResult,
 };
 
-/// Analyse a simulated subject in memory (for evaluation and tests).
+/// Analyse a simulated subject in memory (for evaluation and tests), with its manifest row
+/// ([`simulated_input`]: the sensor height the mean of its legs').
 ///
 /// # Panics
 /// When `params` fail their check (a test's parameters are valid).
 pub fn analyze_simulated(s: &SimSubject, params: &AnalysisParams) -> SubjectResult {
-    let input = SubjectInput {
+    analyze_simulated_with(s, params, &simulated_input(s))
+}
+
+/// What a manifest row says of a simulated subject: setting, id, group, affected side, and the
+/// sensor height (the mean of its legs', as `ldh simulate` writes it).
+pub fn simulated_input(s: &SimSubject) -> SubjectInput {
+    SubjectInput {
         setting: s.family_b.as_ref().map(|p| p.setting),
         subject_id: s.params.subject_id.clone(),
         group: Some(s.params.group.clone()),
         affected_side: s.params.affected_side,
         sensor_height_m: Some((s.left.truth.sensor_height_m + s.right.truth.sensor_height_m) / 2.0),
         ..SubjectInput::default()
-    };
+    }
+}
+
+/// [`analyze_simulated`] with another manifest row (`input`, e.g. other sensor heights).
+///
+/// # Panics
+/// When `params` fail their check (a test's parameters are valid).
+pub fn analyze_simulated_with(
+    s: &SimSubject,
+    params: &AnalysisParams,
+    input: &SubjectInput,
+) -> SubjectResult {
     let leg = |l: &SimLeg| -> LoadedLeg {
         let rec = l.recording.clone();
         let report = memory_report(&rec);
@@ -29,7 +47,7 @@ pub fn analyze_simulated(s: &SimSubject, params: &AnalysisParams) -> SubjectResu
         ))
     };
     let analysis = Analysis::new(params.check().expect("valid analysis parameters"));
-    analysis.pair(&input, leg(&s.left), leg(&s.right))
+    analysis.pair(input, leg(&s.left), leg(&s.right))
 }
 
 /// Write the cohort `c` into `dir` as `ldh simulate` does, analyse the files as `ldh analyze`

@@ -21,7 +21,7 @@
 //! variation, each trial from a stream of its own.
 
 mod analyze;
-pub use analyze::{analyze_cohort, analyze_simulated};
+pub use analyze::{analyze_cohort, analyze_simulated, analyze_simulated_with, simulated_input};
 mod cohort;
 pub mod curves;
 pub mod demo;

@@ -18,7 +18,7 @@ use super::events_accuracy::summary;
 use super::events_to_rules::{rule_toe_offs, RULES};
 use ldh_core::gait::{Stride, StrideCode};
 use ldh_core::io::{read_recording, FormatSpec, ReadParams};
-use ldh_core::pipeline::{memory_report, Analysis, AnalysisParams, SubjectInput};
+use ldh_core::pipeline::{memory_report, Analysis, AnalysisParams, SubjectInput, SubjectResult};
 use nalgebra::{Matrix3, Vector3};
 use std::path::{Path, PathBuf};
 
@@ -41,6 +41,24 @@ pub(crate) fn hugadb_dir() -> Option<PathBuf> {
     }
     c.into_iter()
         .find(|d| d.join("HuGaDB_v1_walking_01_00.txt").is_file())
+}
+
+/// One of HuGaDB's walking files (`file`: "01_00", …) analysed as a subject of two shank
+/// legs, no sensor height given.
+pub(crate) fn hugadb_pair(dir: &Path, file: &str, params: &AnalysisParams) -> SubjectResult {
+    let path = dir.join(format!("HuGaDB_v1_walking_{file}.txt"));
+    let leg = |side: &str| {
+        let spec = FormatSpec::builtin(&format!("hugadb-{side}-shank")).unwrap();
+        let rp = ReadParams::default().check().unwrap();
+        let rec = read_recording(&path, Some(&spec), &rp).unwrap().0;
+        let rep = memory_report(&rec);
+        Ok((rec, rep, format!("{file}/{side}")))
+    };
+    let input = SubjectInput {
+        subject_id: file.into(),
+        ..SubjectInput::default()
+    };
+    Analysis::new(params.check().unwrap()).pair(&input, leg("left"), leg("right"))
 }
 
 /// The gyroscopes (deg/s, rows x, y, z) of one side's foot and shin.
@@ -151,18 +169,7 @@ fn events_to_hugadb_feet() {
     let mut all = 0usize;
     for file in CLEAN {
         let path = dir.join(format!("HuGaDB_v1_walking_{file}.txt"));
-        let leg = |side: &str| {
-            let spec = FormatSpec::builtin(&format!("hugadb-{side}-shank")).unwrap();
-            let rp = ReadParams::default().check().unwrap();
-            let rec = read_recording(&path, Some(&spec), &rp).unwrap().0;
-            let rep = memory_report(&rec);
-            Ok((rec, rep, format!("{file}/{side}")))
-        };
-        let input = SubjectInput {
-            subject_id: file.into(),
-            ..SubjectInput::default()
-        };
-        let res = Analysis::new(params.check().unwrap()).pair(&input, leg("left"), leg("right"));
+        let res = hugadb_pair(&dir, file, &params);
         for (side, r) in [("left", &res.left), ("right", &res.right)] {
             // The left foot of 11_03 has the ×10 gyroscope fault (PROVENANCE.md).
             if file.starts_with("11_03") && side == "left" {

@@ -9,6 +9,7 @@ mod events_to_hugadb;
 mod events_to_legs;
 mod events_to_rules;
 mod fusion;
+mod height_estimate;
 mod io_columns;
 mod io_read;
 mod io_start;
