@@ -358,32 +358,34 @@ fn tripod_run(dir: &std::path::Path, run: &str, belt: f64, h: [Option<f64>; 2]) 
     )
 }
 
-/// Median sagittal rate at the strides' zero-velocity instants (`gait::length`'s foot flat),
-/// deg/s: the ω of the length's error ω Δr T.
-fn zupt_rate_dps(leg: &LegResult) -> f64 {
+/// Medians over the valid strides: the sagittal rate at the zero-velocity instant
+/// (`gait::length`'s foot flat), deg/s — the ω of the length's error ω Δr T —, the smallest
+/// |sagittal rate| anywhere in the stance, deg/s, and where the instant lies in the stance
+/// (share from heel strike to toe off).
+fn zupt_rates(leg: &LegResult) -> [f64; 3] {
     let al = leg.signals.as_ref().unwrap();
     let g = &al.gyro_dps;
     let w: Vec<f64> = (0..g[0].len())
         .map(|i| (g[0][i].powi(2) + g[1][i].powi(2) + g[2][i].powi(2)).sqrt())
         .collect();
     let idx = |t: f64| (t * al.fs_hz).round() as usize;
-    let mut v: Vec<f64> = leg
+    let mut cols = [Vec::new(), Vec::new(), Vec::new()];
+    for s in leg
         .strides
         .iter()
         .filter(|s| s.valid && s.to_time_s.is_finite())
-        .filter_map(|s| {
-            zero_velocity_sample(
-                ZeroVelocity::FootFlat,
-                al,
-                &w,
-                idx(s.hs_time_s),
-                idx(s.to_time_s),
-            )
-        })
-        .map(|z| g[1][z])
-        .collect();
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
+    {
+        let (a, b) = (idx(s.hs_time_s), idx(s.to_time_s));
+        if let Some(z) = zero_velocity_sample(ZeroVelocity::FootFlat, al, &w, a, b) {
+            cols[0].push(g[1][z]);
+            cols[1].push((a..b).map(|i| g[1][i].abs()).fold(f64::MAX, f64::min));
+            cols[2].push((z - a) as f64 / (b - a) as f64);
+        }
+    }
+    cols.map(|mut v| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    })
 }
 
 /// Stride length − belt speed × stride time, % (valid strides with a length): bias, SD.
@@ -405,7 +407,7 @@ fn height_estimate_on_tripod() {
         return;
     };
     let heights = [0.05, 0.10, 0.15, 0.20, 0.25, 0.30];
-    println!("run shank | ω at the zero-velocity instants (deg/s) | estimate | SL − belt × T at {heights:?} | at the estimate");
+    println!("run shank | ω at the zero-velocity instants, min |ω| in stance (deg/s), instant's share of the stance | estimate | SL − belt × T at {heights:?} | at the estimate");
     for (run, belt) in TRIPOD_RUNS {
         let at: Vec<SubjectResult> = heights
             .iter()
@@ -422,12 +424,15 @@ fn height_estimate_on_tripod() {
                     r.right.as_ref().unwrap().clone()
                 }
             };
+            let z = zupt_rates(&leg(&at[0]));
             let (bias, row): (Vec<f64>, Vec<String>) =
                 at.iter().map(|r| belt_error(&leg(r), belt)).unzip();
             println!(
-                "{run} {} | {:.1} | {} | {} | {}",
+                "{run} {} | {:.1}, {:.1}, {:.2} | {} | {} | {}",
                 ["L", "R"][k],
-                zupt_rate_dps(&leg(&at[0])),
+                z[0],
+                z[1],
+                z[2],
                 fmt_est(&e[k]),
                 row.join(" | "),
                 belt_error(&leg(&with_est), belt).1
