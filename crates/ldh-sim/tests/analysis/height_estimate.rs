@@ -37,7 +37,9 @@ use super::events_accuracy::tripod::{
 use super::events_accuracy::{no_sta, summary};
 use super::events_to_hugadb::{hugadb_dir, hugadb_pair};
 use ldh_core::align::Aligned;
+use ldh_core::domain::Parameter;
 use ldh_core::gait::{zero_velocity_sample, Stride, ZeroVelocity};
+use ldh_core::pipeline::quality::codes;
 use ldh_core::pipeline::{
     memory_report, Analysis, LegResult, LoadedLeg, SubjectInput, SubjectResult,
 };
@@ -416,6 +418,7 @@ fn height_estimate_on_tripod() {
         let e = [&at[0].left, &at[0].right].map(|l| l.as_ref().ok().and_then(est));
         let eh = [0, 1].map(|k| e[k].as_ref().map(|e| e.height_m.clamp(0.0, 0.45)));
         let with_est = tripod_run(&dir, run, belt, eh);
+        let without = tripod_run(&dir, run, belt, [None; 2]);
         for k in 0..2 {
             let leg = |r: &SubjectResult| {
                 if k == 0 {
@@ -437,6 +440,18 @@ fn height_estimate_on_tripod() {
                 row.join(" | "),
                 belt_error(&leg(&with_est), belt).1
             );
+            // What a user without a height gets: the finding and the leg's stride length.
+            let w = leg(&without);
+            let finding = w
+                .warnings
+                .iter()
+                .find(|x| x.code == codes::SENSOR_HEIGHT_UNKNOWN)
+                .map(|x| format!("{:?}", x.severity));
+            println!(
+                "  without a height: sensor_height_unknown {finding:?}, stride length {:.3} m",
+                w.parameters[Parameter::StrideLength]
+            );
+            assert!(finding.is_some(), "{run}: no sensor_height_unknown");
             // The length grows with the height assumed (ω Δr T), by more at the slow speed.
             assert!(bias.windows(2).all(|p| p[1] > p[0]), "{run}: {bias:?}");
             assert!(e[k].is_some(), "{run}: no estimate");
