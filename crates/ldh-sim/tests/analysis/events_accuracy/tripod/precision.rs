@@ -470,3 +470,5 @@ fn hs_precision_on_tripod() {
 }
 
 mod stride_cv;
+
+mod own;
