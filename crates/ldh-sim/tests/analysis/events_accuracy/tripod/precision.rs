@@ -155,10 +155,27 @@ fn shanks(dir: &Path) -> Vec<Shank> {
             let (_, heel_acc, _) = read_physilog(&imu.join(hf), TRIPOD_UNTIL_S);
             let dh = diff3(&heel_acc);
             let t = a.median_stride_s;
-            // The heel's impact (its own clock: a wide window around the shank's crossing).
+            // The heel's impact, on its own clock (up to 0.2 s off the shank's): first that
+            // clock's offset, the median delay from the shank's crossing to the heel's largest
+            // change within [−0.3, +0.5] T of it; then each onset in a window from 0.1 T before
+            // that delay (a single wide window caught swing events on PWS+20 L, whose heel
+            // clock is 0.18 s late, and matched only half its contacts).
+            let mut lags: Vec<f64> = zc
+                .iter()
+                .filter_map(|&z| {
+                    let (a, b) = (z - t0 - 0.3 * t, z - t0 + 0.5 * t);
+                    let (i0, i1) = ((a * 128.0).max(1.0) as usize, (b * 128.0) as usize);
+                    (i1 < dh.len()).then(|| {
+                        let i = (i0..=i1).max_by(|&x, &y| dh[x].total_cmp(&dh[y])).unwrap();
+                        i as f64 / 128.0 - (z - t0)
+                    })
+                })
+                .collect();
+            lags.sort_by(f64::total_cmp);
+            let lag = lags[lags.len() / 2];
             let heel: Vec<f64> = zc
                 .iter()
-                .filter_map(|&z| onset_at(&dh, 128.0, z - t0 - 0.15 * t, 3.0 * t, 0.5))
+                .filter_map(|&z| onset_at(&dh, 128.0, z - t0 + lag - 0.1 * t, t, 0.5))
                 .map(|h| h + t0)
                 .collect();
             let opto_s: Vec<f64> = opto
@@ -451,3 +468,7 @@ fn hs_precision_on_tripod() {
         "{now:.2} against {before:.2} ms"
     );
 }
+
+mod stride_cv;
+
+mod own;
