@@ -241,9 +241,14 @@ fn trial_table(trials: &[Trial], params: &[Parameter]) -> Markup {
 /// visible): (factor from the table's unit, unit, decimals).
 fn shown(p: Parameter) -> (f64, &'static str, usize) {
     let (scale, unit) = p.display();
+    // Swing, the complement of stance, with stance's decimals (the cohort page read "36.61").
+    let like = match p {
+        Parameter::SwingRatio => Parameter::StanceRatio,
+        _ => p,
+    };
     let d = super::verdict::quantities()
         .iter()
-        .find(|q| q.parameter == p)
+        .find(|q| q.parameter == like)
         .map_or(2, |q| q.decimals.max(1));
     (scale, unit, d)
 }

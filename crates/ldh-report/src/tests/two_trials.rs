@@ -74,6 +74,9 @@ fn a_page_of_two_trials_counts_and_says_every_trial_once() {
         ),
         "{clinical}"
     );
+    // No file gives its date and time: said once, not once per trial.
+    assert!(clinical.contains("<p class=\"meta\">Recorded (date and time: not in the files):</p>"));
+    assert!(!clinical.contains("Recording date and time"), "{clinical}");
     // The recordings table's sums say they are of all trials.
     assert!(
         clinical.contains("<td>20 / 14 (all trials)</td>"),
