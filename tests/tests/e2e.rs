@@ -35,6 +35,8 @@ mod cli_pinned_outputs;
 mod cli_pipeline;
 #[path = "cli_report.rs"]
 mod cli_report;
+#[path = "cli_report_real.rs"]
+mod cli_report_real;
 #[path = "cli_stats.rs"]
 mod cli_stats;
 #[path = "cli_train.rs"]

@@ -224,12 +224,8 @@ fn write_subject(
     params: &ValidReportParams,
 ) -> Result<()> {
     let stem = file_stem(&job.subject_id);
-    // A person's several trials: the plots show the first trial (its traces and strides); the
-    // parameter table averages them all.
-    let (_, trial) = first_trial(&job.recordings);
-    if let Some(t) = trial {
-        job.strides.retain(|r| r.trial_id == t);
-    }
+    // A person's several trials: the page keeps every trial's strides (its tables count them
+    // all) and plots the first trial's (`subject_html`).
     job.traces = results.traces.get(&job.subject_id).cloned();
     let html = subject_html(&job, reference, params)?;
     run.write(&format!("subjects/{stem}.html"), html.as_bytes())

@@ -281,20 +281,26 @@ pub(crate) fn make(
     ctx: &super::RunContext,
 ) -> Headline {
     let not_measured = not_measured(v, sides);
+    let visits = super::visits::visit_changes(recordings, ctx);
     Headline {
-        visits: super::visits::visit_changes(recordings, ctx)
-            .map(|c| super::visits::headline_sentence(&c)),
         belt: belt_sentence(v, recordings),
         context: {
             let mean = sides
                 .iter()
                 .find_map(|r| r.trial_mean.as_ref())
                 .map(|t| format!("The values are the {t} of this person."));
-            match (mean, super::trials::disagreement(recordings, ctx)) {
+            // The values of the disagreement are said under "Trials side by side"; a page of
+            // two or more visits has no such section (its visits table stands there instead).
+            let d = super::trials::Disagreement::of(recordings, ctx).map(|d| match visits {
+                Some(_) => d.sentence(true),
+                None => d.headline(),
+            });
+            match (mean, d) {
                 (Some(m), Some(d)) => Some(format!("{m} {d}")),
                 (m, d) => m.or(d),
             }
         },
+        visits: visits.map(|c| super::visits::headline_sentence(&c)),
         findings: findings(v, reference),
         steady: steady(sides),
         to_do: super::todo::to_do(v, sides),

@@ -43,7 +43,7 @@ ol.refs { font-size: 11.5px; }
 table.triage td.bad { background: #fde2e2; font-weight: bold; }
 .print-only { display: none; }
 @page { size: A4; margin: 7mm; }
-@media print { body { margin: 0; max-width: none; font-size: 8pt; line-height: 1.2; } div.headline p, div.headline ul { margin: 1px 0; } div.headline li { margin: 0; } .missing { padding: 2px 8px; margin: 3px 0; } .missing ul { margin: 1px 0; } .screen-only { display: none; } .print-only { display: block; } figcaption { font-size: 8pt; } table { font-size: 8pt; } th, td { padding: 1px 4px; } h1 { font-size: 15pt; } h2 { font-size: 11pt; margin-top: 6px; margin-bottom: 3px; page-break-after: avoid; break-after: avoid; } .note, .missing, .support, figure, tr { page-break-inside: avoid; break-inside: avoid; } .out, .flag, th, td.bad { -webkit-print-color-adjust: exact; print-color-adjust: exact; } }
+@media print { body { margin: 0; max-width: none; font-size: 8pt; line-height: 1.2; } div.headline p, div.headline ul { margin: 1px 0; } div.headline li { margin: 0; } .missing { padding: 2px 8px; margin: 3px 0; } .missing ul { margin: 1px 0; } .screen-only { display: none; } table.params span.flagword { display: none; } .print-only { display: block; } figcaption { font-size: 8pt; } table { font-size: 8pt; } th, td { padding: 1px 4px; } h1 { font-size: 15pt; } h2 { font-size: 11pt; margin-top: 6px; margin-bottom: 3px; page-break-after: avoid; break-after: avoid; } .note, .missing, .support, figure, tr { page-break-inside: avoid; break-inside: avoid; } .out, .flag, th, td.bad { -webkit-print-color-adjust: exact; print-color-adjust: exact; } }
 "#;
 
 /// The whole page around `body`: doctype, head (charset, viewport, generator, title, CSS).

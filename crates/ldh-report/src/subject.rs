@@ -40,11 +40,14 @@ pub fn subject_html(
     let v = verdicts(&sides, reference, p.0.asymmetry_flag_pct);
     // Why values were not measured: numbered once for the page, listed under the first table.
     let notes = WhyNotes::default();
+    // The figures show one trial (the first of several: its traces and strides); the tables
+    // count every trial's strides, as the recordings table sums them.
+    let plotted = plotted_trial(s);
     let body = html! {
         (header(s, &sides))
         h2 #summary { "Clinical summary" } "\n"
         (headline(&make_headline(&v, &sides, &s.recordings, reference, &s.context)))
-        (warning_box(&sides))
+        (warning_box(&sides, &s.recordings))
         (red_box("Missing from this report.", &missing(s)))
         (clinical_summary(&v, reference, &citations, p, &notes))
         @if let Some(c) = visit_changes(&s.recordings, &s.context) {
@@ -56,15 +59,28 @@ pub fn subject_html(
         (excluded_strides(&s.strides))
         (parameter_table(&v, &sides, reference, &citations, p, &notes))
         (subject_radar(s, &sides, reference)?)
-        (cycle_section(s, &sides, reference, p)?)
-        p.print-only.meta { "Printed report: the signal figures (section 3), the stride-by-stride plots (section 4) and the technical appendix (sampling, outliers, mounting, what reading noticed, every quality finding with its code) are in the on-screen report." } "\n"
-        div.screen-only { (signals(s)?) (stride_by_stride(&s.strides)?) } "\n"
+        (cycle_section(&plotted, &sides, reference, p)?)
+        p.print-only.meta { "Printed report: the signal figures (section 3), the stride-by-stride plots (section 4), the methods and the technical appendix (sampling, outliers, mounting, what reading noticed, every quality finding with its code) are in the on-screen report." } "\n"
+        div.screen-only { (signals(&plotted)?) (stride_by_stride(&plotted.strides)?) } "\n"
 
         (classifier(s))
         (methods(&citations))
         div.screen-only { (appendix(s, &sides)) } "\n"
     };
     Ok(page(&format!("Gait report — {}", s.subject_id), body))
+}
+
+/// `s` as its figures show it: with several trials, only the first trial's strides (the trial
+/// whose traces were kept).
+fn plotted_trial(s: &SubjectReport) -> std::borrow::Cow<'_, SubjectReport> {
+    match crate::results::first_trial(&s.recordings).1 {
+        Some(t) if s.strides.iter().any(|r| r.trial_id != t) => {
+            let mut one = s.clone();
+            one.strides.retain(|r| r.trial_id == t);
+            std::borrow::Cow::Owned(one)
+        }
+        _ => std::borrow::Cow::Borrowed(s),
+    }
 }
 
 /// One row per side; a person's several trials averaged (docs/input.md "Trials").
@@ -138,35 +154,93 @@ fn findings<'a>(
 
 /// "Check before reading the numbers": the quality problems that change the numbers (sensor
 /// faults, drift, gyroscope bias not removed…), in their own words, each once; notes and
-/// findings that only withhold a value are in the technical appendix.
-fn warning_box(sides: &[&RecordingRow]) -> Markup {
-    // Each message once, with the legs that have it ("both legs" when both say the same).
-    let mut found: Vec<(String, Vec<String>)> = Vec::new();
+/// findings that only withhold a value are in the technical appendix. A mean of trials says
+/// each trial's findings (`t2: …`): one message every trial gives is one line naming the
+/// trials, and one kind of finding given several times in other words on the same legs (a
+/// channel spiking at other times) is one line in plain words saying how often and where
+/// (each is in the technical appendix).
+fn warning_box(sides: &[&RecordingRow], recordings: &[RecordingRow]) -> Markup {
+    use ldh_core::pipeline::WarningCode;
+    let mut trials: Vec<&str> = Vec::new();
+    for r in recordings.iter().filter(|r| !r.trial_id.is_empty()) {
+        if !trials.contains(&r.trial_id.as_str()) {
+            trials.push(&r.trial_id);
+        }
+    }
+    // (code, message without its trial, the trials that give it, the legs that have it)
+    let mut found: Vec<(WarningCode, &str, Vec<&str>, Vec<String>)> = Vec::new();
     for r in sides {
         for w in r
             .warnings
             .at_least(ldh_core::pipeline::Severity::Warning)
             .filter(|w| !NOT_FOR_THE_BOX.contains(&w.code))
         {
+            let (trial, message) = trials
+                .iter()
+                .find_map(|t| Some((Some(*t), w.message.strip_prefix(&format!("{t}: "))?)))
+                .unwrap_or((None, w.message.as_str()));
             let side = r.side.to_string();
-            match found.iter_mut().find(|(m, _)| *m == w.message) {
-                Some((_, legs)) if !legs.contains(&side) => legs.push(side),
-                Some(_) => {}
-                None => found.push((w.message.clone(), vec![side])),
+            match found.iter_mut().find(|x| x.1 == message) {
+                Some(x) => {
+                    if let Some(t) = trial.filter(|t| !x.2.contains(t)) {
+                        x.2.push(t);
+                    }
+                    if !x.3.contains(&side) {
+                        x.3.push(side);
+                    }
+                }
+                None => found.push((w.code, message, trial.into_iter().collect(), vec![side])),
             }
         }
     }
-    let items: Vec<String> = found
-        .into_iter()
-        .map(|(m, legs)| {
-            let who = if legs.len() > 1 {
-                "both legs".to_string()
-            } else {
-                legs.join("")
-            };
-            format!("{who}: {m}")
-        })
-        .collect();
+    let in_trials = |t: &[&str]| match t {
+        [] => String::new(),
+        [one] => format!("trial {one}"),
+        many => format!("trials {}", many.join(", ")),
+    };
+    let mut items: Vec<String> = Vec::new();
+    let mut said = vec![false; found.len()];
+    for i in 0..found.len() {
+        if said[i] {
+            continue;
+        }
+        let (code, message, t, legs) = &found[i];
+        let same: Vec<usize> = (i..found.len())
+            .filter(|&j| !said[j] && found[j].0 == *code && found[j].3 == *legs)
+            .collect();
+        for &j in &same {
+            said[j] = true;
+        }
+        let who = if legs.len() > 1 {
+            "both legs".to_string()
+        } else {
+            legs.join("")
+        };
+        if same.len() == 1 {
+            items.push(match t.as_slice() {
+                [] => format!("{who}: {message}"),
+                t => format!("{who} ({}): {message}", in_trials(t)),
+            });
+            continue;
+        }
+        let mut where_: Vec<&str> = Vec::new();
+        for &j in &same {
+            for t in &found[j].2 {
+                if !where_.contains(t) {
+                    where_.push(t);
+                }
+            }
+        }
+        let where_ = match where_.as_slice() {
+            [] => String::new(),
+            w => format!(", in {}", in_trials(w)),
+        };
+        items.push(format!(
+            "{who}: {} ({} times{where_}; each in the technical appendix)",
+            code.plain(),
+            same.len()
+        ));
+    }
     red_box("Check before reading the numbers.", &items)
 }
 
@@ -217,7 +291,7 @@ fn missing(s: &SubjectReport) -> Vec<String> {
 }
 
 /// The recordings-table row of the steady window (shown when strides were excluded).
-const STEADY_FACT: &str = "steady walking used (docs/pipeline.md)";
+const STEADY_FACT: &str = "steady walking used";
 
 /// Names of the rows of the recordings table.
 const FACTS: [&str; 11] = [
@@ -234,8 +308,14 @@ const FACTS: [&str; 11] = [
     "STA",
 ];
 
-/// The values of [`FACTS`] for one side.
+/// The values of [`FACTS`] for one side (a mean of trials: the duration and strides of all
+/// trials together, said so).
 fn facts(r: &RecordingRow) -> [String; 11] {
+    let all = if r.trial_mean.is_some() {
+        " (all trials)"
+    } else {
+        ""
+    };
     let mounting = match (r.mirrored, r.axial_rotation_deg) {
         (Some(m), Some(a)) => format!(
             "{}; rotated {a:.0}° about the shank",
@@ -260,13 +340,13 @@ fn facts(r: &RecordingRow) -> [String; 11] {
             let codes: Vec<&str> = r.warnings.iter().map(|w| w.code.as_str()).collect();
             format!("{} (technical appendix)", codes.join(", "))
         },
-        fmt(r.duration_s, 1),
+        format!("{}{all}", fmt(r.duration_s, 1)),
         fmt(r.fs_hz, 2),
         count(r.outliers_replaced),
         count(r.clipped_samples),
         mounting,
         match (r.strides_total, r.strides_valid) {
-            (Some(t), Some(v)) => format!("{t} / {v}"),
+            (Some(t), Some(v)) => format!("{t} / {v}{all}"),
             _ => "–".into(),
         },
         steady_fact(r),
@@ -457,10 +537,12 @@ fn classifier(s: &SubjectReport) -> Markup {
     }
 }
 
+/// The methods (on screen only: the tool's technical detail) and the references of the
+/// published ranges the tables cite (printed).
 fn methods(citations: &Citations) -> Markup {
     html! {
-        h2 { "Methods" } "\n"
-        p.meta { "Accelerometer and gyroscope are low-pass filtered (4th-order Butterworth, zero phase) after 3-SD outliers of |a| are replaced; the attitude is estimated with an adaptive Kalman filter bank with smoothing (Wang et al.); heel strikes and toe offs come from the sagittal angular velocity; stride length from the integrated shank motion with an ankle lever-arm correction; STA is the largest Lyapunov exponent of the sagittal angular velocity (Rosenstein). Parameters are means over the valid strides." } "\n"
+        div.screen-only { h2 { "Methods" } "\n"
+        p.meta { "Accelerometer and gyroscope are low-pass filtered (4th-order Butterworth, zero phase) after 3-SD outliers of |a| are replaced; the attitude is estimated with an adaptive Kalman filter bank with smoothing (Wang et al.); heel strikes and toe offs come from the sagittal angular velocity; stride length from the integrated shank motion with an ankle lever-arm correction; STA is the largest Lyapunov exponent of the sagittal angular velocity (Rosenstein). Parameters are means over the valid strides." } "\n" }
         @if !citations.0.is_empty() {
             h3 { "References for the published ranges" } "\n"
             ol.refs { @for r in &citations.0 { li { (r) } } } "\n"

@@ -36,7 +36,7 @@ fn range_cells(
                     format!("healthy subjects of this cohort (n = {n_subjects})")
                 }
                 ReferenceSource::Published(c) => {
-                    format!("published normal values [{}]", citations.number(c))
+                    format!("published [{}]", citations.number(c))
                 }
                 ReferenceSource::None => String::new(),
             };
@@ -178,7 +178,7 @@ pub(crate) fn clinical_summary(
                 @let rr = reference.range(row.q.parameter);
                 @let (range, src) = range_cells(rr, row.q, citations);
                 tr {
-                    td { b { (row.q.label()) } " (" (row.q.unit()) ")" @if row.q.scope == Scope::Walk { " — the walk, both legs" } }
+                    td { b { (row.q.label()) } " (" (row.q.unit()) ")" }
                     (value_cells(row, notes))
                     td.num { (range) } td { (src) }
                 }
@@ -190,17 +190,17 @@ pub(crate) fn clinical_summary(
                     td { b { "Left–right asymmetry" } " (SI %)" }
                     td.nm colspan="2" { "not measured [" (notes.cite(why)) "]" }
                     td.num { "|SI| ≤ " (format!("{limit:.0}")) }
-                    td { "asymmetry threshold (Robinson et al. 1987)" }
+                    td { "Robinson 1987" }
                 }
                 "\n"
             }
             @for row in rows().filter(|_| v.no_pair.is_none()) {
                 @if let Some(a) = &row.asymmetry {
                     tr {
-                        td { b { (row.q.label()) " asymmetry" } " (SI %, left vs right)" }
+                        td { b { (row.q.label()) " asymmetry" } " (SI %)" }
                         (asymmetry_cell(a, 2, notes))
                         td.num { "|SI| ≤ " (format!("{limit:.0}")) }
-                        td { "asymmetry threshold (Robinson et al. 1987)" }
+                        td { "Robinson 1987" }
                     }
                     "\n"
                 }
@@ -209,8 +209,8 @@ pub(crate) fn clinical_summary(
         "\n"
         (notes.list_from(first_note))
         p.meta {
-            "▲ above, ▼ below the normal range (bounds included, compared as shown); ◆ asymmetry beyond the threshold (also shaded), judged only for measures that have a normal range. "
-            "Cadence counts the steps of both legs: 60·(1/stride time left + 1/stride time right). "
+            "▲ above, ▼ below the normal range (bounds included, compared as shown); ◆ asymmetry beyond the threshold (also shaded): the legs compared with each other, with or without a normal range. "
+            "Cadence, walking speed and stride time are one value for the walk, from both legs (one cell across both): cadence counts the steps of both legs, 60·(1/stride time left + 1/stride time right). "
             "SI = 100·(L − R)/((L + R)/2) %: positive when the left value is larger. "
             "The shank angles (WQK, PBI, BDK) and gait stability (STA) are in section 2 with their own reference."
         }

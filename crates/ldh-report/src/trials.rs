@@ -60,8 +60,20 @@ pub(super) struct Trial<'a> {
 }
 
 impl Trial<'_> {
-    /// The walk's value of `p`: the mean of both legs, `None` unless both legs have one.
+    /// The walk's value of `p`: the mean of both legs, `None` unless both legs have one. The
+    /// cadence (`p` step frequency, steps/s) is the run's walk cadence of both legs' steps
+    /// (`walk_cadence_steps_per_min`, the summary's), never the mean of the legs' step
+    /// frequencies: with uneven steps that mean is larger than the steps per minute (TRIPOD's
+    /// 0.42 / 0.76 s steps read 103 steps/min in a walk of 96).
     pub(super) fn value(&self, p: Parameter) -> Option<f64> {
+        if p == Parameter::StepFrequency {
+            return self
+                .legs
+                .iter()
+                .filter(|r| r.is_ok())
+                .find_map(|r| r.walk(ldh_core::domain::WalkValue::Cadence))
+                .map(|per_min| per_min / 60.0);
+        }
         let side = |s: Side| {
             self.legs
                 .iter()
@@ -229,9 +241,14 @@ fn trial_table(trials: &[Trial], params: &[Parameter]) -> Markup {
 /// visible): (factor from the table's unit, unit, decimals).
 fn shown(p: Parameter) -> (f64, &'static str, usize) {
     let (scale, unit) = p.display();
+    // Swing, the complement of stance, with stance's decimals (the cohort page read "36.61").
+    let like = match p {
+        Parameter::SwingRatio => Parameter::StanceRatio,
+        _ => p,
+    };
     let d = super::verdict::quantities()
         .iter()
-        .find(|q| q.parameter == p)
+        .find(|q| q.parameter == like)
         .map_or(2, |q| q.decimals.max(1));
     (scale, unit, d)
 }
@@ -272,52 +289,118 @@ fn clinical(p: Parameter, v: f64) -> String {
     format!("{:.d$} {unit}", v * scale)
 }
 
-/// A person's trials that disagree, in plain words (issue 50): for each parameter of [`SAID`]
-/// whose first and last trial differ beyond the reliability table's MDC95 (or, without one, by
-/// more than [`NAMED_DIFFERENCE_SHARE`] of their mean), the two values; `None` with fewer than
-/// two analysed trials or when they agree.
-pub(crate) fn disagreement(recordings: &[RecordingRow], ctx: &super::RunContext) -> Option<String> {
-    let recs: Vec<&RecordingRow> = recordings.iter().collect();
-    let trials = trials_of(&recs);
-    let (first, last) = (trials.first()?, trials.last()?);
-    if trials.len() < 2 {
-        return None;
+/// What a person's trials disagree on: per parameter of [`SAID`] whose first and last trial
+/// differ beyond the reliability table's MDC95 (or, without one, by more than
+/// [`NAMED_DIFFERENCE_SHARE`] of their mean), its name and the two values in words.
+pub(crate) struct Disagreement {
+    /// (parameter name, "1.03 s in trial t1 against 1.18 s in trial t2[, MDC95 0.08 s]").
+    parts: Vec<(&'static str, String)>,
+    /// Judged against a reliability table's MDC95 (else the 10 % rule).
+    by_mdc: bool,
+    /// The trials' belt speeds ("PWS 1.03, PWS+20 1.22 m/s") when they were walked on a
+    /// treadmill at different speeds: their timing and speed differ by design.
+    belts: Option<String>,
+}
+
+impl Disagreement {
+    /// The disagreement of a person's first and last analysed trial; `None` with fewer than
+    /// two analysed trials or when they agree.
+    pub(crate) fn of(recordings: &[RecordingRow], ctx: &super::RunContext) -> Option<Self> {
+        let recs: Vec<&RecordingRow> = recordings.iter().collect();
+        let trials = trials_of(&recs);
+        let (first, last) = (trials.first()?, trials.last()?);
+        if trials.len() < 2 {
+            return None;
+        }
+        let table = ctx.reliability.as_ref();
+        let mut parts: Vec<(&'static str, String)> = Vec::new();
+        for p in SAID {
+            let (Some(a), Some(b)) = (first.value(p), last.value(p)) else {
+                continue;
+            };
+            let mdc = table.and_then(|t| t.mdc95(p));
+            let beyond = match (table, mdc) {
+                (Some(_), Some(m)) => (a - b).abs() > m,
+                (Some(_), None) => false,
+                (None, _) => (a - b).abs() > NAMED_DIFFERENCE_SHARE * 0.5 * (a + b).abs(),
+            };
+            if beyond {
+                let noise = mdc.map_or(String::new(), |m| format!(", MDC95 {}", clinical(p, m)));
+                parts.push((
+                    p.name(),
+                    format!(
+                        "{} in trial {} against {} in trial {}{noise}",
+                        clinical(p, a),
+                        first.id,
+                        clinical(p, b),
+                        last.id
+                    ),
+                ));
+            }
+        }
+        let belt = |t: &Trial| t.legs.iter().find_map(|r| r.belt_speed_mps);
+        let belts = trials
+            .iter()
+            .map(|t| Some(format!("{} {:.2}", t.id, belt(t)?)))
+            .collect::<Option<Vec<String>>>()
+            .filter(|_| trials.iter().any(|t| belt(t) != belt(first)))
+            .map(|b| format!("{} m/s", b.join(", ")));
+        (!parts.is_empty()).then_some(Disagreement {
+            parts,
+            by_mdc: table.is_some(),
+            belts,
+        })
     }
-    let table = ctx.reliability.as_ref();
-    let mut parts: Vec<String> = Vec::new();
-    for p in SAID {
-        let (Some(a), Some(b)) = (first.value(p), last.value(p)) else {
-            continue;
-        };
-        let mdc = table.and_then(|t| t.mdc95(p));
-        let beyond = match (table, mdc) {
-            (Some(_), Some(m)) => (a - b).abs() > m,
-            (Some(_), None) => false,
-            (None, _) => (a - b).abs() > NAMED_DIFFERENCE_SHARE * 0.5 * (a + b).abs(),
-        };
-        if beyond {
-            let noise = mdc.map_or(String::new(), |m| format!(", MDC95 {}", clinical(p, m)));
-            parts.push(format!(
-                "{} {} in trial {} against {} in trial {}{noise}",
-                p.name(),
-                clinical(p, a),
-                first.id,
-                clinical(p, b),
-                last.id
-            ));
+
+    /// By how much, in words; `noise`: with what that means without a reliability table.
+    fn by(&self, noise: bool) -> &'static str {
+        match (self.by_mdc, noise) {
+            (true, _) => "by more than the measurement's own noise (MDC95 of the reliability table)",
+            (false, true) => "by more than 10 % (without a reliability table, ldh report --reliability, whether this is beyond the measurement's noise is not known)",
+            (false, false) => "by more than 10 %",
         }
     }
-    if parts.is_empty() {
-        return None;
+
+    /// The full sentence, each parameter with its two values (issue 50 item 5): under "Trials
+    /// side by side" (`noise` false: the headline above says what 10 % means without a
+    /// reliability table), or in the headline when the page has no such section (two visits).
+    pub(crate) fn sentence(&self, noise: bool) -> String {
+        let parts: Vec<String> = self
+            .parts
+            .iter()
+            .map(|(name, vs)| format!("{name} {vs}"))
+            .collect();
+        let differ = match &self.belts {
+            Some(b) => format!("were walked at different belt speeds ({b}) and differ"),
+            None => "disagree".into(),
+        };
+        format!(
+            "The trials {differ} {}: {}. The page shows their mean; look at each trial before relying on it.",
+            self.by(noise),
+            parts.join("; ")
+        )
     }
-    let why = match table {
-        Some(_) => "by more than the measurement's own noise (MDC95 of the reliability table)",
-        None => "by more than 10 % (without a reliability table, ldh report --reliability, whether this is beyond the measurement's noise is not known)",
-    };
-    Some(format!(
-        "The trials disagree {why}: {}. The page shows their mean; look at each trial below before relying on it.",
-        parts.join("; ")
-    ))
+
+    /// The headline's short sentence: the parameters named, their values left to "Trials side
+    /// by side" (the page said them twice, a third of a printed page on a real person's trials).
+    pub(crate) fn headline(&self) -> String {
+        let names: Vec<&str> = self.parts.iter().map(|p| p.0).collect();
+        let list = match names.as_slice() {
+            [one] => one.to_string(),
+            [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+            [] => String::new(),
+        };
+        match &self.belts {
+            Some(b) => format!(
+                "The trials were walked at different belt speeds ({b}), and they differ in {list} {}: the page shows the mean of different speeds; look at each trial under \"Trials side by side\" before relying on it.",
+                self.by(true)
+            ),
+            None => format!(
+                "The trials disagree in {list} {}: the page shows their mean; look at each trial under \"Trials side by side\" before relying on it.",
+                self.by(true)
+            ),
+        }
+    }
 }
 
 /// The person's own trials side by side on their page (two or more analysed trials), with
@@ -333,9 +416,11 @@ pub(crate) fn person_trials(
     }
     let trials = trials_of(&recs);
     // Only the parameters some trial measured (a leg that failed in every trial leaves the
-    // walk values empty: a table of dashes says nothing and lengthens the printed page).
+    // walk values empty: a table of dashes says nothing and lengthens the printed page), and
+    // not swing, the complement of stance (the page shows it beside stance, never alone).
     let params: Vec<Parameter> = PARAMETERS
         .into_iter()
+        .filter(|&p| p != Parameter::SwingRatio)
         .filter(|&p| trials.iter().any(|t| t.value(p).is_some()))
         .collect();
     if params.is_empty() {
@@ -347,7 +432,7 @@ pub(crate) fn person_trials(
     };
     html! {
         (title())
-        p { (disagreement(recordings, ctx).as_deref().unwrap_or(agree)) } "\n"
+        p { (Disagreement::of(recordings, ctx).map_or(agree.to_string(), |d| d.sentence(false))) } "\n"
         (trial_table(&trials, &params))
     }
 }
@@ -384,20 +469,71 @@ mod tests {
             ..Default::default()
         };
         assert_eq!(
-            disagreement(&recs, &ctx).as_deref(),
+            Disagreement::of(&recs, &ctx)
+                .map(|d| d.sentence(true))
+                .as_deref(),
             Some(
                 "The trials disagree by more than the measurement's own noise (MDC95 of the \
                  reliability table): stride time 1.03 s in trial t1 against 1.18 s in trial t2, \
-                 MDC95 0.08 s. The page shows their mean; look at each trial below before \
-                 relying on it."
+                 MDC95 0.08 s. The page shows their mean; look at each trial before relying \
+                 on it."
             )
         );
         // 0.15 s inside an MDC95 of 0.20 s: the trials agree.
         let mut ctx = ctx;
         ctx.reliability.as_mut().unwrap().rows[0].mdc95 = Some(0.20);
-        assert_eq!(disagreement(&recs, &ctx), None);
-        // Without a table the 10 % rule names both.
-        let named = disagreement(&recs, &Default::default()).unwrap();
-        assert!(named.contains("stride time 1.03 s") && named.contains("5.0 % in trial t1"));
+        assert!(Disagreement::of(&recs, &ctx).is_none());
+        // Without a table the 10 % rule names both; the headline names them without values.
+        let named = Disagreement::of(&recs, &Default::default()).unwrap();
+        let sentence = named.sentence(false);
+        assert!(sentence.starts_with("The trials disagree by more than 10 %: stride time"));
+        assert!(sentence.contains("stride time 1.03 s") && sentence.contains("5.0 % in trial t1"));
+        assert_eq!(
+            named.headline(),
+            "The trials disagree in stride time and stride time variability by more than 10 % \
+             (without a reliability table, ldh report --reliability, whether this is beyond the \
+             measurement's noise is not known): the page shows their mean; look at each trial \
+             under \"Trials side by side\" before relying on it."
+        );
+    }
+
+    /// Trials walked at different belt speeds (TRIPOD's runs) differ by design, and the page
+    /// says so instead of only calling them in disagreement.
+    #[test]
+    fn trials_at_different_belt_speeds_are_said_to_be_at_different_speeds() {
+        let mut recs = walk("PWS", 1.25, 0.07);
+        recs.extend(walk("PWS-20", 1.45, 0.03));
+        for (r, belt) in recs.iter_mut().zip([1.028, 1.028, 0.833, 0.833]) {
+            r.belt_speed_mps = Some(belt);
+        }
+        let d = Disagreement::of(&recs, &Default::default()).unwrap();
+        assert_eq!(
+            d.headline(),
+            "The trials were walked at different belt speeds (PWS 1.03, PWS-20 0.83 m/s), and \
+             they differ in stride time and stride time variability by more than 10 % (without a \
+             reliability table, ldh report --reliability, whether this is beyond the \
+             measurement's noise is not known): the page shows the mean of different speeds; \
+             look at each trial under \"Trials side by side\" before relying on it."
+        );
+        assert!(d.sentence(false).starts_with(
+            "The trials were walked at different belt speeds (PWS 1.03, PWS-20 0.83 m/s) and \
+             differ by more than 10 %: stride time 1.25 s in trial PWS against 1.45 s in trial \
+             PWS-20;"
+        ));
+    }
+
+    /// The trials table's cadence is each trial's walk cadence of both legs' steps (the
+    /// summary's), not the mean of the legs' step frequencies, which uneven steps inflate.
+    #[test]
+    fn a_trials_cadence_is_its_walk_cadence() {
+        let mut recs = walk("t1", 1.25, 0.05);
+        for (r, step_frequency) in recs.iter_mut().zip([2.1657, 1.2752]) {
+            r.parameters[Parameter::StepFrequency] = Some(step_frequency);
+            r.walk_cadence_steps_per_min = Some(95.71);
+        }
+        let rows: Vec<&RecordingRow> = recs.iter().collect();
+        let trials = trials_of(&rows);
+        let cadence = trials[0].value(Parameter::StepFrequency).unwrap() * 60.0;
+        assert!((cadence - 95.71).abs() < 1e-9, "{cadence}");
     }
 }

@@ -112,7 +112,9 @@ impl WarningCode {
             W::IdenticalLegs => "the same recording given for both legs",
             W::PossibleSwap => "left and right may be swapped",
             W::Running => "running, not walking",
-            W::UpsideDown => "sensor worn upside down",
+            // The note says a device convention or an upside-down mounting, corrected either
+            // way: "worn upside down" claimed more than the data show (TRIPOD's Physilog units).
+            W::UpsideDown => "sensor axis pointing down the shank (corrected)",
             W::FewStrides => "too few strides",
             W::SensorHeightUnknown => "sensor height not given",
             W::RateMismatch => "the two sensors record at different rates",

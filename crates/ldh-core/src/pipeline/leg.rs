@@ -174,6 +174,11 @@ pub fn leg_back(
             params.sta_max_strides,
         );
         t.lap(Stage::Sta, &mut clock);
+    } else if !params.compute_sta {
+        // Said as such, not a bare "not computed" a reader takes for a failure.
+        parameters.sta_status =
+            "not computed: turned off for this run (--no-sta, or compute_sta=False in Python)"
+                .into();
     }
     withhold(&mut parameters, &checks.warnings);
     // A faulty gyroscope's events are not lent to the other leg's step time (nor, issue 49,

@@ -89,13 +89,20 @@ pub(crate) fn identification_inline(recordings: &[RecordingRow]) -> Markup {
     }
 }
 
-/// The identification of a page with several trials: one line each.
+/// The identification of a page with several trials: one line each; when no file gives its
+/// date and time, that is said once above them (not once per trial).
 pub(crate) fn identification_list(recordings: &[RecordingRow]) -> Markup {
     let l = lines(recordings);
+    let undated = recordings.iter().all(|r| r.recorded_at.is_empty());
     html! {
         @if l.len() > 1 {
-            p.meta { "Recorded:" } "\n"
-            ul.meta { @for (x, t) in l.iter().zip(trials(recordings)) { li { (x) ". " (recorded_text(&t)) "." } "\n" } } "\n"
+            @if undated {
+                p.meta { "Recorded (date and time: not in the files):" } "\n"
+                ul.meta { @for x in &l { li { (x) "." } "\n" } } "\n"
+            } @else {
+                p.meta { "Recorded:" } "\n"
+                ul.meta { @for (x, t) in l.iter().zip(trials(recordings)) { li { (x) ". " (recorded_text(&t)) "." } "\n" } } "\n"
+            }
         }
     }
 }

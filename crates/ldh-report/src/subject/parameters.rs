@@ -45,10 +45,8 @@ fn range_text(
                 fmt(Some(h * q.scale()), dec)
             )
         }
-        Some(r) => format!(
-            "no reference (n = {} healthy subjects passing every check; {min_n} needed)",
-            r.n_reference
-        ),
+        // "n" is said once in the paragraph above the table (four rows repeated it).
+        Some(r) => format!("no reference (n = {} of {min_n} needed)", r.n_reference),
         None => "no reference".into(),
     }
 }
@@ -85,11 +83,11 @@ pub(super) fn parameter_table(
     html! {
         h2 { "2. Gait parameters" } "\n"
         p.meta {
-            "Reference: " (reference.description) " Values outside the reference range are marked ▲ (above) or ▼ (below) and shaded (bounds included, compared as shown). Cadence, walking speed and stride time are one value per walk, from both legs; step frequency (the inverse of step time) and swing (the complement of stance) are shown beside them and judged with them. Symmetry index SI = 100·(L − R)/((L + R)/2) %; |SI| > "
+            "Reference: " (reference.description) " A range without a reference says how many healthy subjects passing every check the cohort has (n) of those it needs. Values outside the reference range are marked ▲ (above) or ▼ (below) and shaded (bounds included, compared as shown). Cadence, walking speed and stride time are one value per walk, from both legs; step frequency (the inverse of step time) and swing (the complement of stance) are shown beside them and judged with them. Symmetry index SI = 100·(L − R)/((L + R)/2) %; |SI| > "
             (format!("{:.0}", p.0.asymmetry_flag_pct)) " % is shaded for step time, stance and stride length (the legs compared with each other, with or without a range) and for the shank angles when they have a reference range."
         }
         "\n"
-        table {
+        table.params {
             "\n"
             tr { th { "parameter" } th { "unit" } th { (label(ldh_core::Side::Left)) } th { (label(ldh_core::Side::Right)) } th { "reference range" } th { "SI (%)" } } "\n"
             @for row in &v.rows {

@@ -439,13 +439,20 @@ fn headline_of_two_disagreeing_trials() {
         h.context.as_deref(),
         Some(
             "The values are the mean of 2 trials (t1, t2) of this person. The trials disagree \
-             by more than 10 % (without a reliability table, ldh report --reliability, whether \
-             this is beyond the measurement's noise is not known): stride time 1.03 s in trial \
-             t1 against 1.18 s in trial t2; step time 0.52 s in trial t1 against 0.59 s in \
-             trial t2; stride time variability 5.0 % in trial t1 against 13.0 % in trial t2. \
-             The page shows their mean; look at each trial below before relying on it."
+             in stride time, step time and stride time variability by more than 10 % (without \
+             a reliability table, ldh report --reliability, whether this is beyond the \
+             measurement's noise is not known): the page shows their mean; look at each trial \
+             under \"Trials side by side\" before relying on it."
         )
     );
+    // The values are said once, beside each other under the summary, not again in the
+    // headline.
+    assert!(html.contains(
+        "stride time 1.03 s in trial t1 against 1.18 s in trial t2; step time 0.52 s in trial \
+         t1 against 0.59 s in trial t2; stride time variability 5.0 % in trial t1 against 13.0 % \
+         in trial t2."
+    ));
+    assert_eq!(html.matches("1.03 s in trial t1").count(), 1);
     // Side by side on the page, under the summary.
     let at = html
         .find("<h2 id=\"trials\">Trials side by side</h2>")

@@ -108,15 +108,16 @@ impl ChannelFault {
     pub fn channel_name(&self) -> &'static str {
         CHANNEL_NAMES[self.channel]
     }
-    /// "shank gyroscope z frozen from 12.3 s to 15.8 s".
+    /// "shank gyroscope z frozen from 12.3 s to 15.8 s"; a span shorter than the 0.1 s shown
+    /// is said at its time ("shank gyroscope x spiking at 24.0 s", not "from 24.0 s to 24.0 s").
     pub fn describe(&self) -> String {
-        format!(
-            "shank {} {} from {:.1} s to {:.1} s",
-            self.channel_name(),
-            self.kind.words(),
-            self.start_s,
-            self.end_s
-        )
+        let (a, b) = (format!("{:.1}", self.start_s), format!("{:.1}", self.end_s));
+        let when = if a == b {
+            format!("at {a} s")
+        } else {
+            format!("from {a} s to {b} s")
+        };
+        format!("shank {} {} {when}", self.channel_name(), self.kind.words())
     }
 }
 
