@@ -140,6 +140,21 @@ pub struct SubjectParamsB {
     pub left: LegParamsB,
     /// Right leg.
     pub right: LegParamsB,
+    /// Start-up, s from the first step (a treadmill belt accelerating, gait initiation): a
+    /// stride that begins `e` s into it is `1 + RAMP_STRIDE_EXTRA · (1 − e / ramp_s)` times
+    /// longer ([`crate::RAMP_STRIDE_EXTRA`], 25 %), in time and in length (the walker keeps the
+    /// belt's pace). Default 0 (then not serialised, so earlier subjects keep their bytes).
+    #[serde(default, skip_serializing_if = "crate::params::is_zero_s")]
+    pub ramp_s: f64,
+    /// Slowing down, s before the last step (the belt slowing to a stop): the mirror of
+    /// `ramp_s`, measured back from the end of the walk. Default 0 (then not serialised).
+    #[serde(default, skip_serializing_if = "crate::params::is_zero_s")]
+    pub slowdown_s: f64,
+    /// A trend over the whole walk: the last stride is `1 + trend_share` times the first in
+    /// time and length, linearly in between (−0.25: a walker who speeds up throughout).
+    /// Default 0 (then not serialised).
+    #[serde(default, skip_serializing_if = "crate::params::is_zero_s")]
+    pub trend_share: f64,
 }
 
 /// What one family B leg's draw depends on besides the random stream.
@@ -336,6 +351,9 @@ impl SubjectParamsB {
             gyro_range_dps,
             left,
             right,
+            ramp_s: 0.0,
+            slowdown_s: 0.0,
+            trend_share: 0.0,
         }
     }
 }
@@ -440,6 +458,12 @@ impl CohortParamsB {
     }
     /// Draw and simulate subject i (its own ChaCha8 stream: independent of threads).
     pub fn simulate(&self, i: usize) -> Result<SimSubject> {
+        let (p, mut rng) = self.draw(i);
+        simulate_subject_b(&p, &self.sensor, &mut rng)
+    }
+    /// Draw subject i's parameters, and its stream in the state the simulation continues from
+    /// (change the parameters, then [`simulate_subject_b`] with the stream).
+    pub fn draw(&self, i: usize) -> (SubjectParamsB, ChaCha8Rng) {
         let mut rng = ChaCha8Rng::seed_from_u64(self.seed ^ 0xBFA4_117B);
         rng.set_stream(i as u64 + 1);
         let group = if i < self.healthy {
@@ -464,7 +488,7 @@ impl CohortParamsB {
             &self.sensor,
             &mut rng,
         );
-        simulate_subject_b(&p, &self.sensor, &mut rng)
+        (p, rng)
     }
 }
 

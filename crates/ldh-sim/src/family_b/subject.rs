@@ -8,22 +8,37 @@ use super::kin::{FootRoll, Fourier, Phase, SHANK_KEYPOINTS_DEG};
 use super::leg::{LegModelB, Walk, HALF_STEP_WIDTH_M};
 use super::sensor::{measure, SensorModelB};
 use super::SubjectParamsB;
-use crate::{DenseTruth, LegTruth, SensorTruth, SimLeg, SimSubject, StrideTruth, SubjectParams};
+use crate::{
+    DenseTruth, LegTruth, SensorTruth, SimLeg, SimSubject, StrideTruth, SubjectParams,
+    RAMP_STRIDE_EXTRA,
+};
 use ldh_core::error::{LdhError, Result};
 use ldh_core::recording::{Recording, Setting, Side};
 
-/// Timeline: left heel strikes k = −1..=n+1, the turn window and its strides.
+/// Timeline: left heel strikes k = −1..=n+1, the turn window and its strides, and the pace.
 struct Timeline {
     n: i64,
     t_left: Vec<f64>,
     turn: Option<(f64, f64)>,
     turn_strides: Option<i64>,
+    /// How much longer than drawn each left stride k = −1..=n is (index k + 1), in time and
+    /// length: the start-up, slow-down and trend of [`SubjectParamsB`] (1 without them).
+    pace: Vec<f64>,
+    /// End of the start-up, s (strides that begin before it are accelerating).
+    ramp_end_s: Option<f64>,
+    /// Start of the slow-down, s (strides that end after it are decelerating).
+    slowdown_start_s: Option<f64>,
 }
 
 fn timeline(p: &SubjectParamsB, z: &mut impl FnMut() -> f64) -> Result<Timeline> {
     let d = p.stride_time_s;
-    let walk_s = p.duration_s - 2.0 * p.standing_s - 1.5 * d;
-    let n = (walk_s / d).floor() as i64;
+    // A start-up or slow-down adds RAMP_STRIDE_EXTRA / 2 of its length; a trend makes the mean
+    // stride 1 + trend_share / 2 times the first.
+    let walk_s = p.duration_s
+        - 2.0 * p.standing_s
+        - 1.5 * d
+        - 0.5 * RAMP_STRIDE_EXTRA * (p.ramp_s + p.slowdown_s);
+    let n = (walk_s / (d * (1.0 + 0.5 * p.trend_share))).floor() as i64;
     if n < 4 {
         return Err(LdhError::param(
             "duration_s",
@@ -32,21 +47,57 @@ fn timeline(p: &SubjectParamsB, z: &mut impl FnMut() -> f64) -> Result<Timeline>
         ));
     }
     let kt = (p.turn && p.setting == Setting::Overground && n >= 8).then_some(n / 2 - 1);
-    let mut t_left = vec![p.standing_s];
+    let mut dur = Vec::with_capacity(n as usize + 2);
     for k in -1..=n {
         let mut dk = d * (1.0 + p.stride_time_cv * z()).clamp(0.8, 1.2);
         if kt.is_some_and(|kt| k >= kt && k < kt + 2) {
             dk *= 1.1;
         }
+        dur.push(dk);
+    }
+    let pace = pace(p, &mut dur);
+    let mut t_left = vec![p.standing_s];
+    for dk in &dur {
         t_left.push(t_left.last().expect("non-empty") + dk);
     }
     let turn = kt.map(|kt| (t_left[(kt + 1) as usize], t_left[(kt + 3) as usize]));
+    let end = *t_left.last().expect("non-empty");
     Ok(Timeline {
         n,
-        t_left,
         turn,
         turn_strides: kt,
+        pace,
+        ramp_end_s: (p.ramp_s > 0.0).then_some(p.standing_s + p.ramp_s),
+        slowdown_start_s: (p.slowdown_s > 0.0).then_some(end - p.slowdown_s),
+        t_left,
     })
+}
+
+/// Stretch the drawn stride times `dur` by the pace of [`SubjectParamsB`] (a trend over the
+/// walk, then the slow-down measured back from its end and the start-up from its start, each
+/// `1 + RAMP_STRIDE_EXTRA · (1 − e / length)` at `e` s into it) and return the factors.
+fn pace(p: &SubjectParamsB, dur: &mut [f64]) -> Vec<f64> {
+    let mut f = vec![1.0; dur.len()];
+    let last = dur.len().saturating_sub(1).max(1) as f64;
+    for (j, x) in f.iter_mut().enumerate() {
+        *x *= 1.0 + p.trend_share * j as f64 / last;
+    }
+    let stretch = |length_s: f64, order: &mut dyn Iterator<Item = usize>, f: &mut [f64]| {
+        if length_s <= 0.0 {
+            return;
+        }
+        let mut elapsed = 0.0;
+        for j in order {
+            f[j] *= 1.0 + RAMP_STRIDE_EXTRA * (1.0 - elapsed / length_s).max(0.0);
+            elapsed += dur[j] * f[j];
+        }
+    };
+    stretch(p.slowdown_s, &mut (0..dur.len()).rev(), &mut f);
+    stretch(p.ramp_s, &mut (0..dur.len()), &mut f);
+    for (x, k) in dur.iter_mut().zip(&f) {
+        *x *= k;
+    }
+    f
 }
 
 /// Build one leg's model (phase, placements, swings).
@@ -126,7 +177,10 @@ fn placements(p: &SubjectParamsB, tl: &Timeline, z: &mut impl FnMut() -> f64) ->
             Some(kt) if k >= kt && k < kt + 3 => 0.6,
             _ => 1.0,
         };
-        let l = p.stride_length_m() * (1.0 + p.stride_length_cv * z()) * factor;
+        let l = p.stride_length_m()
+            * (1.0 + p.stride_length_cv * z())
+            * factor
+            * tl.pace[k as usize + 1];
         let i = (k + 1) as usize;
         left[i] = right[i - 1] + 0.5 * l * (1.0 - a);
         right[i] = if k < n {
@@ -193,6 +247,7 @@ fn summary(p: &SubjectParamsB) -> SubjectParams {
     s.stride_time_s = p.stride_time_s;
     s.stride_length_m = p.stride_length_m();
     s.turn = p.turn && p.setting == Setting::Overground;
+    (s.ramp_s, s.slowdown_s, s.trend_share) = (p.ramp_s, p.slowdown_s, p.trend_share);
     for side in [Side::Left, Side::Right] {
         let (src, dst) = (p.leg(side), s.leg_mut(side));
         dst.stance_ratio = src.stance_ratio;
@@ -391,8 +446,8 @@ fn stride_truth(
                 roll_swing_excursion_deg: rmx - rmn,
                 turning: walk.turn.is_some_and(|(a, b)| next > a && hs < b),
                 bout_edge: k == 0 || k == n - 1,
-                accelerating: false,
-                decelerating: false,
+                accelerating: tl.ramp_end_s.is_some_and(|e| hs < e),
+                decelerating: tl.slowdown_start_s.is_some_and(|s| next > s),
             }
         })
         .collect()

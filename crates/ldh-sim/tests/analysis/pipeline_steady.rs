@@ -2,11 +2,14 @@
 //! starts up (`SubjectParams::ramp_s`), whose walker slows down before the end (`slowdown_s`)
 //! or both loses those strides on both legs at once (one window per walk), and its stride-time
 //! CV is the steady truth's within 0.3 points; a walker who speeds up or slows down throughout
-//! (`trend_share`) never becomes steady, and his variability is withheld.
+//! (`trend_share`) never becomes steady, and his variability is withheld. The same on family B
+//! (its own `ramp_s`, `slowdown_s`, `trend_share`), which the rule was not tuned on.
 
 use ldh_core::domain::Parameter;
 use ldh_core::gait::STEADY_REASON;
 use ldh_core::pipeline::*;
+use ldh_core::recording::Setting;
+use ldh_sim::family_b::{simulate_subject_b, CohortParamsB, SubjectParamsB};
 use ldh_sim::{
     analyze_simulated, simulate_subject, CohortParams, SimSubject, StrideTruth, SubjectParams,
 };
@@ -45,6 +48,32 @@ fn simulate(c: &CohortParams, i: usize, f: impl Fn(&mut SubjectParams)) -> SimSu
     simulate_subject(&p, &c.sensor, &mut rng).unwrap()
 }
 
+/// Family B's treadmill cohort of the same size and length (2 healthy, 2 slow hemiparetic
+/// walkers with 1.6–2.3 s strides), every subject changed by `f`.
+fn cohort_b(f: impl Fn(&mut SubjectParamsB)) -> Vec<SimSubject> {
+    let c = CohortParamsB {
+        healthy: 2,
+        patients: 2,
+        duration_s: 90.0,
+        seed: 36,
+        setting: Some(Setting::Treadmill),
+        ..CohortParamsB::default()
+    };
+    (0..c.len())
+        .map(|i| {
+            let (mut p, mut rng) = c.draw(i);
+            f(&mut p);
+            simulate_subject_b(&p, &c.sensor, &mut rng).unwrap()
+        })
+        .collect()
+}
+
+/// Family A's treadmill cohort, every subject changed by `f`.
+fn cohort_a(f: impl Fn(&mut SubjectParams)) -> Vec<SimSubject> {
+    let c = treadmill();
+    (0..c.len()).map(|i| simulate(&c, i, &f)).collect()
+}
+
 fn analyse(s: &SimSubject, steady: bool) -> SubjectResult {
     let mut p = AnalysisParams {
         compute_sta: false,
@@ -55,13 +84,12 @@ fn analyse(s: &SimSubject, steady: bool) -> SubjectResult {
     analyze_simulated(s, &p)
 }
 
-/// Every subject of the treadmill cohort with `f` applied: both legs' windows are one, the
-/// transients are out, and the CV is the steady truth's. Returns |CV − truth| per leg.
-fn transients_are_excluded(name: &str, f: impl Fn(&mut SubjectParams)) -> Vec<f64> {
-    let c = treadmill();
+/// Every subject of a treadmill cohort with transients: both legs' windows are one, the
+/// transients are out, and the CV is the steady truth's within 0.3 points on average and
+/// `leg_max` on each leg. Returns |CV − truth| per leg.
+fn transients_are_excluded(name: &str, subjects: Vec<SimSubject>, leg_max: f64) -> Vec<f64> {
     let mut errors = Vec::new();
-    for i in 0..c.len() {
-        let s = simulate(&c, i, &f);
+    for s in subjects {
         let id = &s.params.subject_id;
         let t = s.truth();
         let (on, off) = (analyse(&s, true), analyse(&s, false));
@@ -94,20 +122,27 @@ fn transients_are_excluded(name: &str, f: impl Fn(&mut SubjectParams)) -> Vec<f6
                 w.excluded_end
             );
             // Issue 50: within 0.3 points on average; what the event timing adds on the true
-            // window (≤ 0.28 points on these legs, issue 36) is in it, so 0.4 per leg.
+            // window (≤ 0.28 points on family A's legs, issue 36) is in it, so more per leg.
             assert!(
-                (cv_on - truth).abs() <= 0.004,
+                (cv_on - truth).abs() <= leg_max,
                 "{name} {id} {:?}: CV {cv_on} against the steady truth {truth}",
                 tr.side
             );
             errors.push((cv_on - truth).abs());
-            // The transients are what the rule removed: without it the CV is far off.
+            assert!(w.enough && !w.never_steady, "{w:?}");
+            // The transients are what the rule removed: without it the CV is far off. On
+            // family B's slowest walker (2.2 s strides, CV 5.6 %) a 10 s transient is 2–3
+            // strides that do not show in the CV (within `leg_max` without the rule): the
+            // rule need not find them there.
+            let shows = cv_off - truth > leg_max;
             assert!(
-                cv_off - truth > 0.004,
+                shows || s.family_b.is_some(),
                 "{name} {id} {:?}: {cv_off} {truth}",
                 tr.side
             );
-            assert!(w.enough && !w.never_steady, "{w:?}");
+            if !shows {
+                continue;
+            }
             // No stride of the first or last half of a transient is steady.
             let early = s.params.standing_s + 0.5 * s.params.ramp_s;
             let last_hs = tr.hs_times_s.last().copied().unwrap_or(f64::MAX);
@@ -134,32 +169,65 @@ fn transients_are_excluded(name: &str, f: impl Fn(&mut SubjectParams)) -> Vec<f6
 
 #[test]
 fn belt_start_up_is_excluded_on_both_legs_and_the_cv_is_the_steady_truths() {
-    transients_are_excluded("ramp 10 s", |p| p.ramp_s = 10.0);
+    transients_are_excluded("ramp 10 s", cohort_a(|p| p.ramp_s = 10.0), 0.004);
+    // Family B's slow walkers: a 10 s start-up is 3 valid strides 5–12 % long.
+    transients_are_excluded("B ramp 10 s", cohort_b(|p| p.ramp_s = 10.0), 0.005);
 }
 
 #[test]
 fn a_long_belt_start_up_is_excluded() {
     // Issue 50's walk: steady only after ≈ 30 s.
-    transients_are_excluded("ramp 30 s", |p| p.ramp_s = 30.0);
+    transients_are_excluded("ramp 30 s", cohort_a(|p| p.ramp_s = 30.0), 0.004);
+    transients_are_excluded("B ramp 30 s", cohort_b(|p| p.ramp_s = 30.0), 0.004);
 }
 
 #[test]
 fn slowing_down_before_the_end_is_excluded() {
-    transients_are_excluded("slow-down 10 s", |p| p.slowdown_s = 10.0);
-    transients_are_excluded("ramp 10 s + slow-down 10 s", |p| {
-        p.ramp_s = 10.0;
-        p.slowdown_s = 10.0;
-    });
+    transients_are_excluded("slow-down 10 s", cohort_a(|p| p.slowdown_s = 10.0), 0.004);
+    transients_are_excluded(
+        "ramp 10 s + slow-down 10 s",
+        cohort_a(|p| {
+            p.ramp_s = 10.0;
+            p.slowdown_s = 10.0;
+        }),
+        0.004,
+    );
+}
+
+#[test]
+fn slowing_down_before_the_end_is_excluded_on_family_b() {
+    // The belt slowing to a stop over the walk's last 10 s (TRIPOD's runs end so).
+    transients_are_excluded("B slow-down 10 s", cohort_b(|p| p.slowdown_s = 10.0), 0.004);
+    transients_are_excluded(
+        "B ramp 10 s + slow-down 10 s",
+        cohort_b(|p| {
+            p.ramp_s = 10.0;
+            p.slowdown_s = 10.0;
+        }),
+        0.005,
+    );
 }
 
 #[test]
 fn a_walker_who_speeds_up_or_slows_down_throughout_never_becomes_steady() {
-    let c = treadmill();
     for trend in [-0.25, 0.25] {
-        for i in 0..c.len() {
-            let s = simulate(&c, i, |p| p.trend_share = trend);
+        let mut subjects = cohort_a(|p| p.trend_share = trend);
+        subjects.extend(cohort_b(|p| p.trend_share = trend));
+        let mut checked = 0;
+        for s in subjects {
             let id = &s.params.subject_id;
             let on = analyse(&s, true);
+            let valid = |l: &Result<LegResult, _>| {
+                l.as_ref()
+                    .map_or(0, |l| l.strides.iter().filter(|x| x.valid).count())
+            };
+            if valid(&on.left).min(valid(&on.right)) < 20 {
+                // Family B's slowest walker slowing by 25 % (2.3 → 2.9 s) leaves the
+                // detector's plausible stride times: too few strides for the rule to judge.
+                eprintln!("trend {trend} {id}: fewer than 20 valid strides a leg, not judged");
+                continue;
+            }
+            checked += 1;
             for leg in [&on.left, &on.right] {
                 let leg = leg.as_ref().unwrap();
                 let w = leg.steady.unwrap();
@@ -184,7 +252,11 @@ fn a_walker_who_speeds_up_or_slows_down_throughout_never_becomes_steady() {
                     "{why:?}"
                 );
                 assert!(leg.warnings.iter().any(|x| x.code == codes::NEVER_STEADY));
-                // The trend's stride lengths are kept at both ends (a local median).
+                // The trend's stride lengths are kept at both ends (a local median); family B
+                // withholds more of its lengths for reasons of their own (docs/accuracy.md).
+                if s.family_b.is_some() {
+                    continue;
+                }
                 let kept = |a: usize, b: usize| {
                     leg.strides[a..b]
                         .iter()
@@ -204,6 +276,8 @@ fn a_walker_who_speeds_up_or_slows_down_throughout_never_becomes_steady() {
                 );
             }
         }
+        // Every subject but at most family B's slowest slowing walker is judged.
+        assert!(checked >= 7, "trend {trend}: {checked} of 8 judged");
     }
 }
 

@@ -20,19 +20,23 @@
 //!    alone does not leave), never narrower than `min_range_share` (6 %) of the median stride
 //!    time (the slow wandering of a healthy walk's stride time, Hausdorff 2005, stays within
 //!    it).
-//! 5. Where that run stops short of an end of the walk, the transient it left out (a belt's
-//!    start-up, a slowing down) may go on inside the band (a 30 s ramp keeps its last 10 s
-//!    there), and the run may also stop short of the transient by chance (a walk's level
-//!    brushes the band's edge: issue 50's L02 ended its run at 63 s of a walk that slowed down
-//!    from 76 s). So the transient is measured from the walk's end itself, over the strides up
-//!    to the run's middle, by a segmented regression (Muggeo 2003, Stat Med 22:3055–3071): a
-//!    ramp that meets a constant level (`level + β·(c − i)` over its first `c` strides) or a
-//!    step to it, fitted by least squares for every `c`. A model counts when its excursion at
-//!    the end lies beyond the band of step 4 (the walk's own variation stays inside) and it
-//!    reduces the squared error by more than `2 ln n` σ² (Schwarz 1978, Ann Stat 6:461–464,
-//!    for its two parameters); the window begins (ends) after the `c` strides of the one
-//!    that reduces it more. Only an end where the run left something out is cut: a steady
-//!    walk loses nothing.
+//! 5. At each end of the walk, the transient there (a belt's start-up, gait initiation, a
+//!    slowing down) may go on inside the band (a 30 s ramp keeps its last 10 s there), the run
+//!    may stop short of it by chance (a walk's level brushes the band's edge: issue 50's L02
+//!    ended its run at 63 s of a walk that slowed down from 76 s) or go on through it (a
+//!    transient of a few strides is half hidden by the running median at an end). So the
+//!    transient is measured from the walk's end itself, at both ends alike, over the strides
+//!    up to the run's middle, by a segmented regression (Muggeo 2003, Stat Med
+//!    22:3055–3071): a ramp that meets a constant level (`level + β·(c − i)` over its first `c`
+//!    strides) or a step to it, of longer or shorter strides, fitted by least squares for every
+//!    `c`. A model counts when its excursion at the end lies beyond the band of step 4 (the
+//!    walk's own variation stays inside; for a transient shorter than the running median,
+//!    beyond the band's half-width around the level, ±2 σ) and it reduces the squared error by
+//!    more than `2 ln n` σ² (Schwarz 1978, Ann Stat 6:461–464, for its two parameters); the
+//!    window begins (ends) after the `c` strides of the one that reduces it more. Its
+//!    direction is the data's, not the level's just outside the run: TRIPOD's PWS run ended
+//!    its run at a dip of shorter strides 20 s before the belt slowed to a stop, and only
+//!    shorter strides were looked for there until 2026-12-02.
 //! 6. A walk whose longest such run, or whose window, holds fewer than `min_steady_share`
 //!    (half) of its valid strides has no steady pace: it speeds up or slows down throughout, or changes its pace
 //!    more than once. So has a walk whose window still holds a trend: the least-squares line

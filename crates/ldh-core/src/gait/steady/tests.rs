@@ -65,6 +65,31 @@ fn slowing_down_at_the_end_is_excluded() {
 }
 
 #[test]
+fn a_slow_down_after_a_dip_of_shorter_strides_is_excluded() {
+    // TRIPOD's PWS run (issue 50): a dip of shorter strides ends the longest stretch at one pace
+    // 20 strides before the belt slows to a stop (1.22 → 1.96 s over the last 10 strides); the
+    // slow-down is cut, the dip (inside the walk) kept.
+    let mut t = walk(120, |i| if (100..105).contains(&i) { 1.15 } else { 1.22 });
+    t.extend((1..=10).map(|i| 1.22 + 0.074 * i as f64));
+    let (a, b) = one_leg(&t).range.unwrap();
+    assert!(a == 0 && (117..=120).contains(&b), "{a} {b}");
+}
+
+#[test]
+fn a_transient_of_a_few_strides_is_cut_at_either_end() {
+    // Three strides 30 % long at one end (gait initiation, a last slowing step), which the
+    // running median of 7 keeps inside the band: cut at the start and at the end alike.
+    let mut t = vec![1.3, 1.3, 1.3];
+    t.extend(walk(60, |_| 1.0));
+    let (a, b) = one_leg(&t).range.unwrap();
+    assert_eq!((a, b), (3, 62));
+    let mut t = walk(60, |_| 1.0);
+    t.extend([1.3, 1.3, 1.3]);
+    let (a, b) = one_leg(&t).range.unwrap();
+    assert_eq!((a, b), (0, 59));
+}
+
+#[test]
 fn a_walker_who_speeds_up_throughout_never_becomes_steady() {
     // Issue 50: 2.0 s falling to 1.5 s over 3 minutes.
     let t = walk(100, |i| 2.0 - 0.5 * i as f64 / 99.0);
@@ -125,17 +150,25 @@ fn a_transient_is_measured_from_the_end_of_the_walk() {
     // From the end inward: a ramp of 6 strides (0.3 → 0.05 above the level), then steady.
     let mut y: Vec<f64> = (0..6).map(|i| 1.3 - 0.05 * i as f64).collect();
     y.extend((0..40).map(|i| 1.0 + jitter(i, 0.01)));
-    assert_eq!(transient_length(&y, 1.0, 0.08, 0.015), 6);
-    // The wrong direction, an excursion inside the band, or noise alone: nothing.
-    assert_eq!(transient_length(&y, -1.0, 0.08, 0.015), 0);
-    assert_eq!(transient_length(&y, 1.0, 0.4, 0.015), 0);
+    assert_eq!(transient_length(&y, 0.08, 0.015, 1), 6);
+    // Shorter strides (speeding up at the end, a hurried start) alike.
+    let mirrored: Vec<f64> = y.iter().map(|x| 2.0 - x).collect();
+    assert_eq!(transient_length(&mirrored, 0.08, 0.015, 1), 6);
+    // An excursion inside the band, or noise alone: nothing.
+    assert_eq!(transient_length(&y, 0.4, 0.015, 1), 0);
     let flat: Vec<f64> = (0..40).map(|i| 1.0 + jitter(i, 0.01)).collect();
-    assert_eq!(transient_length(&flat, 1.0, 0.06, 0.015), 0);
+    assert_eq!(transient_length(&flat, 0.06, 0.015, 1), 0);
     // A step to another pace: its length.
     let mut y = vec![1.12; 10];
     y.extend((0..40).map(|i| 1.0 + jitter(i, 0.01)));
-    assert_eq!(transient_length(&y, 1.0, 0.06, 0.015), 10);
-    assert_eq!(transient_length(&[1.0, 2.0], 1.0, 0.0, 1.0), 0);
+    assert_eq!(transient_length(&y, 0.06, 0.015, 1), 10);
+    assert_eq!(transient_length(&[1.0, 2.0], 0.0, 1.0, 1), 0);
+    // Three strides 6 % long: inside the band as a wander of the level, beyond its half-width
+    // as a transient shorter than the running median of 7.
+    let mut y = vec![1.06; 3];
+    y.extend((0..40).map(|i| 1.0 + jitter(i, 0.01)));
+    assert_eq!(transient_length(&y, 0.08, 0.015, 1), 0);
+    assert_eq!(transient_length(&y, 0.08, 0.015, 7), 3);
 }
 
 #[test]

@@ -55,7 +55,7 @@ pub fn walk_window(stride_time_s: &[f64], leg: &[usize], p: &ValidSteadyParams) 
     let level = running_median(t, p.smooth_strides / 2);
     let core = longest_within(&level, range);
     let longest_share = (core.1 + 1 - core.0) as f64 / n as f64;
-    let (a, b) = trim_transients(t, &level, core, range, sigma);
+    let (a, b) = trim_transients(t, core, range, sigma, p.smooth_strides);
     if a > b
         || longest_share < p.min_steady_share
         || ((b + 1 - a) as f64) < p.min_steady_share * n as f64
@@ -74,49 +74,43 @@ pub fn walk_window(stride_time_s: &[f64], leg: &[usize], p: &ValidSteadyParams) 
     }
 }
 
-/// Step 5 of the [module docs](super): where the longest stretch at one pace (`core`) stops
-/// short of an end of the walk, the transient it left out (a start-up, a slowing down) is
-/// measured from that end of the walk to the core's middle by [`transient_length`], in the
-/// direction of the level just outside the core against the core's median. `range` is the band
-/// of step 4 (an excursion inside it is the walk's own variation) and `sigma` the short-term SD.
-/// Returns the window, `(0, n − 1)` when nothing is cut.
+/// Step 5 of the [module docs](super): at each end of the walk the transient there (a
+/// start-up, a slowing down) is measured from that end to the middle of the longest stretch at
+/// one pace (`core`) by [`transient_length`], whichever way it goes. Both ends are treated
+/// alike, whether the core reaches them or not: a running median hides a transient of a few
+/// strides at an end (its window there is half as wide), and the core's last stride says
+/// nothing about the direction of what lies beyond it (TRIPOD's PWS run: a dip of shorter
+/// strides ended the core 20 s before the belt slowed to a stop, and only longer strides,
+/// the slowing down, were looked for). `range` is the band of step 4 (an excursion inside it is
+/// the walk's own variation), `sigma` the short-term SD and `smooth` the running median's
+/// length. Returns the window, `(0, n − 1)` when nothing is cut.
 fn trim_transients(
     t: &[f64],
-    level: &[f64],
     (core_a, core_b): (usize, usize),
     range: f64,
     sigma: f64,
+    smooth: usize,
 ) -> (usize, usize) {
     let n = t.len();
     let mid = (core_a + core_b) / 2;
-    let Some(core_median) = median(&mut t[core_a..=core_b].to_vec(), EvenMedian::Mean) else {
-        return (0, n - 1);
-    };
-    let dir = |k: usize| if level[k] > core_median { 1.0 } else { -1.0 };
-    let a = if core_a > 0 {
-        transient_length(&t[..=mid], dir(core_a - 1), range, sigma)
-    } else {
-        0
-    };
-    let b = if core_b + 1 < n {
-        let inward: Vec<f64> = t[mid..].iter().rev().copied().collect();
-        n - 1 - transient_length(&inward, dir(core_b + 1), range, sigma)
-    } else {
-        n - 1
-    };
-    (a, b)
+    let a = transient_length(&t[..=mid], range, sigma, smooth);
+    let inward: Vec<f64> = t[mid..].iter().rev().copied().collect();
+    (a, n - 1 - transient_length(&inward, range, sigma, smooth))
 }
 
-/// How many strides of `y` (stride times from an end of the walk inward) are a transient in
-/// `direction` (+1: longer strides, −1: shorter). Two models of the transient's first `c`
-/// strides against a constant level after them are fitted by least squares for every `c`
-/// (segmented regression, Muggeo 2003, Stat Med 22:3055–3071): a ramp that meets the level at
-/// `c` (`level + β·(c − i)`, a belt's start-up or a slowing down) and a step (`level + β`, a
-/// different pace). A model counts when its excursion at the end of the walk (β·c, or β) lies
-/// beyond `range` (a transient, not the walk's own variation) and its reduction of the
-/// squared error exceeds `2 ln n` σ² (Schwarz's criterion for its two parameters, Schwarz
-/// 1978, Ann Stat 6:461–464); of those, the larger reduction gives the length, else 0.
-pub(super) fn transient_length(y: &[f64], direction: f64, range: f64, sigma: f64) -> usize {
+/// How many strides of `y` (stride times from an end of the walk inward) are a transient, of
+/// longer or of shorter strides. Two models of the transient's first `c` strides against a
+/// constant level after them are fitted by least squares for every `c` (segmented regression,
+/// Muggeo 2003, Stat Med 22:3055–3071): a ramp that meets the level at `c` (`level + β·(c − i)`,
+/// a belt's start-up or a slowing down) and a step (`level + β`, a different pace). A model
+/// counts when its excursion at the end of the walk (|β·c|, or |β|) lies beyond `range` (a
+/// transient, not the walk's own variation: `range` bounds the running median's wander) and
+/// its reduction of the squared error exceeds `2 ln n` σ² (Schwarz's criterion for its two
+/// parameters, Schwarz 1978, Ann Stat 6:461–464); of those, the larger reduction gives the
+/// length, else 0. A transient shorter than the running median (`c < smooth` strides) is
+/// never a wander of the median's level, so its excursion need only leave the band around the
+/// level, `range / 2` (±2 σ), as a few strides of a slow patient's start-up do.
+pub(super) fn transient_length(y: &[f64], range: f64, sigma: f64, smooth: usize) -> usize {
     let n = y.len();
     if n < 5 || !(sigma > 0.0) {
         return 0;
@@ -147,13 +141,9 @@ pub(super) fn transient_length(y: &[f64], direction: f64, range: f64, sigma: f64
             if !(sxx > 0.0) {
                 continue;
             }
-            let beta = sxy / sxx;
             let gain = sxy * sxy / sxx;
-            if beta * direction > 0.0
-                && (beta * scale).abs() > range
-                && gain > penalty
-                && gain > best.0
-            {
+            let bar = if c < smooth { 0.5 * range } else { range };
+            if (sxy / sxx * scale).abs() > bar && gain > penalty && gain > best.0 {
                 best = (gain, c);
             }
         }
