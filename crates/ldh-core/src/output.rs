@@ -46,8 +46,13 @@ fn num(x: f64, decimals: i32) -> Option<f64> {
     }
 }
 
-/// A row of the per-stride table.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// A row of the per-stride table (strides.csv/json). The parameters' values are one block,
+/// [`StrideRow::values`], written by one loop over [`Parameter::PER_STRIDE`] between the
+/// row's own columns ([`row_serde`]'s hand-written `Serialize` and `Deserialize`: a derived
+/// `flatten` would write a map, which the CSV writer refuses), so a parameter given a
+/// per-stride value ([`crate::domain::Definition::per_stride`] and its arm of
+/// [`crate::gait::Stride::value`]) is a new column with no edit here.
+#[derive(Debug, Clone, PartialEq)]
 pub struct StrideRow {
     /// Subject.
     pub subject_id: String,
@@ -65,22 +70,10 @@ pub struct StrideRow {
     pub to_time_s: Option<f64>,
     /// Next heel strike, s.
     pub next_hs_time_s: Option<f64>,
-    /// Stride time, s.
-    pub stride_time_s: Option<f64>,
-    /// Stance ratio.
-    pub stance_ratio: Option<f64>,
-    /// Double support ratio (issue 49).
-    pub double_support_ratio: Option<f64>,
-    /// Stride length, m.
-    pub stride_length_m: Option<f64>,
-    /// Speed, m/s.
-    pub speed_mps: Option<f64>,
-    /// Max pitch, deg.
-    pub wqk_deg: Option<f64>,
-    /// −min pitch, deg.
-    pub pbi_deg: Option<f64>,
-    /// Roll excursion in swing, deg.
-    pub bdk_deg: Option<f64>,
+    /// The stride's value of each parameter of [`Parameter::PER_STRIDE`] (`None`: empty,
+    /// withheld or not measured), under the parameter's column; `None` for the parameters
+    /// without a per-stride value. Read it with [`StrideRow::value`].
+    pub values: PerParameter<Option<f64>>,
     /// Heading change over the stride, deg.
     pub heading_change_deg: Option<f64>,
     /// Used for the per-side means.
@@ -90,11 +83,17 @@ pub struct StrideRow {
     /// The same reasons as typed codes, in the same order ([`crate::gait::StrideCode`]; text
     /// joined by `; `): what a program groups or filters strides by. Empty in a table
     /// written before the column existed.
-    #[serde(default)]
     pub reason_codes: crate::gait::StrideCodes,
-    /// Trial of the person (manifest `trial_id`), empty for a single recording pair.
-    #[serde(default)]
+    /// Trial of the person (manifest `trial_id`), empty for a single recording pair (and in a
+    /// table written before the column existed).
     pub trial_id: String,
+}
+
+impl StrideRow {
+    /// The stride's value of `p` (`None`: empty, or `p` has no per-stride value).
+    pub fn value(&self, p: Parameter) -> Option<f64> {
+        self.values[p]
+    }
 }
 
 /// A row of the per-recording table (one per subject and side): the typed per-recording value
@@ -260,14 +259,9 @@ pub fn stride_rows(results: &[SubjectResult]) -> Vec<StrideRow> {
                     hs_time_s: num(s.hs_time_s, 4),
                     to_time_s: num(s.to_time_s, 4),
                     next_hs_time_s: num(s.next_hs_time_s, 4),
-                    stride_time_s: num(s.stride_time_s, 4),
-                    stance_ratio: num(s.stance_ratio, 4),
-                    double_support_ratio: num(s.double_support_ratio, 4),
-                    stride_length_m: num(s.stride_length_m, 4),
-                    speed_mps: num(s.speed_mps, 4),
-                    wqk_deg: num(s.wqk_deg, 3),
-                    pbi_deg: num(s.pbi_deg, 3),
-                    bdk_deg: num(s.bdk_deg, 3),
+                    values: PerParameter::from_fn(|p| {
+                        s.value(p).and_then(|v| num(v, p.decimals()))
+                    }),
                     heading_change_deg: num(s.heading_change_deg, 2),
                     valid: s.valid,
                     reason: s.reason.clone(),
@@ -484,8 +478,8 @@ pub fn to_csv<T: Serialize>(rows: &[T], header_if_empty: &[&str]) -> Result<Stri
     String::from_utf8(bytes).map_err(|e| LdhError::signal("csv", e.to_string()))
 }
 
-/// Column names of the per-stride table.
-pub const STRIDE_COLUMNS: [&str; 21] = [
+/// The per-stride table's own columns before the parameters'.
+const STRIDE_HEAD: [&str; 8] = [
     "subject_id",
     "side",
     "model",
@@ -494,20 +488,40 @@ pub const STRIDE_COLUMNS: [&str; 21] = [
     "hs_time_s",
     "to_time_s",
     "next_hs_time_s",
-    "stride_time_s",
-    "stance_ratio",
-    "double_support_ratio",
-    "stride_length_m",
-    "speed_mps",
-    "wqk_deg",
-    "pbi_deg",
-    "bdk_deg",
+];
+
+/// The per-stride table's own columns after the parameters'.
+const STRIDE_TAIL: [&str; 5] = [
     "heading_change_deg",
     "valid",
     "reason",
     "reason_codes",
     "trial_id",
 ];
+
+/// How many columns the per-stride table has.
+const STRIDE_COLUMN_COUNT: usize =
+    STRIDE_HEAD.len() + Parameter::PER_STRIDE_COUNT + STRIDE_TAIL.len();
+
+/// Column names of the per-stride table: its own, with the columns of
+/// [`Parameter::PER_STRIDE`] after `next_hs_time_s`.
+pub const STRIDE_COLUMNS: [&str; STRIDE_COLUMN_COUNT] = {
+    let mut out = [""; STRIDE_COLUMN_COUNT];
+    let mut i = 0;
+    while i < STRIDE_COLUMN_COUNT {
+        let h = STRIDE_HEAD.len();
+        let p = Parameter::PER_STRIDE_COUNT;
+        out[i] = if i < h {
+            STRIDE_HEAD[i]
+        } else if i < h + p {
+            Parameter::PER_STRIDE[i - h].column()
+        } else {
+            STRIDE_TAIL[i - h - p]
+        };
+        i += 1;
+    }
+    out
+};
 
 /// Column names of the bilateral event table.
 pub const EVENT_COLUMNS: [&str; 6] = ["subject_id", "time_s", "side", "event", "order", "trial_id"];

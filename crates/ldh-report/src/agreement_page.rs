@@ -237,7 +237,7 @@ pub fn bland_altman_points(p: &ParameterResult) -> Vec<plots::BlandAltmanSeries>
                 .filter(|q| q.side == *side)
                 .filter_map(|q| Some(((q.ldh? + q.reference?) / 2.0, q.ldh? - q.reference?)))
                 .collect();
-            (side.to_string(), pts)
+            (plots::SeriesName::of_side(*side, side.to_string()), pts)
         })
         .filter(|s: &plots::BlandAltmanSeries| !s.1.is_empty())
         .collect()

@@ -401,9 +401,9 @@ fn radars(offs: &[ModelOffsets]) -> Result<Markup> {
             &format!("Gait parameters, {} model (z vs healthy)", o.model),
             &o.codes,
             &[
-                ("LDHH".to_string(), o.z_ldhh.clone()),
-                ("LDHE".to_string(), o.z_ldhe.clone()),
-                ("H".to_string(), o.z_h.clone()),
+                ("LDHH".into(), o.z_ldhh.clone()),
+                ("LDHE".into(), o.z_ldhe.clone()),
+                ("H".into(), o.z_h.clone()),
             ],
         )?;
         figs.push(figure(

@@ -114,7 +114,11 @@ pub(crate) fn cycle_section(
                     let (lo, hi) = SHANK_ANGLE_RANGE_DEG;
                     let (m, k) = plots::clip_to(&c.mean_deg, lo, hi);
                     clipped += k;
-                    series.push((format!("{side} (n = {} strides)", c.n), m, c.sd_deg));
+                    series.push((
+                        plots::SeriesName::of_side(side, format!("{side} (n = {} strides)", c.n)),
+                        m,
+                        c.sd_deg,
+                    ));
                     None
                 }
             },
@@ -126,7 +130,7 @@ pub(crate) fn cycle_section(
     let cr = &reference.cycle;
     let band = cr.band.as_ref().map(|b| {
         (
-            format!("healthy reference (n = {} legs): mean ± SD", b.n),
+            format!("healthy reference (n = {} legs): mean ± SD", b.n).into(),
             b.mean_deg.clone(),
             b.sd_deg.clone(),
         )

@@ -15,9 +15,9 @@ pub fn stats_figures(outcome: &StatsOutcome) -> Result<Vec<(String, String)>> {
     let mut files = Vec::new();
     for (cohort, off) in outcome.cohorts.iter().zip(&outcome.offsets) {
         let series = [
-            ("LDHH".to_string(), off.z_ldhh.clone()),
-            ("LDHE".to_string(), off.z_ldhe.clone()),
-            ("H".to_string(), off.z_h.clone()),
+            ("LDHH".into(), off.z_ldhh.clone()),
+            ("LDHE".into(), off.z_ldhe.clone()),
+            ("H".into(), off.z_h.clone()),
         ];
         let radar = plots::radar_svg(
             &format!("Gait parameters, {} model (z vs healthy)", cohort.model),

@@ -8,6 +8,7 @@
 use plotters::prelude::*;
 
 use ldh_core::error::{LdhError, Result};
+use ldh_core::Side;
 
 mod agreement;
 mod cohort;
@@ -122,15 +123,60 @@ const COLORS: [RGBColor; 4] = [
     RGBColor(204, 121, 167),
 ];
 
-/// The colour of the `k`-th series named `name`: a series named after a side (`left…`,
-/// `right…`) gets that side's colour in every figure, others go by position.
-fn colour_of(name: &str, k: usize) -> RGBColor {
-    if name.starts_with("left") {
-        COLORS[0]
-    } else if name.starts_with("right") {
-        COLORS[1]
-    } else {
-        COLORS[k % COLORS.len()]
+/// A series' name as its legend shows it and, when the series is one side's, that side: a
+/// side's series is drawn in the side's colour in every figure (left blue, right orange), any
+/// other series in the next colour by its position. The colour is decided on the side, never
+/// on the name's text.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SeriesName {
+    /// The legend's text.
+    pub text: String,
+    /// The side the series is, when it is one.
+    pub side: Option<Side>,
+}
+
+impl SeriesName {
+    /// A series of `side`, shown as `text`.
+    pub fn of_side(side: Side, text: impl Into<String>) -> SeriesName {
+        SeriesName {
+            text: text.into(),
+            side: Some(side),
+        }
+    }
+}
+
+impl From<String> for SeriesName {
+    fn from(text: String) -> SeriesName {
+        SeriesName { text, side: None }
+    }
+}
+
+impl From<&str> for SeriesName {
+    fn from(text: &str) -> SeriesName {
+        SeriesName::from(text.to_string())
+    }
+}
+
+impl std::ops::Deref for SeriesName {
+    type Target = str;
+    fn deref(&self) -> &str {
+        &self.text
+    }
+}
+
+impl std::fmt::Display for SeriesName {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.text)
+    }
+}
+
+/// The colour of the `k`-th series, `name`: its side's ([`SeriesName::side`]) in every figure,
+/// else by position.
+fn colour_of(name: &SeriesName, k: usize) -> RGBColor {
+    match name.side {
+        Some(Side::Left) => COLORS[0],
+        Some(Side::Right) => COLORS[1],
+        None => COLORS[k % COLORS.len()],
     }
 }
 

@@ -2,6 +2,8 @@
 
 mod agreement_page;
 mod cohort;
+#[cfg(feature = "dummy-parameter")]
+mod dummy_parameter;
 mod headline;
 mod plain;
 mod two_trials;

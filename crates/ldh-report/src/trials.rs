@@ -144,7 +144,7 @@ pub(super) fn visit_mean(trials: &[Trial], visit: &str, p: Parameter) -> Option<
 
 /// Decimals of a parameter in the comparison.
 pub(super) fn decimals(p: Parameter) -> usize {
-    if p.unit() == "deg" {
+    if p.is_angle() {
         1
     } else {
         3

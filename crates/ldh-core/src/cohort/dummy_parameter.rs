@@ -1,25 +1,32 @@
 //! The proof that a gait parameter is one definition plus its computation (issue 48): with the
 //! test-only feature `dummy-parameter`, `Parameter::Dummy` exists with only its definition
-//! (`domain/parameter.rs`) and its computation (`gait/side.rs`, twice the mean stride time),
-//! and nothing else was edited for it. These tests find it in recordings.csv's header and
-//! rows, recordings.json, the column dictionary and the reliability table.
+//! (`domain/parameter.rs`, with a per-stride meaning), its computation per walk
+//! (`gait/side.rs`, twice the mean stride time) and its arm exposing its per-stride value
+//! (`gait::Stride::value`, twice the stride time), and nothing else was edited for it. These
+//! tests find it in recordings.csv's header and rows, recordings.json, strides.csv's header
+//! and rows, strides.json, the column dictionary (both tables) and the reliability table
+//! (ldh-report's own test with the feature finds it on the report's pages).
 //!
 //! `cargo test --profile ci -p ldh-core --features dummy-parameter --lib dummy_parameter`
 
 use crate::cohort::reliability_table;
 use crate::domain::Parameter;
 use crate::output::columns::{columns, markdown, Table};
-use crate::output::{recording_rows, to_csv, RecordingRow};
-use crate::pipeline::{discover, Analysis, AnalysisParams};
+use crate::output::{recording_rows, stride_rows, to_csv, RecordingRow, StrideRow, STRIDE_COLUMNS};
+use crate::pipeline::{discover, Analysis, AnalysisParams, SubjectResult};
 use crate::stats::agreement::ValidAgreementParams;
 
-/// Both legs' rows of the first demo subject, analysed without STA.
-fn demo_rows() -> Vec<RecordingRow> {
+/// The first demo subject, analysed without STA.
+fn demo_subject() -> SubjectResult {
     let inputs = discover(&[]).unwrap();
     let mut p = AnalysisParams::default();
     p.compute_sta = false;
-    let r = Analysis::new(p.check().unwrap()).subject(&inputs[0]);
-    recording_rows(&[r])
+    Analysis::new(p.check().unwrap()).subject(&inputs[0])
+}
+
+/// Both legs' rows of the first demo subject, analysed without STA.
+fn demo_rows() -> Vec<RecordingRow> {
+    recording_rows(&[demo_subject()])
 }
 
 #[test]
@@ -78,4 +85,59 @@ fn dummy_parameter_reaches_the_tables_the_dictionary_and_the_reliability_table()
     assert!(table
         .to_markdown(0.95)
         .contains("| dummy (DUM, s) | 3 × 2 |"));
+}
+
+#[test]
+fn dummy_parameter_reaches_the_stride_table_and_its_dictionary() {
+    let d = Parameter::Dummy;
+    assert_eq!(Parameter::PER_STRIDE.last(), Some(&d));
+    let strides = stride_rows(&[demo_subject()]);
+    // strides.csv: its column after BDK's (its place in TABLE_ORDER), before the row's own
+    // columns that follow the parameters; its value in each row.
+    let csv = to_csv(&strides, &[]).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(header, STRIDE_COLUMNS);
+    let at = header
+        .iter()
+        .position(|c| *c == "dummy_s")
+        .expect("dummy_s in the header");
+    assert_eq!(
+        (header[at - 1], header[at + 1]),
+        ("bdk_deg", "heading_change_deg")
+    );
+    let mut measured = 0;
+    for (row, line) in strides.iter().zip(lines) {
+        // The columns up to dummy_s hold no text with a comma.
+        let cell = line.split(',').nth(at).unwrap();
+        match (row.value(Parameter::StrideTime), row.value(d)) {
+            (Some(st), Some(v)) => {
+                assert!((v - 2.0 * st).abs() < 2e-4, "{v} {st}");
+                assert_eq!(cell, format!("{v}"), "{line}");
+                measured += 1;
+            }
+            (None, None) => assert_eq!(cell, "", "{line}"),
+            other => panic!("{other:?}: {line}"),
+        }
+    }
+    assert!(measured > 10, "{measured} strides");
+    // Read back as `ldh agree` and `ldh report` read strides.csv; strides.json.
+    let back: Vec<StrideRow> = ::csv::Reader::from_reader(csv.as_bytes())
+        .deserialize()
+        .collect::<Result<_, _>>()
+        .unwrap();
+    assert_eq!(back, strides);
+    let json = serde_json::to_string(&strides).unwrap();
+    assert!(json.contains("\"dummy_s\":"), "{json}");
+    // The column dictionary's strides.csv entry, from the definition's `per_stride`.
+    let doc = columns()
+        .iter()
+        .find(|c| c.table == Table::Strides && c.name == "dummy_s")
+        .expect("dummy_s in the dictionary's strides.csv");
+    assert_eq!(doc.unit, "s");
+    assert_eq!(
+        doc.meaning,
+        "Twice the stride time (a test-only parameter)."
+    );
+    assert!(markdown().contains("| `dummy_s` | s | Twice the stride time"));
 }

@@ -41,8 +41,9 @@ pub enum Parameter {
     Bdk,
     /// DS, fraction of the gait cycle (ldh's addition, issue 49: double support).
     DoubleSupport,
-    /// A made-up parameter (twice the stride time, s), only with the test-only feature
-    /// `dummy-parameter`: the proof that a parameter is its definition and its computation.
+    /// A made-up parameter (twice the stride time, s; per stride too), only with the test-only
+    /// feature `dummy-parameter`: the proof that a parameter is its definition and its
+    /// computation (per walk and per stride).
     #[cfg(feature = "dummy-parameter")]
     Dummy,
 }
@@ -56,8 +57,8 @@ pub struct Definition {
     pub column: &'static str,
     /// Plain name, as in a sentence ("walking speed"; a report's row capitalises it).
     pub name: &'static str,
-    /// Unit of the value as the tables hold it.
-    pub unit: &'static str,
+    /// Unit of the value as the tables hold it (its text: [`Unit::as_str`]).
+    pub unit: Unit,
     /// How a report shows it: the factor from [`Definition::unit`] and the unit it then has
     /// (the same quantity: a fraction × 100 is a per cent, steps/s × 60 steps/min).
     pub display: (f64, &'static str),
@@ -70,6 +71,51 @@ pub struct Definition {
     pub per_stride: Option<&'static str>,
 }
 
+/// The unit of a parameter's value as the tables hold it: what code decides on (a report's
+/// decimals for an angle), its text ([`Unit::as_str`]) what every output shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Unit {
+    /// Steps per second.
+    StepsPerS,
+    /// Metres.
+    M,
+    /// Metres per second.
+    Mps,
+    /// Seconds.
+    S,
+    /// A share of the stride (heel strike to the next heel strike of the same leg, the gait
+    /// cycle): [`GAIT_CYCLE_FRACTION`].
+    GaitCycleFraction,
+    /// The coefficient of variation: [`CV`].
+    Cv,
+    /// Per second (a Lyapunov exponent).
+    PerS,
+    /// Degrees (an angle).
+    Deg,
+}
+
+impl Unit {
+    /// The unit's text, as the column dictionary, the reports and the reliability table show it.
+    pub const fn as_str(self) -> &'static str {
+        match self {
+            Unit::StepsPerS => "steps/s",
+            Unit::M => "m",
+            Unit::Mps => "m/s",
+            Unit::S => "s",
+            Unit::GaitCycleFraction => GAIT_CYCLE_FRACTION,
+            Unit::Cv => CV,
+            Unit::PerS => "1/s",
+            Unit::Deg => "deg",
+        }
+    }
+}
+
+impl std::fmt::Display for Unit {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
 /// The unit of stance and swing: a share of the stride (heel strike to the next heel strike
 /// of the same leg, the gait cycle).
 pub const GAIT_CYCLE_FRACTION: &str = "fraction of the gait cycle";
@@ -78,7 +124,7 @@ pub const GAIT_CYCLE_FRACTION: &str = "fraction of the gait cycle";
 pub const CV: &str = "SD / mean";
 
 const fn d(
-    (code, column, name, unit): (&'static str, &'static str, &'static str, &'static str),
+    (code, column, name, unit): (&'static str, &'static str, &'static str, Unit),
     display: (f64, &'static str),
     range: (f64, f64),
     description: &'static str,
@@ -168,96 +214,123 @@ impl Parameter {
         Parameter::Dummy,
     ];
 
+    /// How many parameters have a per-stride value ([`Definition::per_stride`]).
+    pub const PER_STRIDE_COUNT: usize = {
+        let mut n = 0;
+        let mut i = 0;
+        while i < Parameter::COUNT {
+            n += Parameter::TABLE_ORDER[i].definition().per_stride.is_some() as usize;
+            i += 1;
+        }
+        n
+    };
+
+    /// The parameters with a per-stride value ([`Definition::per_stride`]), in the order of
+    /// [`Parameter::TABLE_ORDER`]: the parameter columns of strides.csv, in this order.
+    pub const PER_STRIDE: [Parameter; Parameter::PER_STRIDE_COUNT] = {
+        let mut out = [Parameter::StrideTime; Parameter::PER_STRIDE_COUNT];
+        let (mut i, mut k) = (0, 0);
+        while i < Parameter::COUNT {
+            let p = Parameter::TABLE_ORDER[i];
+            if p.definition().per_stride.is_some() {
+                out[k] = p;
+                k += 1;
+            }
+            i += 1;
+        }
+        out
+    };
+
     /// The parameter's definition.
     pub const fn definition(self) -> Definition {
         use Parameter::*;
         match self {
             StepFrequency => d(
-                ("SF", "step_frequency_steps_per_s", "cadence", "steps/s"),
+                ("SF", "step_frequency_steps_per_s", "cadence", Unit::StepsPerS),
                 (60.0, "steps/min"),
                 (0.1, 6.0),
                 "1 / mean step time (× 60 = steps/min of this side; the report's cadence is one value per walk from both legs).",
                 None,
             ),
             StrideLength => d(
-                ("SL", "stride_length_m", "stride length", "m"),
+                ("SL", "stride_length_m", "stride length", Unit::M),
                 AS_IS_M,
                 (0.0, 4.0),
                 "mean distance the foot travels over a stride (both feet travel the same distance on a straight walk).",
                 Some("Stride length; empty when withheld (`reason` says why)."),
             ),
             Speed => d(
-                ("SS", "speed_mps", "walking speed", "m/s"),
+                ("SS", "speed_mps", "walking speed", Unit::Mps),
                 (1.0, "m/s"),
                 (0.0, 6.0),
                 "mean walking speed, stride length / stride time.",
                 Some("Stride length / stride time."),
             ),
             StepTime => d(
-                ("STT", "step_time_s", "step time", "s"),
+                ("STT", "step_time_s", "step time", Unit::S),
                 AS_IS_S,
                 (0.05, 10.0),
                 "mean step time (the other leg's heel strike to this leg's); empty with one leg.",
                 None,
             ),
             StrideTime => d(
-                ("ST", "stride_time_s", "stride time", "s"),
+                ("ST", "stride_time_s", "stride time", Unit::S),
                 AS_IS_S,
                 (0.1, 20.0),
                 "mean stride time (heel strike to the next heel strike of the same leg).",
                 Some("Stride time."),
             ),
             StanceRatio => d(
-                ("STP", "stance_ratio", "stance", GAIT_CYCLE_FRACTION),
+                ("STP", "stance_ratio", "stance", Unit::GaitCycleFraction),
                 PER_CENT_OF_CYCLE,
                 UNIT,
                 "mean share of the stride the foot is on the ground (toe off − heel strike) / stride time; normal ≈ 0.60.",
                 Some("(toe off − heel strike) / stride time."),
             ),
             SwingRatio => d(
-                ("SWP", "swing_ratio", "swing", GAIT_CYCLE_FRACTION),
+                ("SWP", "swing_ratio", "swing", Unit::GaitCycleFraction),
                 PER_CENT_OF_CYCLE,
                 UNIT,
                 "1 − stance ratio: the share of the stride the foot is in the air.",
                 None,
             ),
             StrideLengthCv => d(
-                ("SV", "stride_length_cv", "stride length variability", CV),
+                ("SV", "stride_length_cv", "stride length variability", Unit::Cv),
                 CV_PER_CENT,
                 (0.0, 5.0),
                 "stride-to-stride variability of stride length (× 100 = %).",
                 None,
             ),
             StrideTimeCv => d(
-                ("STV", "stride_time_cv", "stride time variability", CV),
+                ("STV", "stride_time_cv", "stride time variability", Unit::Cv),
                 CV_PER_CENT,
                 (0.0, 5.0),
                 "stride-to-stride variability of stride time (× 100 = %); healthy ≈ 0.01–0.03.",
                 None,
             ),
             Sta => d(
-                ("STA", "sta_per_s", "gait stability (Lyapunov exponent)", "1/s"),
+                ("STA", "sta_per_s", "gait stability (Lyapunov exponent)", Unit::PerS),
                 (1.0, "1/s"),
                 (-50.0, 50.0),
                 "short-term largest Lyapunov exponent of the shank's sagittal angular velocity (Rosenstein): how fast nearby gait states diverge; higher = less stable.",
                 None,
             ),
             Wqk => d(
-                ("WQK", "wqk_deg", "shank swing (peak forward pitch)", "deg"),
+                ("WQK", "wqk_deg", "shank swing (peak forward pitch)", Unit::Deg),
                 AS_IS_DEG,
                 ANGLE,
                 "mean largest forward inclination of the shank in a stride (sagittal pitch maximum, the knee ahead of the ankle, late swing).",
                 Some("Largest forward shank inclination in the stride (WQK)."),
             ),
             Pbi => d(
-                ("PBI", "pbi_deg", "shank pitch back", "deg"),
+                ("PBI", "pbi_deg", "shank pitch back", Unit::Deg),
                 AS_IS_DEG,
                 ANGLE,
                 "mean largest backward inclination of the shank in a stride (−pitch minimum, at push-off).",
                 Some("Largest backward shank inclination in the stride (PBI)."),
             ),
             Bdk => d(
-                ("BDK", "bdk_deg", "shank roll in swing", "deg"),
+                ("BDK", "bdk_deg", "shank roll in swing", Unit::Deg),
                 AS_IS_DEG,
                 ANGLE,
                 "mean range of the shank's frontal-plane roll in swing (toe off to heel strike): sideways swing of the leg, e.g. circumduction.",
@@ -265,7 +338,7 @@ impl Parameter {
             ),
             // Issue 49: double support (docs/quality.md "Stance, swing and double support").
             DoubleSupport => d(
-                ("DS", "double_support_ratio", "double support", GAIT_CYCLE_FRACTION),
+                ("DS", "double_support_ratio", "double support", Unit::GaitCycleFraction),
                 PER_CENT_OF_CYCLE,
                 UNIT,
                 "mean share of the stride both feet are on the ground: the initial (heel strike to the other leg's toe off) plus the terminal (the other leg's heel strike to this leg's toe off) double support, / stride time (× stride time = s); normal ≈ 0.20; empty with one leg.",
@@ -273,11 +346,11 @@ impl Parameter {
             ),
             #[cfg(feature = "dummy-parameter")]
             Dummy => d(
-                ("DUM", "dummy_s", "dummy", "s"),
+                ("DUM", "dummy_s", "dummy", Unit::S),
                 AS_IS_S,
                 (0.0, 40.0),
                 "twice the mean stride time (a test-only parameter).",
-                None,
+                Some("Twice the stride time (a test-only parameter)."),
             ),
         }
     }
@@ -302,9 +375,14 @@ impl Parameter {
         self.definition().name
     }
 
-    /// Unit.
+    /// Unit, as text ([`Unit::as_str`]).
     pub const fn unit(self) -> &'static str {
-        self.definition().unit
+        self.definition().unit.as_str()
+    }
+
+    /// Whether the parameter is an angle (its unit is [`Unit::Deg`]).
+    pub const fn is_angle(self) -> bool {
+        matches!(self.definition().unit, Unit::Deg)
     }
 
     /// How a report shows it: `(factor from the unit, unit)`.
@@ -323,7 +401,7 @@ impl Parameter {
 
     /// The decimals the tables round a value to: 3 for an angle (deg), 4 for the rest.
     pub fn decimals(self) -> i32 {
-        if self.unit() == "deg" {
+        if self.is_angle() {
             3
         } else {
             4

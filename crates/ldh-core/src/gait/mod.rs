@@ -131,6 +131,27 @@ fn serialize_codes<S: serde::Serializer>(f: &[StrideFinding], s: S) -> Result<S:
 }
 
 impl Stride {
+    /// The stride's value of `p` (NaN when not measured), for the parameters with a
+    /// per-stride value (`Definition::per_stride`: a column of strides.csv); `None` for the
+    /// others (they are a leg's, not a stride's). One arm per parameter: a new parameter with
+    /// a per-stride value adds its arm here (its computation may be the arm itself).
+    pub fn value(&self, p: Parameter) -> Option<f64> {
+        use Parameter::*;
+        match p {
+            StrideTime => Some(self.stride_time_s),
+            StanceRatio => Some(self.stance_ratio),
+            DoubleSupport => Some(self.double_support_ratio),
+            StrideLength => Some(self.stride_length_m),
+            Speed => Some(self.speed_mps),
+            Wqk => Some(self.wqk_deg),
+            Pbi => Some(self.pbi_deg),
+            Bdk => Some(self.bdk_deg),
+            StepFrequency | StepTime | SwingRatio | StrideLengthCv | StrideTimeCv | Sta => None,
+            #[cfg(feature = "dummy-parameter")]
+            Dummy => Some(2.0 * self.stride_time_s),
+        }
+    }
+
     /// The codes of the stride's findings, in the order of `reason`'s reasons (the
     /// `reason_codes` column).
     pub fn codes(&self) -> StrideCodes {

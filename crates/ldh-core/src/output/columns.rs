@@ -160,7 +160,7 @@ fn parameter_columns(t: Table, out: &mut Vec<ColumnDoc>) {
         out.push(ColumnDoc {
             table: t,
             name: d.column,
-            unit: d.unit,
+            unit: d.unit.as_str(),
             meaning: meaning.into(),
         });
         if t == Table::Recordings && p == Parameter::Sta {

@@ -11,7 +11,10 @@ use crate::output::{Parameter, RecordingRow, StrideRow};
 use crate::pipeline::{EventKind, SubjectResult};
 use crate::Side;
 
-/// The parameters a stride has (columns of `strides.csv`), in this order.
+/// The parameters of a stride `ldh agree` compares with a reference's, in this order: those
+/// of [`Parameter::PER_STRIDE`] (columns of `strides.csv`) but double support (issue 49 added
+/// it to strides.csv; `ldh agree` does not compare it yet). A parameter given a per-stride
+/// value is compared once it is listed here.
 pub const STRIDE_PARAMETERS: [Parameter; 7] = [
     Parameter::StrideTime,
     Parameter::StanceRatio,
@@ -106,15 +109,7 @@ impl LdhResults {
                         hs_time_s: s.hs_time_s,
                         next_hs_time_s: s.next_hs_time_s,
                         valid: s.valid,
-                        values: [
-                            s.stride_time_s,
-                            s.stance_ratio,
-                            s.stride_length_m,
-                            s.speed_mps,
-                            s.wqk_deg,
-                            s.pbi_deg,
-                            s.bdk_deg,
-                        ],
+                        values: STRIDE_PARAMETERS.map(|p| opt(s.value(p))),
                     });
                 }
             }
@@ -262,15 +257,7 @@ fn stride_from_row(r: StrideRow, path: &Path, line: u64) -> Result<LdhStride> {
         hs_time_s: opt(r.hs_time_s),
         next_hs_time_s: opt(r.next_hs_time_s),
         valid: r.valid,
-        values: [
-            opt(r.stride_time_s),
-            opt(r.stance_ratio),
-            opt(r.stride_length_m),
-            opt(r.speed_mps),
-            opt(r.wqk_deg),
-            opt(r.pbi_deg),
-            opt(r.bdk_deg),
-        ],
+        values: STRIDE_PARAMETERS.map(|p| opt(r.value(p))),
         subject_id: r.subject_id,
         trial_id: r.trial_id,
     })

@@ -27,7 +27,7 @@ pub const TIMING_BAR_COLOUR: RGBColor = COLORS[2];
 
 /// One series of a Bland–Altman plot: its name (`left`/`right` take the sides' colours) and
 /// its points, (mean of ldh and reference, ldh − reference).
-pub type BlandAltmanSeries = (String, Vec<(f64, f64)>);
+pub type BlandAltmanSeries = (super::SeriesName, Vec<(f64, f64)>);
 
 /// A Bland–Altman plot: one dot per pair, the bias (solid line) and the limits of agreement
 /// (dashed lines), each with its confidence interval as a translucent band across the plot

@@ -31,7 +31,11 @@ const NOTE_LINE_CHARS: usize = 60;
 /// in its polygon (never drawn as 0); a value beyond the rim is drawn on the rim as an open
 /// triangle (clipped) and named under the chart; |z| > [`RADAR_Z_ABNORMAL`] is marked with a
 /// black-edged dot. The legend sits above the chart, clear of the data.
-pub fn radar_svg(title: &str, codes: &[String], series: &[(String, Vec<f64>)]) -> Result<String> {
+pub fn radar_svg(
+    title: &str,
+    codes: &[String],
+    series: &[(super::SeriesName, Vec<f64>)],
+) -> Result<String> {
     let f = Fonts::for_canvas(RADAR_W, RADAR_PRINT);
     let zabs = series
         .iter()
@@ -78,7 +82,7 @@ pub fn radar_svg(title: &str, codes: &[String], series: &[(String, Vec<f64>)]) -
             ))
             .map_err(perr)?;
             root.draw(&Text::new(
-                name.clone(),
+                name.to_string(),
                 (x_legend + 32, y_legend),
                 font(f.label),
             ))

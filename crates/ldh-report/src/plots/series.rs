@@ -76,7 +76,7 @@ pub fn stride_series_svg(title: &str, y_label: &str, series: &[Series]) -> Resul
                     c.mix(0.5).stroke_width(1),
                 ))
                 .map_err(perr)?
-                .label(name.clone())
+                .label(name.to_string())
                 .legend(move |(x, y)| Circle::new((x + 8, y), 4, c.filled()));
             chart
                 .draw_series(v.iter().filter(|p| p.0.is_finite() && p.1.is_finite()).map(
@@ -94,13 +94,13 @@ pub fn stride_series_svg(title: &str, y_label: &str, series: &[Series]) -> Resul
 }
 
 /// One line of a per-stride plot: its label and `(x, y, valid)` points.
-pub type Series = (String, Vec<(f64, f64, bool)>);
+pub type Series = (super::SeriesName, Vec<(f64, f64, bool)>);
 
 /// The x-axis label of [`cycle_svg`].
 pub const CYCLE_X_LABEL: &str = "gait cycle (%)";
 
 /// One curve of [`cycle_svg`]: name, mean and SD at equally spaced points over 0–100 %.
-pub type CycleSeries = (String, Vec<f64>, Vec<f64>);
+pub type CycleSeries = (super::SeriesName, Vec<f64>, Vec<f64>);
 
 /// Gait-cycle curves: per series a line for the mean and a translucent band for mean ± SD,
 /// coloured by side (left blue, right orange), over an optional reference band (grey, drawn
@@ -177,7 +177,7 @@ pub fn cycle_svg(
                     c.stroke_width(width),
                 ))
                 .map_err(perr)?
-                .label(name.clone())
+                .label(name.to_string())
                 .legend(move |(x, y)| {
                     Rectangle::new([(x, y - 5), (x + 16, y + 5)], c.mix(0.5).filled())
                 });

@@ -18,7 +18,7 @@ pub struct Panel {
     /// y-axis label with the unit, e.g. `acceleration (g)`.
     pub y_label: String,
     /// (name, samples) per series.
-    pub series: Vec<(String, Vec<f64>)>,
+    pub series: Vec<(super::SeriesName, Vec<f64>)>,
 }
 
 /// Gait events drawn on every panel of [`signals_svg`], s on the plot's time axis.

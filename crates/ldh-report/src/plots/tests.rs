@@ -112,11 +112,7 @@ fn every_figure_prints_text_of_at_least_8_pt() {
         .to_vec();
     let z: Vec<f64> = vec![0.5, -1.0, 7.0, 2.5, f64::NAN, -0.4, 1.2, -6.0];
     let cycle: Vec<f64> = (0..101).map(|i| (i as f64 / 16.0).sin() * 30.0).collect();
-    let curve = (
-        "left (n = 9 strides)".to_string(),
-        cycle.clone(),
-        vec![3.0; 101],
-    );
+    let curve = ("left (n = 9 strides)".into(), cycle.clone(), vec![3.0; 101]);
     let signal: Vec<f64> = (0..1000).map(|i| (i as f64 / 20.0).sin()).collect();
     let figures = [
         (
@@ -259,11 +255,8 @@ fn bland_altman_draws_every_pair() {
         upper_ci: (0.04, 0.06),
     };
     let series = [
-        (
-            "left".to_string(),
-            vec![(1.0, 0.01), (1.1, 0.03), (1.2, -0.01)],
-        ),
-        ("right".to_string(), vec![(1.05, 0.02), (f64::NAN, 0.0)]),
+        ("left".into(), vec![(1.0, 0.01), (1.1, 0.03), (1.2, -0.01)]),
+        ("right".into(), vec![(1.05, 0.02), (f64::NAN, 0.0)]),
     ];
     let svg = bland_altman_svg(
         "stride time",
@@ -280,4 +273,22 @@ fn bland_altman_draws_every_pair() {
     );
     assert!(svg.contains("bias +0.010") && svg.contains("limits -0.029 to +0.049"));
     assert!(bland_altman_svg("x", "a (s)", "b (s)", &[], &limits).is_err());
+}
+
+/// A side's series is drawn in its side's colour whatever its position and text; any other
+/// series by its position, whatever its text says.
+#[test]
+fn a_series_colour_follows_its_side_not_its_text() {
+    use super::{colour_of, SeriesName, COLORS};
+    use ldh_core::Side;
+    assert_eq!(
+        colour_of(&SeriesName::of_side(Side::Right, "R"), 0),
+        COLORS[1]
+    );
+    assert_eq!(
+        colour_of(&SeriesName::of_side(Side::Left, "L"), 3),
+        COLORS[0]
+    );
+    assert_eq!(colour_of(&"left".into(), 1), COLORS[1]);
+    assert_eq!(colour_of(&"right leg".into(), 4), COLORS[0]);
 }

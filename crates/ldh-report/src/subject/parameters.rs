@@ -147,12 +147,15 @@ pub(super) fn subject_radar(
     reference: &Reference,
 ) -> Result<Markup> {
     let ranges: Vec<&ReferenceRange> = reference.ranges.iter().filter(|r| r.sd.is_some()).collect();
-    let series: Vec<(String, Vec<f64>)> = sides
+    let series: Vec<(plots::SeriesName, Vec<f64>)> = sides
         .iter()
         .filter(|r| r.is_ok())
         .map(|r| {
             (
-                side_label(r),
+                plots::SeriesName {
+                    text: side_label(r),
+                    side: r.side.known(),
+                },
                 ranges
                     .iter()
                     .map(|rr| {

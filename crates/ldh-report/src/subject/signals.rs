@@ -4,10 +4,11 @@
 use maud::{html, Markup};
 
 use crate::html::figure;
-use crate::plots::{self, EventMarks, Panel};
+use crate::plots::{self, EventMarks, Panel, SeriesName};
 use crate::{LegTrace, SubjectReport};
 use ldh_core::error::Result;
-use ldh_core::output::StrideRow;
+use ldh_core::output::{Parameter, StrideRow};
+use ldh_core::Side;
 
 /// Section 3: the paper's Figs. 3–4 per leg.
 pub(super) fn signals(s: &SubjectReport) -> Result<Markup> {
@@ -36,15 +37,15 @@ pub(super) fn signals(s: &SubjectReport) -> Result<Markup> {
 fn leg_signals(leg: &LegTrace) -> Result<Markup> {
     let secs = leg.pitch_deg.len() as f64 / leg.fs_hz;
     let mut clipped: Vec<String> = Vec::new();
-    let mut named = |names: [&str; 3], v: &[Vec<f64>; 3], range: f64, unit: &str| {
+    let mut named = |names: [SeriesName; 3], v: &[Vec<f64>; 3], range: f64, unit: &str| {
         let mut n = 0;
-        let out: Vec<(String, Vec<f64>)> = names
-            .iter()
+        let out: Vec<(SeriesName, Vec<f64>)> = names
+            .into_iter()
             .zip(v)
             .map(|(a, v)| {
                 let (v, k) = plots::clip_to(v, -range, range);
                 n += k;
-                (a.to_string(), v)
+                (a, v)
             })
             .collect();
         if n > 0 {
@@ -55,7 +56,14 @@ fn leg_signals(leg: &LegTrace) -> Result<Markup> {
     let acc = Panel {
         y_label: "acceleration (g)".into(),
         series: named(
-            ["anterior (x)", "left (y)", "up (z)"],
+            // The y axis (pointing left) keeps the left side's colour it has always been
+            // drawn in, the same as x's: giving it its own colour changes every subject page
+            // (the pinned outputs), a change of its own.
+            [
+                "anterior (x)".into(),
+                SeriesName::of_side(Side::Left, "left (y)"),
+                "up (z)".into(),
+            ],
             &leg.acc_g,
             ACC_RANGE_G,
             "g",
@@ -64,7 +72,11 @@ fn leg_signals(leg: &LegTrace) -> Result<Markup> {
     let gyro = Panel {
         y_label: "angular velocity (deg/s)".into(),
         series: named(
-            ["about anterior", "about left (sagittal)", "about up"],
+            [
+                "about anterior".into(),
+                "about left (sagittal)".into(),
+                "about up".into(),
+            ],
             &leg.gyro_dps,
             GYRO_RANGE_DPS,
             "deg/s",
@@ -139,38 +151,33 @@ fn clip_note(clipped: &[String]) -> String {
     }
 }
 
-/// A per-stride quantity: title, y label with unit, getter, physical range (values beyond are
-/// drawn at its edge and captioned).
-type PerStride = (
-    &'static str,
-    &'static str,
-    fn(&StrideRow) -> Option<f64>,
-    (f64, f64),
-);
+/// A per-stride quantity: title, y label with unit, the parameter (its per-stride value,
+/// [`StrideRow::value`]), physical range (values beyond are drawn at its edge and captioned).
+type PerStride = (&'static str, &'static str, Parameter, (f64, f64));
 
 const PER_STRIDE: [PerStride; 4] = [
     (
         "stride time",
         "stride time (s)",
-        |r| r.stride_time_s,
+        Parameter::StrideTime,
         (0.0, 4.0),
     ),
     (
         "stance phase",
         "stance ratio (fraction of stride)",
-        |r| r.stance_ratio,
+        Parameter::StanceRatio,
         (0.0, 1.0),
     ),
     (
         "stride length",
         "stride length (m)",
-        |r| r.stride_length_m,
+        Parameter::StrideLength,
         (0.0, 3.0),
     ),
     (
         "shank swing angle (WQK)",
         "WQK (deg)",
-        |r| r.wqk_deg,
+        Parameter::Wqk,
         (-180.0, 180.0),
     ),
 ];
@@ -184,17 +191,17 @@ pub(super) fn stride_by_stride(strides: &[StrideRow]) -> Result<Markup> {
         });
     }
     let mut figs: Vec<Markup> = Vec::new();
-    for (title, ylab, get, (lo, hi)) in PER_STRIDE {
+    for (title, ylab, p, (lo, hi)) in PER_STRIDE {
         let mut clipped = 0usize;
-        let series: Vec<crate::plots::Series> = ["left", "right"]
-            .iter()
+        let series: Vec<crate::plots::Series> = [Side::Left, Side::Right]
+            .into_iter()
             .map(|side| {
                 (
-                    side.to_string(),
+                    SeriesName::of_side(side, side.to_string()),
                     strides
                         .iter()
-                        .filter(|r| r.side.as_str() == *side)
-                        .filter_map(|r| Some((r.hs_time_s?, get(r)?, r.valid)))
+                        .filter(|r| r.side == side)
+                        .filter_map(|r| Some((r.hs_time_s?, r.value(p)?, r.valid)))
                         .filter(|p| p.1.is_finite())
                         .map(|(t, v, ok)| {
                             clipped += usize::from(!(lo..=hi).contains(&v));

@@ -35,7 +35,7 @@ fn every_parameter_is_named_from_its_one_definition_everywhere() {
             .iter()
             .find(|c| c.table == Table::Recordings && c.name == d.column)
             .unwrap_or_else(|| panic!("{p:?} not in the dictionary"));
-        assert_eq!(doc.unit, d.unit, "{p:?}");
+        assert_eq!(doc.unit, d.unit.as_str(), "{p:?}");
         assert_eq!(
             doc.meaning,
             format!("{} ({}): {}", d.code, d.name, d.description)
@@ -59,7 +59,10 @@ fn every_parameter_is_named_from_its_one_definition_everywhere() {
         }
         // The reliability table (reliability.csv and its Markdown).
         let row = reliability.row(p).unwrap();
-        assert_eq!((row.code.as_str(), row.unit.as_str()), (d.code, d.unit));
+        assert_eq!(
+            (row.code.as_str(), row.unit.as_str()),
+            (d.code, d.unit.as_str())
+        );
         assert!(
             md.contains(&format!("| {} ({}, {}) |", d.name, d.code, d.unit)),
             "{p:?}: {md}"
