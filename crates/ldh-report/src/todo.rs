@@ -21,6 +21,8 @@ pub(crate) enum Action {
     /// The two legs disagree, or their files do not belong together (`lr_disagreement`,
     /// `identical_legs`, `possible_swap`, `no_overlap`, `length_mismatch`, `rate_mismatch`).
     CheckFiles,
+    /// The two sensors are not on one clock (`clock_offset`).
+    Synchronise,
     /// The stride length depends on the sensor's height, not given (`sensor_height_unknown`).
     MeasureHeight,
     /// No quiet standing, so no gyroscope bias removed (`no_quiet_standing`).
@@ -45,6 +47,7 @@ impl Action {
             | C::NoOverlap
             | C::LengthMismatch
             | C::RateMismatch => Action::CheckFiles,
+            C::ClockOffset => Action::Synchronise,
             C::SensorHeightUnknown => Action::MeasureHeight,
             C::NoQuietStanding => Action::StandStill,
             C::TooLittleSteady | C::NeverSteady => Action::SteadyWalk,
@@ -65,6 +68,7 @@ impl Action {
                 sides.first().copied().unwrap_or("")
             ),
             Action::CheckFiles => "Check that the two files come from the same walk and that each is named for the leg it was worn on (the legs disagree, which no setting of the analysis explains), then analyse them again.".into(),
+            Action::Synchronise => "Synchronise the two sensors' clocks before the next recording (the device's own synchronisation, or both started together), so the timings between the legs can be measured.".into(),
             Action::MeasureHeight => {
                 "Measure the sensor's height above the ankle and re-run the analysis with it.".into()
             }

@@ -67,6 +67,9 @@ warning_codes! {
     NoOverlap = "no_overlap", NO_OVERLAP;
     /// The two recordings differ in length or start.
     LengthMismatch = "length_mismatch", LENGTH_MISMATCH;
+    /// The two sensors are not on one clock: the walk's two double supports split as no
+    /// walker's do (`pipeline::quality::clocks`); the timings between the legs are withheld.
+    ClockOffset = "clock_offset", CLOCK_OFFSET;
     /// Stride length variability mostly the measurement's own noise (from the two legs).
     SvNoise = "sv_noise", SV_NOISE;
     /// Stride length variability whose noise cannot be checked (no other leg to compare with,
@@ -120,6 +123,7 @@ impl WarningCode {
             W::RateMismatch => "the two sensors record at different rates",
             W::NoOverlap => "the two recordings do not overlap in time",
             W::LengthMismatch => "the two recordings differ in length",
+            W::ClockOffset => "the two sensors' clocks do not agree",
             W::SvNoise => "variability within the measurement's own noise",
             W::SvUnchecked => "variability that cannot be checked against noise",
             W::NoQuietStanding => "no quiet standing at the start",

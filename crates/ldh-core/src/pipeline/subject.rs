@@ -168,11 +168,23 @@ pub(super) fn pair_legs(
         let shift_s = rl.t0_s - ll.t0_s;
         quality::withhold_disagreeing_lengths(&mut ll.strides, &mut rl.strides, shift_s);
     }
+    // Two sensors not on one clock (`quality::clocks`): from the steady strides of both legs.
+    let mut warnings = warnings;
+    if let (Ok(ll), Ok(rl), Some(rh), Some(rt), Some(lh), Some(lt), true) =
+        (&l, &r, &rhs, &rto, &lhs, &lto, walk)
+    {
+        let b = quality::clock_balance(&ll.leg.strides, &rl.leg.strides, (rh, rt), (lh, lt));
+        warnings.extend(b.as_ref().and_then(quality::clock_warning));
+    }
+    let one_clock = !warnings
+        .iter()
+        .any(|w| w.code == quality::codes::CLOCK_OFFSET);
     // The parameters from the final strides, then what the findings withhold (`finalize`).
-    // Double support (issue 49) from the other leg's events, when the two are one walk.
+    // Double support (issue 49) from the other leg's events, when the two are one walk on one
+    // clock.
     let finish = |x: LegRun, other: Option<Vec<f64>>, other_to: Option<Vec<f64>>| {
         x.map(|AnalysedLeg { mut leg, .. }| {
-            if let (Some(hs), Some(to), true) = (&other, &other_to, one_walk) {
+            if let (Some(hs), Some(to), true) = (&other, &other_to, one_walk && one_clock) {
                 crate::gait::double_support(&mut leg.strides, hs, to);
             }
             finalize::finalize_parameters(&mut leg, &warnings, other.as_deref());
@@ -181,7 +193,6 @@ pub(super) fn pair_legs(
     };
     let (mut left, mut right) = (finish(l, rhs, rto), finish(r, lhs, lto));
     quality::check_length_variability(left.as_mut().ok(), right.as_mut().ok());
-    let mut warnings = warnings;
     if input.affected_side_unknown {
         warnings.push(Warning::new(
             crate::domain::codes::AFFECTED_SIDE_UNKNOWN,

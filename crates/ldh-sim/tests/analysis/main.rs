@@ -4,6 +4,7 @@
 
 mod agreement_retest;
 mod agreement_run;
+mod clocks;
 mod events_accuracy;
 mod events_to_hugadb;
 mod events_to_legs;

@@ -11,6 +11,7 @@
 //! - this module: the leg's gait (running, a time base that cannot be right, few strides, a
 //!   device convention);
 //! - [`pair`]: the two legs together (clocks, identical files, disagreement, a possible swap);
+//! - [`clocks`]: two sensors not on one clock, from the walk's two double supports;
 //! - [`noise`]: stride length variability against the measurement noise the two legs show.
 
 use crate::align::Alignment;
@@ -21,6 +22,7 @@ use super::LegResult;
 
 mod agreement;
 mod attitude;
+mod clocks;
 mod faults;
 mod height;
 mod noise;
@@ -34,6 +36,10 @@ pub use agreement::{withhold_disagreeing_lengths, MAX_LEG_DISAGREEMENT};
 pub use attitude::{
     attitude_checks, MAX_BDK_DEG, MAX_PITCH_DEG, MIN_PITCH_EXCURSION_DEG, OUT_OF_BOUNDS_SHARE,
     STANCE_PITCH_MAX_DEG, STANCE_PITCH_SPREAD_DEG,
+};
+pub use clocks::{
+    balance as clock_balance, clock_warning, DsBalance, BETWEEN_LEGS, MIN_BALANCE_STRIDES,
+    MIN_DS_SHARE,
 };
 pub use faults::{
     detect_faults, fault_warning, withhold_faulty_strides, ChannelFault, FaultKind, CHANNEL_NAMES,

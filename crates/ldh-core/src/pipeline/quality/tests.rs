@@ -8,7 +8,7 @@ mod stride_length;
 
 use super::*;
 
-fn stride(i: usize, t: f64, stance: f64) -> crate::gait::Stride {
+pub(crate) fn stride(i: usize, t: f64, stance: f64) -> crate::gait::Stride {
     crate::gait::Stride {
         stride_index: i,
         hs_time_s: i as f64 * t,
