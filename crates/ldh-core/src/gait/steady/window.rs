@@ -55,12 +55,22 @@ pub fn walk_window(stride_time_s: &[f64], leg: &[usize], p: &ValidSteadyParams) 
     let level = running_median(t, p.smooth_strides / 2);
     let core = longest_within(&level, range);
     let longest_share = (core.1 + 1 - core.0) as f64 / n as f64;
-    let (a, b) = trim_transients(t, core, range, sigma, p.smooth_strides);
-    if a > b
-        || longest_share < p.min_steady_share
-        || ((b + 1 - a) as f64) < p.min_steady_share * n as f64
-        || fitted_change(&t[a..=b]).abs() > p.max_trend_share * centre
-    {
+    let max_trend_s = p.max_trend_share * centre;
+    let min_strides = p.min_steady_share * n as f64;
+    let fails = |(a, b): (usize, usize)| {
+        a > b || ((b + 1 - a) as f64) < min_strides || fitted_change(&t[a..=b]).abs() > max_trend_s
+    };
+    let mut ab = trim_transients(t, core, range, sigma, p.smooth_strides);
+    if fails(ab) {
+        // The lower bar for short transients (±2 σ) is a cut the walk must be able to afford:
+        // on a short, variable walk (a simulated LDH walker's 40 s with a turn, 20 strides a
+        // leg) it cut the first 3 strides, 0.1 s shorter than the rest, as a "transient", and
+        // what was left read as a trend, so a walk the full band calls steady read "never
+        // steady". Then only transients beyond the whole band are cut, as for the long ones.
+        ab = trim_transients(t, core, range, sigma, 0);
+    }
+    let (a, b) = ab;
+    if longest_share < p.min_steady_share || fails(ab) {
         return WalkWindow {
             range: None,
             never_steady: true,
