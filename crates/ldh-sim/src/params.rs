@@ -5,7 +5,7 @@
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
-use super::model::normal_clamped;
+use super::draw::normal_clamped;
 use super::{check_samples, Group};
 use ldh_core::error::{LdhError, Result};
 use ldh_core::recording::Side;
