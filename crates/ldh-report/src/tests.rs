@@ -476,21 +476,16 @@ fn the_summary_uses_clinical_units_and_plain_flags() {
     );
 }
 
-/// A trace beyond the physical ranges is drawn clipped, and the captions say so.
-#[test]
-fn clipped_figures_say_so_in_their_caption() {
-    let p = ReportParams::default().check().unwrap();
-    let n = 300;
-    let t: Vec<f64> = (0..n).map(|i| i as f64 / 100.0).collect();
-    let wave = |a: f64| -> Vec<f64> { t.iter().map(|x| a * (x * 6.0).sin()).collect() };
-    let leg = LegTrace {
+/// A left leg's trace at 100 Hz with these signals.
+fn trace_leg(acc_g: [Vec<f64>; 3], gyro_dps: [Vec<f64>; 3], pitch_deg: Vec<f64>) -> LegTrace {
+    LegTrace {
         side: "left".into(),
         fs_hz: 100.0,
         start_s: 0.0,
-        acc_g: [wave(1.0), wave(0.5), wave(30.0)],
-        gyro_dps: [wave(100.0), wave(2500.0), wave(50.0)],
-        roll_deg: wave(10.0),
-        pitch_deg: wave(300.0),
+        roll_deg: pitch_deg.iter().map(|x| x / 30.0).collect(),
+        acc_g,
+        gyro_dps,
+        pitch_deg,
         hs_s: vec![],
         to_s: vec![],
         stance_s: vec![],
@@ -498,7 +493,12 @@ fn clipped_figures_say_so_in_their_caption() {
         alignment_notes: vec![],
         gaps_s: vec![],
         cycle: None,
-    };
+    }
+}
+
+/// Subject C's page with one leg's trace, against the published ranges.
+fn page_with_trace(leg: LegTrace) -> String {
+    let p = ReportParams::default().check().unwrap();
     let s = SubjectReport {
         subject_id: "C".into(),
         recordings: vec![row("C", "ldh", "left", 1.0)],
@@ -510,7 +510,53 @@ fn clipped_figures_say_so_in_their_caption() {
         }),
         ..Default::default()
     };
-    let html = subject_html(&s, &Reference::published(&p), &p).unwrap();
+    subject_html(&s, &Reference::published(&p), &p).unwrap()
+}
+
+/// 300 samples of a sine of amplitude `a`.
+fn wave(a: f64) -> Vec<f64> {
+    (0..300)
+        .map(|i| a * (i as f64 / 100.0 * 6.0).sin())
+        .collect()
+}
+
+/// The three axes of the acceleration panel are three colours (the y axis was once drawn in
+/// the left leg's colour, the x axis's too).
+#[test]
+fn each_axis_of_a_signal_panel_has_its_own_colour() {
+    let leg = trace_leg(
+        [wave(1.0), wave(0.5), wave(0.8)],
+        [wave(100.0), wave(200.0), wave(50.0)],
+        wave(30.0),
+    );
+    let html = page_with_trace(leg);
+    let fig3 = &html[html.find("shank: preprocessed signals").unwrap()..];
+    let fig3 = &fig3[..fig3.find("</svg>").unwrap()];
+    // The legend's keys are the only lines 3 px wide; the first three are the acceleration's.
+    let keys: Vec<&str> = fig3
+        .match_indices("stroke-width=\"3\"")
+        .map(|(i, _)| {
+            let before = &fig3[..i];
+            let at = before.rfind("stroke=\"").expect("a stroke colour") + 8;
+            &fig3[at..at + 7]
+        })
+        .take(3)
+        .collect();
+    assert_eq!(keys.len(), 3, "{fig3}");
+    assert!(
+        keys[0] != keys[1] && keys[1] != keys[2] && keys[0] != keys[2],
+        "{keys:?}"
+    );
+}
+
+/// A trace beyond the physical ranges is drawn clipped, and the captions say so.
+#[test]
+fn clipped_figures_say_so_in_their_caption() {
+    let html = page_with_trace(trace_leg(
+        [wave(1.0), wave(0.5), wave(30.0)],
+        [wave(100.0), wave(2500.0), wave(50.0)],
+        wave(300.0),
+    ));
     assert!(
         html.contains("samples beyond ±16 g") && html.contains("samples beyond ±2000 deg/s"),
         "Fig. 3 caption"

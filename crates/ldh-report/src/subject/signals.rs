@@ -56,14 +56,9 @@ fn leg_signals(leg: &LegTrace) -> Result<Markup> {
     let acc = Panel {
         y_label: "acceleration (g)".into(),
         series: named(
-            // The y axis (pointing left) keeps the left side's colour it has always been
-            // drawn in, the same as x's: giving it its own colour changes every subject page
-            // (the pinned outputs), a change of its own.
-            [
-                "anterior (x)".into(),
-                SeriesName::of_side(Side::Left, "left (y)"),
-                "up (z)".into(),
-            ],
+            // Axes, not sides: each its own colour by its place (the y axis, pointing left,
+            // was once drawn in the left leg's colour, the same blue as x).
+            ["anterior (x)".into(), "left (y)".into(), "up (z)".into()],
             &leg.acc_g,
             ACC_RANGE_G,
             "g",
