@@ -39,7 +39,7 @@ pub fn pitch_cycle(leg: &LegTrace, strides: &[StrideRow]) -> Option<CycleCurve> 
     }
     let curves: Vec<Vec<f64>> = strides
         .iter()
-        .filter(|s| s.valid && s.side.as_str() == leg.side)
+        .filter(|s| s.valid && s.side == leg.side)
         .filter_map(|s| {
             time_normalise(
                 &leg.pitch_deg,
@@ -103,7 +103,7 @@ pub(crate) fn cycle_section(
     let mut reasons: Vec<String> = Vec::new();
     let mut clipped = 0usize;
     for side in [ldh_core::Side::Left, ldh_core::Side::Right] {
-        let leg = t.legs.iter().find(|l| l.side == side.as_str());
+        let leg = t.legs.iter().find(|l| l.side == side);
         let row = sides.iter().find(|r| r.side == side);
         let why = match (no_angles(row), leg) {
             (Some(why), _) => Some(why),
@@ -192,7 +192,7 @@ mod tests {
             n: 98,
         };
         let leg = LegTrace {
-            side: "left".into(),
+            side: ldh_core::Side::Left,
             fs_hz: 100.0,
             start_s: 0.0,
             acc_g: Default::default(),

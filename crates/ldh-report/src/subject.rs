@@ -19,6 +19,7 @@ use super::{Reference, SubjectReport};
 use ldh_core::error::Result;
 use ldh_core::gait::StrideCode;
 use ldh_core::output::{RecordingRow, StrideRow};
+use ldh_core::Side;
 
 mod ident;
 mod parameters;
@@ -274,8 +275,8 @@ fn appendix(s: &SubjectReport, sides: &[&RecordingRow]) -> Markup {
 /// What the page cannot show, and why.
 fn missing(s: &SubjectReport) -> Vec<String> {
     let mut missing: Vec<String> = Vec::new();
-    for side in ["left", "right"] {
-        match s.recordings.iter().find(|r| r.side.as_str() == side) {
+    for side in [Side::Left, Side::Right] {
+        match s.recordings.iter().find(|r| r.side == side) {
             None => missing.push(format!("No {side} recording was given.")),
             Some(r) if !r.is_ok() => missing.push(format!(
                 "The {side} recording could not be analysed: {}",

@@ -479,7 +479,7 @@ fn the_summary_uses_clinical_units_and_plain_flags() {
 /// A left leg's trace at 100 Hz with these signals.
 fn trace_leg(acc_g: [Vec<f64>; 3], gyro_dps: [Vec<f64>; 3], pitch_deg: Vec<f64>) -> LegTrace {
     LegTrace {
-        side: "left".into(),
+        side: ldh_core::Side::Left,
         fs_hz: 100.0,
         start_s: 0.0,
         roll_deg: pitch_deg.iter().map(|x| x / 30.0).collect(),

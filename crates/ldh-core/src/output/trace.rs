@@ -67,8 +67,8 @@ pub struct ValidTraceParams(TraceParams);
 /// stride table.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct LegTrace {
-    /// `left` or `right`.
-    pub side: String,
+    /// The leg (`left` or `right` in the file).
+    pub side: crate::Side,
     /// Sampling rate, Hz.
     pub fs_hz: f64,
     /// Time of the first sample of the window, s.
@@ -160,7 +160,7 @@ impl LegTrace {
             .collect();
         let ch = |v: &[f64], d: i32| round(&v[i0..i1], d);
         Some(LegTrace {
-            side: leg.side.as_str().into(),
+            side: leg.side,
             fs_hz: fs,
             start_s: t0,
             acc_g: [
