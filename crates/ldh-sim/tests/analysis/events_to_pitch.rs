@@ -26,8 +26,13 @@ use super::events_accuracy::{no_sta, sim_conditions_at, summary};
 use ldh_core::pipeline::LegResult;
 use ldh_sim::{analyze_simulated, LegTruth};
 
+/// The pitch-level rule's f: the share of the pitch rise from t_s to t_p reached at toe off, the
+/// median over family A's steady strides of seed 4949 (this test prints it; 0.586 and 0.616 on
+/// seeds 100 and 101).
+pub(crate) const PITCH_SHARE: f64 = 0.588;
+
 /// Cumulative integral of `w` (deg/s) by the trapezoid rule, deg; `c[i]` at sample i.
-fn cumulative(w: &[f64], fs: f64) -> Vec<f64> {
+pub(crate) fn cumulative(w: &[f64], fs: f64) -> Vec<f64> {
     let mut c = vec![0.0; w.len()];
     for i in 1..w.len() {
         c[i] = c[i - 1] + 0.5 * (w[i] + w[i - 1]) / fs;
@@ -36,7 +41,7 @@ fn cumulative(w: &[f64], fs: f64) -> Vec<f64> {
 }
 
 /// `y` at time `t` (s), linear between samples.
-fn at(y: &[f64], fs: f64, t: f64) -> f64 {
+pub(crate) fn at(y: &[f64], fs: f64, t: f64) -> f64 {
     let x = (t * fs).clamp(0.0, (y.len() - 1) as f64);
     let i = (x.floor() as usize).min(y.len() - 2);
     let f = x - i as f64;
@@ -44,7 +49,7 @@ fn at(y: &[f64], fs: f64, t: f64) -> f64 {
 }
 
 /// The time in [a, b] where the increasing `c` reaches `target` (bisection on the interpolant).
-fn reach(c: &[f64], fs: f64, a: f64, b: f64, target: f64) -> f64 {
+pub(crate) fn reach(c: &[f64], fs: f64, a: f64, b: f64, target: f64) -> f64 {
     let (mut lo, mut hi) = (a, b);
     for _ in 0..50 {
         let m = 0.5 * (lo + hi);
