@@ -16,18 +16,21 @@
 //! * acceleration features at push-off (the kind issue 49 names after Lee et al. 2010 and
 //!   Catalfamo et al. 2010; their exact definitions were not checked): the largest anterior
 //!   acceleration and the largest change of the acceleration vector between t_s and the middle
-//!   of [t_p, t_m].
+//!   of [t_p, t_m];
+//! * a level of the pitch (2026-12-03, `events_to_pitch.rs`): where ∫ω_s from t_s reaches
+//!   [`PITCH_SHARE`] of its rise to t_p.
 //!
 //! `cargo test --profile ci -p ldh-sim --test analysis events_to_rules -- --nocapture`
 
 use super::events_accuracy::{fmt, no_sta, sim_conditions, summary};
+use super::events_to_pitch::{at, cumulative, reach, PITCH_SHARE};
 use ldh_core::events::BRACKET_K0;
 use ldh_core::pipeline::LegResult;
 use ldh_sim::analyze_simulated;
 use ldh_sim::LegTruth;
 
 /// The rules, in table order.
-pub(crate) const RULES: [&str; 7] = [
+pub(crate) const RULES: [&str; 8] = [
     "default (bracket, stiffer leg raised)",
     "t_s (Aminian 2002, Salarian 2004, Trojaniello 2014)",
     "t_p, the pitch peak (the paper)",
@@ -35,6 +38,7 @@ pub(crate) const RULES: [&str; 7] = [
     "steepest fall of w_s in [t_s, t_m]",
     "largest anterior acceleration in [t_s, (t_p + t_m)/2]",
     "largest |da| in [t_s, (t_p + t_m)/2]",
+    "pitch level: f of the pitch rise from t_s to t_p (2026-12-03)",
 ];
 
 /// Time (s) of the largest value of `y` between `a_s` and `b_s`, on the sample grid (these
@@ -77,6 +81,7 @@ pub(crate) fn rule_toe_offs(leg: &LegResult) -> Vec<Vec<f64>> {
                 .sqrt()
         })
         .collect();
+    let cum = cumulative(w, fs);
     let mut rows = vec![Vec::new(); RULES.len()];
     for (j, &[ts, tp, tm]) in ev.to_landmarks_s.iter().enumerate() {
         let mid = 0.5 * (tp + tm);
@@ -88,6 +93,10 @@ pub(crate) fn rule_toe_offs(leg: &LegResult) -> Vec<Vec<f64>> {
             argmax_s(&fall, fs, ts, tm).unwrap_or(f64::NAN),
             argmax_s(&a[0], fs, ts, mid).unwrap_or(f64::NAN),
             argmax_s(&da, fs, ts, mid).map_or(f64::NAN, |t| t - 0.5 / fs),
+            {
+                let (cs, cp) = (at(&cum, fs, ts), at(&cum, fs, tp));
+                reach(&cum, fs, ts, tp, cs + PITCH_SHARE * (cp - cs))
+            },
         ];
         for (r, c) in rows.iter_mut().zip(cand) {
             r.push(c);

@@ -8,6 +8,7 @@ mod clocks;
 mod events_accuracy;
 mod events_to_hugadb;
 mod events_to_legs;
+mod events_to_pitch;
 mod events_to_rules;
 mod fusion;
 mod height_estimate;
