@@ -23,6 +23,28 @@ fn steady_truth_cv(strides: &[StrideTruth]) -> f64 {
         .collect::<Vec<_>>())
 }
 
+/// The two parts of a leg's |CV − steady truth| (issue 50; docs/accuracy.md "One steady window
+/// per walk", 2026-12-03), each ldh's valid strides matched to the truth's by heel strike
+/// (within 0.25 s): the **window's**, the CV of the *true* stride times of the strides ldh keeps
+/// against the steady truth's (which strides are in, nothing else), and the **events'**, the CV
+/// of *ldh's* stride times of the truth's own steady strides against it (how the strides are
+/// timed, nothing else). Returns (window, events), signed.
+fn window_and_event_errors(leg: &LegResult, truth: &[StrideTruth]) -> (f64, f64) {
+    let steady = |s: &StrideTruth| !s.accelerating && !s.decelerating && !s.bout_edge && !s.turning;
+    let matched = |hs: f64| truth.iter().find(|t| (t.hs_time_s - hs).abs() < 0.25);
+    let kept = leg.strides.iter().filter(|x| x.valid);
+    let window: Vec<f64> = kept
+        .clone()
+        .filter_map(|x| matched(x.hs_time_s).map(|t| t.stride_time_s))
+        .collect();
+    let events: Vec<f64> = kept
+        .filter(|x| matched(x.hs_time_s).is_some_and(steady))
+        .map(|x| x.stride_time_s)
+        .collect();
+    let truth_cv = steady_truth_cv(truth);
+    (cv(&window) - truth_cv, cv(&events) - truth_cv)
+}
+
 fn cv(t: &[f64]) -> f64 {
     let n = t.len() as f64;
     let mean = t.iter().sum::<f64>() / n;
@@ -110,8 +132,9 @@ fn transients_are_excluded(name: &str, subjects: Vec<SimSubject>, leg_max: f64) 
             let cv_on = leg.parameters[Parameter::StrideTimeCv];
             let cv_off = leg_off.parameters[Parameter::StrideTimeCv];
             let w = leg.steady.unwrap();
+            let (by_window, by_events) = window_and_event_errors(leg, &tr.strides);
             eprintln!(
-                "{name} {id} {:?}: truth {:.2} %, ldh {:.2} %, without the rule {:.2} %, window {:.1}–{:.1} s, excluded {} + {}",
+                "{name} {id} {:?}: truth {:.2} %, ldh {:.2} %, without the rule {:.2} %, window {:.1}–{:.1} s, excluded {} + {}; of the error, the window's {:+.2}, the events' {:+.2}",
                 tr.side,
                 100.0 * truth,
                 100.0 * cv_on,
@@ -119,7 +142,17 @@ fn transients_are_excluded(name: &str, subjects: Vec<SimSubject>, leg_max: f64) 
                 w.start_s,
                 w.end_s,
                 w.excluded_start,
-                w.excluded_end
+                w.excluded_end,
+                100.0 * by_window,
+                100.0 * by_events
+            );
+            // The window's own part is within 0.3 points on every leg of every case, family B's
+            // 10 s start-ups too: what `leg_max` allows beyond it there is the events' timing
+            // of a slow hemiparetic leg (docs/accuracy.md, 2026-12-03).
+            assert!(
+                by_window.abs() <= 0.003,
+                "{name} {id} {:?}: the window's part of the CV's error {by_window}",
+                tr.side
             );
             // Issue 50: within 0.3 points on average; what the event timing adds on the true
             // window (≤ 0.28 points on family A's legs, issue 36) is in it, so more per leg.
@@ -169,7 +202,7 @@ fn transients_are_excluded(name: &str, subjects: Vec<SimSubject>, leg_max: f64) 
 
 #[test]
 fn belt_start_up_is_excluded_on_both_legs_and_the_cv_is_the_steady_truths() {
-    transients_are_excluded("ramp 10 s", cohort_a(|p| p.ramp_s = 10.0), 0.004);
+    transients_are_excluded("ramp 10 s", cohort_a(|p| p.ramp_s = 10.0), 0.003);
     // Family B's slow walkers: a 10 s start-up is 3 valid strides 5–12 % long.
     transients_are_excluded("B ramp 10 s", cohort_b(|p| p.ramp_s = 10.0), 0.005);
 }
@@ -177,27 +210,27 @@ fn belt_start_up_is_excluded_on_both_legs_and_the_cv_is_the_steady_truths() {
 #[test]
 fn a_long_belt_start_up_is_excluded() {
     // Issue 50's walk: steady only after ≈ 30 s.
-    transients_are_excluded("ramp 30 s", cohort_a(|p| p.ramp_s = 30.0), 0.004);
-    transients_are_excluded("B ramp 30 s", cohort_b(|p| p.ramp_s = 30.0), 0.004);
+    transients_are_excluded("ramp 30 s", cohort_a(|p| p.ramp_s = 30.0), 0.003);
+    transients_are_excluded("B ramp 30 s", cohort_b(|p| p.ramp_s = 30.0), 0.003);
 }
 
 #[test]
 fn slowing_down_before_the_end_is_excluded() {
-    transients_are_excluded("slow-down 10 s", cohort_a(|p| p.slowdown_s = 10.0), 0.004);
+    transients_are_excluded("slow-down 10 s", cohort_a(|p| p.slowdown_s = 10.0), 0.003);
     transients_are_excluded(
         "ramp 10 s + slow-down 10 s",
         cohort_a(|p| {
             p.ramp_s = 10.0;
             p.slowdown_s = 10.0;
         }),
-        0.004,
+        0.003,
     );
 }
 
 #[test]
 fn slowing_down_before_the_end_is_excluded_on_family_b() {
     // The belt slowing to a stop over the walk's last 10 s (TRIPOD's runs end so).
-    transients_are_excluded("B slow-down 10 s", cohort_b(|p| p.slowdown_s = 10.0), 0.004);
+    transients_are_excluded("B slow-down 10 s", cohort_b(|p| p.slowdown_s = 10.0), 0.003);
     transients_are_excluded(
         "B ramp 10 s + slow-down 10 s",
         cohort_b(|p| {
