@@ -63,8 +63,9 @@ pub enum Command {
     /// streamed (minutes to weeks, memory does not grow with its length): wear, posture,
     /// cycling and running are found per window, walking bouts are analysed by the same
     /// pipeline as `analyze`, the two sensors' clock drift is estimated. Writes bouts.csv,
-    /// days.csv, summary.csv and periods.csv to --out. A person whose recordings cannot be
-    /// read is a summary row with the error (exit 1); the others are written.
+    /// days.csv, summary.csv and periods.csv to --out, changes.csv when a person has more
+    /// than one period, and each person's page week_<subject>.html. A person whose recordings cannot
+    /// be read is a summary row with the error (exit 1); the others are written.
     Monitor(MonitorArgs),
     /// Score the pipeline against simulator ground truth: `ldh simulate` output (with
     /// truth.json per subject) is analysed with both attitude models and the event and
@@ -149,7 +150,7 @@ pub enum Command {
         command: Option<String>,
         /// Write every page (`ldh.1`, `ldh-analyze.1`, …) into this folder instead (made if
         /// needed); `MANPATH=DIR/.. man ldh-analyze` then finds them when DIR is `…/man1`.
-        #[arg(long, value_name = "DIR", conflicts_with = "command")]
+        #[arg(short, long, value_name = "DIR", conflicts_with = "command")]
         out: Option<PathBuf>,
     },
 }
@@ -566,5 +567,28 @@ impl From<CompareModel> for AttitudeModel {
         match c {
             CompareModel::Acc => AttitudeModel::Acc,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::CommandFactory;
+
+    /// `-o` is `--out` and `-j` is `--jobs` in every command that has them (the README says so).
+    #[test]
+    fn out_and_jobs_have_their_short_flag_in_every_command() {
+        let mut checked = Vec::new();
+        for sub in super::Cli::command().get_subcommands() {
+            for arg in sub.get_arguments() {
+                let short = match arg.get_long() {
+                    Some("out") => 'o',
+                    Some("jobs") => 'j',
+                    _ => continue,
+                };
+                assert_eq!(arg.get_short(), Some(short), "ldh {}", sub.get_name());
+                checked.push(format!("{} -{short}", sub.get_name()));
+            }
+        }
+        assert!(checked.iter().any(|c| c == "man -o"), "{checked:?}");
     }
 }

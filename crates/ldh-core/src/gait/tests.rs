@@ -122,7 +122,7 @@ fn a_side_length_blanked_by_a_finding_names_the_finding() {
         .ends_with("(most often: not integrable)"));
 }
 
-/// A leg's parameters are written (Python's `analyze_leg(...)["parameters"]`) with the keys
+/// A leg's parameters are written (Python's `analyze_recording(...)["parameters"]`) with the keys
 /// and in the order they had as named fields, and read back.
 #[test]
 fn side_parameters_keep_their_keys_and_order() {

@@ -6,7 +6,7 @@
 //!    ([`quality::apply_to_strides`]: a span's strides invalid, withheld angles and lengths
 //!    blanked); the survivors of a leg whose lengths are not vouched for
 //!    ([`withhold_unvouched_lengths`]); steady walking only ([`quality::apply_steady`]).
-//! 2. Between the legs (in [`crate::pipeline::analyze_subject`]): the stride lengths the other
+//! 2. Between the legs (in [`crate::pipeline::Analysis::pair`]): the stride lengths the other
 //!    leg contradicts ([`quality::withhold_disagreeing_lengths`]), when the pair is one walk.
 //! 3. [`finalize_parameters`], per leg: the survivors again (fewer may be left), the
 //!    parameters from the final strides and the other leg's heel strikes, STA kept as the leg
