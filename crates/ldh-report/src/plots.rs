@@ -5,6 +5,9 @@
 //! `series.rs` per-stride and gait-cycle plots, `agreement.rs` `ldh agree`'s Bland–Altman plots
 //! and event-timing histograms. Here: the shared colours and legend.
 
+use plotters::chart::MeshStyle;
+use plotters::coord::ranged1d::ValueFormatter;
+use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use ldh_core::error::{LdhError, Result};
@@ -208,6 +211,42 @@ fn perr<E: std::fmt::Display>(e: E) -> LdhError {
 fn legend_room(n_series: usize, span: f64) -> f64 {
     let share = (0.15 * n_series as f64).min(0.6);
     span * share / (1.0 - share)
+}
+
+/// The frame of a titled chart on `root`: the caption `title`, a 10 px margin, an x label area
+/// for tick labels and the axis description, and a y label area `y_label_area_px` wide.
+fn framed_chart<'a, 'b, DB: DrawingBackend>(
+    root: &'a DrawingArea<DB, Shift>,
+    f: &Fonts,
+    title: &str,
+    y_label_area_px: i32,
+) -> ChartBuilder<'a, 'b, DB> {
+    let mut builder = ChartBuilder::on(root);
+    builder
+        .caption(title, ("sans-serif", f.title))
+        .margin(10)
+        .x_label_area_size(2 * f.desc + 10)
+        .y_label_area_size(y_label_area_px);
+    builder
+}
+
+/// The grid of a chart in the report's style: tick labels and axis descriptions in `f`'s sizes,
+/// light grey minor lines, at most 2 between labels. The caller adds the axis descriptions.
+fn styled_mesh<'a, 'b, X, Y, DB>(
+    chart: &'b mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    f: &Fonts,
+) -> MeshStyle<'a, 'b, X, Y, DB>
+where
+    DB: DrawingBackend,
+    X: Ranged + ValueFormatter<X::ValueType>,
+    Y: Ranged + ValueFormatter<Y::ValueType>,
+{
+    let mut mesh = chart.configure_mesh();
+    mesh.axis_desc_style(("sans-serif", f.desc))
+        .label_style(("sans-serif", f.label))
+        .light_line_style(RGBColor(235, 235, 235))
+        .max_light_lines(2);
+    mesh
 }
 
 /// The series legend in the upper right corner of a chart (drawn in the headroom that

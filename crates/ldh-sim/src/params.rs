@@ -123,6 +123,110 @@ pub struct SubjectParams {
     pub right: LegParams,
 }
 
+/// A value drawn from N(mean, sd) clamped to [lo, hi].
+#[derive(Debug, Clone, Copy)]
+struct Spread {
+    mean: f64,
+    sd: f64,
+    lo: f64,
+    hi: f64,
+}
+
+/// A [`Spread`]: mean, SD, lowest, highest.
+const fn spread(mean: f64, sd: f64, lo: f64, hi: f64) -> Spread {
+    Spread { mean, sd, lo, hi }
+}
+
+impl Spread {
+    fn draw(self, rng: &mut ChaCha8Rng) -> f64 {
+        normal_clamped(rng, self.mean, self.sd, self.lo, self.hi)
+    }
+}
+
+/// The drawn gait of one leg, in the order drawn.
+struct LegSpread {
+    stance_ratio: Spread,
+    knee_reduction: Spread,
+    circumduction_m: Spread,
+    roll_swing_deg: Spread,
+}
+
+impl LegSpread {
+    fn draw_into(&self, leg: &mut LegParams, rng: &mut ChaCha8Rng) {
+        leg.stance_ratio = self.stance_ratio.draw(rng);
+        leg.knee_reduction = self.knee_reduction.draw(rng);
+        leg.circumduction_m = self.circumduction_m.draw(rng);
+        leg.roll_swing_deg = self.roll_swing_deg.draw(rng);
+    }
+}
+
+/// Either leg of a healthy subject.
+const HEALTHY_LEG: LegSpread = LegSpread {
+    stance_ratio: spread(0.60, 0.008, 0.58, 0.62),
+    knee_reduction: spread(0.0, 0.02, -0.04, 0.04),
+    circumduction_m: spread(0.01, 0.003, 0.0, 0.02),
+    roll_swing_deg: spread(-1.5, 0.5, -3.0, 0.0),
+};
+
+/// An LDH population's gait ([`SubjectParams::draw`], [`SubjectParams::draw_slow`]).
+struct LdhPopulation {
+    stride_time_s: Spread,
+    speed_m_per_s: Spread,
+    /// Both the stride time's and the stride length's CV (two draws).
+    stride_cv: Spread,
+    stance_ratio_sd: f64,
+    /// Magnitude; its sign puts the affected leg's heel strike late.
+    step_timing_asymmetry: Spread,
+    /// Magnitude; its sign makes the affected leg's step short.
+    step_length_asymmetry: Spread,
+    affected: LegSpread,
+    unaffected: LegSpread,
+}
+
+/// The LDH group of [`SubjectParams::draw`].
+const LDH: LdhPopulation = LdhPopulation {
+    stride_time_s: spread(1.18, 0.06, 1.02, 1.35),
+    speed_m_per_s: spread(0.98, 0.10, 0.75, 1.25),
+    stride_cv: spread(0.04, 0.008, 0.025, 0.06),
+    stance_ratio_sd: 0.012,
+    step_timing_asymmetry: spread(0.02, 0.008, 0.0, 0.04),
+    step_length_asymmetry: spread(0.04, 0.015, 0.0, 0.08),
+    affected: LegSpread {
+        stance_ratio: spread(0.65, 0.01, 0.62, 0.68),
+        knee_reduction: spread(0.18, 0.04, 0.08, 0.28),
+        circumduction_m: spread(0.035, 0.008, 0.02, 0.055),
+        roll_swing_deg: spread(-5.0, 1.0, -8.0, -3.0),
+    },
+    unaffected: LegSpread {
+        stance_ratio: spread(0.615, 0.01, 0.59, 0.64),
+        knee_reduction: spread(0.05, 0.03, -0.02, 0.12),
+        circumduction_m: spread(0.012, 0.004, 0.0, 0.025),
+        roll_swing_deg: spread(-2.0, 0.6, -3.5, -0.5),
+    },
+};
+
+/// The slow, severely affected LDH subjects of [`SubjectParams::draw_slow`].
+const LDH_SLOW: LdhPopulation = LdhPopulation {
+    stride_time_s: spread(1.65, 0.18, 1.35, 2.0),
+    speed_m_per_s: spread(0.50, 0.12, 0.28, 0.75),
+    stride_cv: spread(0.05, 0.01, 0.03, 0.08),
+    stance_ratio_sd: 0.015,
+    step_timing_asymmetry: spread(0.03, 0.01, 0.0, 0.045),
+    step_length_asymmetry: spread(0.06, 0.02, 0.0, 0.12),
+    affected: LegSpread {
+        stance_ratio: spread(0.65, 0.015, 0.62, 0.69),
+        knee_reduction: spread(0.28, 0.08, 0.10, 0.45),
+        circumduction_m: spread(0.04, 0.01, 0.02, 0.07),
+        roll_swing_deg: spread(-5.0, 1.0, -8.0, -3.0),
+    },
+    unaffected: LegSpread {
+        stance_ratio: spread(0.67, 0.015, 0.63, 0.70),
+        knee_reduction: spread(0.10, 0.04, 0.0, 0.20),
+        circumduction_m: spread(0.015, 0.005, 0.0, 0.03),
+        roll_swing_deg: spread(-2.0, 0.6, -3.5, -0.5),
+    },
+};
+
 impl SubjectParams {
     /// A typical healthy adult at 1.3 m/s, 100 Hz, 25 s with a turn.
     pub fn healthy(subject_id: impl Into<String>) -> Self {
@@ -179,18 +283,7 @@ impl SubjectParams {
         duration_s: f64,
         rng: &mut ChaCha8Rng,
     ) -> Self {
-        use rand::Rng;
-        let mut p = SubjectParams::healthy(subject_id);
-        p.group = group.clone();
-        p.fs_hz = fs_hz;
-        p.duration_s = duration_s;
-        let h = normal_clamped(rng, 0.10, 0.015, 0.06, 0.16);
-        for side in [Side::Left, Side::Right] {
-            let l = p.leg_mut(side);
-            l.sensor_height_m =
-                (h + normal_clamped(rng, 0.0, 0.005, -0.015, 0.015)).clamp(0.06, 0.16);
-            l.roll_stance_deg = normal_clamped(rng, 2.0, 1.0, -1.0, 5.0);
-        }
+        let mut p = SubjectParams::placed(subject_id, group.clone(), fs_hz, duration_s, rng);
         match group {
             // Any other label walks as the healthy group (the simulator models two groups).
             Group::Healthy | Group::Other(_) => {
@@ -202,50 +295,12 @@ impl SubjectParams {
                 p.step_timing_asymmetry = normal_clamped(rng, 0.0, 0.005, -0.015, 0.015);
                 p.step_length_asymmetry = normal_clamped(rng, 0.0, 0.01, -0.03, 0.03);
                 for side in [Side::Left, Side::Right] {
-                    let l = p.leg_mut(side);
-                    l.stance_ratio = normal_clamped(rng, 0.60, 0.008, 0.58, 0.62);
-                    l.knee_reduction = normal_clamped(rng, 0.0, 0.02, -0.04, 0.04);
-                    l.circumduction_m = normal_clamped(rng, 0.01, 0.003, 0.0, 0.02);
-                    l.roll_swing_deg = normal_clamped(rng, -1.5, 0.5, -3.0, 0.0);
+                    HEALTHY_LEG.draw_into(p.leg_mut(side), rng);
                 }
             }
-            Group::Ldh => {
-                let affected = if rng.gen_bool(0.5) {
-                    Side::Left
-                } else {
-                    Side::Right
-                };
-                p.affected_side = Some(affected);
-                p.stride_time_s = normal_clamped(rng, 1.18, 0.06, 1.02, 1.35);
-                let speed = normal_clamped(rng, 0.98, 0.10, 0.75, 1.25);
-                p.stride_length_m = speed * p.stride_time_s;
-                p.stride_time_cv = normal_clamped(rng, 0.04, 0.008, 0.025, 0.06);
-                p.stride_length_cv = normal_clamped(rng, 0.04, 0.008, 0.025, 0.06);
-                p.stance_ratio_sd = 0.012;
-                // The affected leg's step (its heel strike after the other's) comes late and short.
-                let sign = if affected == Side::Right { 1.0 } else { -1.0 };
-                p.step_timing_asymmetry = sign * normal_clamped(rng, 0.02, 0.008, 0.0, 0.04);
-                p.step_length_asymmetry = -sign * normal_clamped(rng, 0.04, 0.015, 0.0, 0.08);
-                for side in [Side::Left, Side::Right] {
-                    let aff = side == affected;
-                    let l = p.leg_mut(side);
-                    if aff {
-                        l.stance_ratio = normal_clamped(rng, 0.65, 0.01, 0.62, 0.68);
-                        l.knee_reduction = normal_clamped(rng, 0.18, 0.04, 0.08, 0.28);
-                        l.circumduction_m = normal_clamped(rng, 0.035, 0.008, 0.02, 0.055);
-                        l.roll_swing_deg = normal_clamped(rng, -5.0, 1.0, -8.0, -3.0);
-                    } else {
-                        l.stance_ratio = normal_clamped(rng, 0.615, 0.01, 0.59, 0.64);
-                        l.knee_reduction = normal_clamped(rng, 0.05, 0.03, -0.02, 0.12);
-                        l.circumduction_m = normal_clamped(rng, 0.012, 0.004, 0.0, 0.025);
-                        l.roll_swing_deg = normal_clamped(rng, -2.0, 0.6, -3.5, -0.5);
-                    }
-                }
-            }
+            Group::Ldh => p.draw_ldh_gait(&LDH, rng),
         }
-        let hip_scale = (p.stride_length_m / 1.36).clamp(0.75, 1.15);
-        p.left.hip_scale = hip_scale;
-        p.right.hip_scale = hip_scale;
+        p.tie_hip_to_stride(0.75);
         p
     }
 
@@ -261,9 +316,24 @@ impl SubjectParams {
         duration_s: f64,
         rng: &mut ChaCha8Rng,
     ) -> Self {
-        use rand::Rng;
+        let mut p = SubjectParams::placed(subject_id, Group::Ldh, fs_hz, duration_s, rng);
+        p.draw_ldh_gait(&LDH_SLOW, rng);
+        p.tie_hip_to_stride(0.55);
+        p
+    }
+
+    /// The healthy defaults with this group, rate and length, and the sensors' placement drawn
+    /// (height on the shank, near the same on both legs, and the stance roll): the first draws
+    /// of every family A subject.
+    fn placed(
+        subject_id: impl Into<String>,
+        group: Group,
+        fs_hz: f64,
+        duration_s: f64,
+        rng: &mut ChaCha8Rng,
+    ) -> Self {
         let mut p = SubjectParams::healthy(subject_id);
-        p.group = Group::Ldh;
+        p.group = group;
         p.fs_hz = fs_hz;
         p.duration_s = duration_s;
         let h = normal_clamped(rng, 0.10, 0.015, 0.06, 0.16);
@@ -273,40 +343,46 @@ impl SubjectParams {
                 (h + normal_clamped(rng, 0.0, 0.005, -0.015, 0.015)).clamp(0.06, 0.16);
             l.roll_stance_deg = normal_clamped(rng, 2.0, 1.0, -1.0, 5.0);
         }
+        p
+    }
+
+    /// Draw an LDH subject's gait from `population`: the affected side, then stride time,
+    /// speed and variability, the asymmetries (the affected leg's step comes late and short),
+    /// and each leg (affected or not).
+    fn draw_ldh_gait(&mut self, population: &LdhPopulation, rng: &mut ChaCha8Rng) {
+        use rand::Rng;
         let affected = if rng.gen_bool(0.5) {
             Side::Left
         } else {
             Side::Right
         };
-        p.affected_side = Some(affected);
-        p.stride_time_s = normal_clamped(rng, 1.65, 0.18, 1.35, 2.0);
-        let speed = normal_clamped(rng, 0.50, 0.12, 0.28, 0.75);
-        p.stride_length_m = speed * p.stride_time_s;
-        p.stride_time_cv = normal_clamped(rng, 0.05, 0.01, 0.03, 0.08);
-        p.stride_length_cv = normal_clamped(rng, 0.05, 0.01, 0.03, 0.08);
-        p.stance_ratio_sd = 0.015;
+        self.affected_side = Some(affected);
+        self.stride_time_s = population.stride_time_s.draw(rng);
+        let speed = population.speed_m_per_s.draw(rng);
+        self.stride_length_m = speed * self.stride_time_s;
+        self.stride_time_cv = population.stride_cv.draw(rng);
+        self.stride_length_cv = population.stride_cv.draw(rng);
+        self.stance_ratio_sd = population.stance_ratio_sd;
+        // The affected leg's step (its heel strike after the other's) comes late and short.
         let sign = if affected == Side::Right { 1.0 } else { -1.0 };
-        p.step_timing_asymmetry = sign * normal_clamped(rng, 0.03, 0.01, 0.0, 0.045);
-        p.step_length_asymmetry = -sign * normal_clamped(rng, 0.06, 0.02, 0.0, 0.12);
+        self.step_timing_asymmetry = sign * population.step_timing_asymmetry.draw(rng);
+        self.step_length_asymmetry = -sign * population.step_length_asymmetry.draw(rng);
         for side in [Side::Left, Side::Right] {
-            let aff = side == affected;
-            let l = p.leg_mut(side);
-            if aff {
-                l.stance_ratio = normal_clamped(rng, 0.65, 0.015, 0.62, 0.69);
-                l.knee_reduction = normal_clamped(rng, 0.28, 0.08, 0.10, 0.45);
-                l.circumduction_m = normal_clamped(rng, 0.04, 0.01, 0.02, 0.07);
-                l.roll_swing_deg = normal_clamped(rng, -5.0, 1.0, -8.0, -3.0);
+            let leg = if side == affected {
+                &population.affected
             } else {
-                l.stance_ratio = normal_clamped(rng, 0.67, 0.015, 0.63, 0.70);
-                l.knee_reduction = normal_clamped(rng, 0.10, 0.04, 0.0, 0.20);
-                l.circumduction_m = normal_clamped(rng, 0.015, 0.005, 0.0, 0.03);
-                l.roll_swing_deg = normal_clamped(rng, -2.0, 0.6, -3.5, -0.5);
-            }
+                &population.unaffected
+            };
+            leg.draw_into(self.leg_mut(side), rng);
         }
-        let hip_scale = (p.stride_length_m / 1.36).clamp(0.55, 1.15);
-        p.left.hip_scale = hip_scale;
-        p.right.hip_scale = hip_scale;
-        p
+    }
+
+    /// Scale both legs' hip excursion with the stride length (1 at 1.36 m), within
+    /// [`min`, 1.15].
+    fn tie_hip_to_stride(&mut self, min: f64) {
+        let hip_scale = (self.stride_length_m / 1.36).clamp(min, 1.15);
+        self.left.hip_scale = hip_scale;
+        self.right.hip_scale = hip_scale;
     }
 
     /// This (LDH) subject's gait moved towards `healthy`: every gait parameter becomes
@@ -412,5 +488,66 @@ impl SubjectParams {
             ));
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn legs(p: &LdhPopulation) -> [&LegSpread; 2] {
+        [&p.affected, &p.unaffected]
+    }
+
+    /// Every population spread is a distribution that can be drawn: SD > 0 and the mean within
+    /// its clamp (a typo that swaps two numbers fails here).
+    #[test]
+    fn every_spread_has_its_mean_within_its_range() {
+        let leg = |l: &LegSpread| {
+            [
+                l.stance_ratio,
+                l.knee_reduction,
+                l.circumduction_m,
+                l.roll_swing_deg,
+            ]
+        };
+        let mut all = leg(&HEALTHY_LEG).to_vec();
+        for p in [&LDH, &LDH_SLOW] {
+            all.extend([
+                p.stride_time_s,
+                p.speed_m_per_s,
+                p.stride_cv,
+                p.step_timing_asymmetry,
+                p.step_length_asymmetry,
+            ]);
+            for l in legs(p) {
+                all.extend(leg(l));
+            }
+        }
+        for s in all {
+            assert!(s.sd > 0.0 && s.lo <= s.mean && s.mean <= s.hi, "{s:?}");
+        }
+    }
+
+    /// A drawn LDH subject lies within its population's ranges, the affected leg within the
+    /// affected spreads.
+    #[test]
+    fn slow_ldh_subjects_are_drawn_within_their_ranges() {
+        use rand::SeedableRng;
+        let within = |v: f64, s: Spread| s.lo - 1e-9 <= v && v <= s.hi + 1e-9;
+        for seed in 0..20 {
+            let mut rng = ChaCha8Rng::seed_from_u64(seed);
+            let p = SubjectParams::draw_slow("s", 100.0, 30.0, &mut rng);
+            assert_eq!(p.group, Group::Ldh);
+            assert!(within(p.stride_time_s, LDH_SLOW.stride_time_s));
+            let speed = p.stride_length_m / p.stride_time_s;
+            assert!(within(speed, LDH_SLOW.speed_m_per_s), "{speed}");
+            let affected = p.leg(p.affected_side.unwrap());
+            assert!(within(
+                affected.knee_reduction,
+                LDH_SLOW.affected.knee_reduction
+            ));
+            assert!(p.left.hip_scale >= 0.55 && p.left.hip_scale == p.right.hip_scale);
+        }
     }
 }

@@ -111,18 +111,7 @@ pub fn run(a: AnalyzeArgs) -> Result<ExitCode> {
             reliability: a.reliability.as_deref(),
             ..BuildSources::default()
         };
-        let pb = progress(0, "report");
-        let built = pool.install(|| {
-            ldh_report::build(&results, &dir, src, &report_params, &|n| {
-                pb.set_length(n as u64);
-                pb.inc(1)
-            })
-        })?;
-        pb.finish_and_clear();
-        for w in &built.warnings {
-            eprintln!("warning: {w}");
-        }
-        let n = built.subjects;
+        let n = super::build_reports(&pool, &results, &dir, src, &report_params)?.subjects;
         super::note!(
             "{n} subject reports and the cohort report (index.html) in {}",
             dir.display()

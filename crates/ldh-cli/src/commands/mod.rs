@@ -106,6 +106,29 @@ pub fn thread_pool(jobs: Option<usize>) -> Result<rayon::ThreadPool> {
     Ok(b.build()?)
 }
 
+/// Build the HTML reports of `results` into `out` on `pool` with a progress bar, and print the
+/// builder's warnings (`ldh analyze --report`, `ldh report`).
+pub fn build_reports(
+    pool: &rayon::ThreadPool,
+    results: &ldh_report::RunResults,
+    out: &Path,
+    src: ldh_report::BuildSources<'_>,
+    params: &ldh_report::ValidReportParams,
+) -> Result<ldh_report::BuildSummary> {
+    let pb = progress(0, "report");
+    let built = pool.install(|| {
+        ldh_report::build(results, out, src, params, &|n| {
+            pb.set_length(n as u64);
+            pb.inc(1)
+        })
+    })?;
+    pb.finish_and_clear();
+    for w in &built.warnings {
+        eprintln!("warning: {w}");
+    }
+    Ok(built)
+}
+
 /// Read a TOML parameter file into `T`: a regular file of at most
 /// [`ldh_core::io::MAX_PARAMS_MB`] MB (a FIFO or device is refused without blocking); the
 /// parser's message, which quotes the file, cut to a few lines.

@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use anyhow::Result;
 use ldh_report::{BuildSources, ReportParams, RunResults};
 
-use super::{progress, read_toml, thread_pool};
+use super::{read_toml, thread_pool};
 use crate::args::ReportArgs;
 
 /// Run `ldh report`.
@@ -33,18 +33,7 @@ pub fn run(a: ReportArgs) -> Result<ExitCode> {
         train: a.train.as_deref(),
         reliability: a.reliability.as_deref(),
     };
-    let pb = progress(0, "report");
-    let built = pool.install(|| {
-        ldh_report::build(&results, &out, src, &params, &|n| {
-            pb.set_length(n as u64);
-            pb.inc(1)
-        })
-    })?;
-    pb.finish_and_clear();
-    for w in &built.warnings {
-        eprintln!("warning: {w}");
-    }
-    let n = built.subjects;
+    let n = super::build_reports(&pool, &results, &out, src, &params)?.subjects;
     super::note!(
         "{n} subject reports in {} and the cohort report {}",
         out.join("subjects").display(),

@@ -125,13 +125,7 @@ pub fn detect_clipping(ch: &[f64], range: Option<f64>, floor: f64) -> Vec<bool> 
         }
         return flags;
     }
-    // `v < lo` keeps what `f64::min` keeps (NaN is skipped, an equal value changes nothing but
-    // the sign of a zero extreme, which is below any floor) and vectorises
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for &v in ch {
-        lo = if v < lo { v } else { lo };
-        hi = if v > hi { v } else { hi };
-    }
+    let (lo, hi) = extremes(ch);
     for ext in [hi, lo] {
         if ext.abs() < floor {
             continue;
@@ -148,23 +142,41 @@ pub fn detect_clipping(ch: &[f64], range: Option<f64>, floor: f64) -> Vec<bool> 
                     continue;
                 }
             }
-            if near(ch[i]) {
-                let mut j = i;
-                while j + 1 < n && ch[j + 1] == ch[i] {
-                    j += 1;
-                }
-                if j + 1 - i >= 3 {
-                    for f in &mut flags[i..=j] {
-                        *f = true;
-                    }
-                }
-                i = j + 1;
+            i = if near(ch[i]) {
+                flag_flat_run(ch, i, &mut flags)
             } else {
-                i += 1;
-            }
+                i + 1
+            };
         }
     }
     flags
+}
+
+/// The smallest and largest value of `ch`, NaN skipped (±∞ when there is none). `v < lo` keeps
+/// what `f64::min` keeps (an equal value changes nothing but the sign of a zero extreme, which
+/// is below any clipping floor) and vectorises.
+fn extremes(ch: &[f64]) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for &v in ch {
+        lo = if v < lo { v } else { lo };
+        hi = if v > hi { v } else { hi };
+    }
+    (lo, hi)
+}
+
+/// Flag the run of values equal to `ch[i]` that starts at `i` when it is 3 or more long; the
+/// index after the run.
+fn flag_flat_run(ch: &[f64], i: usize, flags: &mut [bool]) -> usize {
+    let mut j = i;
+    while j + 1 < ch.len() && ch[j + 1] == ch[i] {
+        j += 1;
+    }
+    if j + 1 - i >= 3 {
+        for f in &mut flags[i..=j] {
+            *f = true;
+        }
+    }
+    j + 1
 }
 
 #[cfg(test)]
@@ -230,32 +242,20 @@ map = ["-y", "+x", "+z"]
     #[test]
     fn clipping_by_blocks_is_the_walk_sample_by_sample() {
         let walk = |ch: &[f64], floor: f64| -> Vec<bool> {
-            let n = ch.len();
-            let mut flags = vec![false; n];
-            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-            for &v in ch {
-                lo = if v < lo { v } else { lo };
-                hi = if v > hi { v } else { hi };
-            }
+            let mut flags = vec![false; ch.len()];
+            let (lo, hi) = extremes(ch);
             for ext in [hi, lo] {
                 if ext.abs() < floor {
                     continue;
                 }
                 let near = |v: f64| (v - ext).abs() <= 1e-3 * ext.abs();
                 let mut i = 0;
-                while i < n {
-                    if near(ch[i]) {
-                        let mut j = i;
-                        while j + 1 < n && ch[j + 1] == ch[i] {
-                            j += 1;
-                        }
-                        if j + 1 - i >= 3 {
-                            flags[i..=j].iter_mut().for_each(|f| *f = true);
-                        }
-                        i = j + 1;
+                while i < ch.len() {
+                    i = if near(ch[i]) {
+                        flag_flat_run(ch, i, &mut flags)
                     } else {
-                        i += 1;
-                    }
+                        i + 1
+                    };
                 }
             }
             flags

@@ -39,7 +39,7 @@ use super::start_time::{start_in_time, start_in_utc_cells, utc_columns, Recorded
 use super::text::{split_fields, Lines};
 use super::timebase::{
     check_median_rate, check_monotonic, fit_grid, place_on_grid, split_at_gaps, times_in_seconds,
-    RateBounds,
+    Grid, RateBounds, Segments,
 };
 use crate::error::{LdhError, Result};
 use crate::recording::Recording;
@@ -297,33 +297,8 @@ fn read_from(
     let mut found = super::header::find_header(&mut lines, format, path, &mut notes)?;
     let delim_name = header_notes(&found, format.is_none(), &mut notes);
 
-    // Data rows into columns: after the header row and the rows the format skips (counted from
-    // the first data row when the file has no header row).
-    let mut first_row = found.first_row.take();
-    for _ in 0..found.spec.skip_rows_after_header {
-        if first_row.take().is_none() && lines.next_line()?.is_none() {
-            break;
-        }
-    }
-    // The start date and time: a header line, else Xsens' UTC columns of the first data row
-    // (read ahead and handed to the row parser), else the time column's first value.
-    let mut recorded_at = found.start.map(|at| RecordedAt {
-        at,
-        from: StartFrom::Header,
-    });
-    if let (None, Some(at)) = (recorded_at, utc_columns(&found.fields)) {
-        if first_row.is_none() {
-            first_row = lines.next_line()?.map(|(n, l)| (n, l.to_string()));
-        }
-        if let Some((_, row)) = &first_row {
-            let mut cells = Vec::new();
-            split_fields(row, found.delim, &mut cells);
-            recorded_at = start_in_utc_cells(&cells, at).map(|at| RecordedAt {
-                at,
-                from: StartFrom::UtcColumns,
-            });
-        }
-    }
+    // Data rows into columns, from the first after the header (the start read on the way).
+    let (first_row, mut recorded_at) = first_row_and_start(&mut lines, &mut found)?;
     let layout = Layout {
         path,
         spec: &found.spec,
@@ -358,26 +333,15 @@ fn read_from(
             r.from.words()
         ));
     }
-    let times = times_in_seconds(rows.time_raw, spec, n_rows, &mut notes);
-    check_monotonic(&times, &rows.row_lines, found.cols.time, path)?;
-    check_median_rate(&times, bounds, spec.time.unit, path)?;
-    let reject_gaps = params.gap_policy == GapPolicy::Reject;
-    let segments = split_at_gaps(
-        &times,
-        &rows.row_lines,
-        params.max_gap_s,
-        reject_gaps,
+    let (grid, segments, mut channels) = time_base(
+        rows,
+        (spec, found.cols.time),
         path,
+        params,
+        bounds,
+        &mut notes,
         &mut warnings,
     )?;
-    let seg = segments.start..segments.end;
-    let seg_t = &times[seg.clone()];
-    let span = seg_t[seg_t.len() - 1] - seg_t[0];
-    if seg_t.len() < 2 || span <= 0.0 {
-        return Err(too_short(path, span.max(0.0), seg_t.len(), params));
-    }
-    let grid = fit_grid(seg_t, spec, bounds, path, &mut warnings)?;
-    let mut channels = place_on_grid(rows.raw, seg, seg_t, &grid, &mut notes);
 
     // Channel values: scale, clipping, units and axes.
     let clipping = scale_and_flag_clipping(&mut channels, spec, grid.n_out, &mut notes);
@@ -424,6 +388,78 @@ fn read_from(
         warnings,
     };
     Ok((rec, report))
+}
+
+/// The first data row and the start of the recording as the header gives it. Skips the rows
+/// the format skips after the header row (counted from the first data row when the file has
+/// none); the start date and time is a header line's, else that of Xsens' UTC columns of the
+/// first data row (read ahead here and handed on to the row parser), else `None` (the caller
+/// then tries the time column's first value).
+#[allow(clippy::type_complexity)]
+fn first_row_and_start<R: BufRead>(
+    lines: &mut Lines<R>,
+    found: &mut super::header::Header,
+) -> Result<(Option<(u64, String)>, Option<RecordedAt>)> {
+    let mut first_row = found.first_row.take();
+    for _ in 0..found.spec.skip_rows_after_header {
+        if first_row.take().is_none() && lines.next_line()?.is_none() {
+            break;
+        }
+    }
+    let mut recorded_at = found.start.map(|at| RecordedAt {
+        at,
+        from: StartFrom::Header,
+    });
+    if let (None, Some(at)) = (recorded_at, utc_columns(&found.fields)) {
+        if first_row.is_none() {
+            first_row = lines.next_line()?.map(|(n, l)| (n, l.to_string()));
+        }
+        if let Some((_, row)) = &first_row {
+            let mut cells = Vec::new();
+            split_fields(row, found.delim, &mut cells);
+            recorded_at = start_in_utc_cells(&cells, at).map(|at| RecordedAt {
+                at,
+                from: StartFrom::UtcColumns,
+            });
+        }
+    }
+    Ok((first_row, recorded_at))
+}
+
+/// The time base of the parsed rows: the times in seconds (`spec`'s unit; `time_col`, the time
+/// column, for messages), checked to rise at a plausible rate, the longest segment between
+/// gaps, the grid fitted to it and the six channels placed on the grid.
+fn time_base(
+    rows: super::rows::Rows,
+    (spec, time_col): (&FormatSpec, Option<usize>),
+    path: &Path,
+    params: &ValidReadParams,
+    bounds: RateBounds,
+    notes: &mut Vec<String>,
+    warnings: &mut Vec<String>,
+) -> Result<(Grid, Segments, [Vec<f64>; 6])> {
+    let n_rows = rows.row_lines.len();
+    let times = times_in_seconds(rows.time_raw, spec, n_rows, notes);
+    check_monotonic(&times, &rows.row_lines, time_col, path)?;
+    check_median_rate(&times, bounds, spec.time.unit, path)?;
+    let reject_gaps = params.gap_policy == GapPolicy::Reject;
+    let segments = split_at_gaps(
+        &times,
+        &rows.row_lines,
+        params.max_gap_s,
+        reject_gaps,
+        path,
+        warnings,
+    )?;
+    let seg = segments.start..segments.end;
+    let seg_t = &times[seg.clone()];
+    let span = seg_t[seg_t.len() - 1] - seg_t[0];
+    if seg_t.len() < 2 || span <= 0.0 {
+        return Err(too_short(path, span.max(0.0), seg_t.len(), params));
+    }
+    let grid = fit_grid(seg_t, spec, bounds, path, warnings)?;
+    let channels = place_on_grid(rows.raw, seg, seg_t, &grid, notes);
+    Ok((grid, segments, channels))
 }
 
 /// The notes about the header found (`detected`: the format was detected, not given): the

@@ -4,7 +4,8 @@
 
 use std::path::Path;
 
-use super::days::{gait_values, GAIT_AGGREGATES};
+use super::bouts::BoutRow;
+use super::days::{gait_values, DayRow, PeriodRow, GAIT_AGGREGATES};
 use super::MonitorResult;
 use crate::error::{LdhError, Result};
 
@@ -74,106 +75,59 @@ pub fn tables(results: &[MonitorResult]) -> [(&'static str, Vec<String>, Rows); 
     let mut summary = Vec::new();
     let mut periods = Vec::new();
     for r in results {
-        let day_of = |t: f64| {
-            r.days
-                .iter()
-                .rev()
-                .find(|d| d.start_s <= t)
-                .map_or(String::new(), |d| d.day.to_string())
-        };
-        for b in &r.bouts {
-            let mut row = id_cells(r);
-            row.extend([
-                b.bout.to_string(),
-                day_of(b.start_s),
-                num(b.start_s),
-                num(b.end_s),
-                num(b.duration_s),
-                b.steps.to_string(),
-                b.legs.to_string(),
-                b.strides_left.to_string(),
-                b.strides_right.to_string(),
-            ]);
-            // The six bout values in GAIT_AGGREGATES' order, as the header has them.
-            row.extend(gait_values(b).map(num));
-            row.extend([
-                b.kind.to_string(),
-                b.stair_strides.to_string(),
-                num(b.stride_rise_m),
-                num(b.clock_offset_s),
-                b.withheld.clone(),
-            ]);
-            bouts.push(row);
-        }
-        for d in &r.days {
-            let mut row = id_cells(r);
-            row.extend([
-                d.day.to_string(),
-                d.date.clone(),
-                num(d.start_s),
-                d.valid.to_string(),
-                num(d.recorded_h),
-                num(d.wear_h),
-                num(d.waking_wear_h),
-                num(d.non_wear_h),
-                num(d.lying_h),
-                num(d.sitting_h),
-                num(d.standing_h),
-                num(d.cycling_min),
-                num(d.running_min),
-                num(d.walking_min),
-                num(d.steps),
-                num(d.bouts),
-                num(d.bouts_10_30s),
-                num(d.bouts_30_60s),
-                num(d.bouts_over_60s),
-                num(d.longest_bout_s),
-                d.long_bouts.to_string(),
-            ]);
-            row.extend(gait_cells(&d.gait_median, &d.gait_p90));
-            row.push(d.withheld.clone());
-            days.push(row);
-        }
-        let s = &r.summary;
-        let mut row = id_cells(r);
-        row.extend([
-            s.days.to_string(),
-            s.valid_days.to_string(),
-            s.valid.to_string(),
-        ]);
-        row.extend(
-            [
-                s.wear_h_per_day,
-                s.walking_min_per_day,
-                s.steps_per_day,
-                s.bouts_per_day,
-                s.longest_bout_s,
-            ]
-            .map(num),
-        );
-        row.push(s.long_bouts.to_string());
-        row.extend(gait_cells(&s.gait_median, &s.gait_p90));
-        row.extend([
-            num(s.drift_ppm),
-            num(s.drift_s_per_day),
-            r.bouts.len().to_string(),
-            s.withheld.clone(),
-            r.errors.join("; "),
-        ]);
-        summary.push(row);
-        for p in &r.periods {
-            let mut row = id_cells(r);
-            row.extend([
-                num(p.start_s),
-                num(p.end_s),
-                num(p.duration_min),
-                p.state.clone(),
-            ]);
-            periods.push(row);
-        }
+        bouts.extend(r.bouts.iter().map(|b| bout_cells(r, b)));
+        days.extend(r.days.iter().map(|d| day_cells(r, d)));
+        summary.push(summary_cells(r));
+        periods.extend(r.periods.iter().map(|p| period_cells(r, p)));
     }
-    let head = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
-    let mut day_head = head(&[
+    [
+        ("bouts.csv", head(&BOUT_COLUMNS), bouts),
+        ("days.csv", day_header(), days),
+        ("summary.csv", summary_header(), summary),
+        ("periods.csv", head(&PERIOD_COLUMNS), periods),
+    ]
+}
+
+fn head(v: &[&str]) -> Vec<String> {
+    v.iter().map(|s| s.to_string()).collect()
+}
+
+/// One row of bouts.csv: bout `b` of person `r`.
+fn bout_cells(r: &MonitorResult, b: &BoutRow) -> Vec<String> {
+    let day_of = |t: f64| {
+        r.days
+            .iter()
+            .rev()
+            .find(|d| d.start_s <= t)
+            .map_or(String::new(), |d| d.day.to_string())
+    };
+    let mut row = id_cells(r);
+    row.extend([
+        b.bout.to_string(),
+        day_of(b.start_s),
+        num(b.start_s),
+        num(b.end_s),
+        num(b.duration_s),
+        b.steps.to_string(),
+        b.legs.to_string(),
+        b.strides_left.to_string(),
+        b.strides_right.to_string(),
+    ]);
+    // The six bout values in GAIT_AGGREGATES' order, as the header has them.
+    row.extend(gait_values(b).map(num));
+    row.extend([
+        b.kind.to_string(),
+        b.stair_strides.to_string(),
+        num(b.stride_rise_m),
+        num(b.clock_offset_s),
+        b.withheld.clone(),
+    ]);
+    row
+}
+
+/// The header of days.csv.
+fn day_header() -> Vec<String> {
+    let mut h = head(&[
         "subject_id",
         "visit",
         "day",
@@ -198,9 +152,45 @@ pub fn tables(results: &[MonitorResult]) -> [(&'static str, Vec<String>, Rows); 
         "longest_bout_s",
         "long_bouts",
     ]);
-    day_head.extend(gait_columns("long_bout_"));
-    day_head.push("withheld".into());
-    let mut sum_head = head(&[
+    h.extend(gait_columns("long_bout_"));
+    h.push("withheld".into());
+    h
+}
+
+/// One row of days.csv: day `d` of person `r`.
+fn day_cells(r: &MonitorResult, d: &DayRow) -> Vec<String> {
+    let mut row = id_cells(r);
+    row.extend([
+        d.day.to_string(),
+        d.date.clone(),
+        num(d.start_s),
+        d.valid.to_string(),
+        num(d.recorded_h),
+        num(d.wear_h),
+        num(d.waking_wear_h),
+        num(d.non_wear_h),
+        num(d.lying_h),
+        num(d.sitting_h),
+        num(d.standing_h),
+        num(d.cycling_min),
+        num(d.running_min),
+        num(d.walking_min),
+        num(d.steps),
+        num(d.bouts),
+        num(d.bouts_10_30s),
+        num(d.bouts_30_60s),
+        num(d.bouts_over_60s),
+        num(d.longest_bout_s),
+        d.long_bouts.to_string(),
+    ]);
+    row.extend(gait_cells(&d.gait_median, &d.gait_p90));
+    row.push(d.withheld.clone());
+    row
+}
+
+/// The header of summary.csv.
+fn summary_header() -> Vec<String> {
+    let mut h = head(&[
         "subject_id",
         "visit",
         "days",
@@ -213,31 +203,68 @@ pub fn tables(results: &[MonitorResult]) -> [(&'static str, Vec<String>, Rows); 
         "longest_bout_s",
         "long_bouts",
     ]);
-    sum_head.extend(gait_columns("long_bout_"));
-    sum_head.extend(head(&[
+    h.extend(gait_columns("long_bout_"));
+    h.extend(head(&[
         "drift_ppm",
         "drift_s_per_day",
         "bouts_total",
         "withheld",
         "errors",
     ]));
-    [
-        ("bouts.csv", head(&BOUT_COLUMNS), bouts),
-        ("days.csv", day_head, days),
-        ("summary.csv", sum_head, summary),
-        (
-            "periods.csv",
-            head(&[
-                "subject_id",
-                "visit",
-                "start_s",
-                "end_s",
-                "duration_min",
-                "state",
-            ]),
-            periods,
-        ),
-    ]
+    h
+}
+
+/// The row of summary.csv of person `r`.
+fn summary_cells(r: &MonitorResult) -> Vec<String> {
+    let s = &r.summary;
+    let mut row = id_cells(r);
+    row.extend([
+        s.days.to_string(),
+        s.valid_days.to_string(),
+        s.valid.to_string(),
+    ]);
+    row.extend(
+        [
+            s.wear_h_per_day,
+            s.walking_min_per_day,
+            s.steps_per_day,
+            s.bouts_per_day,
+            s.longest_bout_s,
+        ]
+        .map(num),
+    );
+    row.push(s.long_bouts.to_string());
+    row.extend(gait_cells(&s.gait_median, &s.gait_p90));
+    row.extend([
+        num(s.drift_ppm),
+        num(s.drift_s_per_day),
+        r.bouts.len().to_string(),
+        s.withheld.clone(),
+        r.errors.join("; "),
+    ]);
+    row
+}
+
+/// Header of periods.csv.
+const PERIOD_COLUMNS: [&str; 6] = [
+    "subject_id",
+    "visit",
+    "start_s",
+    "end_s",
+    "duration_min",
+    "state",
+];
+
+/// One row of periods.csv: wear/rest period `p` of person `r`.
+fn period_cells(r: &MonitorResult, p: &PeriodRow) -> Vec<String> {
+    let mut row = id_cells(r);
+    row.extend([
+        num(p.start_s),
+        num(p.end_s),
+        num(p.duration_min),
+        p.state.clone(),
+    ]);
+    row
 }
 
 /// Write the four tables into `dir` (created if missing); returns the files written.

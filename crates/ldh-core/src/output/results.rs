@@ -11,19 +11,40 @@ use crate::output::{Parameter, RecordingRow, StrideRow};
 use crate::pipeline::{EventKind, SubjectResult};
 use crate::Side;
 
-/// The parameters of a stride `ldh agree` compares with a reference's, in this order: those
-/// of [`Parameter::PER_STRIDE`] (columns of `strides.csv`) but double support (issue 49 added
-/// it to strides.csv; `ldh agree` does not compare it yet). A parameter given a per-stride
-/// value is compared once it is listed here.
-pub const STRIDE_PARAMETERS: [Parameter; 7] = [
-    Parameter::StrideTime,
-    Parameter::StanceRatio,
-    Parameter::StrideLength,
-    Parameter::Speed,
-    Parameter::Wqk,
-    Parameter::Pbi,
-    Parameter::Bdk,
-];
+/// Whether `ldh agree` compares parameter `p` stride by stride: every parameter with a
+/// per-stride value ([`Parameter::PER_STRIDE`], the columns of `strides.csv`) but double
+/// support (issue 49 added it to strides.csv; `ldh agree` does not compare it yet). A parameter
+/// given a per-stride value is compared without being listed anywhere else.
+pub const fn compared_per_stride(p: Parameter) -> bool {
+    p.definition().per_stride.is_some() && !matches!(p, Parameter::DoubleSupport)
+}
+
+/// How many parameters [`STRIDE_PARAMETERS`] holds.
+pub const STRIDE_PARAMETER_COUNT: usize = {
+    let mut n = 0;
+    let mut i = 0;
+    while i < Parameter::PER_STRIDE_COUNT {
+        n += compared_per_stride(Parameter::PER_STRIDE[i]) as usize;
+        i += 1;
+    }
+    n
+};
+
+/// The parameters of a stride `ldh agree` compares with a reference's
+/// ([`compared_per_stride`]), in the order of [`Parameter::PER_STRIDE`].
+pub const STRIDE_PARAMETERS: [Parameter; STRIDE_PARAMETER_COUNT] = {
+    let mut out = [Parameter::StrideTime; STRIDE_PARAMETER_COUNT];
+    let (mut i, mut k) = (0, 0);
+    while i < Parameter::PER_STRIDE_COUNT {
+        let p = Parameter::PER_STRIDE[i];
+        if compared_per_stride(p) {
+            out[k] = p;
+            k += 1;
+        }
+        i += 1;
+    }
+    out
+};
 
 /// One gait event (ldh's, or a reference's on its own clock).
 #[derive(Debug, Clone, PartialEq)]
@@ -58,7 +79,7 @@ pub struct LdhStride {
     /// Used for the per-side means.
     pub valid: bool,
     /// Values in the order of [`STRIDE_PARAMETERS`] (NaN: withheld).
-    pub values: [f64; 7],
+    pub values: [f64; STRIDE_PARAMETER_COUNT],
 }
 
 /// One `ldh analyze` run's results as `ldh agree` uses them.
@@ -278,4 +299,27 @@ fn event_from_row(r: crate::output::EventRow, path: &Path, line: u64) -> Result<
         subject_id: r.subject_id,
         trial_id: r.trial_id,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The list `ldh agree` compares is the per-stride vocabulary, double support left out, in
+    /// the vocabulary's order: a parameter given a per-stride value joins it.
+    #[test]
+    fn agree_compares_the_per_stride_parameters_but_double_support() {
+        let expected: Vec<Parameter> = Parameter::PER_STRIDE
+            .into_iter()
+            .filter(|p| *p != Parameter::DoubleSupport)
+            .collect();
+        assert_eq!(STRIDE_PARAMETERS.to_vec(), expected);
+        for p in Parameter::ALL {
+            assert_eq!(
+                STRIDE_PARAMETERS.contains(&p),
+                p.definition().per_stride.is_some() && p != Parameter::DoubleSupport,
+                "{p:?}"
+            );
+        }
+    }
 }

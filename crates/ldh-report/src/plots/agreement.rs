@@ -6,7 +6,9 @@
 
 use plotters::prelude::*;
 
-use super::{colour_of, legend, legend_room, perr, Fonts, PrintWidth, COLORS};
+use super::{
+    colour_of, framed_chart, legend, legend_room, perr, styled_mesh, Fonts, PrintWidth, COLORS,
+};
 use ldh_core::agreement::LimitsOfAgreement;
 use ldh_core::error::{LdhError, Result};
 
@@ -79,21 +81,12 @@ pub fn bland_altman_svg(
         let f = Fonts::for_canvas(BLAND_ALTMAN_W, BLAND_ALTMAN_PRINT);
         let root = SVGBackend::with_string(&mut buf, (BLAND_ALTMAN_W, 480)).into_drawing_area();
         root.fill(&WHITE).map_err(perr)?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", f.title))
-            .margin(10)
-            .x_label_area_size(2 * f.desc + 10)
-            .y_label_area_size(4 * f.label + f.desc)
+        let mut chart = framed_chart(&root, &f, title, 4 * f.label + f.desc)
             .build_cartesian_2d(x0..x1, y0..y1)
             .map_err(perr)?;
-        chart
-            .configure_mesh()
+        styled_mesh(&mut chart, &f)
             .x_desc(x_label)
             .y_desc(y_label)
-            .axis_desc_style(("sans-serif", f.desc))
-            .label_style(("sans-serif", f.label))
-            .light_line_style(RGBColor(235, 235, 235))
-            .max_light_lines(2)
             .x_labels(5)
             .y_labels(6)
             .draw()
@@ -222,21 +215,12 @@ pub fn timing_histogram_svg(title: &str, errors_ms: &[f64]) -> Result<String> {
         let f = Fonts::for_canvas(TIMING_W, TIMING_PRINT);
         let root = SVGBackend::with_string(&mut buf, (TIMING_W, 400)).into_drawing_area();
         root.fill(&WHITE).map_err(perr)?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", f.title))
-            .margin(10)
-            .x_label_area_size(2 * f.desc + 10)
-            .y_label_area_size(4 * f.label + 2 * f.desc)
+        let mut chart = framed_chart(&root, &f, title, 4 * f.label + 2 * f.desc)
             .build_cartesian_2d(x0..x1, 0.0..top * 1.1 + legend_room(2, top * 1.1))
             .map_err(perr)?;
-        chart
-            .configure_mesh()
+        styled_mesh(&mut chart, &f)
             .x_desc(TIMING_X_LABEL)
             .y_desc(TIMING_Y_LABEL)
-            .axis_desc_style(("sans-serif", f.desc))
-            .label_style(("sans-serif", f.label))
-            .light_line_style(RGBColor(235, 235, 235))
-            .max_light_lines(2)
             .x_labels(7)
             .y_labels(5)
             .y_label_formatter(&|v| format!("{v:.0}"))

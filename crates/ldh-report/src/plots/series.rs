@@ -3,7 +3,7 @@
 
 use plotters::prelude::*;
 
-use super::{colour_of, legend, legend_room, perr, Fonts, PrintWidth};
+use super::{colour_of, framed_chart, legend, legend_room, perr, styled_mesh, Fonts, PrintWidth};
 use ldh_core::error::{LdhError, Result};
 
 /// The canvas width of [`stride_series_svg`], px.
@@ -40,24 +40,15 @@ pub fn stride_series_svg(title: &str, y_label: &str, series: &[Series]) -> Resul
         let f = Fonts::for_canvas(STRIDE_SERIES_W, STRIDE_SERIES_PRINT);
         let root = SVGBackend::with_string(&mut buf, (STRIDE_SERIES_W, 320)).into_drawing_area();
         root.fill(&WHITE).map_err(perr)?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", f.title))
-            .margin(10)
-            .x_label_area_size(2 * f.desc + 10)
-            .y_label_area_size(4 * f.label + f.desc)
+        let mut chart = framed_chart(&root, &f, title, 4 * f.label + f.desc)
             .build_cartesian_2d(
                 x_lo - xp..x_hi + xp,
                 y_lo - yp..y_hi + yp + legend_room(series.len(), y_hi - y_lo + 2.0 * yp),
             )
             .map_err(perr)?;
-        chart
-            .configure_mesh()
+        styled_mesh(&mut chart, &f)
             .x_desc("heel-strike time (s)")
             .y_desc(y_label)
-            .axis_desc_style(("sans-serif", f.desc))
-            .label_style(("sans-serif", f.label))
-            .light_line_style(RGBColor(235, 235, 235))
-            .max_light_lines(2)
             .draw()
             .map_err(perr)?;
         for (k, (name, v)) in series.iter().enumerate() {
@@ -132,21 +123,12 @@ pub fn cycle_svg(
         let f = Fonts::for_canvas(CYCLE_W, CYCLE_PRINT);
         let root = SVGBackend::with_string(&mut buf, (CYCLE_W, 380)).into_drawing_area();
         root.fill(&WHITE).map_err(perr)?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", f.title))
-            .margin(10)
-            .x_label_area_size(2 * f.desc + 10)
-            .y_label_area_size(4 * f.label + f.desc)
+        let mut chart = framed_chart(&root, &f, title, 4 * f.label + f.desc)
             .build_cartesian_2d(0.0..100.0, lo - pad..hi + pad + room)
             .map_err(perr)?;
-        chart
-            .configure_mesh()
+        styled_mesh(&mut chart, &f)
             .x_desc(CYCLE_X_LABEL)
             .y_desc(y_label)
-            .axis_desc_style(("sans-serif", f.desc))
-            .label_style(("sans-serif", f.label))
-            .light_line_style(RGBColor(235, 235, 235))
-            .max_light_lines(2)
             .draw()
             .map_err(perr)?;
         let grey = RGBColor(120, 120, 120);

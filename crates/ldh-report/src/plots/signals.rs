@@ -3,7 +3,7 @@
 
 use plotters::prelude::*;
 
-use super::{colour_of, legend, legend_room, perr, Fonts, PrintWidth};
+use super::{colour_of, legend, legend_room, perr, styled_mesh, Fonts, PrintWidth};
 use ldh_core::error::{LdhError, Result};
 
 /// The canvas width of [`signals_svg`], px.
@@ -125,12 +125,8 @@ fn draw_panel(
         .y_label_area_size(4 * f.label + f.desc)
         .build_cartesian_2d(t_lo..t_hi, y_lo..y_hi)
         .map_err(perr)?;
-    let mut mesh = chart.configure_mesh();
-    mesh.y_desc(p.y_label.as_str())
-        .axis_desc_style(("sans-serif", f.desc))
-        .label_style(("sans-serif", f.label))
-        .light_line_style(RGBColor(235, 235, 235))
-        .max_light_lines(2);
+    let mut mesh = styled_mesh(&mut chart, &f);
+    mesh.y_desc(p.y_label.as_str());
     if last {
         mesh.x_desc("time (s)");
     }

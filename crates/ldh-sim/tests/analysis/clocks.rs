@@ -13,14 +13,11 @@
 //! (`LDH_SEEDS=…` for other simulator seeds; the threshold was set on seeds 4949 and 100 and
 //! HuGaDB's first nine files, and is reported on seed 2026, the other nine files and TRIPOD).
 
-use super::events_accuracy::tripod::{tripod_dir, TRIPOD_RUNS, TRIPOD_UNTIL_S};
 use super::events_accuracy::{no_sta, sim_conditions_at};
-use super::events_to_hugadb::hugadb_dir;
-use super::real_walks::{hugadb_files, hugadb_leg, tripod_leg};
+use super::real_data::{real_walks, RealSet};
 use ldh_core::domain::{Parameter, ReasonCode, WarningCode};
 use ldh_core::pipeline::quality::{clock_balance, codes, MIN_DS_SHARE};
-use ldh_core::pipeline::{Analysis, SubjectInput, SubjectResult};
-use ldh_core::recording::Side;
+use ldh_core::pipeline::{Analysis, SubjectResult};
 use ldh_sim::analyze_simulated;
 
 /// The walk's statistic (smaller double support's share, apparent offset ms) recomputed from
@@ -76,41 +73,23 @@ fn no_clock_finding_on_simulated_walks_on_one_clock() {
 
 #[test]
 fn no_clock_finding_on_hugadb_and_one_on_tripod_at_3_7_and_4_4_kmh() {
-    let (Some(hu), Some(tr)) = (hugadb_dir(), tripod_dir()) else {
-        println!("skipped: ../shared/realdata (hugadb, tripod) not found (set LDH_REALDATA)");
+    let Some(walks) = real_walks() else {
         return;
     };
     let analysis = Analysis::new(no_sta().check().unwrap());
     let mut false_flags = Vec::new();
-    for file in hugadb_files(&hu) {
-        let input = SubjectInput {
-            subject_id: file.clone(),
-            ..SubjectInput::default()
-        };
-        let leg = |side: Side| hugadb_leg(&hu, &file, side.as_str());
-        let res = analysis.pair(&input, leg(Side::Left), leg(Side::Right));
-        let (text, fired) = statistic(&res);
-        println!("HuGaDB {file}: {text}; fired {fired}");
-        if fired {
-            false_flags.push(file);
-        }
-    }
     let mut missed = Vec::new();
-    for (run, belt) in TRIPOD_RUNS {
-        let input = SubjectInput {
-            subject_id: format!("Sub_FZ {run}"),
-            setting: Some(ldh_core::Setting::Treadmill),
-            belt_speed_mps: Some(belt),
-            ..SubjectInput::default()
-        };
-        let leg = |side: Side, file: &str| tripod_leg(&tr, run, file, side, TRIPOD_UNTIL_S);
-        let res = analysis.pair(
-            &input,
-            leg(Side::Left, "LS.csv"),
-            leg(Side::Right, "RS.csv"),
-        );
+    for walk in &walks {
+        let res = walk.analyse(&analysis);
         let (text, fired) = statistic(&res);
-        println!("TRIPOD {run}: {text}; fired {fired}");
+        println!("{}: {text}; fired {fired}", walk.name());
+        let run = walk.id.as_str();
+        if walk.set == RealSet::HuGaDb {
+            if fired {
+                false_flags.push(walk.id.clone());
+            }
+            continue;
+        }
         if !fired {
             if run != "PWS-20" {
                 missed.push(run);

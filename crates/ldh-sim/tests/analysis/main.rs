@@ -23,5 +23,6 @@ mod pipeline_inputs;
 mod pipeline_steady;
 mod quality;
 mod quality_faults;
+mod real_data;
 mod real_walks;
 mod stairs;

@@ -8,18 +8,12 @@
 //!
 //! `cargo test --profile ci -p ldh-sim --test analysis real_walks -- --nocapture`
 
-use super::events_accuracy::tripod::{
-    read_physilog, to_ldh_frame, tripod_dir, TRIPOD_RUNS, TRIPOD_UNTIL_S,
-};
-use super::events_to_hugadb::hugadb_dir;
+use super::events_accuracy::tripod::TRIPOD_UNTIL_S;
+use super::real_data::{real_walks, RealSet};
 use ldh_core::gait::STEADY_REASON;
-use ldh_core::io::{read_recording, FormatSpec, ReadParams};
 use ldh_core::pipeline::quality::{codes, swapped_mounting};
-use ldh_core::pipeline::{
-    memory_report, Analysis, AnalysisParams, LoadedLeg, SubjectInput, SubjectResult,
-};
-use ldh_core::recording::{Recording, Side};
-use std::path::Path;
+use ldh_core::pipeline::{Analysis, AnalysisParams, LoadedLeg, SubjectInput, SubjectResult};
+use ldh_core::recording::Side;
 
 /// The default analysis without STA, the steady rule on or off.
 fn params(steady: bool) -> AnalysisParams {
@@ -29,44 +23,6 @@ fn params(steady: bool) -> AnalysisParams {
     };
     p.steady.enabled = steady;
     p
-}
-
-/// One HuGaDB file's shank on `side` through the built-in format map.
-pub(crate) fn hugadb_leg(dir: &Path, file: &str, side: &str) -> LoadedLeg {
-    let path = dir.join(format!("HuGaDB_v1_walking_{file}.txt"));
-    let spec = FormatSpec::builtin(&format!("hugadb-{side}-shank")).unwrap();
-    let rp = ReadParams::default().check().unwrap();
-    let rec = read_recording(&path, Some(&spec), &rp).unwrap().0;
-    let rep = memory_report(&rec);
-    Ok((rec, rep, format!("{file}/{side}")))
-}
-
-/// The HuGaDB files present (every `HuGaDB_v1_walking_*.txt`), by name.
-pub(crate) fn hugadb_files(dir: &Path) -> Vec<String> {
-    let mut f: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .filter_map(|e| {
-            let n = e.ok()?.file_name().into_string().ok()?;
-            Some(
-                n.strip_prefix("HuGaDB_v1_walking_")?
-                    .strip_suffix(".txt")?
-                    .to_string(),
-            )
-        })
-        .collect();
-    f.sort();
-    f
-}
-
-/// One TRIPOD shank (`LS.csv` / `RS.csv`) of `run`, rows up to `until_s`.
-pub(crate) fn tripod_leg(dir: &Path, run: &str, file: &str, side: Side, until_s: f64) -> LoadedLeg {
-    let imu = dir.join("Sub_FZ").join(run).join("IMU");
-    let (_, acc, gyro) = read_physilog(&imu.join(file), until_s);
-    let rec = Recording::new(128.0, to_ldh_frame(acc), to_ldh_frame(gyro), vec![])
-        .unwrap()
-        .with_side(side);
-    let rep = memory_report(&rec);
-    Ok((rec, rep, format!("{run}/{file}")))
 }
 
 /// Per leg of an analysed walk: (valid strides without the rule, strides the rule excluded).
@@ -169,46 +125,23 @@ fn shares(
 
 #[test]
 fn the_steady_window_keeps_steady_real_walking() {
-    let (Some(hu), Some(tr)) = (hugadb_dir(), tripod_dir()) else {
-        println!("skipped: ../shared/realdata (hugadb, tripod) not found (set LDH_REALDATA)");
+    let Some(walks) = real_walks() else {
         return;
     };
     let mut all = Vec::new();
     let mut false_swaps = Vec::new();
-    for file in hugadb_files(&hu) {
-        let input = SubjectInput {
-            subject_id: file.clone(),
-            ..SubjectInput::default()
-        };
-        let s = shares(
-            &format!("HuGaDB {file}"),
-            &input,
-            |side| hugadb_leg(&hu, &file, side.as_str()),
-            &mut false_swaps,
-        );
-        all.extend(s);
+    for walk in walks.iter().filter(|w| w.set == RealSet::HuGaDb) {
+        let leg = |side| walk.leg(side, f64::INFINITY);
+        all.extend(shares(&walk.name(), &walk.input, leg, &mut false_swaps));
     }
     let hugadb_min = all.iter().fold(1.0_f64, |a, &b| a.min(b));
     let mut tripod = Vec::new();
     let mut full = Vec::new();
-    for (run, belt) in TRIPOD_RUNS {
-        let input = SubjectInput {
-            subject_id: format!("Sub_FZ {run}"),
-            setting: Some(ldh_core::Setting::Treadmill),
-            belt_speed_mps: Some(belt),
-            ..SubjectInput::default()
-        };
+    for walk in walks.iter().filter(|w| w.set == RealSet::Tripod) {
         for (until, out) in [(TRIPOD_UNTIL_S, &mut tripod), (f64::INFINITY, &mut full)] {
-            let name = format!("TRIPOD {run} until {until} s");
-            let leg = |side: Side| {
-                let file = if side == Side::Left {
-                    "LS.csv"
-                } else {
-                    "RS.csv"
-                };
-                tripod_leg(&tr, run, file, side, until)
-            };
-            out.extend(shares(&name, &input, leg, &mut false_swaps));
+            let name = format!("{} until {until} s", walk.name());
+            let leg = |side| walk.leg(side, until);
+            out.extend(shares(&name, &walk.input, leg, &mut false_swaps));
         }
     }
     let min = |v: &[f64]| v.iter().fold(1.0_f64, |a, &b| a.min(b));

@@ -7,13 +7,10 @@
 //!
 //! `cargo test --profile ci -p ldh-sim --test analysis stairs -- --nocapture`
 
-use super::events_accuracy::tripod::{tripod_dir, TRIPOD_RUNS, TRIPOD_UNTIL_S};
-use super::events_to_hugadb::hugadb_dir;
-use super::real_walks::{hugadb_files, hugadb_leg, tripod_leg};
+use super::real_data::real_walks;
 use ldh_core::gait::Stride;
 use ldh_core::monitor::{BoutKind, StairParams};
-use ldh_core::pipeline::{Analysis, AnalysisParams, SubjectInput, SubjectResult};
-use ldh_core::recording::Side;
+use ldh_core::pipeline::{Analysis, AnalysisParams, SubjectResult};
 use ldh_sim::{analyze_simulated, simulate_subject, SensorModel, SubjectParams};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -109,38 +106,13 @@ fn real(name: &str, r: &SubjectResult) -> (usize, usize) {
 
 #[test]
 fn real_level_walks_have_no_stairs() {
-    let (Some(hu), Some(tr)) = (hugadb_dir(), tripod_dir()) else {
-        println!("skipped: ../shared/realdata (hugadb, tripod) not found (set LDH_REALDATA)");
+    let Some(walks) = real_walks() else {
         return;
     };
     let analysis = Analysis::new(params().check().unwrap());
     let mut total = (0, 0);
-    for file in hugadb_files(&hu) {
-        let input = SubjectInput {
-            subject_id: file.clone(),
-            ..SubjectInput::default()
-        };
-        let r = analysis.pair(
-            &input,
-            hugadb_leg(&hu, &file, "left"),
-            hugadb_leg(&hu, &file, "right"),
-        );
-        let (n, m) = real(&format!("HuGaDB {file}"), &r);
-        total = (total.0 + n, total.1 + m);
-    }
-    for (run, belt) in TRIPOD_RUNS {
-        let input = SubjectInput {
-            subject_id: format!("Sub_FZ {run}"),
-            setting: Some(ldh_core::Setting::Treadmill),
-            belt_speed_mps: Some(belt),
-            ..SubjectInput::default()
-        };
-        let r = analysis.pair(
-            &input,
-            tripod_leg(&tr, run, "LS.csv", Side::Left, TRIPOD_UNTIL_S),
-            tripod_leg(&tr, run, "RS.csv", Side::Right, TRIPOD_UNTIL_S),
-        );
-        let (n, m) = real(&format!("TRIPOD {run}"), &r);
+    for walk in &walks {
+        let (n, m) = real(&walk.name(), &walk.analyse(&analysis));
         total = (total.0 + n, total.1 + m);
     }
     println!(

@@ -2,6 +2,7 @@
 
 use super::*;
 use ldh_core::domain::Parameter;
+use ldh_core::pipeline::LoadedLeg;
 
 /// `LDH_REALDATA/tripod`, or `shared/realdata/tripod` in a folder above this crate.
 pub(crate) fn tripod_dir() -> Option<PathBuf> {
@@ -323,6 +324,78 @@ pub(crate) const TRIPOD_UNTIL_S: f64 = 125.0;
 /// mid-shank strap on a 172.5 cm adult, docs/accuracy.md).
 const TRIPOD_SENSOR_HEIGHT_M: f64 = 0.2;
 
+/// One shank of a TRIPOD run as read: its first time (s, the unit's clock), its acceleration
+/// in ldh's frame (g) and its recording.
+pub(crate) type TripodShank = (f64, [Vec<f64>; 3], Recording);
+
+/// One TRIPOD run read for scoring against OptoGait: its IMU folder, both shanks' first
+/// [`TRIPOD_UNTIL_S`], the subject input (a treadmill at the belt speed, the sensor height
+/// [`TRIPOD_SENSOR_HEIGHT_M`]) and OptoGait's contacts.
+pub(crate) struct TripodRun {
+    pub run: &'static str,
+    pub imu: PathBuf,
+    pub left: TripodShank,
+    pub right: TripodShank,
+    pub input: SubjectInput,
+    opto: Vec<(char, f64)>,
+    first_r: f64,
+    sync: f64,
+}
+
+impl TripodRun {
+    /// Read run `run` (belt speed `belt`, m/s) of the TRIPOD folder `dir`.
+    pub(crate) fn read(dir: &Path, run: &'static str, belt: f64) -> Self {
+        let imu = dir.join("Sub_FZ").join(run).join("IMU");
+        let opto = read_optogait(&dir.join("Sub_FZ").join(run).join("OptoGait/optogait.csv"));
+        let first_r = opto.iter().find(|o| o.0 == 'R').unwrap().1;
+        let sync = sync_s(dir, run);
+        let load = |file: &str, side: Side| {
+            let (t, acc, gyro) = read_physilog(&imu.join(file), TRIPOD_UNTIL_S);
+            let raw = to_ldh_frame(acc);
+            let rec = Recording::new(128.0, raw.clone(), to_ldh_frame(gyro), vec![])
+                .unwrap()
+                .with_side(side);
+            (t[0], raw, rec)
+        };
+        let (left, right) = (load("LS.csv", Side::Left), load("RS.csv", Side::Right));
+        let input = SubjectInput {
+            subject_id: format!("Sub_FZ {run}"),
+            setting: Some(ldh_core::Setting::Treadmill),
+            belt_speed_mps: Some(belt),
+            sensor_height_m: Some(TRIPOD_SENSOR_HEIGHT_M),
+            ..SubjectInput::default()
+        };
+        TripodRun {
+            run,
+            imu,
+            left,
+            right,
+            input,
+            opto,
+            first_r,
+            sync,
+        }
+    }
+
+    /// A shank as the analysis loads it, named `{run}/{file}`.
+    pub(crate) fn loaded(&self, shank: &TripodShank, file: &str) -> LoadedLeg {
+        let rec = shank.2.clone();
+        let rep = memory_report(&rec);
+        Ok((rec, rep, format!("{}/{file}", self.run)))
+    }
+
+    /// OptoGait's contacts of `side` (`L`, `R`) on the shanks' clock, s, up to 1.5 s before
+    /// [`TRIPOD_UNTIL_S`].
+    pub(crate) fn opto_s(&self, side: char) -> Vec<f64> {
+        self.opto
+            .iter()
+            .filter(|o| o.0 == side)
+            .map(|o| o.1 - self.first_r + self.sync)
+            .filter(|&t| t < TRIPOD_UNTIL_S - 1.5)
+            .collect()
+    }
+}
+
 /// Each TRIPOD run and shank: HS scatter after one constant offset, stride time and its CV,
 /// stride length against belt speed × stride time; and the alternatives' HS scores
 /// ([`alternatives`]).
@@ -333,40 +406,23 @@ fn tripod_scores(
 ) -> Vec<(String, ShankScore, Vec<(&'static str, HsScore)>)> {
     let mut out = Vec::new();
     for (run, belt) in TRIPOD_RUNS {
-        let imu = dir.join("Sub_FZ").join(run).join("IMU");
-        let opto = read_optogait(&dir.join("Sub_FZ").join(run).join("OptoGait/optogait.csv"));
-        let first_r = opto.iter().find(|o| o.0 == 'R').unwrap().1;
-        let sync = sync_s(dir, run);
-        let leg = |file: &str, side: Side| {
-            let (t, acc, gyro) = read_physilog(&imu.join(file), TRIPOD_UNTIL_S);
-            let raw = to_ldh_frame(acc);
-            let rec = Recording::new(128.0, raw.clone(), to_ldh_frame(gyro), vec![])
-                .unwrap()
-                .with_side(side);
-            let rep = memory_report(&rec);
-            ((t[0], raw), Ok((rec, rep, format!("{run}/{file}"))))
-        };
-        let ((l0, l), (r0, r)) = (leg("LS.csv", Side::Left), leg("RS.csv", Side::Right));
+        let tr = TripodRun::read(dir, run, belt);
+        let (l, r) = (
+            tr.loaded(&tr.left, "LS.csv"),
+            tr.loaded(&tr.right, "RS.csv"),
+        );
         let foot = |file: &str| {
-            let (_, acc, _) = read_physilog(&imu.join(file), TRIPOD_UNTIL_S);
+            let (_, acc, _) = read_physilog(&tr.imu.join(file), TRIPOD_UNTIL_S);
             acc
         };
         let (lf, rf) = (foot("LF.csv"), foot("RF.csv"));
-        let input = SubjectInput {
-            subject_id: format!("Sub_FZ {run}"),
-            setting: Some(ldh_core::Setting::Treadmill),
-            belt_speed_mps: Some(belt),
-            sensor_height_m: Some(TRIPOD_SENSOR_HEIGHT_M),
-            ..SubjectInput::default()
-        };
-        let res = Analysis::new(params.check().unwrap()).pair(&input, l, r);
-        for (side, leg, (t0, raw), fa) in [('L', &res.left, l0, &lf), ('R', &res.right, r0, &rf)] {
-            let opto_s: Vec<f64> = opto
-                .iter()
-                .filter(|o| o.0 == side)
-                .map(|o| o.1 - first_r + sync)
-                .filter(|&t| t < TRIPOD_UNTIL_S - 1.5)
-                .collect();
+        let res = Analysis::new(params.check().unwrap()).pair(&tr.input, l, r);
+        for (side, leg, (t0, raw, _), fa) in [
+            ('L', &res.left, &tr.left, &lf),
+            ('R', &res.right, &tr.right, &rf),
+        ] {
+            let (t0, raw) = (*t0, raw.clone());
+            let opto_s = tr.opto_s(side);
             let leg = leg.as_ref().unwrap();
             print_unsure(leg);
             let mut alts: Vec<(&'static str, HsScore)> = Vec::new();

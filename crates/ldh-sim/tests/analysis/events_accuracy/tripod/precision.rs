@@ -108,39 +108,22 @@ struct Shank {
 fn shanks(dir: &Path) -> Vec<Shank> {
     let mut out = Vec::new();
     for (run, belt) in TRIPOD_RUNS {
-        let imu = dir.join("Sub_FZ").join(run).join("IMU");
-        let opto = read_optogait(&dir.join("Sub_FZ").join(run).join("OptoGait/optogait.csv"));
-        let first_r = opto.iter().find(|o| o.0 == 'R').unwrap().1;
-        let sync = sync_s(dir, run);
-        let load = |file: &str, side: Side| {
-            let (t, acc, gyro) = read_physilog(&imu.join(file), TRIPOD_UNTIL_S);
-            let raw = to_ldh_frame(acc);
-            let rec = Recording::new(128.0, raw.clone(), to_ldh_frame(gyro), vec![])
-                .unwrap()
-                .with_side(side);
-            (t[0], raw, rec)
-        };
-        let (l, r) = (load("LS.csv", Side::Left), load("RS.csv", Side::Right));
-        let input = SubjectInput {
-            subject_id: format!("Sub_FZ {run}"),
-            setting: Some(ldh_core::Setting::Treadmill),
-            belt_speed_mps: Some(belt),
-            sensor_height_m: Some(TRIPOD_SENSOR_HEIGHT_M),
-            ..SubjectInput::default()
-        };
+        let tr = TripodRun::read(dir, run, belt);
+        let (l, r) = (&tr.left, &tr.right);
         let run_with = |hs_impact: bool| {
             let mut p = no_sta();
             p.events.hs_impact = hs_impact;
-            let ins = |x: &(f64, [Vec<f64>; 3], Recording), f: &str| {
-                Ok((x.2.clone(), memory_report(&x.2), format!("{run}/{f}")))
-            };
-            Analysis::new(p.check().unwrap()).pair(&input, ins(&l, "LS"), ins(&r, "RS"))
+            Analysis::new(p.check().unwrap()).pair(
+                &tr.input,
+                tr.loaded(l, "LS"),
+                tr.loaded(r, "RS"),
+            )
         };
         let (now, gyro) = (run_with(true), run_with(false));
         let heel_file = if run == "PWS" { "RL.csv" } else { "RH.csv" };
         for (side, (t0, raw, _), a, b, hf) in [
-            ('L', &l, &now.left, &gyro.left, "LH.csv"),
-            ('R', &r, &now.right, &gyro.right, heel_file),
+            ('L', l, &now.left, &gyro.left, "LH.csv"),
+            ('R', r, &now.right, &gyro.right, heel_file),
         ] {
             let (a, b) = (&a.as_ref().unwrap().events, &b.as_ref().unwrap().events);
             let off = EventDetector::GyroBracket.offsets().0 * b.median_stride_s;
@@ -152,7 +135,7 @@ fn shanks(dir: &Path) -> Vec<Shank> {
                     zc.push(b.hs_s[i] - off + t0);
                 }
             }
-            let (_, heel_acc, _) = read_physilog(&imu.join(hf), TRIPOD_UNTIL_S);
+            let (_, heel_acc, _) = read_physilog(&tr.imu.join(hf), TRIPOD_UNTIL_S);
             let dh = diff3(&heel_acc);
             let t = a.median_stride_s;
             // The heel's impact, on its own clock (up to 0.2 s off the shank's): first that
@@ -178,12 +161,7 @@ fn shanks(dir: &Path) -> Vec<Shank> {
                 .filter_map(|&z| onset_at(&dh, 128.0, z - t0 + lag - 0.1 * t, t, 0.5))
                 .map(|h| h + t0)
                 .collect();
-            let opto_s: Vec<f64> = opto
-                .iter()
-                .filter(|o| o.0 == side)
-                .map(|o| o.1 - first_r + sync)
-                .filter(|&t| t < TRIPOD_UNTIL_S - 1.5)
-                .collect();
+            let opto_s = tr.opto_s(side);
             out.push(Shank {
                 name: format!("{run} {side}"),
                 t0_s: *t0,
