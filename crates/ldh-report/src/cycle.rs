@@ -170,6 +170,23 @@ pub(crate) fn cycle_section(
     })
 }
 
+/// " of trial PWS (the first of 3 trials; the tables are of all)" when the page has several
+/// trials (the figures draw the first one's strides), else "" (issue 50: "n = 88 strides" read
+/// as the person's, of 3 trials).
+pub(crate) fn of_trial(recordings: &[RecordingRow]) -> String {
+    let Some(t) = crate::results::first_trial(recordings).1 else {
+        return String::new();
+    };
+    let mut ids: Vec<&str> = recordings.iter().map(|r| r.trial_id.as_str()).collect();
+    ids.dedup();
+    ids.sort_unstable();
+    ids.dedup();
+    format!(
+        " of trial {t} (the first of {} trials; the tables are of all)",
+        ids.len()
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -230,21 +247,4 @@ mod tests {
         let old = LegTrace { cycle: None, ..leg };
         assert!(pitch_cycle(&old, &[]).is_none());
     }
-}
-
-/// " of trial PWS (the first of 3 trials; the tables are of all)" when the page has several
-/// trials (the figures draw the first one's strides), else "" (issue 50: "n = 88 strides" read
-/// as the person's, of 3 trials).
-pub(crate) fn of_trial(recordings: &[RecordingRow]) -> String {
-    let Some(t) = crate::results::first_trial(recordings).1 else {
-        return String::new();
-    };
-    let mut ids: Vec<&str> = recordings.iter().map(|r| r.trial_id.as_str()).collect();
-    ids.dedup();
-    ids.sort_unstable();
-    ids.dedup();
-    format!(
-        " of trial {t} (the first of {} trials; the tables are of all)",
-        ids.len()
-    )
 }
