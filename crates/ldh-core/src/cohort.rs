@@ -130,8 +130,21 @@ pub fn person_row(rows: &[&RecordingRow], side: Side) -> Option<RecordingRow> {
         }
     }
     out.withheld = crate::pipeline::WithheldList(withheld);
+    // A parameter measured by some trials but not all: its mean is of those alone, and says so.
+    let partial = PARAMETERS
+        .into_iter()
+        .filter_map(|p| {
+            let ids: Vec<String> = ok
+                .iter()
+                .filter(|r| r.value(p).is_some())
+                .map(|r| r.trial_id.clone())
+                .collect();
+            (!ids.is_empty() && ids.len() < ok.len()).then_some((p, ids))
+        })
+        .collect();
     let mean = crate::output::TrialMean {
         trial_ids: ok.iter().map(|r| r.trial_id.clone()).collect(),
+        partial,
     };
     out.trial_id = mean.to_string();
     out.trial_mean = Some(mean);

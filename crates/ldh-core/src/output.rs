@@ -211,6 +211,22 @@ pub struct RecordingRow {
 pub struct TrialMean {
     /// The trials averaged (their `trial_id`).
     pub trial_ids: Vec<String>,
+    /// The parameters that only some of the trials measured, each with those trials (in
+    /// order): their "mean" is of those trials alone (issue 50: on a page of three belt
+    /// speeds the step time and double support came from the slowest belt only, under "the
+    /// mean of 3 trials").
+    pub partial: Vec<(Parameter, Vec<String>)>,
+}
+
+impl TrialMean {
+    /// The trials that measured `p`, when fewer than all those averaged (`None`: every trial
+    /// did, or none).
+    pub fn only_from(&self, p: Parameter) -> Option<&[String]> {
+        self.partial
+            .iter()
+            .find(|(q, _)| *q == p)
+            .map(|(_, ids)| ids.as_slice())
+    }
 }
 
 impl std::fmt::Display for TrialMean {

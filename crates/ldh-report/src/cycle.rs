@@ -158,7 +158,7 @@ pub(crate) fn cycle_section(
         };
         figure(
             &svg,
-            &format!("Shank pitch (sagittal inclination) from heel strike (0 %) to the next heel strike (100 %) of the same leg: mean (line) ± 1 SD (band) over the leg's valid strides, those of the steady window (n in the legend); left blue, right orange. {band_text}{clip}"),
+            &format!("Shank pitch (sagittal inclination) from heel strike (0 %) to the next heel strike (100 %) of the same leg: mean (line) ± 1 SD (band) over the leg's valid strides{}, those of the steady window (n in the legend); left blue, right orange. {band_text}{clip}", of_trial(&s.recordings)),
             &[plots::CYCLE_X_LABEL, "shank pitch (deg)"],
             plots::CYCLE_PRINT,
         )
@@ -170,9 +170,44 @@ pub(crate) fn cycle_section(
     })
 }
 
+/// " of trial PWS (the first of 3 trials; the tables are of all)" when the page has several
+/// trials (the figures draw the first one's strides), else "" (issue 50: "n = 88 strides" read
+/// as the person's, of 3 trials).
+pub(crate) fn of_trial(recordings: &[RecordingRow]) -> String {
+    let Some(t) = crate::results::first_trial(recordings).1 else {
+        return String::new();
+    };
+    let mut ids: Vec<&str> = recordings.iter().map(|r| r.trial_id.as_str()).collect();
+    ids.dedup();
+    ids.sort_unstable();
+    ids.dedup();
+    format!(
+        " of trial {t} (the first of {} trials; the tables are of all)",
+        ids.len()
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The gait-cycle figure of a page of three trials says whose strides it averages.
+    #[test]
+    fn the_cycle_caption_names_its_trial_of_several() {
+        let mut recs = Vec::new();
+        for t in ["PWS", "PWS+20", "PWS-20"] {
+            for side in ["left", "right"] {
+                let mut r = crate::tests::row("FZ", "healthy", side, 1.0);
+                r.trial_id = t.into();
+                recs.push(r);
+            }
+        }
+        assert_eq!(
+            of_trial(&recs),
+            " of trial PWS (the first of 3 trials; the tables are of all)"
+        );
+        assert_eq!(of_trial(&recs[..2]), "");
+    }
 
     #[test]
     fn the_reference_band_needs_enough_legs() {

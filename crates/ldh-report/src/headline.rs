@@ -144,6 +144,19 @@ fn outside_sentence(row: &Row, reference: &Reference) -> Option<String> {
     })
 }
 
+/// A finding's sentence with the trials its values come from, when a mean of trials has them
+/// from some trials only ("…, from trial PWS-20 only."; the cells' own note, [`Cell::Value`]).
+fn with_trials(sentence: String, row: &Row) -> String {
+    let from = row.cells.iter().find_map(|c| match c {
+        Cell::Value { note: Some(n), .. } => n.find("from trial").map(|i| n[i..].to_string()),
+        _ => None,
+    });
+    match from {
+        Some(f) => format!("{}, {f}.", sentence.trim_end_matches('.')),
+        None => sentence,
+    }
+}
+
 /// The number of values of a row marked ▲/▼ in the tables.
 fn value_marks(row: &Row) -> usize {
     row.cells
@@ -162,7 +175,9 @@ fn findings(v: &Verdicts, reference: &Reference) -> Vec<String> {
         .rows
         .iter()
         .filter_map(|r| match r.asymmetry {
-            Some(Asymmetry::Value(si, Some(true))) => Some((si.abs(), asymmetry_sentence(r, si)?)),
+            Some(Asymmetry::Value(si, Some(true))) => {
+                Some((si.abs(), with_trials(asymmetry_sentence(r, si)?, r)))
+            }
             _ => None,
         })
         .collect();
@@ -173,7 +188,12 @@ fn findings(v: &Verdicts, reference: &Reference) -> Vec<String> {
             v.rows
                 .iter()
                 .filter(|r| r.q.scope == scope)
-                .filter_map(|r| Some((outside_sentence(r, reference)?, value_marks(r)))),
+                .filter_map(|r| {
+                    Some((
+                        with_trials(outside_sentence(r, reference)?, r),
+                        value_marks(r),
+                    ))
+                }),
         );
     }
     if all.len() > MAX_FINDINGS + 1 {
@@ -181,7 +201,7 @@ fn findings(v: &Verdicts, reference: &Reference) -> Vec<String> {
         all.truncate(MAX_FINDINGS);
         all.push((
             format!(
-                "{rest} more marked {} (▲/▼ outside the normal range, ◆ asymmetric) in the tables below.",
+                "{rest} more {} marked in the tables below (▲/▼ outside the normal range, ◆ asymmetric).",
                 if rest == 1 { "value is" } else { "values are" }
             ),
             0,

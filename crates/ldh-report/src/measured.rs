@@ -96,6 +96,7 @@ mod tests {
         );
         r.trial_mean = Some(ldh_core::output::TrialMean {
             trial_ids: ids.to_vec(),
+            ..Default::default()
         });
         assert_eq!(
             not_measured(&r, Parameter::Wqk).as_deref(),

@@ -25,6 +25,8 @@ mod ident;
 mod parameters;
 mod signals;
 
+#[cfg(test)]
+pub(crate) use parameters::radar_series;
 use parameters::{parameter_table, subject_radar};
 use signals::{signals, stride_by_stride};
 
@@ -59,7 +61,7 @@ pub fn subject_html(
         (recordings_table(&sides))
         (excluded_strides(&s.strides))
         (parameter_table(&v, &sides, reference, &citations, p, &notes))
-        (subject_radar(s, &sides, reference)?)
+        (subject_radar(s, &v, &sides, reference)?)
         (cycle_section(&plotted, &sides, reference, p)?)
         p.print-only.meta { "Printed report: the signal figures (section 3), the stride-by-stride plots (section 4), the methods and the technical appendix (sampling, outliers, mounting, what reading noticed, every quality finding with its code) are in the on-screen report." } "\n"
         div.screen-only { (signals(&plotted)?) (stride_by_stride(&plotted.strides)?) } "\n"

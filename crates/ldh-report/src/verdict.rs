@@ -335,6 +335,33 @@ fn walk_value(
     }
 }
 
+/// On a mean of trials, the trials a value of `p` comes from when not all of them measured it
+/// ("from trial PWS-20 only"): the legs' trials together; `None` when a leg's value is every
+/// trial's, or the row is no mean (issue 50: the step time of one belt speed of three read as
+/// "the mean of 3 trials").
+pub(crate) fn trials_note(legs: &[Option<&RecordingRow>], p: Parameter) -> Option<String> {
+    let means: Vec<&ldh_core::output::TrialMean> = legs
+        .iter()
+        .flatten()
+        .filter(|r| r.value(p).is_some())
+        .map(|r| r.trial_mean.as_ref())
+        .collect::<Option<_>>()?;
+    let all = &means.first()?.trial_ids;
+    let mut from: Vec<&String> = Vec::new();
+    for m in &means {
+        from.extend(m.only_from(p)?);
+    }
+    let ids: Vec<&str> = all
+        .iter()
+        .filter(|t| from.contains(t))
+        .map(String::as_str)
+        .collect();
+    Some(match ids.as_slice() {
+        [one] => format!("from trial {one} only"),
+        more => format!("from trials {} only", more.join(", ")),
+    })
+}
+
 /// A cell from a value in the table's unit.
 fn cell(v: Result<f64, String>, q: &Quantity, rr: Option<&ReferenceRange>) -> Cell {
     match v {
@@ -371,8 +398,23 @@ pub(crate) fn verdicts(sides: &[&RecordingRow], reference: &Reference, limit_pct
                 Scope::Walk => vec![match walk_value(q, left, right) {
                     Ok((v, one)) => {
                         let mut c = cell(Ok(v), q, rr);
-                        if let (Cell::Value { note, .. }, Some(s)) = (&mut c, one) {
-                            *note = Some(format!("from the {s} leg only"));
+                        // The cadence is made of the stride times: their trials are its.
+                        let from = match q.parameter {
+                            P::StepFrequency => P::StrideTime,
+                            p => p,
+                        };
+                        let legs = match one {
+                            Some(Side::Left) => vec![left],
+                            Some(Side::Right) => vec![right],
+                            _ => vec![left, right],
+                        };
+                        let notes: Vec<String> = one
+                            .map(|s| format!("from the {s} leg only"))
+                            .into_iter()
+                            .chain(trials_note(&legs, from))
+                            .collect();
+                        if let Cell::Value { note, .. } = &mut c {
+                            *note = (!notes.is_empty()).then(|| notes.join("; "));
                         }
                         c
                     }
@@ -380,7 +422,13 @@ pub(crate) fn verdicts(sides: &[&RecordingRow], reference: &Reference, limit_pct
                 }],
                 Scope::Side => [left, right]
                     .into_iter()
-                    .map(|r| cell(side_value(r, q.parameter), q, rr))
+                    .map(|r| {
+                        let mut c = cell(side_value(r, q.parameter), q, rr);
+                        if let Cell::Value { note, .. } = &mut c {
+                            *note = trials_note(&[r], q.parameter);
+                        }
+                        c
+                    })
                     .collect(),
             };
             let asymmetry = q.asymmetry.then(|| {

@@ -9,7 +9,7 @@ use crate::html::{figure, fmt, side_label};
 use crate::plots;
 use crate::reference::no_published_reason;
 use crate::summary::{asymmetry_cell, value_cells, WhyNotes};
-use crate::verdict::{Quantity, Verdicts};
+use crate::verdict::{Cell, Quantity, Scope, Verdicts};
 use crate::{Reference, ReferenceRange, ReferenceSource};
 use crate::{SubjectReport, ValidReportParams};
 use ldh_core::cohort::Parameter;
@@ -140,49 +140,82 @@ fn no_published_note(reference: &Reference) -> String {
     format!(" No published range stands in for {}.", parts.join("; "))
 }
 
-/// Radar of the subject's z-scores against the reference.
-pub(super) fn subject_radar(
-    s: &SubjectReport,
+/// The radar's axes and polygons: the values of the page's verdicts (section 2's table, as
+/// shown) as z-scores against their ranges with an SD. A whole-walk quantity (cadence,
+/// walking speed, stride time, double support) is one value, drawn on both legs' polygons; a
+/// companion (step frequency per leg, swing) is no axis of its own. Issue 50: the "cadence"
+/// axis drew each leg's step frequency (z = −4.5 on the right) beside a table whose walk
+/// cadence was within normal.
+pub(crate) fn radar_series(
+    v: &Verdicts,
     sides: &[&RecordingRow],
     reference: &Reference,
-) -> Result<Markup> {
-    let ranges: Vec<&ReferenceRange> = reference.ranges.iter().filter(|r| r.sd.is_some()).collect();
-    let series: Vec<(plots::SeriesName, Vec<f64>)> = sides
+) -> (Vec<String>, Vec<(plots::SeriesName, Vec<f64>)>) {
+    let axes: Vec<(&crate::verdict::Row, &ReferenceRange)> = v
+        .rows
+        .iter()
+        .filter_map(|row| {
+            let rr = reference.range(row.q.parameter)?;
+            rr.sd.is_some().then_some((row, rr))
+        })
+        .collect();
+    let series = sides
         .iter()
         .filter(|r| r.is_ok())
         .map(|r| {
+            let i = usize::from(r.side == ldh_core::Side::Right);
+            let z = axes
+                .iter()
+                .map(|(row, rr)| {
+                    let c = match row.q.scope {
+                        Scope::Walk => row.cells.first(),
+                        Scope::Side => row.cells.get(i),
+                    };
+                    match c {
+                        Some(Cell::Value { v, .. }) => rr.z(v / row.q.scale()),
+                        _ => None,
+                    }
+                    .unwrap_or(f64::NAN)
+                })
+                .collect();
             (
                 plots::SeriesName {
                     text: side_label(r),
                     side: r.side.known(),
                 },
-                ranges
-                    .iter()
-                    .map(|rr| {
-                        Parameter::from_column(&rr.column)
-                            .ok()
-                            .filter(|p| r.withheld.reason(*p).is_none())
-                            .and_then(|p| r.value(p))
-                            .and_then(|v| rr.z(v))
-                            .unwrap_or(f64::NAN)
-                    })
-                    .collect(),
+                z,
             )
         })
         .collect();
+    let codes = axes
+        .iter()
+        .map(|(row, _)| row.q.parameter.code().to_string())
+        .collect();
+    (codes, series)
+}
+
+/// Radar of the subject's z-scores against the reference ([`radar_series`]).
+pub(super) fn subject_radar(
+    s: &SubjectReport,
+    v: &Verdicts,
+    sides: &[&RecordingRow],
+    reference: &Reference,
+) -> Result<Markup> {
+    let (names, series) = radar_series(v, sides, reference);
     // A shape needs three measured axes on a side: with fewer, the radar shows nothing the
     // table does not (and a real page with a faulty leg printed on a fourth A4 page).
     let shaped = series
         .iter()
         .any(|(_, z)| z.iter().filter(|v| v.is_finite()).count() >= 3);
-    if !shaped || ranges.len() < 3 {
+    if !shaped || names.len() < 3 {
         return Ok(html! {});
     }
-    let names: Vec<String> = ranges.iter().map(|r| r.code.clone()).collect();
     // Name the reference that exists: the cohort's healthy subjects (n > 0) or, without
     // them, the published values (never "the healthy reference" of n = 0, issue 50).
-    let cohort_n = ranges
+    let cohort_n = reference
+        .ranges
         .iter()
+        .filter(|r| r.sd.is_some())
         .filter_map(|r| match r.source {
             ReferenceSource::Cohort { n_subjects } => Some(n_subjects),
             _ => None,
@@ -199,8 +232,16 @@ pub(super) fn subject_radar(
     )?;
     Ok(figure(
         &svg,
-        &format!("Radar chart of the subject's parameters as z-scores against the reference of section 2 (0 = the reference mean, the black ring); left blue, right orange. A dot with a black edge lies beyond ±{:.2} SD (abnormal); a gap in a polygon is a parameter not measured on that side (never drawn as 0). The scale stops at ±{:.0} SD: a value beyond it is an open triangle on the rim{}.", plots::RADAR_Z_ABNORMAL, plots::RADAR_Z_CLIP, if svg.contains(plots::RADAR_CLIPPED) { " — clipped here, the values are named under the chart" } else { " (none here)" }),
+        &format!("Radar chart of the values of section 2's table{} as z-scores against its reference (0 = the reference mean, the black ring); left blue, right orange. Cadence, walking speed, stride time and double support are one value per walk, drawn on both legs' polygons. A dot with a black edge lies beyond ±{:.2} SD (abnormal); a gap in a polygon is a parameter not measured on that side (never drawn as 0). The scale stops at ±{:.0} SD: a value beyond it is an open triangle on the rim{}.", mean_of(sides), plots::RADAR_Z_ABNORMAL, plots::RADAR_Z_CLIP, if svg.contains(plots::RADAR_CLIPPED) { " — clipped here, the values are named under the chart" } else { " (none here)" }),
         &[plots::RADAR_SCALE_LABEL],
         plots::RADAR_PRINT,
     ))
+}
+
+/// " (the mean of 3 trials (…))" when the page's values are a mean of trials, else "".
+fn mean_of(sides: &[&RecordingRow]) -> String {
+    sides
+        .iter()
+        .find_map(|r| r.trial_mean.as_ref())
+        .map_or_else(String::new, |t| format!(" (the {t})"))
 }

@@ -548,3 +548,82 @@ fn steps_made_uneven_by_two_clocks_are_not_named() {
     let cadence = v.rows.iter().find(|r| r.q.label() == "Cadence").unwrap();
     assert!(matches!(cadence.cells[0], Cell::Value { .. }));
 }
+
+/// Issue 50 (re-read on TRIPOD's three belt speeds): a value that only some trials measured is
+/// the mean of those alone, and the page says which, in the finding and in the summary's
+/// cell — not "the mean of 2 trials" of a value one trial gave.
+#[test]
+fn a_value_from_one_trial_of_two_says_which_trial() {
+    let mut recs = uneven("T");
+    for r in recs.iter_mut() {
+        r.trial_id = "t1".into();
+        // The clocks disagreed in t1: no step time (nor its step frequency) on either leg.
+        r.parameters[Parameter::StepTime] = None;
+        r.parameters[Parameter::StepFrequency] = None;
+    }
+    for mut r in uneven("T") {
+        r.trial_id = "t2".into();
+        recs.push(r);
+    }
+    let (html, v, h) = page_parts(recs);
+    assert_eq!(
+        h.findings,
+        vec![
+            "Steps are uneven: the left step takes 30 % longer than the right (0.59 s against 0.46 s), from trial t2 only.",
+            "Step time is below normal on the right: 0.46 s (normal 0.48–0.63 s), from trial t2 only.",
+        ]
+    );
+    let step = v
+        .rows
+        .iter()
+        .find(|r| r.q.parameter == Parameter::StepTime)
+        .unwrap();
+    for c in &step.cells {
+        assert!(
+            matches!(c, Cell::Value { note: Some(n), .. } if n == "from trial t2 only"),
+            "{c:?}"
+        );
+    }
+    // Both trials measured the stride time (and so the cadence): no note there.
+    let stride = v
+        .rows
+        .iter()
+        .find(|r| r.q.parameter == Parameter::StrideTime)
+        .unwrap();
+    assert!(matches!(&stride.cells[0], Cell::Value { note: None, .. }));
+    assert!(
+        html.contains("below normal; from trial t2 only"),
+        "summary cell"
+    );
+}
+
+/// Issue 50 item 7 (re-read): the radar draws the table's values — its cadence axis is the
+/// walk's cadence, one value on both legs' polygons (it drew each leg's step frequency, 101
+/// and 131 steps/min here, beside a table whose cadence was 114 and within normal), and swing,
+/// the complement of stance, is no axis of its own.
+#[test]
+fn the_radar_draws_the_tables_walk_cadence_on_both_legs() {
+    let recs = uneven("T");
+    let p = ReportParams::default().check().unwrap();
+    let reference = Reference::published(&p);
+    let sides: Vec<&RecordingRow> = recs.iter().collect();
+    let v = verdicts(&sides, &reference, p.0.asymmetry_flag_pct);
+    let (codes, series) = super::super::subject::radar_series(&v, &sides, &reference);
+    let sf = codes
+        .iter()
+        .position(|c| c == "SF")
+        .expect("a cadence axis");
+    let rr = reference.range(Parameter::StepFrequency).unwrap();
+    // The table shows 114 steps/min (0 decimals); its z, on both legs.
+    let z = rr.z(114.0 / 60.0).unwrap();
+    assert_eq!(series.len(), 2);
+    for (name, zs) in &series {
+        assert!(
+            (zs[sf] - z).abs() < 1e-9,
+            "{}: {} against {z}",
+            name.text,
+            zs[sf]
+        );
+    }
+    assert!(!codes.iter().any(|c| c == "SWP"), "{codes:?}");
+}

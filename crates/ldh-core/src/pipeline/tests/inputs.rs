@@ -264,6 +264,15 @@ fn a_persons_withheld_values_are_those_no_trial_measured() {
         p.withheld.reason(crate::domain::Parameter::Sta).unwrap(),
         "t0: sta not computed 0; t1: sta not computed 1"
     );
+    // The SV "mean" is trial t1's alone, and the mean says so; a parameter both trials (or
+    // neither) measured is no partial one.
+    let mean = p.trial_mean.as_ref().unwrap();
+    assert_eq!(
+        mean.only_from(Parameter::StrideLengthCv),
+        Some(&[legs[1].trial_id.clone()][..])
+    );
+    assert_eq!(mean.only_from(Parameter::StrideTime), None);
+    assert_eq!(mean.only_from(Parameter::Sta), None);
 }
 
 /// Table 3 gives a cell's own n when some subjects of its group have the value withheld, and
