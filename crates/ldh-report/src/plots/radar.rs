@@ -42,7 +42,10 @@ pub fn radar_svg(
         .flat_map(|s| s.1.iter())
         .filter(|v| v.is_finite())
         .fold(0.0f64, |m, v| m.max(v.abs()));
-    let g = Geometry::new(zabs.ceil().clamp(2.0, RADAR_Z_CLIP), codes.len());
+    let title_lines = wrap_title(title, f.title);
+    // Each title line beyond the first moves the chart and its notes down by one line.
+    let drop = (title_lines.len() as i32 - 1) * (f.title + 4);
+    let g = Geometry::new(zabs.ceil().clamp(2.0, RADAR_Z_CLIP), codes.len(), drop);
     let clipped: Vec<String> = series
         .iter()
         .flat_map(|(name, z)| {
@@ -56,17 +59,21 @@ pub fn radar_svg(
         })
         .collect();
     let notes = note_lines(g.z_max, &clipped);
-    let height = NOTES_TOP as u32 + notes.len() as u32 * (f.label as u32 + 6) + 8;
+    let notes_top = NOTES_TOP + drop;
+    let height = notes_top as u32 + notes.len() as u32 * (f.label as u32 + 6) + 8;
     let mut buf = String::new();
     {
         let root = SVGBackend::with_string(&mut buf, (RADAR_W, height)).into_drawing_area();
         root.fill(&WHITE).map_err(perr)?;
-        root.draw(&Text::new(title.to_string(), (20, 12), font(f.title)))
-            .map_err(perr)?;
+        for (k, line) in title_lines.iter().enumerate() {
+            let y = 12 + k as i32 * (f.title + 4);
+            root.draw(&Text::new(line.clone(), (20, y), font(f.title)))
+                .map_err(perr)?;
+        }
         draw_rings(&root, &g, f)?;
         draw_axes(&root, &g, codes, f)?;
         let mut x_legend = 20i32;
-        let y_legend = 20 + f.title;
+        let y_legend = 20 + f.title + drop;
         for (k, (name, z)) in series.iter().enumerate() {
             let c = colour_of(name, k);
             draw_polygon(&root, &g, z, c)?;
@@ -90,7 +97,7 @@ pub fn radar_svg(
             x_legend += 64 + f.label * 6 / 10 * name.chars().count() as i32;
         }
         for (k, line) in notes.iter().enumerate() {
-            let y = NOTES_TOP + k as i32 * (f.label + 6);
+            let y = notes_top + k as i32 * (f.label + 6);
             root.draw(&Text::new(line.clone(), (20, y), font(f.label)))
                 .map_err(perr)?;
         }
@@ -99,8 +106,31 @@ pub fn radar_svg(
     Ok(buf)
 }
 
-/// Where the notes under a radar chart start, px from the top.
+/// Where the notes under a radar chart start, px from the top (with a one-line title).
 const NOTES_TOP: i32 = 660;
+
+/// The title in lines that fit the canvas at font size `size` (≈ 0.6 `size` px a character):
+/// one line when it fits, else broken after its first ": " or, without one, at the space
+/// nearest the middle. A long title ("Subject L01: z-scores against this cohort's healthy
+/// subjects (n = 10)") was cut at the canvas's edge.
+fn wrap_title(title: &str, size: i32) -> Vec<String> {
+    let fits = ((RADAR_W as i32 - 40) / (size * 6 / 10).max(1)) as usize;
+    if title.chars().count() <= fits {
+        return vec![title.to_string()];
+    }
+    let at = title.find(": ").map(|i| (i + 1, i + 2)).or_else(|| {
+        let mid = title.len() / 2;
+        title
+            .match_indices(' ')
+            .map(|(i, _)| i)
+            .min_by_key(|i| i.abs_diff(mid))
+            .map(|i| (i, i + 1))
+    });
+    match at {
+        Some((end, start)) => vec![title[..end].to_string(), title[start..].to_string()],
+        None => vec![title.to_string()],
+    }
+}
 
 /// The lines under the chart: the scale and, when values were clipped, which ones (wrapped
 /// at [`NOTE_LINE_CHARS`]). The key to the marks is in the figure's caption.
@@ -146,11 +176,12 @@ struct Geometry {
 }
 
 impl Geometry {
-    /// The chart's geometry (centre, radius) for a scale of ± `z_max` and `n_codes` axes.
-    fn new(z_max: f64, n_codes: usize) -> Self {
+    /// The chart's geometry (centre, radius) for a scale of ± `z_max` and `n_codes` axes,
+    /// moved down by `drop` px (a title's extra lines).
+    fn new(z_max: f64, n_codes: usize, drop: i32) -> Self {
         Geometry {
             cx: f64::from(RADAR_W) / 2.0,
-            cy: 372.0,
+            cy: 372.0 + f64::from(drop),
             rad: 230.0,
             z_min: -z_max,
             z_max,
@@ -174,7 +205,8 @@ impl Geometry {
 }
 
 /// The rings at −zmax, −zmax/2, 0 (black: the reference mean, unlabelled: the caption names it),
-/// zmax/2 and zmax, labelled on axis 0.
+/// zmax/2 and zmax, each labelled just inside its ring, centred on axis 0 (beside the axis,
+/// the outer ring's label ran into the neighbouring axis's name).
 fn draw_rings(root: &Area, g: &Geometry, f: Fonts) -> Result<()> {
     let z_max = g.z_max;
     for z in [-z_max, -z_max / 2.0, 0.0, z_max / 2.0, z_max] {
@@ -190,12 +222,10 @@ fn draw_rings(root: &Area, g: &Geometry, f: Fonts) -> Result<()> {
             continue;
         }
         let (x, y) = g.pt(0, g.to_r(z));
-        root.draw(&Text::new(
-            format!("z = {z:+.1}"),
-            (x + 6, y + 2),
-            font(f.label),
-        ))
-        .map_err(perr)?;
+        let label = format!("z = {z:+.1}");
+        let w = f.label * 6 / 10 * label.chars().count() as i32;
+        root.draw(&Text::new(label, (x - w / 2, y + 4), font(f.label)))
+            .map_err(perr)?;
     }
     Ok(())
 }

@@ -126,7 +126,10 @@ pub fn cycle_svg(
         let mut chart = framed_chart(&root, &f, title, 4 * f.label + f.desc)
             .build_cartesian_2d(0.0..100.0, lo - pad..hi + pad + room)
             .map_err(perr)?;
+        // Every 20 % as whole numbers ("90.0" and "100" ran into each other).
         styled_mesh(&mut chart, &f)
+            .x_labels(6)
+            .x_label_formatter(&|x| format!("{x:.0}"))
             .x_desc(CYCLE_X_LABEL)
             .y_desc(y_label)
             .draw()

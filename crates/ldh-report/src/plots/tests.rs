@@ -292,3 +292,59 @@ fn a_series_colour_follows_its_side_not_its_text() {
     assert_eq!(colour_of(&"left".into(), 1), COLORS[1]);
     assert_eq!(colour_of(&"right leg".into(), 4), COLORS[0]);
 }
+
+/// The x of an SVG `<text>` element whose content is `content` (as escaped in the SVG), px.
+fn text_x(svg: &str, content: &str) -> Option<i32> {
+    let at = svg.find(&format!(">\n{content}\n</text>"))?;
+    let start = svg[..at].rfind("<text")?;
+    let tag = &svg[start..at];
+    let x = tag.split("x=\"").nth(1)?.split('"').next()?;
+    x.parse().ok()
+}
+
+/// A long title is broken into lines, not cut at the canvas's edge; the scale's labels sit on
+/// axis 0, inside the rim, clear of the neighbouring axes' names (issue 50's reading: "…healthy
+/// subje" and "z = +4.0" over the next axis's name).
+#[test]
+fn the_radar_title_wraps_and_its_scale_stays_on_its_axis() {
+    let codes: Vec<String> = ["SF", "SL", "ST", "WQK", "STP", "SWP"]
+        .map(String::from)
+        .to_vec();
+    let title = "Subject L01: z-scores against this cohort's healthy subjects (n = 10)";
+    let r = radar_svg(
+        title,
+        &codes,
+        &[("left".into(), vec![0.5, 1.0, 3.5, -0.2, 0.1, 0.3])],
+    )
+    .unwrap();
+    assert!(text_x(&r, "Subject L01:").is_some(), "{r}");
+    assert!(
+        text_x(
+            &r,
+            "z-scores against this cohort&apos;s healthy subjects (n = 10)"
+        )
+        .is_some(),
+        "{r}"
+    );
+    let short = radar_svg("Fusion", &codes, &[("left".into(), vec![0.5; 6])]).unwrap();
+    assert!(text_x(&short, "Fusion").is_some());
+    // The outer ring's label is centred on axis 0 (the canvas's middle, 400 px).
+    let x = text_x(&r, "z = +4.0").expect("the outer ring's label");
+    assert!((300..400).contains(&x), "x = {x}");
+}
+
+/// The gait-cycle axis is labelled every 20 % in whole numbers ("90.0" and "100" touched).
+#[test]
+fn the_gait_cycle_axis_reads_in_whole_percent() {
+    let s = cycle_svg(
+        "cycle",
+        "pitch (deg)",
+        &[("left".into(), vec![0.0, 10.0, 5.0], vec![1.0, 1.0, 1.0])],
+        None,
+    )
+    .unwrap();
+    for tick in ["0", "20", "40", "60", "80", "100"] {
+        assert!(text_x(&s, tick).is_some(), "tick {tick}: {s}");
+    }
+    assert!(text_x(&s, "90.0").is_none() && text_x(&s, "100.0").is_none());
+}

@@ -31,11 +31,18 @@ fn trial(id: &str, spike_s: f64) -> Vec<RecordingRow> {
         r.strides_total = Some(10);
         r.strides_valid = Some(7);
     }
-    legs[0].warnings = WarningList(vec![Warning::new(
-        codes::NO_QUIET_STANDING,
-        Severity::Warning,
-        "no quiet standing of 1 s found: no gyroscope bias was removed at rest",
-    )]);
+    legs[0].warnings = WarningList(vec![
+        Warning::new(
+            codes::ACC_CLIPPING,
+            Severity::Warning,
+            "accelerometer at its range in 3 strides: their lengths are left out",
+        ),
+        Warning::new(
+            codes::NO_QUIET_STANDING,
+            Severity::Warning,
+            "no quiet standing of 1 s found: no gyroscope bias was removed at rest",
+        ),
+    ]);
     legs[1].warnings = WarningList(vec![Warning::new(
         codes::CHANNEL_FAULT,
         Severity::Warning,
@@ -85,10 +92,14 @@ fn a_page_of_two_trials_counts_and_says_every_trial_once() {
     // One message of both trials: one line naming them.
     assert!(
         clinical.contains(
-            "<li>left (trials t1, t2): no quiet standing of 1 s found: no gyroscope bias was removed at rest</li>"
+            "<li>left (trials t1, t2): accelerometer at its range in 3 strides: their lengths are left out</li>"
         ),
         "{clinical}"
     );
+    // No quiet standing only withholds the shank angles (said where they are not measured):
+    // its reasoning is the appendix's, not the clinical box's.
+    assert!(!clinical.contains("no quiet standing of 1 s"), "{clinical}");
+    assert!(html.contains("no quiet standing of 1 s found"), "{html}");
     // A channel spiking at another time in each trial: one line in plain words, the times in
     // the appendix.
     assert!(
