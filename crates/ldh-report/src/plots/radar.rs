@@ -12,6 +12,8 @@ pub const RADAR_CLIPPED: &str = "clipped at ±";
 
 /// The scale label of [`radar_svg`] (drawn under the chart).
 pub const RADAR_SCALE_LABEL: &str = "z-score (SD from the reference mean)";
+/// The start of the note under [`radar_svg`] that gives the rings' values, centre to rim.
+const RADAR_RINGS: &str = "rings, centre to rim: z = ";
 /// z-scores beyond ± this are drawn on the rim of [`radar_svg`] and marked as clipped.
 pub const RADAR_Z_CLIP: f64 = 4.0;
 /// |z| above which a radar point is marked abnormal (outside mean ± 1.96 SD).
@@ -70,7 +72,7 @@ pub fn radar_svg(
             root.draw(&Text::new(line.clone(), (20, y), font(f.title)))
                 .map_err(perr)?;
         }
-        draw_rings(&root, &g, f)?;
+        draw_rings(&root, &g)?;
         draw_axes(&root, &g, codes, f)?;
         let mut x_legend = 20i32;
         let y_legend = 20 + f.title + drop;
@@ -106,8 +108,9 @@ pub fn radar_svg(
     Ok(buf)
 }
 
-/// Where the notes under a radar chart start, px from the top (with a one-line title).
-const NOTES_TOP: i32 = 660;
+/// Where the notes under a radar chart start, px from the top (with a one-line title): below
+/// a two-line axis name straight down (660 touched its second line).
+const NOTES_TOP: i32 = 676;
 
 /// The title in lines that fit the canvas at font size `size` (≈ 0.6 `size` px a character):
 /// one line when it fits, else broken after its first ": " or, without one, at the space
@@ -132,10 +135,18 @@ fn wrap_title(title: &str, size: i32) -> Vec<String> {
     }
 }
 
-/// The lines under the chart: the scale and, when values were clipped, which ones (wrapped
-/// at [`NOTE_LINE_CHARS`]). The key to the marks is in the figure's caption.
+/// The lines under the chart: the scale, the rings' values (centre to rim) and, when values
+/// were clipped, which ones (wrapped at [`NOTE_LINE_CHARS`]). The key to the marks is in the
+/// figure's caption.
 fn note_lines(z_max: f64, clipped: &[String]) -> Vec<String> {
-    let mut lines = vec![RADAR_SCALE_LABEL.to_string()];
+    let h = z_max / 2.0;
+    let mut lines = vec![
+        RADAR_SCALE_LABEL.to_string(),
+        format!(
+            "{RADAR_RINGS}{:+.1}, {:+.1}, 0 (black), {h:+.1}, {z_max:+.1}",
+            -z_max, -h
+        ),
+    ];
     if clipped.is_empty() {
         return lines;
     }
@@ -204,10 +215,10 @@ impl Geometry {
     }
 }
 
-/// The rings at −zmax, −zmax/2, 0 (black: the reference mean, unlabelled: the caption names it),
-/// zmax/2 and zmax, each labelled just inside its ring, centred on axis 0 (beside the axis,
-/// the outer ring's label ran into the neighbouring axis's name).
-fn draw_rings(root: &Area, g: &Geometry, f: Fonts) -> Result<()> {
+/// The rings at −zmax, −zmax/2, 0 (black: the reference mean), zmax/2 and zmax, their values
+/// said in the notes under the chart ([`note_lines`]): a label on the chart ran into an axis's
+/// name or a polygon wherever it stood.
+fn draw_rings(root: &Area, g: &Geometry) -> Result<()> {
     let z_max = g.z_max;
     for z in [-z_max, -z_max / 2.0, 0.0, z_max / 2.0, z_max] {
         let ring: Vec<(i32, i32)> = (0..=g.n).map(|i| g.pt(i % g.n, g.to_r(z))).collect();
@@ -217,15 +228,6 @@ fn draw_rings(root: &Area, g: &Geometry, f: Fonts) -> Result<()> {
             RGBColor(180, 180, 180).stroke_width(1)
         };
         root.draw(&PathElement::new(ring, style)).map_err(perr)?;
-        // The black ring is the reference mean (the caption says so): no label printed over it.
-        if z == 0.0 {
-            continue;
-        }
-        let (x, y) = g.pt(0, g.to_r(z));
-        let label = format!("z = {z:+.1}");
-        let w = f.label * 6 / 10 * label.chars().count() as i32;
-        root.draw(&Text::new(label, (x - w / 2, y + 4), font(f.label)))
-            .map_err(perr)?;
     }
     Ok(())
 }
