@@ -149,7 +149,7 @@ pub fn standing_warning(al: &Alignment) -> Option<Warning> {
     let what = note.split(':').next().unwrap_or(note);
     Some(
         Warning::new(codes::NO_QUIET_STANDING, Severity::Warning, format!(
-            "{what}: without a moment of standing still, the sensor's tilt on the shank is not known, so the shank angles WQK and PBI are withheld (about 10 deg off on simulated walks); BDK, stride times and stride length are not affected. Record at least 1 s of standing still at the start or the end"
+            "{what}: without a moment of standing still, the sensor's tilt on the shank is not known and the shank angles would be about 10 deg off: WQK and PBI withheld (BDK, stride times and stride length are not affected). Record at least 1 s of standing still at the start or the end"
         ))
         .withholding(&params::INCLINATIONS),
     )
