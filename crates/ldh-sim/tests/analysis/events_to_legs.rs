@@ -20,7 +20,7 @@ use ldh_core::pipeline::LegResult;
 use ldh_sim::{analyze_simulated, LegTruth};
 
 /// The median of the finite values (upper for an even count; NaN when none).
-fn med(mut v: Vec<f64>) -> f64 {
+pub(crate) fn med(mut v: Vec<f64>) -> f64 {
     v.retain(|x| x.is_finite());
     if v.is_empty() {
         return f64::NAN;

@@ -23,6 +23,7 @@
 //! `cargo test --profile ci -p ldh-sim --test analysis events_to_pitch -- --nocapture`
 
 use super::events_accuracy::{no_sta, sim_conditions_at, summary};
+use super::events_to_legs::med;
 use ldh_core::pipeline::LegResult;
 use ldh_sim::{analyze_simulated, LegTruth};
 
@@ -165,15 +166,6 @@ fn trace(key: &str, leg: &LegResult, truth: &LegTruth, rs: &[Row]) {
             if k == 0 { "TRUE" } else { "" }
         );
     }
-}
-
-fn med(mut v: Vec<f64>) -> f64 {
-    v.retain(|x| x.is_finite());
-    if v.is_empty() {
-        return f64::NAN;
-    }
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
 }
 
 /// One analysed leg: its condition, its source name, ldh's result and its matched strides.
