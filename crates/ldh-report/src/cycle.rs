@@ -178,7 +178,6 @@ pub(crate) fn of_trial(recordings: &[RecordingRow]) -> String {
         return String::new();
     };
     let mut ids: Vec<&str> = recordings.iter().map(|r| r.trial_id.as_str()).collect();
-    ids.dedup();
     ids.sort_unstable();
     ids.dedup();
     format!(

@@ -145,13 +145,9 @@ fn outside_sentence(row: &Row, reference: &Reference) -> Option<String> {
 }
 
 /// A finding's sentence with the trials its values come from, when a mean of trials has them
-/// from some trials only ("…, from trial PWS-20 only."; the cells' own note, [`Cell::Value`]).
+/// from some trials only ("…, from trial PWS-20 only."; [`Row::from_trials`]).
 fn with_trials(sentence: String, row: &Row) -> String {
-    let from = row.cells.iter().find_map(|c| match c {
-        Cell::Value { note: Some(n), .. } => n.find("from trial").map(|i| n[i..].to_string()),
-        _ => None,
-    });
-    match from {
+    match &row.from_trials {
         Some(f) => format!("{}, {f}.", sentence.trim_end_matches('.')),
         None => sentence,
     }

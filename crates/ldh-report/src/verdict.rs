@@ -247,6 +247,9 @@ pub(crate) struct Row {
     pub cells: Vec<Cell>,
     /// The left–right asymmetry (quantities with [`Quantity::asymmetry`]).
     pub asymmetry: Option<Asymmetry>,
+    /// On a mean of trials, the trials the row's values come from when not all measured them
+    /// ([`trials_note`], "from trial PWS-20 only"); what the headline's findings add.
+    pub from_trials: Option<String>,
 }
 
 /// Every verdict of a subject's page, in [`quantities`] order.
@@ -394,15 +397,15 @@ pub(crate) fn verdicts(sides: &[&RecordingRow], reference: &Reference, limit_pct
         .iter()
         .map(|q| {
             let rr = reference.range(q.parameter);
+            // The cadence is made of the stride times: their trials are its.
+            let from = match q.parameter {
+                P::StepFrequency => P::StrideTime,
+                p => p,
+            };
             let cells = match q.scope {
                 Scope::Walk => vec![match walk_value(q, left, right) {
                     Ok((v, one)) => {
                         let mut c = cell(Ok(v), q, rr);
-                        // The cadence is made of the stride times: their trials are its.
-                        let from = match q.parameter {
-                            P::StepFrequency => P::StrideTime,
-                            p => p,
-                        };
                         let legs = match one {
                             Some(Side::Left) => vec![left],
                             Some(Side::Right) => vec![right],
@@ -458,6 +461,7 @@ pub(crate) fn verdicts(sides: &[&RecordingRow], reference: &Reference, limit_pct
                 q,
                 cells,
                 asymmetry,
+                from_trials: trials_note(&[left, right], from),
             }
         })
         .collect();
