@@ -9,7 +9,7 @@ use std::path::Path;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use super::plan::{plan, Activity, Motion, GAIT_STANDING_S};
+use super::plan::{plan, Activity, Motion, Segment, GAIT_STANDING_S};
 use super::render::{render_analytic, render_gait, LegSignal};
 use super::truth::{write_truth_bouts, FreeLivingTruth, TruthBout};
 use super::{FreeLivingParams, FreeLivingSubject};
@@ -38,14 +38,7 @@ pub(super) fn simulate_subject_to(
     };
     let mut rng = stream(0);
     let fs = params.fs_hz;
-    let mut base = SubjectParams::draw(id.clone(), group.clone(), fs, 25.0, &mut rng);
-    if let Some(seed) = params.subject_seed {
-        // The same person on another day: the gait drawn from the person's own stream, the
-        // day (drift, mounting, plan, noise) from `seed`'s.
-        let mut own = ChaCha8Rng::seed_from_u64(seed);
-        own.set_stream((2u64 << 32) + 3 * i as u64);
-        base = SubjectParams::draw(id.clone(), group.clone(), fs, 25.0, &mut own);
-    }
+    let mut base = draw_person(params, i, &id, &group, &mut rng);
     base.stride_time_s *= params.stride_time_factor;
     let drift_ppm = params.drift_ppm.unwrap_or_else(|| {
         let m = rng.gen_range(20.0..50.0);
@@ -77,58 +70,7 @@ pub(super) fn simulate_subject_to(
     };
     let mut bouts: Vec<TruthBout> = Vec::new();
     for seg in &segments {
-        let i0 = (seg.start_s * fs).round() as usize;
-        let i1 = ((seg.start_s + seg.duration_s) * fs).round() as usize;
-        if i1 <= i0 {
-            continue;
-        }
-        let t0 = i0 as f64 / fs;
-        let t1 = i1 as f64 / fs;
-        if let Motion::Gait {
-            params: p,
-            impact_g,
-        } = &seg.motion
-        {
-            let bout = render_gait(p, *impact_g, &mut rng)?;
-            let first = bout
-                .hs_s
-                .iter()
-                .filter_map(|h| h.first())
-                .fold(f64::INFINITY, |a, &b| a.min(b));
-            let last = bout
-                .hs_s
-                .iter()
-                .filter_map(|h| h.last())
-                .fold(0.0, |a: f64, &b| a.max(b));
-            let (ws, we) = ((t0 + first).min(t1), (t0 + last).min(t1));
-            push_bout(&mut bouts, Activity::Standing, t0, ws, [0, 0]);
-            let steps = bout
-                .hs_s
-                .clone()
-                .map(|h| h.iter().filter(|&&x| t0 + x <= t1).count());
-            push_bout(&mut bouts, seg.activity, ws, we, steps);
-            push_bout(&mut bouts, Activity::Standing, we, t1, [0, 0]);
-            let mut j = 0;
-            while j < i1 - i0 {
-                let n = CHUNK.min(i1 - i0 - j);
-                for (leg, sig) in run.buf.iter_mut().enumerate() {
-                    sig.extend_from(&bout.legs[leg], j, j + n);
-                }
-                run.flush(&mut sinks)?;
-                j += n;
-            }
-        } else {
-            push_bout(&mut bouts, seg.activity, t0, t1, [0, 0]);
-            let mounts = [run.devices[0].mount, run.devices[1].mount];
-            let mut j = 0;
-            while j < i1 - i0 {
-                let n = CHUNK.min(i1 - i0 - j);
-                let tj = j as f64 / fs;
-                render_analytic(&seg.motion, tj, t1 - t0, n, fs, &mounts, &mut run.buf);
-                run.flush(&mut sinks)?;
-                j += n;
-            }
-        }
+        run.segment(seg, &mut sinks, &mut bouts, &mut rng)?;
     }
     let n_left = run.next_index;
     let [left, right] = sinks;
@@ -147,6 +89,28 @@ pub(super) fn simulate_subject_to(
         dir,
         truth,
     })
+}
+
+/// The person's gait: drawn from `rng` (the subject's stream), or, for the same person on
+/// another day (`subject_seed`), from the person's own stream while the day (drift, mounting,
+/// plan, noise) keeps `rng`'s. `rng` is advanced by the same draw in both cases.
+fn draw_person(
+    params: &FreeLivingParams,
+    i: usize,
+    id: &str,
+    group: &crate::Group,
+    rng: &mut ChaCha8Rng,
+) -> SubjectParams {
+    let fs = params.fs_hz;
+    let base = SubjectParams::draw(id.to_string(), group.clone(), fs, 25.0, rng);
+    match params.subject_seed {
+        Some(seed) => {
+            let mut own = ChaCha8Rng::seed_from_u64(seed);
+            own.set_stream((2u64 << 32) + 3 * i as u64);
+            SubjectParams::draw(id.to_string(), group.clone(), fs, 25.0, &mut own)
+        }
+        None => base,
+    }
 }
 
 /// Append a truth row, merged with the previous one when both are the same non-gait activity.
@@ -196,6 +160,72 @@ struct Run {
 }
 
 impl Run {
+    /// Render one planned segment in chunks, write it to both files, and append its truth
+    /// rows (a gait bout: the standing before its first and after its last heel strike, and
+    /// the steps inside the segment).
+    fn segment(
+        &mut self,
+        seg: &Segment,
+        sinks: &mut [CsvSink; 2],
+        bouts: &mut Vec<TruthBout>,
+        rng: &mut ChaCha8Rng,
+    ) -> Result<()> {
+        let fs = self.fs;
+        let i0 = (seg.start_s * fs).round() as usize;
+        let i1 = ((seg.start_s + seg.duration_s) * fs).round() as usize;
+        if i1 <= i0 {
+            return Ok(());
+        }
+        let t0 = i0 as f64 / fs;
+        let t1 = i1 as f64 / fs;
+        if let Motion::Gait {
+            params: p,
+            impact_g,
+        } = &seg.motion
+        {
+            let bout = render_gait(p, *impact_g, rng)?;
+            let first = bout
+                .hs_s
+                .iter()
+                .filter_map(|h| h.first())
+                .fold(f64::INFINITY, |a, &b| a.min(b));
+            let last = bout
+                .hs_s
+                .iter()
+                .filter_map(|h| h.last())
+                .fold(0.0, |a: f64, &b| a.max(b));
+            let (ws, we) = ((t0 + first).min(t1), (t0 + last).min(t1));
+            push_bout(bouts, Activity::Standing, t0, ws, [0, 0]);
+            let steps = bout
+                .hs_s
+                .clone()
+                .map(|h| h.iter().filter(|&&x| t0 + x <= t1).count());
+            push_bout(bouts, seg.activity, ws, we, steps);
+            push_bout(bouts, Activity::Standing, we, t1, [0, 0]);
+            let mut j = 0;
+            while j < i1 - i0 {
+                let n = CHUNK.min(i1 - i0 - j);
+                for (leg, sig) in self.buf.iter_mut().enumerate() {
+                    sig.extend_from(&bout.legs[leg], j, j + n);
+                }
+                self.flush(sinks)?;
+                j += n;
+            }
+        } else {
+            push_bout(bouts, seg.activity, t0, t1, [0, 0]);
+            let mounts = [self.devices[0].mount, self.devices[1].mount];
+            let mut j = 0;
+            while j < i1 - i0 {
+                let n = CHUNK.min(i1 - i0 - j);
+                let tj = j as f64 / fs;
+                render_analytic(&seg.motion, tj, t1 - t0, n, fs, &mounts, &mut self.buf);
+                self.flush(sinks)?;
+                j += n;
+            }
+        }
+        Ok(())
+    }
+
     /// Measure and write the samples in `buf`, then clear it.
     fn flush(&mut self, sinks: &mut [CsvSink; 2]) -> Result<()> {
         let n = self.buf[0].len();

@@ -31,19 +31,16 @@
 //!
 //! `cargo test --profile ci -p ldh-sim --test analysis height_estimate -- --nocapture --test-threads 1`
 
-use super::events_accuracy::tripod::{
-    read_physilog, to_ldh_frame, tripod_dir, TRIPOD_RUNS, TRIPOD_UNTIL_S,
-};
+use super::events_accuracy::tripod::{tripod_dir, TRIPOD_RUNS};
 use super::events_accuracy::{no_sta, summary};
 use super::events_to_hugadb::{hugadb_dir, hugadb_pair};
+use super::real_data::RealWalk;
 use ldh_core::align::Aligned;
 use ldh_core::domain::Parameter;
 use ldh_core::gait::{zero_velocity_sample, Stride, ZeroVelocity};
 use ldh_core::pipeline::quality::codes;
-use ldh_core::pipeline::{
-    memory_report, Analysis, LegResult, LoadedLeg, SubjectInput, SubjectResult,
-};
-use ldh_core::recording::{Recording, Side, STANDARD_GRAVITY_MPS2};
+use ldh_core::pipeline::{Analysis, LegResult, SubjectInput, SubjectResult};
+use ldh_core::recording::STANDARD_GRAVITY_MPS2;
 use ldh_sim::evaluate::stride_scores;
 use ldh_sim::family_b::CohortParamsB;
 use ldh_sim::{analyze_simulated_with, simulated_input, CohortParams, SimSubject};
@@ -334,30 +331,12 @@ fn height_estimate_on_the_simulators() {
     assert!(eb.n >= 6, "{eb:?}");
 }
 
-/// One TRIPOD run analysed with per-leg heights.
+/// One TRIPOD run analysed with per-leg heights (the shared loader, [`RealWalk::tripod`]).
 fn tripod_run(dir: &std::path::Path, run: &str, belt: f64, h: [Option<f64>; 2]) -> SubjectResult {
-    let imu = dir.join("Sub_FZ").join(run).join("IMU");
-    let leg = |file: &str, side: Side| -> LoadedLeg {
-        let (_, acc, gyro) = read_physilog(&imu.join(file), TRIPOD_UNTIL_S);
-        let rec = Recording::new(128.0, to_ldh_frame(acc), to_ldh_frame(gyro), vec![])
-            .unwrap()
-            .with_side(side);
-        let rep = memory_report(&rec);
-        Ok((rec, rep, format!("{run}/{file}")))
-    };
-    let input = SubjectInput {
-        subject_id: format!("Sub_FZ {run}"),
-        setting: Some(ldh_core::Setting::Treadmill),
-        belt_speed_mps: Some(belt),
-        left_sensor_height_m: h[0],
-        right_sensor_height_m: h[1],
-        ..SubjectInput::default()
-    };
-    Analysis::new(no_sta().check().unwrap()).pair(
-        &input,
-        leg("LS.csv", Side::Left),
-        leg("RS.csv", Side::Right),
-    )
+    let mut walk = RealWalk::tripod(dir, run, belt);
+    walk.input.left_sensor_height_m = h[0];
+    walk.input.right_sensor_height_m = h[1];
+    walk.analyse(&Analysis::new(no_sta().check().unwrap()))
 }
 
 /// Medians over the valid strides: the sagittal rate at the zero-velocity instant

@@ -68,6 +68,22 @@ pub(crate) struct RealWalk {
 }
 
 impl RealWalk {
+    /// TRIPOD's run `run` (`PWS`, …) of `Sub_FZ` under `dir`: a treadmill at `belt_mps`, no
+    /// sensor height given (set `input`'s heights to give one).
+    pub fn tripod(dir: &Path, run: &str, belt_mps: f64) -> RealWalk {
+        RealWalk {
+            set: RealSet::Tripod,
+            id: run.to_string(),
+            input: SubjectInput {
+                subject_id: format!("Sub_FZ {run}"),
+                setting: Some(ldh_core::Setting::Treadmill),
+                belt_speed_mps: Some(belt_mps),
+                ..SubjectInput::default()
+            },
+            dir: dir.to_path_buf(),
+        }
+    }
+
     /// `HuGaDB 01_00`, `TRIPOD PWS`.
     pub fn name(&self) -> String {
         match self.set {
@@ -118,16 +134,6 @@ pub(crate) fn real_walks() -> Option<Vec<RealWalk>> {
             dir: hu.clone(),
         })
         .collect();
-    walks.extend(TRIPOD_RUNS.map(|(run, belt)| RealWalk {
-        set: RealSet::Tripod,
-        id: run.to_string(),
-        input: SubjectInput {
-            subject_id: format!("Sub_FZ {run}"),
-            setting: Some(ldh_core::Setting::Treadmill),
-            belt_speed_mps: Some(belt),
-            ..SubjectInput::default()
-        },
-        dir: tr.clone(),
-    }));
+    walks.extend(TRIPOD_RUNS.map(|(run, belt)| RealWalk::tripod(&tr, run, belt)));
     Some(walks)
 }
