@@ -166,7 +166,7 @@ pub(crate) fn cycle_section(
     Ok(html! {
         (head)
         @for r in &reasons { p.note { (r) } "\n" }
-        (fig)
+        div.beside { (fig) } "\n"
     })
 }
 

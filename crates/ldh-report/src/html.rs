@@ -80,6 +80,13 @@ fn print_figure_css() -> String {
             w.pt()
         );
     }
+    // A chart of a subject page prints with its caption beside it, not under it: the
+    // figure, kept whole, is then only as tall as its chart.
+    css += &format!(
+        "div.beside > figure.{c} {{ width: auto; display: flex; gap: 8pt; align-items: flex-start; margin: 2px 0; }} div.beside > figure.{c} > svg {{ width: {w}pt; flex: 0 0 {w}pt; }} div.beside > figure.{c} > figcaption {{ flex: 1 1 auto; margin-top: 0; }} ",
+        c = PrintWidth::Chart.class(),
+        w = PrintWidth::Chart.pt()
+    );
     css += &format!(
         "div.figgrid {{ grid-template-columns: repeat(5, {}pt); gap: 4pt; }} div.figgrid.cols3 {{ grid-template-columns: repeat(3, {}pt); }} div.figgrid figure.plot {{ margin: 0; }} }}\n",
         PrintWidth::Fifth.pt(),

@@ -60,8 +60,7 @@ pub fn subject_html(
         }
         (recordings_table(&sides))
         (excluded_strides(&s.strides))
-        (parameter_table(&v, &sides, reference, &citations, p, &notes))
-        (subject_radar(s, &v, &sides, reference)?)
+        (parameter_table(&v, &sides, reference, &citations, p, &notes, subject_radar(s, &v, &sides, reference)?))
         (cycle_section(&plotted, &sides, reference, p)?)
         p.print-only.meta { "Printed report: the signal figures (section 3), the stride-by-stride plots (section 4), the methods and the technical appendix (sampling, outliers, mounting, what reading noticed, every quality finding with its code) are in the on-screen report." } "\n"
         div.screen-only { (signals(&plotted)?) (stride_by_stride(&plotted.strides)?) } "\n"
@@ -166,15 +165,17 @@ fn findings<'a>(
 /// channel spiking at other times) is one line in plain words saying how often and where
 /// (each is in the technical appendix).
 fn warning_box(sides: &[&RecordingRow], recordings: &[RecordingRow]) -> Markup {
-    use ldh_core::pipeline::WarningCode;
+    use ldh_core::pipeline::{Severity, WarningCode};
     let mut trials: Vec<&str> = Vec::new();
     for r in recordings.iter().filter(|r| !r.trial_id.is_empty()) {
         if !trials.contains(&r.trial_id.as_str()) {
             trials.push(&r.trial_id);
         }
     }
-    // (code, message without its trial, the trials that give it, the legs that have it)
-    let mut found: Vec<(WarningCode, &str, Vec<&str>, Vec<String>)> = Vec::new();
+    // (code, message without its trial, the trials that give it, the legs that have it, its
+    // severity)
+    type Found<'a> = (WarningCode, &'a str, Vec<&'a str>, Vec<String>, Severity);
+    let mut found: Vec<Found> = Vec::new();
     for r in sides {
         for w in r
             .warnings
@@ -195,7 +196,13 @@ fn warning_box(sides: &[&RecordingRow], recordings: &[RecordingRow]) -> Markup {
                         x.3.push(side);
                     }
                 }
-                None => found.push((w.code, message, trial.into_iter().collect(), vec![side])),
+                None => found.push((
+                    w.code,
+                    message,
+                    trial.into_iter().collect(),
+                    vec![side],
+                    w.severity,
+                )),
             }
         }
     }
@@ -210,7 +217,7 @@ fn warning_box(sides: &[&RecordingRow], recordings: &[RecordingRow]) -> Markup {
         if said[i] {
             continue;
         }
-        let (code, message, t, legs) = &found[i];
+        let (code, message, t, legs, severity) = &found[i];
         let same: Vec<usize> = (i..found.len())
             .filter(|&j| !said[j] && found[j].0 == *code && found[j].3 == *legs)
             .collect();
@@ -223,9 +230,19 @@ fn warning_box(sides: &[&RecordingRow], recordings: &[RecordingRow]) -> Markup {
             legs.join("")
         };
         if same.len() == 1 {
+            // A sensor fault's message is the tool's measurement of the fault (how many
+            // samples beyond which limit): in plain words here, the numbers in the appendix.
+            let said = if *severity == Severity::Fault {
+                format!(
+                    "{} (what the sensor recorded is in the technical appendix)",
+                    code.plain()
+                )
+            } else {
+                message.to_string()
+            };
             items.push(match t.as_slice() {
-                [] => format!("{who}: {message}"),
-                t => format!("{who} ({}): {message}", in_trials(t)),
+                [] => format!("{who}: {said}"),
+                t => format!("{who} ({}): {said}", in_trials(t)),
             });
             continue;
         }
@@ -370,11 +387,22 @@ fn steady_fact(r: &RecordingRow) -> String {
         r.steady_excluded_start.unwrap_or(0),
         r.steady_excluded_end.unwrap_or(0),
     );
+    let strides = |n: usize| {
+        if n == 1 {
+            "1 stride".to_string()
+        } else {
+            format!("{n} strides")
+        }
+    };
     let ends = match excluded {
+        // The window is the walk's (both legs'): a leg none of whose strides could be used
+        // (a faulty sensor) has none excluded as unsteady, yet its window is not the whole
+        // walk (HuGaDB 07_03's right leg read "4.7–95.0 s (the whole walk)" of 96.6 s).
+        (0, 0) if r.strides_valid == Some(0) => "no stride of this leg could be used".to_string(),
         (0, 0) => "the whole walk".to_string(),
-        (x, 0) => format!("{x} stride(s) at the start excluded"),
-        (0, y) => format!("{y} stride(s) at the end excluded"),
-        (x, y) => format!("{x} stride(s) at the start and {y} at the end excluded"),
+        (x, 0) => format!("{} at the start excluded", strides(x)),
+        (0, y) => format!("{} at the end excluded", strides(y)),
+        (x, y) => format!("{} at the start and {y} at the end excluded", strides(x)),
     };
     match (r.steady_start_s, r.steady_end_s) {
         (Some(a), Some(b)) => format!("{a:.1}–{b:.1} s ({ends})"),

@@ -170,6 +170,12 @@ pub(crate) fn clinical_summary(
     let limit = p.0.asymmetry_flag_pct;
     let first_note = notes.len();
     let rows = || v.rows.iter().filter(|r| r.q.in_summary);
+    // Every cell "not measured": one sentence, not a grid of them.
+    if let Some(why) = v.all_withheld(|r| r.q.in_summary) {
+        return html! {
+            p { "No value of this summary was measured on either leg, so its table is left out: " (why.join("; ")) "." } "\n"
+        };
+    }
     html! {
         table.summary {
             "\n"

@@ -8,6 +8,7 @@ mod headline;
 mod plain;
 mod two_trials;
 mod vocabulary;
+mod withheld;
 
 use super::*;
 use ldh_core::domain::Parameter;

@@ -200,9 +200,20 @@ pub(crate) fn trials_of_people(
                 "Trials of this person: "
                 @if let Some(href) = links.get(id) { a href=(href) { (id) } } @else { (id) }
             } "\n"
-            (trial_table(trials, &PARAMETERS))
+            @if nothing_measured(trials) {
+                p { "No value was measured in any of this person's " (trials.len()) " trials (the reasons are on the person's page)." } "\n"
+            } @else {
+                (trial_table(trials, &PARAMETERS))
+            }
         }
     }
+}
+
+/// Whether no trial has a value of any parameter: their table would be dashes only.
+fn nothing_measured(trials: &[Trial]) -> bool {
+    PARAMETERS
+        .into_iter()
+        .all(|p| trials.iter().all(|t| t.value(p).is_none()))
 }
 
 /// One person's trials side by side: per parameter of `params` the walk value of each trial,
@@ -416,7 +427,8 @@ pub(crate) fn person_trials(
     }
     let trials = trials_of(&recs);
     // Only the parameters some trial measured (a leg that failed in every trial leaves the
-    // walk values empty: a table of dashes says nothing and lengthens the printed page), and
+    // walk values empty: a table of dashes says nothing and lengthens the printed page; with
+    // none, one sentence says so), and
     // not swing, the complement of stance (the page shows it beside stance, never alone).
     let params: Vec<Parameter> = PARAMETERS
         .into_iter()
@@ -424,7 +436,12 @@ pub(crate) fn person_trials(
         .filter(|&p| trials.iter().any(|t| t.value(p).is_some()))
         .collect();
     if params.is_empty() {
-        return html! {};
+        // A table of dashes says nothing: one sentence says so (why: under the summary).
+        let ids: Vec<&str> = trials.iter().map(|t| t.id).collect();
+        return html! {
+            (title())
+            p { "No value was measured in any of the " (trials.len()) " trials (" (ids.join(", ")) "), so there is nothing to compare; why is said under the clinical summary." } "\n"
+        };
     }
     let agree = match ctx.reliability {
         Some(_) => "The trials agree: no parameter of the summary differs between the first and the last trial by more than its MDC95 (reliability table).",

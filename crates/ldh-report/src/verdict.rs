@@ -285,6 +285,37 @@ impl Verdicts {
             .filter(|r| matches!(r.asymmetry, Some(Asymmetry::Value(_, Some(true)))))
             .count()
     }
+    /// When no value and no asymmetry of the rows `keep` selects was measured, the reasons,
+    /// each once, in table order: a table of those rows would say "not measured" in every cell,
+    /// so the page says it in one sentence instead. `None` when one of them was measured (or
+    /// no row is selected).
+    pub(crate) fn all_withheld(&self, keep: impl Fn(&Row) -> bool) -> Option<Vec<String>> {
+        let mut why: Vec<String> = Vec::new();
+        let mut add = |w: &String| {
+            if !why.contains(w) {
+                why.push(w.clone());
+            }
+        };
+        let mut any = false;
+        for r in self.rows.iter().filter(|r| keep(r)) {
+            any = true;
+            for c in &r.cells {
+                match c {
+                    Cell::Value { .. } => return None,
+                    Cell::NotMeasured(w) => add(w),
+                }
+            }
+            match &r.asymmetry {
+                Some(Asymmetry::Value(..)) => return None,
+                Some(Asymmetry::NotMeasured(w)) => add(w),
+                None => {}
+            }
+        }
+        if let Some(w) = &self.no_pair {
+            add(w);
+        }
+        any.then_some(why)
+    }
     fn cells(&self) -> impl Iterator<Item = Judgement> + '_ {
         self.rows
             .iter()

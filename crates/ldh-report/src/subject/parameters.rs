@@ -64,7 +64,8 @@ fn companion(r: &RecordingRow, p: Parameter) -> Option<String> {
 }
 
 /// Section 2: every quantity, each side against the reference range, and the symmetry index,
-/// rendered from the page's verdicts (the same as the summary's).
+/// rendered from the page's verdicts (the same as the summary's); `radar` (its chart, or
+/// nothing) stands between the section's note and the table.
 pub(super) fn parameter_table(
     v: &Verdicts,
     sides: &[&RecordingRow],
@@ -72,6 +73,7 @@ pub(super) fn parameter_table(
     citations: &Citations,
     p: &ValidReportParams,
     notes: &WhyNotes,
+    radar: Markup,
 ) -> Markup {
     let first_note = notes.len();
     let find = |s: ldh_core::Side| sides.iter().find(|r| r.side == s);
@@ -80,6 +82,14 @@ pub(super) fn parameter_table(
         Some(r) => side_label(r),
         None => s.to_string(),
     };
+    // Every cell "not measured": one sentence, not a table of them (the radar has nothing
+    // to draw either).
+    if let Some(why) = v.all_withheld(|_| true) {
+        return html! {
+            h2 { "2. Gait parameters" } "\n"
+            p { "No gait parameter was measured on either leg, so the table is left out: " (why.join("; ")) "." } "\n"
+        };
+    }
     html! {
         h2 { "2. Gait parameters" } "\n"
         p.meta {
@@ -87,6 +97,10 @@ pub(super) fn parameter_table(
             (format!("{:.0}", p.0.asymmetry_flag_pct)) " % is shaded for step time, stance and stride length (the legs compared with each other, with or without a range) and for the shank angles when they have a reference range."
         }
         "\n"
+        // The figure kept whole before the table whose rows may break across pages, so
+        // the table fills the printed page around it (a figure after the table left a third
+        // of a page blank where it did not fit).
+        div.beside { (radar) } "\n"
         table.params {
             "\n"
             tr { th { "parameter" } th { "unit" } th { (label(ldh_core::Side::Left)) } th { (label(ldh_core::Side::Right)) } th { "reference range" } th { "SI (%)" } } "\n"
@@ -114,7 +128,16 @@ pub(super) fn parameter_table(
         }
         "\n"
         (notes.list_from(first_note))
-        p { (v.outside()) " value(s) lie outside the reference range; " (v.asymmetric()) " asymmetry(ies) beyond the threshold." (no_published_note(reference)) } "\n"
+        p { (counted(v.outside(), "value lies", "values lie")) " outside the reference range; " (counted(v.asymmetric(), "asymmetry", "asymmetries")) " beyond the threshold." (no_published_note(reference)) } "\n"
+    }
+}
+
+/// "1 value lies", "4 values lie": a count with its words in the right number.
+fn counted(n: usize, one: &str, many: &str) -> String {
+    if n == 1 {
+        format!("1 {one}")
+    } else {
+        format!("{n} {many}")
     }
 }
 

@@ -48,6 +48,8 @@ fn the_clinical_page_says_in_plain_words_what_the_appendix_says_with_codes() {
             }
         }
         r.warnings = WarningList(vec![lr.clone(), gyro.clone()]);
+        // One value measured, so the tables (and their reasons under them) stay.
+        r.parameters[Parameter::StrideTime] = Some(1.1);
     }
     let s = SubjectReport {
         subject_id: "J".into(),
@@ -146,7 +148,10 @@ fn a_walk_with_nothing_measured_is_not_called_normal_and_both_sensors_are_named(
     assert!(html.contains(
         "<b>To do: </b>Check both sensors (they recorded faulty signals) and record the walk again."
     ));
-    // One reason for both legs' values and their asymmetry, said once.
-    assert_eq!(html.matches("] not measured: ").count(), 1, "{html}");
-    assert!(html.contains("[1] not measured: gyroscope sensor fault</div>"));
+    // Every value withheld: one sentence per table, the reason for both legs' values and
+    // their asymmetry said once in it, no table of "not measured" cells.
+    assert_eq!(html.matches("] not measured: ").count(), 0, "{html}");
+    assert!(html.contains(
+        "No value of this summary was measured on either leg, so its table is left out: gyroscope sensor fault."
+    ), "{html}");
 }
