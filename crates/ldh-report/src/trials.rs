@@ -553,4 +553,30 @@ mod tests {
         let cadence = trials[0].value(Parameter::StepFrequency).unwrap() * 60.0;
         assert!((cadence - 95.71).abs() < 1e-9, "{cadence}");
     }
+
+    /// The cohort page's trials of one person: a person none of whose trials measured
+    /// anything gets one sentence, not a table of dashes; another person keeps the table.
+    #[test]
+    fn a_person_with_nothing_measured_gets_a_sentence_on_the_cohort_page() {
+        let mut rows = walk("t1", 1.03, 0.05);
+        rows.extend(walk("t2", 1.05, 0.05));
+        for t in ["t1", "t2"] {
+            for mut r in walk(t, 1.0, 0.05) {
+                r.subject_id = "Q".into();
+                r.parameters = Default::default();
+                r.walk_cadence_steps_per_min = None;
+                rows.push(r);
+            }
+        }
+        let html = trials_of_people(&rows, &Default::default(), || html! {}).into_string();
+        assert_eq!(
+            html.matches("<table class=\"trials\">").count(),
+            1,
+            "{html}"
+        );
+        assert!(
+            html.contains("No value was measured in any of this person's 2 trials"),
+            "{html}"
+        );
+    }
 }
