@@ -43,7 +43,16 @@
 //!    of stride time across it changes by more than `max_trend_share` (8 %) of the median
 //!    (≈ 7 standard errors of that change on a 110-stride walk with a CV of 3.4 %, room for
 //!    the slow wander of a variable walker; an 8 % trend over a whole walk is caught by the
-//!    half-of-the-walk rule first). Nothing is excluded, its means are of the whole walk, and
+//!    half-of-the-walk rule first), or by more than `max_continued_trend_share` (6 %, the
+//!    band's floor: a steady walk's wander) when its line goes on the way the strides cut
+//!    before or after it lie (`window::continues_a_cut`: the rest of a change throughout
+//!    the walk whose first or last part the segmented fit took for a transient, since a trend
+//!    has no break and where the fit cuts it is chance; issue 50's family B walker slowing by
+//!    25 % kept 40 strides drifting 7.7 % after a 28-stride cut). Either drift must also
+//!    exceed `trend_ses` (3) standard errors of the line's change for the short-term σ (the
+//!    least-squares slope's, σ / √Sxx; Draper & Smith, *Applied Regression Analysis*, 3rd ed.
+//!    1998, ch. 1), so a short window of a variable walker is not a trend by noise alone.
+//!    Nothing is excluded, its means are of the whole walk, and
 //!    its variability is withheld (`never_steady`) rather than reported as the trend's.
 //!
 //! Thresholds, from the literature rather than from the tests:
@@ -95,8 +104,17 @@ pub struct SteadyParams {
     /// stretch at one pace is shorter never becomes steady. Default 0.5.
     pub min_steady_share: f64,
     /// Largest change of stride time across the window along its least-squares line, as a
-    /// share of the median; a window with more never becomes steady. Default 0.08.
+    /// share of the median; a window with more (and more than `trend_ses` standard errors of
+    /// it) never becomes steady. Default 0.08.
     pub max_trend_share: f64,
+    /// The same for a window whose line goes on the way the strides cut before or after it
+    /// lie (the rest of a change throughout the walk, not a level after a transient): the
+    /// most a steady walk's slow wander moves it. Default 0.06 (as `min_range_share`).
+    pub max_continued_trend_share: f64,
+    /// How many standard errors of that change (from the short-term SD σ and the window's
+    /// length) a change beyond `max_trend_share` must also exceed to count as a trend. ≥ 0.
+    /// Default 3.
+    pub trend_ses: f64,
     /// Fewest steady strides of a leg for its variability (CV). Default 10.
     pub min_steady_strides: usize,
     /// Fewest valid strides per leg for the rule to exclude any: a shorter walk's median and
@@ -114,6 +132,8 @@ impl Default for SteadyParams {
             min_range_share: 0.06,
             min_steady_share: 0.5,
             max_trend_share: 0.08,
+            max_continued_trend_share: 0.06,
+            trend_ses: 3.0,
             min_steady_strides: 10,
             min_strides_to_trim: 20,
         }
@@ -150,6 +170,16 @@ impl SteadyParams {
                 self.max_trend_share,
                 "must be > 0",
             ));
+        }
+        if !(self.max_continued_trend_share.is_finite() && self.max_continued_trend_share > 0.0) {
+            return Err(LdhError::param(
+                "max_continued_trend_share",
+                self.max_continued_trend_share,
+                "must be > 0",
+            ));
+        }
+        if !(self.trend_ses.is_finite() && self.trend_ses >= 0.0) {
+            return Err(LdhError::param("trend_ses", self.trend_ses, "must be ≥ 0"));
         }
         if self.smooth_strides == 0 || self.smooth_strides.is_multiple_of(2) {
             return Err(LdhError::param(

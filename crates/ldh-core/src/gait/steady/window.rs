@@ -58,7 +58,18 @@ pub fn walk_window(stride_time_s: &[f64], leg: &[usize], p: &ValidSteadyParams) 
     let max_trend_s = p.max_trend_share * centre;
     let min_strides = p.min_steady_share * n as f64;
     let fails = |(a, b): (usize, usize)| {
-        a > b || ((b + 1 - a) as f64) < min_strides || fitted_change(&t[a..=b]).abs() > max_trend_s
+        if a > b || ((b + 1 - a) as f64) < min_strides {
+            return true;
+        }
+        // A window whose line goes on the way the strides cut before or after it lie is the
+        // rest of that change, not a level after a transient: no more than a steady walk's
+        // wander.
+        let most_s = if continues_a_cut(t, (a, b)) {
+            p.max_continued_trend_share * centre
+        } else {
+            max_trend_s
+        };
+        holds_trend(&t[a..=b], sigma, most_s, p.trend_ses)
     };
     let mut ab = trim_transients(t, core, range, sigma, p.smooth_strides);
     if fails(ab) {
@@ -174,6 +185,44 @@ pub(super) fn moving_range_sd(t: &[f64], leg: &[usize]) -> Option<f64> {
         last[l] = Some(x);
     }
     median(&mut d, EvenMedian::Mean).map(|m| m / MEDIAN_MOVING_RANGE)
+}
+
+/// Whether a window's stride times `t` (both legs, in heel-strike order) still hold a trend
+/// (step 6 of the [module docs](super)): the change along their least-squares line
+/// ([`fitted_change`]) is larger than `max_change_s` (the most a steady walk's slow wander
+/// moves it) and than `ses` standard errors of that change for stride-to-stride noise of SD
+/// `sigma` ([`change_se`]: a short, variable window's line wanders that far by chance).
+pub(super) fn holds_trend(t: &[f64], sigma: f64, max_change_s: f64, ses: f64) -> bool {
+    let change = fitted_change(t).abs();
+    change > max_change_s && change > ses * change_se(sigma, t.len())
+}
+
+/// Whether the window `[a, b]` of `t` goes on the way the strides cut before or after it lie
+/// (step 6 of the [module docs](super)): its least-squares line rises (falls) while the
+/// strides cut before it are on average shorter (longer) than the window's mean, or those cut
+/// after it longer (shorter). A belt's start-up or a slowing down ends in a level, or the walk
+/// turns back from it; a walk that changes its pace throughout goes on past wherever the
+/// segmented fit cut it.
+pub(super) fn continues_a_cut(t: &[f64], (a, b): (usize, usize)) -> bool {
+    if a > b || b >= t.len() {
+        return false;
+    }
+    let mean = |x: &[f64]| x.iter().sum::<f64>() / x.len() as f64;
+    let (level, change) = (mean(&t[a..=b]), fitted_change(&t[a..=b]));
+    (a > 0 && (mean(&t[..a]) - level) * change < 0.0)
+        || (b + 1 < t.len() && (mean(&t[b + 1..]) - level) * change > 0.0)
+}
+
+/// The standard error of [`fitted_change`] over `n` strides of independent noise of SD `sigma`:
+/// the least-squares slope's, σ / √Sxx with Sxx = n (n² − 1) / 12 for the indices 0 … n − 1
+/// (Draper & Smith, *Applied Regression Analysis*, 3rd ed. 1998, ch. 1), times the n − 1
+/// strides the change spans. Infinite below 3 strides (no change is fitted there).
+pub(super) fn change_se(sigma: f64, n: usize) -> f64 {
+    if n < 3 {
+        return f64::INFINITY;
+    }
+    let nf = n as f64;
+    sigma * (nf - 1.0) / (nf * (nf * nf - 1.0) / 12.0).sqrt()
 }
 
 /// The change of `t` from its first to its last value along its least-squares line in the
