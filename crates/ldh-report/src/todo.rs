@@ -21,7 +21,8 @@ pub(crate) enum Action {
     /// The two legs disagree, or their files do not belong together (`lr_disagreement`,
     /// `identical_legs`, `possible_swap`, `no_overlap`, `length_mismatch`, `rate_mismatch`).
     CheckFiles,
-    /// The two sensors are not on one clock (`clock_offset`).
+    /// The two sensors are not on one clock (`clock_offset`), or not known to be and the steps
+    /// look uneven (`two_clocks`).
     Synchronise,
     /// The stride length depends on the sensor's height, not given (`sensor_height_unknown`).
     MeasureHeight,
@@ -47,7 +48,7 @@ impl Action {
             | C::NoOverlap
             | C::LengthMismatch
             | C::RateMismatch => Action::CheckFiles,
-            C::ClockOffset => Action::Synchronise,
+            C::ClockOffset | C::TwoClocks => Action::Synchronise,
             C::SensorHeightUnknown => Action::MeasureHeight,
             C::NoQuietStanding => Action::StandStill,
             C::TooLittleSteady | C::NeverSteady => Action::SteadyWalk,

@@ -16,7 +16,8 @@ pub fn analyze_simulated(s: &SimSubject, params: &AnalysisParams) -> SubjectResu
 }
 
 /// What a manifest row says of a simulated subject: setting, id, group, affected side, and the
-/// sensor height (the mean of its legs', as `ldh simulate` writes it).
+/// sensor height (the mean of its legs', as `ldh simulate` writes it); and that its legs share
+/// one clock.
 pub fn simulated_input(s: &SimSubject) -> SubjectInput {
     SubjectInput {
         setting: s.family_b.as_ref().map(|p| p.setting),
@@ -24,6 +25,8 @@ pub fn simulated_input(s: &SimSubject) -> SubjectInput {
         group: Some(s.params.group.clone()),
         affected_side: s.params.affected_side,
         sensor_height_m: Some((s.left.truth.sensor_height_m + s.right.truth.sensor_height_m) / 2.0),
+        // Both legs are simulated on one clock.
+        clocks: Some(ldh_core::pipeline::Clocks::One),
         ..SubjectInput::default()
     }
 }

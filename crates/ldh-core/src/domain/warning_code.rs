@@ -70,6 +70,10 @@ warning_codes! {
     /// The two sensors are not on one clock: the walk's two double supports split as no
     /// walker's do (`pipeline::quality::clocks`); the timings between the legs are withheld.
     ClockOffset = "clock_offset", CLOCK_OFFSET;
+    /// Two files whose clocks nothing synchronised, and a step-time asymmetry that the legs'
+    /// own swing times do not back: a clock offset could have made it
+    /// (`pipeline::quality::clocks`); the timings between the legs are withheld.
+    TwoClocks = "two_clocks", TWO_CLOCKS;
     /// Stride length variability mostly the measurement's own noise (from the two legs).
     SvNoise = "sv_noise", SV_NOISE;
     /// Stride length variability whose noise cannot be checked (no other leg to compare with,
@@ -124,6 +128,7 @@ impl WarningCode {
             W::NoOverlap => "the two recordings do not overlap in time",
             W::LengthMismatch => "the two recordings differ in length",
             W::ClockOffset => "the two sensors' clocks do not agree",
+            W::TwoClocks => "two sensors not known to share a clock",
             W::SvNoise => "variability within the measurement's own noise",
             W::SvUnchecked => "variability that cannot be checked against noise",
             W::NoQuietStanding => "no quiet standing at the start",

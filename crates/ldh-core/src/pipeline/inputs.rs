@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use super::manifest::{is_manifest_text, parse_manifest, resolve_format_in};
-pub use super::subject_input::{Source, SubjectInput};
+pub use super::subject_input::{Clocks, Source, SubjectInput};
 use crate::error::{LdhError, Result};
 use crate::io::FormatSpec;
 use crate::recording::Side;

@@ -27,7 +27,7 @@ pub use bilateral::{bilateral_events, bilateral_events_on_clock, BilateralEvent,
 pub use heights::{HeightConflict, SensorHeights, MAX_SENSOR_HEIGHT_M};
 pub use inputs::{
     demo_inputs, discover, discover_with, is_manifest, read_manifest, subject_id_from_files,
-    InputOptions, PeopleTrials, Source, SubjectInput,
+    Clocks, InputOptions, PeopleTrials, Source, SubjectInput,
 };
 pub use leg::{leg_back, leg_front, memory_report, LegFront, LegResult};
 pub use manifest::{is_manifest_text, MANIFEST_COLUMNS};

@@ -174,11 +174,16 @@ pub(super) fn pair_legs(
         (&l, &r, &rhs, &rto, &lhs, &lto, walk)
     {
         let b = quality::clock_balance(&ll.leg.strides, &rl.leg.strides, (rh, rt), (lh, lt));
-        warnings.extend(b.as_ref().and_then(quality::clock_warning));
+        // A split no walker shows, else (two files) a step asymmetry no swing backs.
+        let found = b.as_ref().and_then(quality::clock_warning).or_else(|| {
+            b.as_ref()
+                .and_then(|b| quality::two_clocks_warning(b, input.clocks()))
+        });
+        warnings.extend(found);
     }
     let one_clock = !warnings
         .iter()
-        .any(|w| w.code == quality::codes::CLOCK_OFFSET);
+        .any(|w| [quality::codes::CLOCK_OFFSET, quality::codes::TWO_CLOCKS].contains(&w.code));
     // The parameters from the final strides, then what the findings withhold (`finalize`).
     // Double support (issue 49) from the other leg's events, when the two are one walk on one
     // clock.

@@ -45,6 +45,20 @@ impl Source {
     }
 }
 
+/// Whether the two legs' recordings share one clock: every timing between the legs (step time,
+/// step frequency, double support) compares one recording's events with the other's, and a
+/// clock offset between two recordings moves it (`pipeline::quality::clocks`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Clocks {
+    /// One clock: both legs read from one file (HuGaDB), the embedded demo, a simulator, or
+    /// stated by the caller.
+    One,
+    /// Two files from two sensors, nothing said of their synchronisation: their clocks may be
+    /// apart by an unknown offset (TRIPOD's Physilog units: 55–184 ms).
+    Two,
+}
+
 /// One subject (or one trial of a subject) to analyse.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 pub struct SubjectInput {
@@ -96,6 +110,10 @@ pub struct SubjectInput {
     /// that was found lists them among its reader's notes.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub unpaired: Vec<String>,
+    /// Whether the legs share one clock, when the caller knows (a simulator: one); `None`:
+    /// from the sources ([`Self::clocks`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub clocks: Option<Clocks>,
 }
 
 impl SubjectInput {
@@ -108,9 +126,56 @@ impl SubjectInput {
         }
     }
 
+    /// Whether the legs share one clock: as stated ([`Self::clocks`] field), else one when both
+    /// legs come from the same file (HuGaDB's files hold both shanks) or from the embedded demo
+    /// (simulated on one clock), two when they come from two files; `None` when the legs were
+    /// handed over without their sources and nothing was stated (not judged).
+    pub fn clocks(&self) -> Option<Clocks> {
+        if self.clocks.is_some() {
+            return self.clocks;
+        }
+        match (self.left.as_ref()?, self.right.as_ref()?) {
+            (l, r) if l == r => Some(Clocks::One),
+            (Source::Embedded(_), Source::Embedded(_)) => Some(Clocks::One),
+            _ => Some(Clocks::Two),
+        }
+    }
+
     /// The height of `side`'s sensor, m: its own, else the subject's; `None`: the run's
     /// (`--sensor-height-m`, parameters) or the assumed one.
     pub fn sensor_height_m_of(&self, side: Side) -> Option<f64> {
         self.sensor_heights().of(side)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn clocks_from_the_sources() {
+        let path = |p: &str| Some(Source::Path(PathBuf::from(p)));
+        let input = |left, right| SubjectInput {
+            left,
+            right,
+            ..SubjectInput::default()
+        };
+        // HuGaDB: one file holds both shanks.
+        let one_file = input(path("walk.txt"), path("walk.txt"));
+        assert_eq!(one_file.clocks(), Some(Clocks::One));
+        // TRIPOD: one file per shank.
+        let two_files = input(path("LS.csv"), path("RS.csv"));
+        assert_eq!(two_files.clocks(), Some(Clocks::Two));
+        // The embedded demo, simulated on one clock.
+        let demo = |r: &str| Some(Source::Embedded(r.into()));
+        let demo_input = input(demo("H01/left.csv"), demo("H01/right.csv"));
+        assert_eq!(demo_input.clocks(), Some(Clocks::One));
+        // Stated (a simulator), and not known.
+        let stated = SubjectInput {
+            clocks: Some(Clocks::One),
+            ..two_files
+        };
+        assert_eq!(stated.clocks(), Some(Clocks::One));
+        assert_eq!(input(None, None).clocks(), None);
     }
 }

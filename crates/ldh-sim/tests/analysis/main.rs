@@ -5,6 +5,7 @@
 mod agreement_retest;
 mod agreement_run;
 mod clocks;
+mod clocks_observables;
 mod events_accuracy;
 mod events_to_hugadb;
 mod events_to_legs;

@@ -7,13 +7,23 @@ use super::events_accuracy::tripod::{
 };
 use super::events_to_hugadb::hugadb_dir;
 use ldh_core::io::{read_recording, FormatSpec, ReadParams};
-use ldh_core::pipeline::{memory_report, Analysis, LoadedLeg, SubjectInput, SubjectResult};
+use ldh_core::pipeline::{memory_report, Analysis, LoadedLeg, Source, SubjectInput, SubjectResult};
 use ldh_core::recording::{Recording, Side};
 use std::path::{Path, PathBuf};
 
+/// The HuGaDB file `file` (`01_00`).
+fn hugadb_path(dir: &Path, file: &str) -> PathBuf {
+    dir.join(format!("HuGaDB_v1_walking_{file}.txt"))
+}
+
+/// TRIPOD's IMU folder of `run`.
+fn tripod_imu(dir: &Path, run: &str) -> PathBuf {
+    dir.join("Sub_FZ").join(run).join("IMU")
+}
+
 /// One HuGaDB file's shank on `side` through the built-in format map.
 fn hugadb_leg(dir: &Path, file: &str, side: &str) -> LoadedLeg {
-    let path = dir.join(format!("HuGaDB_v1_walking_{file}.txt"));
+    let path = hugadb_path(dir, file);
     let spec = FormatSpec::builtin(&format!("hugadb-{side}-shank")).unwrap();
     let rp = ReadParams::default().check().unwrap();
     let rec = read_recording(&path, Some(&spec), &rp).unwrap().0;
@@ -40,7 +50,7 @@ fn hugadb_files(dir: &Path) -> Vec<String> {
 
 /// One TRIPOD shank (`LS.csv` / `RS.csv`) of `run`, rows up to `until_s`.
 fn tripod_leg(dir: &Path, run: &str, file: &str, side: Side, until_s: f64) -> LoadedLeg {
-    let imu = dir.join("Sub_FZ").join(run).join("IMU");
+    let imu = tripod_imu(dir, run);
     let (_, acc, gyro) = read_physilog(&imu.join(file), until_s);
     let rec = Recording::new(128.0, to_ldh_frame(acc), to_ldh_frame(gyro), vec![])
         .unwrap()
@@ -74,8 +84,11 @@ impl RealWalk {
         RealWalk {
             set: RealSet::Tripod,
             id: run.to_string(),
+            // One Physilog file per shank: two clocks (`SubjectInput::clocks`).
             input: SubjectInput {
                 subject_id: format!("Sub_FZ {run}"),
+                left: Some(Source::Path(tripod_imu(dir, run).join("LS.csv"))),
+                right: Some(Source::Path(tripod_imu(dir, run).join("RS.csv"))),
                 setting: Some(ldh_core::Setting::Treadmill),
                 belt_speed_mps: Some(belt_mps),
                 ..SubjectInput::default()
@@ -126,8 +139,11 @@ pub(crate) fn real_walks() -> Option<Vec<RealWalk>> {
         .into_iter()
         .map(|file| RealWalk {
             set: RealSet::HuGaDb,
+            // One file holds both shanks: one clock (`SubjectInput::clocks`).
             input: SubjectInput {
                 subject_id: file.clone(),
+                left: Some(Source::Path(hugadb_path(&hu, &file))),
+                right: Some(Source::Path(hugadb_path(&hu, &file))),
                 ..SubjectInput::default()
             },
             id: file,

@@ -38,8 +38,8 @@ pub use attitude::{
     STANCE_PITCH_MAX_DEG, STANCE_PITCH_SPREAD_DEG,
 };
 pub use clocks::{
-    balance as clock_balance, clock_warning, DsBalance, BETWEEN_LEGS, MIN_BALANCE_STRIDES,
-    MIN_DS_SHARE,
+    balance as clock_balance, clock_warning, two_clocks_warning, DsBalance, BETWEEN_LEGS,
+    MAX_UNBACKED_STEP_SHARE, MIN_BALANCE_STRIDES, MIN_DS_SHARE,
 };
 pub use faults::{
     detect_faults, fault_warning, withhold_faulty_strides, ChannelFault, FaultKind, CHANNEL_NAMES,
