@@ -69,7 +69,9 @@ fn simulate_writes_a_cohort_and_is_byte_identical_for_a_seed_whatever_the_jobs()
     );
     assert!(fa == fb, "same seed, different bytes with --jobs 1 and 2");
     let manifest = std::fs::read_to_string(a.join("manifest.csv")).unwrap();
-    assert!(manifest.starts_with("subject_id,group,affected_side,left,right,sensor_height_m\n"));
+    assert!(
+        manifest.starts_with("subject_id,group,affected_side,left,right,sensor_height_m,clocks\n")
+    );
     assert_eq!(manifest.lines().filter(|l| l.contains(",ldh,")).count(), 3);
     // Every written recording is read back by `inspect` without error.
     let left = a.join("L01/left.csv");

@@ -178,7 +178,9 @@ impl ManifestRow {
 
 /// Render manifest rows as CSV text.
 /// The `setting` column is written only when a row has a setting (family B), so family A
-/// manifests keep their columns.
+/// manifests keep their columns. The last column, `clocks`, says `one` on every row: both
+/// legs are simulated on one clock although written as two files (the manifest's `clocks`,
+/// docs/input.md), so the timings between the legs are vouched for.
 pub fn manifest_csv(rows: &[ManifestRow]) -> String {
     let with_setting = rows.iter().any(|r| r.setting.is_some());
     let with_trial = rows.iter().any(|r| r.trial_id.is_some());
@@ -187,7 +189,9 @@ pub fn manifest_csv(rows: &[ManifestRow]) -> String {
     } else {
         "subject_id,group,affected_side,left,right,sensor_height_m"
     });
-    out.push_str(if with_setting { ",setting\n" } else { "\n" });
+    out.push_str(if with_setting { ",setting" } else { "" });
+    out.push_str(",clocks\n");
+    let clocks = ldh_core::pipeline::Clocks::One.as_str();
     for r in rows {
         out.push_str(&r.subject_id);
         if with_trial {
@@ -206,6 +210,8 @@ pub fn manifest_csv(rows: &[ManifestRow]) -> String {
             out.push(',');
             out.push_str(r.setting.map(|s| s.as_str()).unwrap_or(""));
         }
+        out.push(',');
+        out.push_str(clocks);
         out.push('\n');
     }
     out

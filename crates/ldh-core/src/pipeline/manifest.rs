@@ -13,14 +13,16 @@
 //! `trial_id` (or `trial`): several rows of one `subject_id` are that person's trials, analysed
 //! one by one and averaged per person before any statistic ([`crate::cohort::Cohort`]);
 //! `belt_speed_mps` (the treadmill's belt speed, m/s, 0 < v ≤ 5; only with `setting`
-//! `treadmill`) and `visit` (a free label of the session, e.g. `pre` or `2026-03-01`: the
-//! reports keep a person's visits apart).
+//! `treadmill`), `visit` (a free label of the session, e.g. `pre` or `2026-03-01`: the
+//! reports keep a person's visits apart) and `clocks` (`one`: the two sensors were
+//! synchronised, so the timings between the legs are vouched for; `two`; empty: from the files,
+//! one file for both legs is one clock, two files are two: [`SubjectInput::clocks`]).
 
 use std::collections::HashMap;
 use std::path::Path;
 
 use super::heights::SensorHeights;
-use super::subject_input::{Source, SubjectInput};
+use super::subject_input::{Clocks, Source, SubjectInput};
 use crate::domain::Group;
 use crate::error::{LdhError, Location, Result};
 use crate::io::table::{Row, Table, TableFormat};
@@ -28,7 +30,7 @@ use crate::io::FormatSpec;
 use crate::recording::{Setting, Side};
 
 /// The columns a manifest may have.
-pub const MANIFEST_COLUMNS: [&str; 16] = [
+pub const MANIFEST_COLUMNS: [&str; 17] = [
     "subject_id",
     "trial_id",
     "trial",
@@ -45,6 +47,7 @@ pub const MANIFEST_COLUMNS: [&str; 16] = [
     "right_format",
     "belt_speed_mps",
     "visit",
+    "clocks",
 ];
 
 /// The fastest treadmill belt speed a manifest may give, m/s (a sprint; faster is a typo).
@@ -311,6 +314,14 @@ fn parse_row(
     let visit = Some(row.get("visit"))
         .filter(|v| !v.is_empty())
         .map(str::to_string);
+    let clocks = Some(row.get("clocks"))
+        .filter(|v| !v.is_empty())
+        .map(|v| {
+            v.parse::<Clocks>().map_err(|_| {
+                row.invalid_value("clocks", v, "'one' (synchronised sensors), 'two' or empty")
+            })
+        })
+        .transpose()?;
     let both = spec("format")?;
     let left_format = spec("left_format")?.or_else(|| both.clone());
     let right_format = spec("right_format")?.or(both);
@@ -331,6 +342,7 @@ fn parse_row(
         trial_id: None,
         belt_speed_mps,
         visit,
+        clocks,
         ..SubjectInput::default()
     })
 }

@@ -59,6 +59,29 @@ pub enum Clocks {
     Two,
 }
 
+impl Clocks {
+    /// The manifest's spelling (`one`, `two`), which [`std::str::FromStr`] reads back.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Clocks::One => "one",
+            Clocks::Two => "two",
+        }
+    }
+}
+
+impl std::str::FromStr for Clocks {
+    type Err = String;
+    /// `one` (the sensors were synchronised, or one device recorded both legs) or `two`,
+    /// case-insensitive.
+    fn from_str(s: &str) -> std::result::Result<Self, String> {
+        let s = s.trim().to_ascii_lowercase();
+        [Clocks::One, Clocks::Two]
+            .into_iter()
+            .find(|c| c.as_str() == s)
+            .ok_or_else(|| format!("'{s}' is not 'one' or 'two'"))
+    }
+}
+
 /// One subject (or one trial of a subject) to analyse.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 pub struct SubjectInput {

@@ -456,3 +456,27 @@ fn belt_speed_and_visit_are_read_checked_and_carried_to_the_rows() {
     let e = err(&format!("{head}S1,a,b,,1.2\n"));
     assert!(e.contains("treadmill"), "{e}");
 }
+
+#[test]
+fn clocks_are_stated_in_the_manifest_or_read_from_the_files() {
+    let (_d, m) = manifest(
+        "subject_id,trial_id,left,right,clocks\n\
+         P1,1,a/l.csv,a/r.csv,one\n\
+         P1,2,b/l.csv,b/r.csv,TWO\n\
+         P1,3,c/l.csv,c/r.csv,\n\
+         P2,1,both.txt,both.txt,\n",
+    );
+    let v = read_manifest(&m).unwrap();
+    // Synchronised sensors, stated: one clock although two files.
+    assert_eq!(v[0].clocks(), Some(Clocks::One));
+    assert_eq!(v[1].clocks(), Some(Clocks::Two));
+    // Not stated: two files are two clocks, one file holding both legs one.
+    assert_eq!(v[2].clocks(), Some(Clocks::Two));
+    assert_eq!(v[3].clocks(), Some(Clocks::One));
+    let e = err("subject_id,left,right,clocks\nS1,a,b,synced\n");
+    assert!(
+        e.contains("manifest.csv:2:4: column 'clocks': 'synced' is not valid")
+            && e.contains("'one' (synchronised sensors)"),
+        "{e}"
+    );
+}
