@@ -172,7 +172,7 @@ fn stats_reliability_on_a_simulated_retest_cohort_writes_the_table() {
     ]);
     let manifest = std::fs::read_to_string(c.join("manifest.csv")).unwrap();
     assert!(
-        manifest.starts_with("subject_id,trial_id,group,affected_side,left,right,sensor_height_m\nH01,T1,healthy,none,H01/T1/left.csv,H01/T1/right.csv,"),
+        manifest.starts_with("subject_id,trial_id,group,affected_side,left,right,sensor_height_m,clocks\nH01,T1,healthy,none,H01/T1/left.csv,H01/T1/right.csv,"),
         "{manifest}"
     );
     assert_eq!(manifest.lines().count(), 1 + 4 * 3);
