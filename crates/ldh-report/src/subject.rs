@@ -130,8 +130,13 @@ fn header(s: &SubjectReport, sides: &[&RecordingRow]) -> Markup {
 /// Findings whose only effect is a value withheld (said in the headline's "could not be
 /// measured") or that change no number: they stay out of "Check before reading". No quiet
 /// standing withholds the two shank angles and changes nothing else; its message, on the
-/// clinical page, read as the tool's own reasoning (issue 50's reading of a HuGaDB page).
-const NOT_FOR_THE_BOX: [ldh_core::pipeline::WarningCode; 5] = [
+/// clinical page, read as the tool's own reasoning (issue 50's reading of a HuGaDB page). The
+/// two clock findings withhold only the timings between the legs, which the headline's "could
+/// not be measured" names and its to-do (synchronise the sensors) answers; their measurement
+/// (milliseconds of double support and swing) is for the technical appendix.
+const NOT_FOR_THE_BOX: [ldh_core::pipeline::WarningCode; 7] = [
+    ldh_core::pipeline::codes::CLOCK_OFFSET,
+    ldh_core::pipeline::codes::TWO_CLOCKS,
     ldh_core::pipeline::codes::NO_QUIET_STANDING,
     ldh_core::pipeline::codes::SENSOR_HEIGHT_UNKNOWN,
     ldh_core::pipeline::codes::SV_NOISE,

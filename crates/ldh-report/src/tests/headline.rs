@@ -546,6 +546,12 @@ fn steps_made_uneven_by_two_clocks_are_not_named() {
             Some("Synchronise the two sensors' clocks before the next recording (the device's own synchronisation, or both started together), so the timings between the legs can be measured."),
             "{code}"
         );
+        // The headline says it; the clinical page's box does not repeat the measurement.
+        assert!(!html.contains("Check before reading"), "{code}");
+        assert!(
+            html.contains(&format!("{code} message")),
+            "{code}: in the appendix"
+        );
         // The walk's cadence is from each leg's own strides, still measured.
         let cadence = v.rows.iter().find(|r| r.q.label() == "Cadence").unwrap();
         assert!(matches!(cadence.cells[0], Cell::Value { .. }));
