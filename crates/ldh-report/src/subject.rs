@@ -313,7 +313,7 @@ fn missing(s: &SubjectReport) -> Vec<String> {
         }
     }
     if s.traces.is_none() {
-        missing.push("Signal plots are not available: this report was built from result tables without signal traces (run `ldh analyze --report` to include them).".into());
+        missing.push("Signal plots are not available: this report was built from result tables without signal traces.".into());
     }
     missing
 }
@@ -378,12 +378,20 @@ fn facts(r: &RecordingRow) -> [String; 11] {
             _ => "–".into(),
         },
         steady_fact(r),
-        if r.parameters.sta_status.is_empty() {
-            "computed".into()
-        } else {
-            format!("not computed: {}", r.parameters.sta_status)
-        },
+        sta_fact(&r.parameters.sta_status),
     ]
+}
+
+/// STA's line of the facts: "computed", else the core's status, which says "not computed" or
+/// "not measured" itself when it starts so (said once), else is the reason it was not computed.
+fn sta_fact(status: &str) -> String {
+    if status.is_empty() {
+        "computed".into()
+    } else if status.starts_with("not ") {
+        status.into()
+    } else {
+        format!("not computed: {status}")
+    }
 }
 
 /// The steady window of a side in words: "12.0–80.0 s (4 strides at the start excluded)".

@@ -79,7 +79,8 @@ def analyze(
     format : str, optional
         Sensor format name or TOML column map; default: detect.
     compute_sta : bool, optional
-        Compute the Lyapunov stability STA (default True).
+        Compute the Lyapunov stability STA (default True); with False its ``sta_status``
+        reads "not computed: turned off for this run" (``--no-sta`` on the command line).
     sensor_height_m : float, optional
         Sensor height above the ankle when the manifest has none, in metres. Default: not
         given; 0.10 m is then assumed and each leg gets a ``sensor_height_unknown`` finding in
@@ -281,7 +282,8 @@ def analyze_recording(
         Sensor height above the ankle, m; when not given, 0.10 m is assumed and checked
         (``sensor_height_unknown`` in ``warnings``, as for :func:`analyze`).
     compute_sta : bool
-        Compute the Lyapunov stability STA.
+        Compute the Lyapunov stability STA; with False its status reads "not computed:
+        turned off for this run".
     setting : {"overground", "treadmill"}, optional
         Where the walk happened; on a treadmill no stride is flagged as a turn.
 
