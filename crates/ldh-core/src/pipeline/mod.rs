@@ -22,7 +22,7 @@ mod subject_input;
 
 pub use crate::domain::Group;
 pub use analysis::{AnalysedLeg, Analysis, LentHeelStrikes, Many};
-pub use batch::{bare_subject, leg_from_arrays};
+pub use batch::{arrays_subject, bare_subject, leg_from_arrays, ARRAYS_CLOCKS};
 pub use bilateral::{bilateral_events, bilateral_events_on_clock, BilateralEvent, EventKind};
 pub use heights::{HeightConflict, SensorHeights, MAX_SENSOR_HEIGHT_M};
 pub use inputs::{
