@@ -8,7 +8,7 @@ use maud::{html, Markup};
 
 use super::cycle::cycle_section;
 use super::headline::{headline, make as make_headline};
-use super::html::{count, fmt, page, red_box, side_label, VERSION};
+use super::html::{count, counted, fmt, page, red_box, side_label, VERSION};
 use super::reference::Citations;
 use super::summary::{clinical_summary, WhyNotes};
 use super::trials::person_trials;
@@ -400,13 +400,7 @@ fn steady_fact(r: &RecordingRow) -> String {
         r.steady_excluded_start.unwrap_or(0),
         r.steady_excluded_end.unwrap_or(0),
     );
-    let strides = |n: usize| {
-        if n == 1 {
-            "1 stride".to_string()
-        } else {
-            format!("{n} strides")
-        }
-    };
+    let strides = |n: usize| counted(n, "stride", "strides");
     let ends = match excluded {
         // The window is the walk's (both legs'): a leg none of whose strides could be used
         // (a faulty sensor) has none excluded as unsteady, yet its window is not the whole
