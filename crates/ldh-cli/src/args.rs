@@ -197,7 +197,8 @@ pub struct AnalyzeArgs {
     /// 1 MB); the flags above, when given, override it.
     #[arg(long)]
     pub params: Option<PathBuf>,
-    /// Skip the Lyapunov exponent (STA).
+    /// Skip the Lyapunov exponent (STA); the tables and pages then say "not computed: turned
+    /// off for this run".
     #[arg(long)]
     pub no_sta: bool,
     /// Also write the HTML reports (as `ldh report`) to <OUT>/reports, and the signal traces

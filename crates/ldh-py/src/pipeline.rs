@@ -169,9 +169,11 @@ pub(crate) fn analyze<'py>(
 }
 
 /// One subject's two legs given as arrays (six channels each, each leg at its own rate: the
-/// core warns when they differ by more than 0.5 %); the same tables as `analyze`.
+/// core warns when they differ by more than 0.5 %); the same tables as `analyze`. `clocks`
+/// (`"one"`, `"two"`) is read by the core's [`core::Clocks`]; `None` is the core's default for
+/// arrays ([`core::arrays_subject`]).
 #[pyfunction]
-#[pyo3(signature = (left, right, left_fs_hz, right_fs_hz, subject_id="subject", model=None, detector=None, sensor_height_m=None, compute_sta=None, params=None, setting=None, left_sensor_height_m=None, right_sensor_height_m=None))]
+#[pyo3(signature = (left, right, left_fs_hz, right_fs_hz, subject_id="subject", model=None, detector=None, sensor_height_m=None, compute_sta=None, params=None, setting=None, left_sensor_height_m=None, right_sensor_height_m=None, clocks=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn analyze_pair<'py>(
     py: Python<'py>,
@@ -188,6 +190,7 @@ pub(crate) fn analyze_pair<'py>(
     setting: Option<String>,
     left_sensor_height_m: Option<f64>,
     right_sensor_height_m: Option<f64>,
+    clocks: Option<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let o = options(model, detector, sensor_height_m, compute_sta, params)?;
     let (l, r) = (vecs(&left)?, vecs(&right)?);
@@ -197,11 +200,12 @@ pub(crate) fn analyze_pair<'py>(
         .detach(move || -> Result<SubjectResult, LdhError> {
             let p = o.params()?;
             let heights = o.heights(left_sensor_height_m, right_sensor_height_m)?;
+            let clocks = clocks.as_deref().map(str::parse).transpose()?;
             let subject = core::SubjectInput {
                 setting: setting_of(setting.as_deref())?,
                 left_sensor_height_m: heights.left_m,
                 right_sensor_height_m: heights.right_m,
-                ..core::bare_subject(&id)
+                ..core::arrays_subject(&id, clocks)
             };
             let leg = |c: [Vec<f64>; 6], fs: f64, side| {
                 let [a, b, cc, d, e, f] = c;

@@ -9,7 +9,7 @@ use maud::{html, Markup};
 use std::cell::Cell;
 use std::collections::HashMap;
 
-use super::html::{base_name, count, figure, fmt, page, side_label, VERSION};
+use super::html::{base_name, count, counted, figure, fmt, page, plural, side_label, VERSION};
 use super::trials::{trials_of_people, Counts};
 use super::verdict::verdicts;
 use super::{CohortReport, Reference, ReportParams};
@@ -57,7 +57,6 @@ fn header(rows: &[RecordingRow], context: &super::RunContext) -> Markup {
     // People (subject_id) apart from their trials (manifest `trial_id`).
     let k = Counts::of(rows);
     let model = rows.first().map(|r| r.model.as_str()).unwrap_or("");
-    let plural = |n: usize, one: &'static str, many: &'static str| if n == 1 { one } else { many };
     html! {
         h1 { "Cohort gait report" } "\n"
         p.meta {
@@ -334,7 +333,7 @@ fn why_no_groups(rows: &[RecordingRow]) -> String {
     }
     let left_out: Vec<String> = out
         .iter()
-        .map(|(why, n)| format!("{n} {} {why}", if *n == 1 { "person" } else { "people" }))
+        .map(|(why, n)| format!("{} {why}", counted(*n, "person", "people")))
         .collect();
     let mut s = format!(
         "they compare the ldh group (affected side given) with the healthy group, each with at least {} people with both legs analysed; this cohort has {ldh} and {healthy}.",

@@ -5,6 +5,7 @@
 
 use maud::{html, Markup};
 
+use super::html::plural;
 use super::verdict::{Asymmetry, Cell, Judgement, Row, Scope, Verdicts};
 use super::Reference;
 use ldh_core::output::{Parameter, RecordingRow};
@@ -198,7 +199,7 @@ fn findings(v: &Verdicts, reference: &Reference) -> Vec<String> {
         all.push((
             format!(
                 "{rest} more {} marked in the tables below (▲/▼ outside the normal range, ◆ asymmetric).",
-                if rest == 1 { "value is" } else { "values are" }
+                plural(rest, "value is", "values are")
             ),
             0,
         ));

@@ -175,6 +175,21 @@ pub(crate) fn base_name(source: &str) -> String {
         .join("; ")
 }
 
+/// The word of a count in its number: `plural(1, "person", "people")` is "person", any other
+/// count (0 too) takes `many`. The pages' one pluraliser.
+pub(crate) fn plural<'a>(n: usize, one: &'a str, many: &'a str) -> &'a str {
+    if n == 1 {
+        one
+    } else {
+        many
+    }
+}
+
+/// A count with its words in the right number: "1 value lies", "4 values lie", "0 strides".
+pub(crate) fn counted(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", plural(n, one, many))
+}
+
 /// An optional count, an en dash when missing.
 pub(crate) fn count(v: Option<usize>) -> String {
     v.map(|v| v.to_string()).unwrap_or("–".into())
@@ -195,5 +210,20 @@ pub(crate) fn red_box(title: &str, items: &[String]) -> Markup {
         @if !items.is_empty() {
             div.missing { b { (title) } ul { @for i in items { li { (i) } } } } "\n"
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counts_take_their_words_in_the_right_number() {
+        assert_eq!(plural(1, "person", "people"), "person");
+        assert_eq!(plural(0, "person", "people"), "people");
+        assert_eq!(plural(2, "value is", "values are"), "values are");
+        assert_eq!(counted(1, "value lies", "values lie"), "1 value lies");
+        assert_eq!(counted(4, "value lies", "values lie"), "4 values lie");
+        assert_eq!(counted(0, "asymmetry", "asymmetries"), "0 asymmetries");
     }
 }

@@ -8,7 +8,7 @@ use maud::{html, Markup};
 
 use super::cycle::cycle_section;
 use super::headline::{headline, make as make_headline};
-use super::html::{count, fmt, page, red_box, side_label, VERSION};
+use super::html::{count, counted, fmt, page, red_box, side_label, VERSION};
 use super::reference::Citations;
 use super::summary::{clinical_summary, WhyNotes};
 use super::trials::person_trials;
@@ -313,7 +313,7 @@ fn missing(s: &SubjectReport) -> Vec<String> {
         }
     }
     if s.traces.is_none() {
-        missing.push("Signal plots are not available: this report was built from result tables without signal traces (run `ldh analyze --report` to include them).".into());
+        missing.push("Signal plots are not available: this report was built from result tables without signal traces.".into());
     }
     missing
 }
@@ -378,12 +378,20 @@ fn facts(r: &RecordingRow) -> [String; 11] {
             _ => "–".into(),
         },
         steady_fact(r),
-        if r.parameters.sta_status.is_empty() {
-            "computed".into()
-        } else {
-            format!("not computed: {}", r.parameters.sta_status)
-        },
+        sta_fact(&r.parameters.sta_status),
     ]
+}
+
+/// STA's line of the facts: "computed", else the core's status, which says "not computed" or
+/// "not measured" itself when it starts so (said once), else is the reason it was not computed.
+fn sta_fact(status: &str) -> String {
+    if status.is_empty() {
+        "computed".into()
+    } else if status.starts_with("not ") {
+        status.into()
+    } else {
+        format!("not computed: {status}")
+    }
 }
 
 /// The steady window of a side in words: "12.0–80.0 s (4 strides at the start excluded)".
@@ -392,13 +400,7 @@ fn steady_fact(r: &RecordingRow) -> String {
         r.steady_excluded_start.unwrap_or(0),
         r.steady_excluded_end.unwrap_or(0),
     );
-    let strides = |n: usize| {
-        if n == 1 {
-            "1 stride".to_string()
-        } else {
-            format!("{n} strides")
-        }
-    };
+    let strides = |n: usize| counted(n, "stride", "strides");
     let ends = match excluded {
         // The window is the walk's (both legs'): a leg none of whose strides could be used
         // (a faulty sensor) has none excluded as unsteady, yet its window is not the whole

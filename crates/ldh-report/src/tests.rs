@@ -143,6 +143,7 @@ fn a_subject_without_anything_still_renders() {
     assert!(html.contains("<title>Gait report — X&lt;1&gt;</title>"));
     assert!(html.contains("No left recording was given."));
     assert!(html.contains("No strides were detected."));
+    assert!(html.contains("without signal traces.") && !html.contains("ldh analyze"));
     let c = cohort_html(&CohortReport::default()).unwrap();
     assert!(c.contains("No group statistics"));
 }

@@ -367,7 +367,7 @@ impl Disagreement {
     fn by(&self, noise: bool) -> &'static str {
         match (self.by_mdc, noise) {
             (true, _) => "by more than the measurement's own noise (MDC95 of the reliability table)",
-            (false, true) => "by more than 10 % (without a reliability table, ldh report --reliability, whether this is beyond the measurement's noise is not known)",
+            (false, true) => "by more than 10 % (without a reliability table, whether this is beyond the measurement's noise is not known)",
             (false, false) => "by more than 10 %",
         }
     }
@@ -508,9 +508,9 @@ mod tests {
         assert_eq!(
             named.headline(),
             "The trials disagree in stride time and stride time variability by more than 10 % \
-             (without a reliability table, ldh report --reliability, whether this is beyond the \
-             measurement's noise is not known): the page shows their mean; look at each trial \
-             under \"Trials side by side\" before relying on it."
+             (without a reliability table, whether this is beyond the measurement's noise is \
+             not known): the page shows their mean; look at each trial under \"Trials side by \
+             side\" before relying on it."
         );
     }
 
@@ -528,9 +528,9 @@ mod tests {
             d.headline(),
             "The trials were walked at different belt speeds (PWS 1.03, PWS-20 0.83 m/s), and \
              they differ in stride time and stride time variability by more than 10 % (without a \
-             reliability table, ldh report --reliability, whether this is beyond the \
-             measurement's noise is not known): the page shows the mean of different speeds; \
-             look at each trial under \"Trials side by side\" before relying on it."
+             reliability table, whether this is beyond the measurement's noise is not known): \
+             the page shows the mean of different speeds; look at each trial under \"Trials \
+             side by side\" before relying on it."
         );
         assert!(d.sentence(false).starts_with(
             "The trials were walked at different belt speeds (PWS 1.03, PWS-20 0.83 m/s) and \

@@ -120,7 +120,7 @@ pub(crate) fn headline_sentence(c: &VisitChanges) -> String {
     );
     let Some(source) = &c.source else {
         return format!(
-            "{opening} The changes between the visits are listed under \"Change between visits\" and none is judged: without a reliability table (ldh report --reliability) the measurement's own noise is not known, so no change can be told apart from it."
+            "{opening} The changes between the visits are listed under \"Change between visits\" and none is judged: without a reliability table the measurement's own noise is not known, so no change can be told apart from it."
         );
     };
     let beyond: Vec<String> = c
@@ -162,7 +162,7 @@ pub(crate) fn visits_section(c: &VisitChanges, title: Markup) -> Markup {
             @if let Some(s) = &c.source {
                 "A change is marked (▲ larger, ▼ smaller) only when it exceeds the MDC95, the smallest change this measurement tells from its own trial-to-trial noise with 95 % confidence (" (s) "); unmarked changes lie within the noise."
             } @else {
-                "No change is marked: no reliability table was given, so the measurement's own noise is not known here. Give one with --reliability (made by ldh stats --reliability from repeated trials)."
+                "No change is marked: no reliability table (made from repeated trials of the same people) was given, so the measurement's own noise is not known here."
             }
         } "\n"
         table.visits {

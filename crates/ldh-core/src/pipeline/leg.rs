@@ -21,6 +21,11 @@ use crate::preprocess::preprocess;
 use crate::recording::{Recording, Side};
 use crate::timings::{Stage, StageTimings};
 
+/// STA's status when the run turned it off: data (recordings.csv, the pages), so it says what
+/// happened in plain words and names no switch; the CLI's and Python's docs say which of
+/// theirs does it (`--no-sta`, `compute_sta=False`).
+pub const STA_TURNED_OFF: &str = "not computed: turned off for this run";
+
 /// The analysis of one leg.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct LegResult {
@@ -175,10 +180,9 @@ pub fn leg_back(
         );
         t.lap(Stage::Sta, &mut clock);
     } else if !params.compute_sta {
-        // Said as such, not a bare "not computed" a reader takes for a failure.
-        parameters.sta_status =
-            "not computed: turned off for this run (--no-sta, or compute_sta=False in Python)"
-                .into();
+        // Said as such, not a bare "not computed" a reader takes for a failure; which switch
+        // does it is the front ends' to say (`--no-sta`, `compute_sta=False`), not the page's.
+        parameters.sta_status = STA_TURNED_OFF.into();
     }
     withhold(&mut parameters, &checks.warnings);
     // A faulty gyroscope's events are not lent to the other leg's step time (nor, issue 49,

@@ -22,14 +22,14 @@ mod subject_input;
 
 pub use crate::domain::Group;
 pub use analysis::{AnalysedLeg, Analysis, LentHeelStrikes, Many};
-pub use batch::{bare_subject, leg_from_arrays};
+pub use batch::{arrays_subject, bare_subject, leg_from_arrays, ARRAYS_CLOCKS};
 pub use bilateral::{bilateral_events, bilateral_events_on_clock, BilateralEvent, EventKind};
 pub use heights::{HeightConflict, SensorHeights, MAX_SENSOR_HEIGHT_M};
 pub use inputs::{
     demo_inputs, discover, discover_with, is_manifest, read_manifest, subject_id_from_files,
     Clocks, InputOptions, PeopleTrials, Source, SubjectInput,
 };
-pub use leg::{leg_back, leg_front, memory_report, LegFront, LegResult};
+pub use leg::{leg_back, leg_front, memory_report, LegFront, LegResult, STA_TURNED_OFF};
 pub use manifest::{is_manifest_text, MANIFEST_COLUMNS};
 pub use many::{bounded_jobs, check_output_names, FolderOptions, FolderSummary, KeptRun};
 pub use quality::{

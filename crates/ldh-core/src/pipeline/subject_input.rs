@@ -70,15 +70,16 @@ impl Clocks {
 }
 
 impl std::str::FromStr for Clocks {
-    type Err = String;
+    type Err = LdhError;
     /// `one` (the sensors were synchronised, or one device recorded both legs) or `two`,
-    /// case-insensitive.
-    fn from_str(s: &str) -> std::result::Result<Self, String> {
-        let s = s.trim().to_ascii_lowercase();
+    /// case-insensitive; anything else is a parameter error naming the value as given (the
+    /// manifest's `clocks` column and Python's `clocks=` read it with this).
+    fn from_str(s: &str) -> Result<Self> {
+        let key = s.trim().to_ascii_lowercase();
         [Clocks::One, Clocks::Two]
             .into_iter()
-            .find(|c| c.as_str() == s)
-            .ok_or_else(|| format!("'{s}' is not 'one' or 'two'"))
+            .find(|c| c.as_str() == key)
+            .ok_or_else(|| LdhError::param("clocks", s, "expected 'one' or 'two'"))
     }
 }
 
@@ -133,8 +134,9 @@ pub struct SubjectInput {
     /// that was found lists them among its reader's notes.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub unpaired: Vec<String>,
-    /// Whether the legs share one clock, when the caller knows (a simulator: one); `None`:
-    /// from the sources ([`Self::clocks`]).
+    /// Whether the legs share one clock, when the caller knows (a simulator: one; two arrays:
+    /// as said, else two, [`super::arrays_subject`]); `None`: from the sources
+    /// ([`Self::clocks`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub clocks: Option<Clocks>,
 }
@@ -200,5 +202,15 @@ mod tests {
         };
         assert_eq!(stated.clocks(), Some(Clocks::One));
         assert_eq!(input(None, None).clocks(), None);
+    }
+
+    #[test]
+    fn clocks_are_read_by_name_and_a_bad_value_is_named() {
+        assert_eq!(" One ".parse::<Clocks>().unwrap(), Clocks::One);
+        assert_eq!("TWO".parse::<Clocks>().unwrap(), Clocks::Two);
+        let e = "three".parse::<Clocks>().unwrap_err();
+        assert_eq!(e.kind(), crate::error::ErrorKind::Param);
+        let msg = e.to_string();
+        assert!(msg.contains("clocks") && msg.contains("three"), "{msg}");
     }
 }

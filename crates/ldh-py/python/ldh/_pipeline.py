@@ -40,6 +40,13 @@ def _setting(setting: Optional[str]) -> Optional[str]:
     return setting
 
 
+def _clocks(clocks: Optional[str]) -> Optional[str]:
+    # Only the type here: the value is read by the core (the manifest's `clocks` column's rule).
+    if clocks is not None and not isinstance(clocks, str):
+        raise LdhParamError(f"clocks must be 'one', 'two' or None, got {clocks!r}")
+    return clocks
+
+
 def _subject_id(subject_id: Optional[str]) -> Optional[str]:
     if subject_id is not None and not isinstance(subject_id, str):
         raise LdhParamError(f"subject_id must be a str, got {subject_id!r}")
@@ -79,7 +86,8 @@ def analyze(
     format : str, optional
         Sensor format name or TOML column map; default: detect.
     compute_sta : bool, optional
-        Compute the Lyapunov stability STA (default True).
+        Compute the Lyapunov stability STA (default True); with False its ``sta_status``
+        reads "not computed: turned off for this run" (``--no-sta`` on the command line).
     sensor_height_m : float, optional
         Sensor height above the ankle when the manifest has none, in metres. Default: not
         given; 0.10 m is then assumed and each leg gets a ``sensor_height_unknown`` finding in
@@ -202,6 +210,7 @@ def analyze_pair(
     as_frame: Optional[bool] = None,
     left_sensor_height_m: Optional[float] = None,
     right_sensor_height_m: Optional[float] = None,
+    clocks: Optional[str] = None,
 ) -> Result:
     """Analyse one subject's two recordings given as arrays, with step time and step frequency
     from both legs — the same tables as :func:`analyze`.
@@ -226,6 +235,16 @@ def analyze_pair(
     left_sensor_height_m, right_sensor_height_m : float, optional
         One leg's sensor height, m (each wins over ``sensor_height_m`` for its leg; the two may
         not differ), as in :func:`analyze`.
+    clocks : {"one", "two"}, optional
+        Whether the two arrays share one clock: ``"one"`` when one device recorded both legs
+        (e.g. both shanks read from one HuGaDB file) or the two sensors were synchronised;
+        ``"two"`` for two separately recorded sensors. Default (None): ``"two"``, as for two
+        files given to :func:`analyze` — arrays carry nothing that shows one clock, and two
+        clocks only withhold a step-time asymmetry the legs' own swing times do not back
+        (``two_clocks`` in ``.warnings``: step time, its asymmetry, step frequency and double
+        support not measured), where one clock taken on trust would report a clock offset as
+        the walker's asymmetry. The manifest's ``clocks`` column; anything else raises
+        ``ldh.LdhParamError`` naming the value.
 
     Returns
     -------
@@ -242,6 +261,7 @@ def analyze_pair(
         lv, rv, _rate(left, fs_hz, "left"), _rate(right, fs_hz, "right"), _subject_id(subject_id),
         model, detector, opt_float(sensor_height_m), compute_sta, params_dict(params),
         _setting(setting), opt_float(left_sensor_height_m), opt_float(right_sensor_height_m),
+        _clocks(clocks),
     )
     return Result(raw, as_frame)
 
@@ -281,7 +301,8 @@ def analyze_recording(
         Sensor height above the ankle, m; when not given, 0.10 m is assumed and checked
         (``sensor_height_unknown`` in ``warnings``, as for :func:`analyze`).
     compute_sta : bool
-        Compute the Lyapunov stability STA.
+        Compute the Lyapunov stability STA; with False its status reads "not computed:
+        turned off for this run".
     setting : {"overground", "treadmill"}, optional
         Where the walk happened; on a treadmill no stride is flagged as a turn.
 

@@ -5,7 +5,7 @@
 use maud::{html, Markup};
 
 use super::Citations;
-use crate::html::{figure, fmt, side_label};
+use crate::html::{counted, figure, fmt, side_label};
 use crate::plots;
 use crate::reference::no_published_reason;
 use crate::summary::{asymmetry_cell, value_cells, WhyNotes};
@@ -129,15 +129,6 @@ pub(super) fn parameter_table(
         "\n"
         (notes.list_from(first_note))
         p { (counted(v.outside(), "value lies", "values lie")) " outside the reference range; " (counted(v.asymmetric(), "asymmetry", "asymmetries")) " beyond the threshold." (no_published_note(reference)) } "\n"
-    }
-}
-
-/// "1 value lies", "4 values lie": a count with its words in the right number.
-fn counted(n: usize, one: &str, many: &str) -> String {
-    if n == 1 {
-        format!("1 {one}")
-    } else {
-        format!("{n} {many}")
     }
 }
 

@@ -293,8 +293,8 @@ fn headline_of_two_visits_of_one_person() {
         Some(
             "Recorded at 2 visits (pre, post): the values on this page are the mean of all of \
              them. The changes between the visits are listed under \"Change between visits\" \
-             and none is judged: without a reliability table (ldh report --reliability) the \
-             measurement's own noise is not known, so no change can be told apart from it."
+             and none is judged: without a reliability table the measurement's own noise is \
+             not known, so no change can be told apart from it."
         )
     );
     assert!(html.contains("<h2 id=\"visits\">Change between visits</h2>"));
@@ -302,6 +302,12 @@ fn headline_of_two_visits_of_one_person() {
     let section = &section[..section.find("</table>").unwrap()];
     assert!(
         !section.contains('▲') && !section.contains('▼'),
+        "{section}"
+    );
+    // The page is read by a clinician: it names no switch of the tool's.
+    assert!(
+        section.contains("no reliability table (made from repeated trials of the same people)")
+            && !html.contains("--reliability"),
         "{section}"
     );
     // Two trials of one visit say no visits.
@@ -439,8 +445,7 @@ fn headline_of_two_disagreeing_trials() {
         Some(
             "The values are the mean of 2 trials (t1, t2) of this person. The trials disagree \
              in stride time, step time and stride time variability by more than 10 % (without \
-             a reliability table, ldh report --reliability, whether this is beyond the \
-             measurement's noise is not known): the page shows their mean; look at each trial \
+             a reliability table, whether this is beyond the measurement's noise is not known): the page shows their mean; look at each trial \
              under \"Trials side by side\" before relying on it."
         )
     );

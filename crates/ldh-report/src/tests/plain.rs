@@ -155,3 +155,27 @@ fn a_walk_with_nothing_measured_is_not_called_normal_and_both_sensors_are_named(
         "No value of this summary was measured on either leg, so its table is left out: gyroscope sensor fault."
     ), "{html}");
 }
+
+#[test]
+fn sta_turned_off_is_said_once_and_names_no_switch() {
+    let p = ReportParams::default().check().unwrap();
+    let mut recs = vec![row("K", "ldh", "left", 1.2), row("K", "ldh", "right", 1.2)];
+    for r in recs.iter_mut() {
+        r.parameters[Parameter::Sta] = None;
+        r.parameters.sta_status = ldh_core::pipeline::STA_TURNED_OFF.into();
+    }
+    let s = SubjectReport {
+        subject_id: "K".into(),
+        recordings: recs,
+        ..Default::default()
+    };
+    let html = subject_html(&s, &Reference::published(&p), &p).unwrap();
+    assert!(
+        html.contains("not computed: turned off for this run"),
+        "{html}"
+    );
+    assert!(!html.contains("not computed: not computed"), "{html}");
+    for switch in ["--no-sta", "compute_sta"] {
+        assert!(!html.contains(switch), "'{switch}' on the page");
+    }
+}

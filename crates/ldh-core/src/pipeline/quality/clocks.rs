@@ -240,9 +240,9 @@ pub fn clock_warning(b: &DsBalance) -> Option<Warning> {
 }
 
 /// The `two_clocks` finding (withholds [`BETWEEN_LEGS`] on both legs) for a walk whose legs
-/// come from two files ([`Clocks::Two`]) and whose step-time difference is more than
-/// [`MAX_UNBACKED_STEP_SHARE`] of the stride beyond what the swing difference backs; never for
-/// one clock, nor when the swing is unknown.
+/// come from two files, or two arrays not said to share a clock ([`Clocks::Two`]), and whose
+/// step-time difference is more than [`MAX_UNBACKED_STEP_SHARE`] of the stride beyond what the
+/// swing difference backs; never for one clock, nor when the swing is unknown.
 pub fn two_clocks_warning(b: &DsBalance, clocks: Option<Clocks>) -> Option<Warning> {
     let unbacked = b.unbacked_step_share();
     if clocks != Some(Clocks::Two) || !(unbacked > MAX_UNBACKED_STEP_SHARE) {
@@ -256,7 +256,7 @@ pub fn two_clocks_warning(b: &DsBalance, clocks: Option<Clocks>) -> Option<Warni
     };
     Some(
         Warning::new(codes::TWO_CLOCKS, Severity::Warning, format!(
-            "the two sensors are not known to share a clock: the legs come from two files, and the {longer} step is {:.0} ms longer than the {shorter} while the legs' own swing times differ by {:.0} ms (medians of {} strides); a clock offset of {:.0} ms between the sensors would make that difference alone. Step time, its asymmetry, step frequency and double support, which compare one leg's events with the other's, are not measured; each leg's stride time, stance, swing and stride length are. Synchronise the two sensors before recording",
+            "the two sensors are not known to share a clock: the legs come from two separate recordings, and the {longer} step is {:.0} ms longer than the {shorter} while the legs' own swing times differ by {:.0} ms (medians of {} strides); a clock offset of {:.0} ms between the sensors would make that difference alone. Step time, its asymmetry, step frequency and double support, which compare one leg's events with the other's, are not measured; each leg's stride time, stance, swing and stride length are. Synchronise the two sensors before recording",
             1e3 * step.abs() * b.stride_s,
             1e3 * b.swing_difference().abs() * b.stride_s,
             b.strides,
