@@ -324,7 +324,8 @@ pub struct Events {
     pub hs_impact_delay_s: Option<f64>,
     /// Confidence of each heel strike, 0–1 (same order as `hs_s`; `events/impact.rs`): 1 −
     /// ½·ratio⁻¹·4 at its own impact, 0.5 where the walk shows no impacts, 0.2 with two
-    /// candidate landings, 0.3 without an impact in a walk that shows them. Empty for the
+    /// candidate landings, 0.3 without an impact in a walk that shows them or with one at the
+    /// zero crossing (`events/impact.rs`, "A strike at the crossing"). Empty for the
     /// detectors that do not place heel strikes by impacts. Strides bounded by a strike below
     /// [`MIN_EVENT_CONFIDENCE`] are withheld.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

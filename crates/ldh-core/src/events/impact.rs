@@ -40,6 +40,22 @@
 //! 10–13 ms included (docs/accuracy.md "Event timing per dataset and condition (issue 49)").
 //! The linear interpolation of the onset keeps most of the crossing's precision.
 //!
+//! **A strike at the crossing (2026-12-03).** Where the impact is weak against the swing's
+//! own |Δa|, the smoothed change that holds the crossing already reaches half the window's
+//! peak, and the onset falls on the crossing itself: the step cannot be told from the swing
+//! there (family B's slow hemiparetic walker BP01: a quarter of the right leg's strikes ≈ 37 ms
+//! early). The leg's other strikes say where its contact lies. A strike is **at the crossing**
+//! when its onset is interpolated from the first two smoothed changes after the crossing (the
+//! first of which holds the change across it) or the smoothed step is under way at the
+//! window's start ([`Impact::near_crossing`]), *and* its delay is less than half the leg's
+//! median delay over all its impacts; it is then placed at its crossing plus the median delay
+//! of the leg's other impacts (at least [`IMPACT_MIN_STRIKES`] of them), with confidence
+//! [`NO_IMPACT_CONFIDENCE`] (or lower, with two candidate landings). A leg whose strikes all
+//! land near the crossing keeps them: its own delay says the contact is there. Tuned on family
+//! B seed 36 (the steady-window cases), reported on TRIPOD's OptoGait: 10 of its 570 impacts
+//! are at the crossing, and its heel-strike scatter narrows on every shank it touches
+//! (docs/accuracy.md "Heel strikes at the crossing").
+//!
 //! A walk without impacts keeps the gyroscope's landmark and offset (family A: 3–4 % of its
 //! strikes exceed the ratio by chance, so no walk qualifies); its strikes carry confidence
 //! [`GYRO_ONLY_CONFIDENCE`].
@@ -49,7 +65,7 @@
 //! [`TWO_CANDIDATES_CONFIDENCE`] when a second step at least as large as the first follows it
 //! after a lull, [`SECOND_CANDIDATE_GAP_S`] or more later (two candidate landings: a shuffle,
 //! a toe touching before the heel); [`NO_IMPACT_CONFIDENCE`] without an impact in a walk
-//! that shows them.
+//! that shows them, or with one at the crossing.
 //!
 //! The ratio and share are not fitted: they are set between what family A shows without an
 //! impact (median ratio 1.7, 95th percentile 3.4) and what an impact is. The window must cover
@@ -101,6 +117,11 @@ pub struct Impact {
     pub ratio: f64,
     /// A second candidate landing follows ([`SECOND_CANDIDATE_SHARE`]).
     pub second_candidate: bool,
+    /// The onset lies in the first two changes after the zero crossing (or the smoothed step
+    /// is under way at the window's start), whose interpolation still holds the swing's own
+    /// change across the crossing: the step there cannot be told from the swing (module docs,
+    /// "A strike at the crossing").
+    pub near_crossing: bool,
 }
 
 impl Impact {
@@ -117,9 +138,10 @@ impl Impact {
 /// The onset of the step in the smoothed changes `sm` ([`smooth121`]) in the window
 /// `[w0, w1]`: where `sm` first reaches half its largest value there, interpolated linearly,
 /// plus half a sample (the kernel's lead: an ideal one-sample step is placed where the raw
-/// rule places it, half-way between its two samples). `None` when the smoothed step is already
-/// under way at the window's start.
-fn smoothed_onset_s(sm: &[f64], w0: usize, w1: usize, fs_hz: f64) -> Option<f64> {
+/// rule places it, half-way between its two samples), s, and the index of the first smoothed
+/// change reaching the half. `None` when the smoothed step is already under way at the
+/// window's start.
+fn smoothed_onset_s(sm: &[f64], w0: usize, w1: usize, fs_hz: f64) -> Option<(f64, usize)> {
     let half = 0.5 * sm[w0..=w1].iter().copied().fold(0.0, f64::max);
     let i = w0 + sm[w0..=w1].iter().position(|&d| d >= half)?;
     let prev = sm[i - 1];
@@ -127,7 +149,7 @@ fn smoothed_onset_s(sm: &[f64], w0: usize, w1: usize, fs_hz: f64) -> Option<f64>
         return None;
     }
     let frac = (half - prev) / (sm[i] - prev);
-    Some((i as f64 - 0.5 + frac) / fs_hz)
+    Some(((i as f64 - 0.5 + frac) / fs_hz, i))
 }
 
 /// The changes `da` smoothed by the zero-phase kernel [1 2 1]/4 (the ends kept).
@@ -176,7 +198,12 @@ fn impact_at(da: &[f64], sm: &[f64], fs_hz: f64, zc_s: f64, stride_s: f64) -> Op
     if da[i - 1] >= half {
         return None;
     }
-    let onset_s = smoothed_onset_s(sm, w0, w1, fs_hz).unwrap_or_else(|| {
+    let smoothed = smoothed_onset_s(sm, w0, w1, fs_hz);
+    // sm[w0] holds the change across the crossing and the one before it: an onset interpolated
+    // from it (index w0 + 1 or earlier), or a step already under way, is the swing's as much
+    // as the contact's.
+    let near_crossing = smoothed.is_none_or(|(_, i)| i <= w0 + 1);
+    let onset_s = smoothed.map(|(t, _)| t).unwrap_or_else(|| {
         let prev = da[i - 1];
         let frac = if da[i] > prev {
             (half - prev) / (da[i] - prev)
@@ -200,6 +227,7 @@ fn impact_at(da: &[f64], sm: &[f64], fs_hz: f64, zc_s: f64, stride_s: f64) -> Op
         delay_s: onset_s - zc_s,
         ratio: peak / base.max(1e-12),
         second_candidate,
+        near_crossing,
     })
 }
 
@@ -231,10 +259,37 @@ pub fn impacts(
         .collect()
 }
 
+/// Which of one leg's impacts lie at the zero crossing rather than at the contact, and the
+/// leg's delay from its other strikes, s (module docs, "A strike at the crossing"): an impact
+/// [`Impact::near_crossing`] whose delay is less than half the leg's median delay (over all its
+/// impacts), when at least [`IMPACT_MIN_STRIKES`] of its other impacts give that delay (their
+/// median). `None` when nothing is at the crossing or too few others are left.
+fn at_the_crossing(impacts: &[Option<Impact>]) -> Option<(Vec<bool>, f64)> {
+    let mut all: Vec<f64> = impacts.iter().flatten().map(|i| i.delay_s).collect();
+    let median = crate::stats::median(&mut all, crate::stats::EvenMedian::Upper)?;
+    let at: Vec<bool> = impacts
+        .iter()
+        .map(|i| i.is_some_and(|i| i.near_crossing && i.delay_s < 0.5 * median))
+        .collect();
+    let mut others: Vec<f64> = impacts
+        .iter()
+        .zip(&at)
+        .filter(|(_, &a)| !a)
+        .filter_map(|(i, _)| i.map(|i| i.delay_s))
+        .collect();
+    if !at.contains(&true) || others.len() < IMPACT_MIN_STRIKES {
+        return None;
+    }
+    let delay = crate::stats::median(&mut others, crate::stats::EvenMedian::Upper)?;
+    Some((at, delay))
+}
+
 /// Place the heel strikes of the legs of one walk (one or both) by their impacts
 /// (`ev.hs_impacts`), when at least [`IMPACT_SHARE`] of them (and [`IMPACT_MIN_STRIKES`]) show
 /// one: each strike with an impact at it, each without at its zero crossing plus the median
-/// delay over all the walk's impacts (confidence 0). `hs_offset_stride`: the offset that was
+/// delay over all the walk's impacts, each whose impact lies at the crossing (module docs,
+/// "A strike at the crossing") at its crossing plus the leg's delay from its other strikes
+/// (both with [`NO_IMPACT_CONFIDENCE`]). `hs_offset_stride`: the offset that was
 /// added to each crossing, fraction of the leg's median stride. Sets each strike's confidence
 /// ([`Events::hs_confidence`]). Returns the median delay, s, or `None` when the walk does not
 /// use impacts (every strike then keeps its crossing and offset, with
@@ -256,15 +311,24 @@ pub fn shift_to_impacts(legs: &mut [&mut Events], hs_offset_stride: f64) -> Opti
     for ev in legs.iter_mut() {
         let offset = hs_offset_stride * ev.median_stride_s;
         let impacts = std::mem::take(&mut ev.hs_impacts);
+        let crossing = at_the_crossing(&impacts);
         let mut conf = Vec::with_capacity(ev.hs_s.len());
         for (k, hs) in ev.hs_s.iter_mut().enumerate() {
             let zc = *hs - offset;
-            match impacts.get(k).copied().flatten() {
-                Some(i) => {
+            let leg_delay = crossing
+                .as_ref()
+                .and_then(|(at, d)| at.get(k).is_some_and(|&a| a).then_some(*d));
+            match (impacts.get(k).copied().flatten(), leg_delay) {
+                (Some(i), Some(d)) => {
+                    *hs = zc + d;
+                    // Two candidate landings stay unsure.
+                    conf.push(NO_IMPACT_CONFIDENCE.min(i.confidence()));
+                }
+                (Some(i), None) => {
                     *hs = zc + i.delay_s;
                     conf.push(i.confidence());
                 }
-                None => {
+                (None, _) => {
                     *hs = zc + typical;
                     conf.push(NO_IMPACT_CONFIDENCE);
                 }
@@ -365,6 +429,49 @@ mod tests {
             "{}",
             ev.hs_s[4]
         );
+    }
+
+    #[test]
+    fn a_strike_at_the_crossing_takes_the_legs_delay_from_its_other_strikes() {
+        // Stride 3: its step starts at the first change after its crossing (sample 351, the
+        // crossing at 350), where the onset cannot be told from the swing; the others' 3
+        // samples later (354).
+        let (mut acc, mut ev) = walk(|k| k != 3);
+        ring(&mut acc, 351);
+        let found = impacts(&ev, [&acc[0], &acc[1], &acc[2]], 100.0, 0.016);
+        let i3 = found[3].unwrap();
+        assert!(
+            i3.near_crossing && i3.delay_s < 0.5 * ONSET_DELAY_S,
+            "{i3:?}"
+        );
+        assert!(!found[4].unwrap().near_crossing);
+        place(&mut ev, &acc);
+        // At its crossing plus the delay of the leg's other strikes, unsure but kept.
+        assert!(
+            (ev.hs_s[3] - 3.5 - ONSET_DELAY_S).abs() < 2e-3,
+            "{}",
+            ev.hs_s[3]
+        );
+        assert_eq!(ev.hs_confidence[3], NO_IMPACT_CONFIDENCE);
+        assert!(ev.hs_confidence[3] >= MIN_EVENT_CONFIDENCE);
+        // The strikes with a clear delay keep their own impacts.
+        assert!((ev.hs_s[4] - 4.5 - ONSET_DELAY_S).abs() < 2e-3);
+        assert!(ev.hs_confidence[4] > 0.9);
+    }
+
+    #[test]
+    fn a_leg_whose_strikes_all_land_at_the_crossing_keeps_them() {
+        // Every step starts at the first change after its crossing: the leg's own delay says
+        // the contact is there, so each strike stays at its impact.
+        let (mut acc, mut ev) = walk(|_| false);
+        for k in 0..10 {
+            ring(&mut acc, 100 * k + 51);
+        }
+        place(&mut ev, &acc);
+        for (k, hs) in ev.hs_s.iter().enumerate() {
+            assert!((hs - (k as f64 + 0.5)).abs() < 0.02, "{k}: {hs}");
+        }
+        assert!(ev.hs_confidence.iter().all(|&c| c > 0.9));
     }
 
     #[test]

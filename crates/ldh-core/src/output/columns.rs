@@ -119,7 +119,7 @@ const LAYOUT: &[Entry] = &[
     c(E, "event", "", "`HS` (heel strike) or `TO` (toe off)."),
     c(E, "order", "", "Where the left/right alternation breaks, why; empty otherwise."),
     c(E, "trial_id", "", "The trial of the person (manifest `trial_id`)."),
-    c(E, "confidence", "", "How surely the signals place the event, 0–1 (docs/quality.md \"Unsure events\"): a heel strike at its own impact 0.5–1 (by the impact's prominence), 0.5 where the walk shows no impacts, 0.3 without an impact in a walk that shows them (at the walk's median delay), 0.2 with two candidate landings; a toe off 1 − its rival push-off peak over its own. Below 0.25 the strides the event bounds are withheld. Empty when the detector gives none."),
+    c(E, "confidence", "", "How surely the signals place the event, 0–1 (docs/quality.md \"Unsure events\"): a heel strike at its own impact 0.5–1 (by the impact's prominence), 0.5 where the walk shows no impacts, 0.3 without an impact in a walk that shows them (at the walk's median delay) or with one at the zero crossing (at the leg's), 0.2 with two candidate landings; a toe off 1 − its rival push-off peak over its own. Below 0.25 the strides the event bounds are withheld. Empty when the detector gives none."),
 ];
 
 /// Labels that appear in the cohort statistics and reports rather than as columns.

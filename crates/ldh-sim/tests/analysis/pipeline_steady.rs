@@ -147,8 +147,7 @@ fn transients_are_excluded(name: &str, subjects: Vec<SimSubject>, leg_max: f64) 
                 100.0 * by_events
             );
             // The window's own part is within 0.3 points on every leg of every case, family B's
-            // 10 s start-ups too: what `leg_max` allows beyond it there is the events' timing
-            // of a slow hemiparetic leg (docs/accuracy.md, 2026-12-03).
+            // 10 s start-ups too (docs/accuracy.md, 2026-12-03).
             assert!(
                 by_window.abs() <= 0.003,
                 "{name} {id} {:?}: the window's part of the CV's error {by_window}",
@@ -203,8 +202,10 @@ fn transients_are_excluded(name: &str, subjects: Vec<SimSubject>, leg_max: f64) 
 #[test]
 fn belt_start_up_is_excluded_on_both_legs_and_the_cv_is_the_steady_truths() {
     transients_are_excluded("ramp 10 s", cohort_a(|p| p.ramp_s = 10.0), 0.003);
-    // Family B's slow walkers: a 10 s start-up is 3 valid strides 5–12 % long.
-    transients_are_excluded("B ramp 10 s", cohort_b(|p| p.ramp_s = 10.0), 0.005);
+    // Family B's slow walkers: a 10 s start-up is 3 valid strides 5–12 % long. 0.3 points
+    // since weak impacts found at the crossing take the leg's delay (0.5 before: docs/accuracy.md
+    // "Heel strikes at the crossing", 2026-12-03).
+    transients_are_excluded("B ramp 10 s", cohort_b(|p| p.ramp_s = 10.0), 0.003);
 }
 
 #[test]
@@ -237,7 +238,7 @@ fn slowing_down_before_the_end_is_excluded_on_family_b() {
             p.ramp_s = 10.0;
             p.slowdown_s = 10.0;
         }),
-        0.005,
+        0.003,
     );
 }
 
