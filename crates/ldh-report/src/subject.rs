@@ -381,7 +381,10 @@ fn facts(r: &RecordingRow) -> [String; 11] {
         if r.parameters.sta_status.is_empty() {
             "computed".into()
         } else {
-            format!("not computed: {}", r.parameters.sta_status)
+            match super::measured::sta_reason(&r.parameters.sta_status) {
+                "not computed" => "not computed".into(),
+                why => format!("not computed: {why}"),
+            }
         },
     ]
 }

@@ -81,6 +81,11 @@ pub struct LegFront {
     pub sensor: quality::SensorFindings,
 }
 
+/// `sta_status` of a run with STA turned off (`--no-sta`, Python `compute_sta=False`): said as
+/// such, in words a clinical page can show (it read "(--no-sta, or compute_sta=False in
+/// Python)" on a HuGaDB page until 2026-12-03).
+pub const STA_TURNED_OFF: &str = "not computed: turned off for this run";
+
 /// Preprocess, align, estimate the attitude and detect the events of one recording, adding
 /// 1 to `t.recordings` and the stages' wall time.
 pub fn leg_front(
@@ -175,10 +180,10 @@ pub fn leg_back(
         );
         t.lap(Stage::Sta, &mut clock);
     } else if !params.compute_sta {
-        // Said as such, not a bare "not computed" a reader takes for a failure.
-        parameters.sta_status =
-            "not computed: turned off for this run (--no-sta, or compute_sta=False in Python)"
-                .into();
+        // Said as such, not a bare "not computed" a reader takes for a failure; in plain
+        // words, as it reaches the clinical pages (the switch, `--no-sta` or
+        // `compute_sta=False`, is the user's own and named in docs/pipeline.md).
+        parameters.sta_status = STA_TURNED_OFF.into();
     }
     withhold(&mut parameters, &checks.warnings);
     // A faulty gyroscope's events are not lent to the other leg's step time (nor, issue 49,

@@ -29,7 +29,7 @@ pub use inputs::{
     demo_inputs, discover, discover_with, is_manifest, read_manifest, subject_id_from_files,
     Clocks, InputOptions, PeopleTrials, Source, SubjectInput,
 };
-pub use leg::{leg_back, leg_front, memory_report, LegFront, LegResult};
+pub use leg::{leg_back, leg_front, memory_report, LegFront, LegResult, STA_TURNED_OFF};
 pub use manifest::{is_manifest_text, MANIFEST_COLUMNS};
 pub use many::{bounded_jobs, check_output_names, FolderOptions, FolderSummary, KeptRun};
 pub use quality::{
