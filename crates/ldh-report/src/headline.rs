@@ -237,7 +237,9 @@ fn steady(sides: &[&RecordingRow]) -> Option<String> {
 }
 
 /// What was not measured: the summary's quantities, named once each with the legs concerned.
-fn not_measured(v: &Verdicts, sides: &[&RecordingRow]) -> Option<String> {
+/// With a belt speed given (`belt`) the walking speed is the belt's, said above, so the sensors'
+/// missing estimate is not listed (the belt sentence says the sensors could not estimate it).
+fn not_measured(v: &Verdicts, sides: &[&RecordingRow], belt: bool) -> Option<String> {
     let failed: Vec<&str> = sides
         .iter()
         .filter(|r| !r.is_ok())
@@ -247,7 +249,12 @@ fn not_measured(v: &Verdicts, sides: &[&RecordingRow]) -> Option<String> {
         .iter()
         .map(|s| format!("anything of the {s} leg (its recording could not be analysed)"))
         .collect();
-    for row in v.rows.iter().filter(|r| r.q.in_summary) {
+    for row in v
+        .rows
+        .iter()
+        .filter(|r| r.q.in_summary)
+        .filter(|r| !(belt && r.q.parameter == Parameter::Speed))
+    {
         let missing: Vec<usize> = (0..row.cells.len())
             .filter(|i| matches!(row.cells[*i], Cell::NotMeasured(_)))
             .filter(|i| row.q.scope == Scope::Walk || !failed.contains(&["left", "right"][*i]))
@@ -265,28 +272,54 @@ fn not_measured(v: &Verdicts, sides: &[&RecordingRow]) -> Option<String> {
 }
 
 /// On a treadmill with a belt speed given (manifest `belt_speed_mps`, the same for every
-/// recording of the page): the belt speed is the walking speed, the sensors' estimate beside it.
-fn belt_sentence(v: &Verdicts, recordings: &[RecordingRow]) -> Option<String> {
+/// recording of the page): the belt speed is the walking speed, judged against the walking
+/// speed's published range as the summary judges a value (bounds included, compared as shown),
+/// the sensors' estimate beside it. TRIPOD's PWS−20 page said "the walking speed is the
+/// belt's" and then "Could not be measured: walking speed" without judging the belt's 0.83 m/s
+/// (below 1.00–1.60).
+fn belt_sentence(
+    v: &Verdicts,
+    recordings: &[RecordingRow],
+    reference: &Reference,
+) -> Option<String> {
     let belt = recordings.first()?.belt_speed_mps?;
     if recordings.iter().any(|r| r.belt_speed_mps != Some(belt)) {
         return None;
     }
-    let imu = v
+    let row = v
         .rows
         .iter()
-        .find(|r| r.q.parameter == ldh_core::output::Parameter::Speed)
-        .and_then(|r| match r.cells.first() {
-            Some(Cell::Value { v, .. }) => Some(val(r, *v)),
-            _ => None,
-        });
+        .find(|r| r.q.parameter == ldh_core::output::Parameter::Speed);
+    let imu = row.and_then(|r| match r.cells.first() {
+        Some(Cell::Value { v, .. }) => Some(val(r, *v)),
+        _ => None,
+    });
+    let judged = row
+        .and_then(|r| belt_judgement(r, belt, reference))
+        .unwrap_or_default();
     Some(match imu {
         Some(x) => format!(
-            "On a treadmill, belt at {belt:.2} m/s: the walking speed is the belt's; the speed the sensors estimate is {x}."
+            "On a treadmill, belt at {belt:.2} m/s: the walking speed is the belt's{judged}; the speed the sensors estimate is {x}."
         ),
         None => format!(
-            "On a treadmill, belt at {belt:.2} m/s: the walking speed is the belt's; the sensors could not estimate it."
+            "On a treadmill, belt at {belt:.2} m/s: the walking speed is the belt's{judged}; the sensors could not estimate it."
         ),
     })
+}
+
+/// ", below normal (normal 1.00–1.60 m/s)" (or above, or within) for a belt speed `belt`, m/s,
+/// against the walking speed row's range ([`super::verdict::judge`]: compared as shown, bounds
+/// included); `None` without a range.
+fn belt_judgement(row: &Row, belt: f64, reference: &Reference) -> Option<String> {
+    let q = row.q;
+    let j = super::verdict::judge(
+        belt * q.scale(),
+        reference.range(q.parameter),
+        q.scale(),
+        q.decimals,
+    );
+    j.judged()
+        .then(|| format!(", {} ({})", j.words(), range(row, reference)))
 }
 
 /// The headline of a subject's page; `recordings` are the page's own rows (every trial).
@@ -297,10 +330,11 @@ pub(crate) fn make(
     reference: &Reference,
     ctx: &super::RunContext,
 ) -> Headline {
-    let not_measured = not_measured(v, sides);
+    let belt = belt_sentence(v, recordings, reference);
+    let not_measured = not_measured(v, sides, belt.is_some());
     let visits = super::visits::visit_changes(recordings, ctx);
     Headline {
-        belt: belt_sentence(v, recordings),
+        belt,
         context: {
             let mean = sides
                 .iter()

@@ -20,7 +20,7 @@ pub(crate) fn not_measured(r: &RecordingRow, p: Parameter) -> Option<String> {
         return None;
     }
     if p == Parameter::Sta && !r.parameters.sta_status.is_empty() {
-        return Some(r.parameters.sta_status.clone());
+        return Some(sta_reason(&r.parameters.sta_status).to_string());
     }
     Some(match (r.strides_valid, p) {
         (Some(0), _) => "no valid stride".into(),
@@ -32,6 +32,16 @@ pub(crate) fn not_measured(r: &RecordingRow, p: Parameter) -> Option<String> {
         }
         _ => "not computable from these strides".into(),
     })
+}
+
+/// Why STA is missing, from the run's `sta_status`, without its own "not computed: " or
+/// "not measured: " (the page's cell already says "not measured: "; a HuGaDB page read "not
+/// measured: not computed: turned off for this run (…)").
+pub(crate) fn sta_reason(status: &str) -> &str {
+    status
+        .strip_prefix("not computed: ")
+        .or_else(|| status.strip_prefix("not measured: "))
+        .unwrap_or(status)
 }
 
 /// A mean of trials' reason (`t1: A; t2: A`, as `ldh_core::cohort::person_row` joins them)

@@ -6,6 +6,7 @@ mod cohort;
 mod dummy_parameter;
 mod headline;
 mod plain;
+mod reread;
 mod two_trials;
 mod vocabulary;
 mod withheld;

@@ -30,13 +30,18 @@ pub(crate) enum Action {
     StandStill,
     /// Too little steady walking for the variability (`too_little_steady`).
     SteadyWalk,
-    /// Too few strides (`few_strides`, `sv_noise`, `sv_unchecked`).
+    /// Too few strides (`few_strides`, `sv_noise`, and `sv_unchecked` when the walk held too
+    /// few strides to pair up: [`Action::of_unchecked`]).
     LongerWalk,
 }
 
 impl Action {
-    /// The action a finding that withholds a value asks for (`None`: none helps).
-    fn of(w: &Warning) -> Option<Action> {
+    /// The action a finding `w` of the leg `row` that withholds a value asks for (`None`: none
+    /// helps); `sides` are the walk's legs.
+    fn of(w: &Warning, row: &RecordingRow, sides: &[&RecordingRow]) -> Option<Action> {
+        if w.code == ldh_core::pipeline::WarningCode::SvUnchecked {
+            return Action::of_unchecked(row, sides);
+        }
         if w.severity == Severity::Fault {
             return Some(Action::CheckSensor);
         }
@@ -52,9 +57,28 @@ impl Action {
             C::SensorHeightUnknown => Action::MeasureHeight,
             C::NoQuietStanding => Action::StandStill,
             C::TooLittleSteady | C::NeverSteady => Action::SteadyWalk,
-            C::FewStrides | C::SvNoise | C::SvUnchecked => Action::LongerWalk,
+            C::FewStrides | C::SvNoise => Action::LongerWalk,
             _ => return None,
         })
+    }
+
+    /// A stride length variability withheld as unchecked (`sv_unchecked`) on `row`: it is checked
+    /// against the other leg's strides, so a longer walk helps only when that check had too few
+    /// strides on both legs (both withheld as unchecked). When the other leg has no stride length
+    /// variability of its own (not analysed, or withheld for its own reason), that leg's reason
+    /// asks for its own action and this one asks for none: a simulated hemiparetic walk whose
+    /// left stride length failed its drift check asked to "record a longer walk" of a 55 s
+    /// steady walk.
+    fn of_unchecked(row: &RecordingRow, sides: &[&RecordingRow]) -> Option<Action> {
+        let other = sides.iter().find(|r| r.side != row.side)?;
+        other
+            .warnings
+            .iter()
+            .any(|w| {
+                w.code == ldh_core::pipeline::WarningCode::SvUnchecked
+                    && w.withholds(Parameter::StrideLengthCv)
+            })
+            .then_some(Action::LongerWalk)
     }
 
     /// The sentence; `sides` are the legs concerned (the sensors to check).
@@ -112,7 +136,7 @@ pub(crate) fn actions<'a>(v: &Verdicts, sides: &[&'a RecordingRow]) -> Vec<(Acti
         };
         for r in missing_sides {
             for w in r.warnings.iter().filter(|w| w.withholds(p)) {
-                if let Some(a) = Action::of(w) {
+                if let Some(a) = Action::of(w, r, sides) {
                     if !out.contains(&(a, r.side.as_str())) {
                         out.push((a, r.side.as_str()));
                     }

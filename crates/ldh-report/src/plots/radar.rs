@@ -48,18 +48,7 @@ pub fn radar_svg(
     // Each title line beyond the first moves the chart and its notes down by one line.
     let drop = (title_lines.len() as i32 - 1) * (f.title + 4);
     let g = Geometry::new(zabs.ceil().clamp(2.0, RADAR_Z_CLIP), codes.len(), drop);
-    let clipped: Vec<String> = series
-        .iter()
-        .flat_map(|(name, z)| {
-            z.iter()
-                .enumerate()
-                .filter(|(_, v)| v.abs() > g.z_max && v.is_finite())
-                .map(move |(i, v)| {
-                    let code = codes.get(i).map(String::as_str).unwrap_or("");
-                    format!("{name} {code} z = {v:+.1}")
-                })
-        })
-        .collect();
+    let clipped = clipped_values(codes, series, g.z_max);
     let notes = note_lines(g.z_max, &clipped);
     let notes_top = NOTES_TOP + drop;
     let height = notes_top as u32 + notes.len() as u32 * (f.label as u32 + 6) + 8;
@@ -135,10 +124,68 @@ fn wrap_title(title: &str, size: i32) -> Vec<String> {
     }
 }
 
+/// The values beyond the rim `z_max`, named under the chart by the axis' readable name
+/// ([`axis_name`]) on a person's legs, by its code on groups, and grouped by whose they are: (`"both legs"`, ["cadence -4.3"]) for a
+/// value both legs' series share (a walk value drawn on both polygons), (`"left
+/// (unaffected)"`, ["stance +4.2", …]) for the others, in series order. A simulated
+/// hemiparetic walker's page read "left (unaffected) SF z = -4.3, … right (affected) SF z =
+/// -4.3": codes, and the walk's one cadence twice.
+fn clipped_values(
+    codes: &[String],
+    series: &[(super::SeriesName, Vec<f64>)],
+    z_max: f64,
+) -> Vec<(String, Vec<String>)> {
+    let legs = series.len() == 2 && series.iter().all(|(n, _)| n.side.is_some());
+    let shown = |v: f64| format!("{v:+.1}");
+    let beyond = |v: f64| v.is_finite() && v.abs() > z_max;
+    // An axis whose value every leg shares, clipped: named once, for both legs.
+    let shared = |i: usize| {
+        legs && series
+            .iter()
+            .all(|(_, z)| z.get(i).is_some_and(|v| beyond(*v)))
+            && series
+                .iter()
+                .all(|(_, z)| shown(z[i]) == shown(series[0].1[i]))
+    };
+    // A person's legs are named in words (the clinical page names no codes); groups keep the
+    // codes the cohort page's tables and box plots name them by (in words its note ran to 7
+    // lines and pushed the demo's cohort page onto a third A4 page).
+    let words = series.iter().any(|(n, _)| n.side.is_some());
+    let name = |i: usize| {
+        let code = codes.get(i).map_or("", String::as_str);
+        if words {
+            axis_name(code).join(" ")
+        } else {
+            code.to_string()
+        }
+    };
+    let mut out = Vec::new();
+    let both: Vec<String> = (0..codes.len())
+        .filter(|&i| shared(i))
+        .map(|i| format!("{} {}", name(i), shown(series[0].1[i])))
+        .collect();
+    if !both.is_empty() {
+        out.push(("both legs".to_string(), both));
+    }
+    for (n, z) in series {
+        let own: Vec<String> = z
+            .iter()
+            .enumerate()
+            .filter(|&(i, v)| i < codes.len() && beyond(*v) && !shared(i))
+            .map(|(i, v)| format!("{} {}", name(i), shown(*v)))
+            .collect();
+        if !own.is_empty() {
+            out.push((n.to_string(), own));
+        }
+    }
+    out
+}
+
 /// The lines under the chart: the scale, the rings' values (centre to rim) and, when values
-/// were clipped, which ones (wrapped at [`NOTE_LINE_CHARS`]). The key to the marks is in the
-/// figure's caption.
-fn note_lines(z_max: f64, clipped: &[String]) -> Vec<String> {
+/// were clipped, which ones ("clipped at ±4 SD, z-score:", then one group per line, "both
+/// legs: cadence -4.3, walking speed -4.4", wrapped at [`NOTE_LINE_CHARS`]). The key to the
+/// marks is in the figure's caption.
+fn note_lines(z_max: f64, clipped: &[(String, Vec<String>)]) -> Vec<String> {
     let h = z_max / 2.0;
     let mut lines = vec![
         RADAR_SCALE_LABEL.to_string(),
@@ -150,20 +197,23 @@ fn note_lines(z_max: f64, clipped: &[String]) -> Vec<String> {
     if clipped.is_empty() {
         return lines;
     }
-    let mut line = format!("{RADAR_CLIPPED}{z_max:.0} SD:");
-    for c in clipped {
-        if line.chars().count() + c.chars().count() + 2 > NOTE_LINE_CHARS {
-            lines.push(std::mem::take(&mut line) + ",");
-        }
-        if !line.is_empty() && !line.ends_with(':') {
-            line.push(',');
-        }
-        if !line.is_empty() {
+    lines.push(format!("{RADAR_CLIPPED}{z_max:.0} SD, z-score:"));
+    for (who, items) in clipped {
+        let mut line = format!("{who}:");
+        for (k, c) in items.iter().enumerate() {
+            if line.chars().count() + c.chars().count() + 2 > NOTE_LINE_CHARS && k > 0 {
+                lines.push(std::mem::take(&mut line) + ",");
+                line = format!("  {c}");
+                continue;
+            }
+            if k > 0 {
+                line.push(',');
+            }
             line.push(' ');
+            line.push_str(c);
         }
-        line.push_str(c);
+        lines.push(line);
     }
-    lines.push(line);
     lines
 }
 

@@ -45,6 +45,44 @@ fn svgs_have_titles_labels_and_shapes() {
     assert!(boxplot_svg("x (s)", &[("A".into(), vec![])], false).is_err());
 }
 
+/// The clipped values under the radar are named in words, and a walk value drawn on both legs'
+/// polygons (the cadence, one per walk) is named once: a slow hemiparetic walker's page read
+/// "left (unaffected) SF z = -4.3, … right (affected) SF z = -4.3".
+#[test]
+fn the_radars_clipped_values_are_named_in_words_and_a_walk_value_once() {
+    use ldh_core::Side;
+    let codes: Vec<String> = ["SF", "STP", "SL"].map(String::from).to_vec();
+    let c = radar_svg(
+        "x",
+        &codes,
+        &[
+            (
+                SeriesName::of_side(Side::Left, "left (unaffected)"),
+                vec![-4.3, 4.2, 0.5],
+            ),
+            (
+                SeriesName::of_side(Side::Right, "right (affected)"),
+                vec![-4.3, 1.0, f64::NAN],
+            ),
+        ],
+    )
+    .unwrap();
+    let text: String = c
+        .split("<text")
+        .skip(1)
+        .filter_map(|t| t.split_once('>').and_then(|(_, r)| r.split_once("</text>")))
+        .map(|(t, _)| format!("{t} "))
+        .collect();
+    assert!(text.contains("clipped at ±4 SD, z-score:"), "{text}");
+    assert!(text.contains("both legs: cadence -4.3"), "{text}");
+    assert!(text.contains("left (unaffected): stance +4.2"), "{text}");
+    assert!(!text.contains(" SF ") && !text.contains(" STP "), "{text}");
+    // No line of the note is only a stray comma after the header (the demo's L02 read
+    // "clipped at ±4 SD:," with its first item too long for the line).
+    assert!(!text.contains(":,"), "{text}");
+    assert_eq!(text.matches("-4.3").count(), 1, "{text}");
+}
+
 /// A missing value is a gap (no point, no segment to it), never a point at 0; values beyond
 /// ±4 SD are drawn on the rim, marked and named.
 #[test]
@@ -68,7 +106,9 @@ fn the_radar_leaves_gaps_and_marks_clipping() {
         &[("right".into(), vec![12.0, 0.1, -2.5, f64::NAN])],
     )
     .unwrap();
-    assert!(c.contains("clipped at ±4 SD: right SF z = +12.0"), "{c}");
+    assert!(c.contains("clipped at ±4 SD, z-score:"), "{c}");
+    // A series that is no leg (a group of the cohort page) keeps the code.
+    assert!(c.contains("right: SF +12.0"), "{c}");
     assert!(
         c.contains("rings, centre to rim: z = -4.0, -2.0, 0 (black), +2.0, +4.0"),
         "the scale stops at 4 SD: {c}"

@@ -11,7 +11,7 @@ use ldh_core::pipeline::{Severity, Warning, WarningList, WithheldList};
 
 /// A normal walk of `id`'s `side`: stride 1.05 s (114 steps/min), step time `step_s`, stance
 /// 62 %, stride 1.30 m at 1.24 m/s.
-fn leg(id: &str, side: &str, step_s: f64) -> RecordingRow {
+pub(super) fn leg(id: &str, side: &str, step_s: f64) -> RecordingRow {
     let mut r = row(id, "ldh", side, 1.24);
     r.parameters[Parameter::StrideTime] = Some(1.05);
     // The run's walk cadence from both legs' strides (the report reads it, never recomputes).
@@ -33,7 +33,7 @@ fn uneven(id: &str) -> Vec<RecordingRow> {
     vec![leg(id, "left", 0.5935), leg(id, "right", 0.4565)]
 }
 
-fn page_parts(recs: Vec<RecordingRow>) -> (String, Verdicts, Headline) {
+pub(super) fn page_parts(recs: Vec<RecordingRow>) -> (String, Verdicts, Headline) {
     let p = ReportParams::default().check().unwrap();
     let reference = Reference::published(&p);
     let s = SubjectReport {
@@ -148,7 +148,7 @@ fn bounds_are_inclusive_and_compared_as_shown() {
     ));
 }
 
-fn warn(r: &mut RecordingRow, code: &str, cols: &[&str]) {
+pub(super) fn warn(r: &mut RecordingRow, code: &str, cols: &[&str]) {
     let ps: Vec<ldh_core::domain::Parameter> = cols
         .iter()
         .filter_map(|c| ldh_core::domain::Parameter::from_column(c).ok())
@@ -326,7 +326,7 @@ fn headline_on_a_treadmill_with_a_belt_speed() {
     let (html, _, h) = page_parts(recs);
     assert_eq!(
         h.belt.as_deref(),
-        Some("On a treadmill, belt at 1.10 m/s: the walking speed is the belt's; the speed the sensors estimate is 1.24 m/s.")
+        Some("On a treadmill, belt at 1.10 m/s: the walking speed is the belt's, within normal (normal 1.00–1.60 m/s); the speed the sensors estimate is 1.24 m/s.")
     );
     assert!(html.contains("treadmill, belt 1.10 m/s"));
     assert_eq!(page_parts(uneven("C")).2.belt, None);
@@ -385,7 +385,7 @@ fn headline_with_a_frozen_gyroscope_segment() {
 }
 
 /// `leg` with the affected side given (so the to-do is about the recording alone).
-fn leg_of(id: &str, side: &str, step_s: f64) -> RecordingRow {
+pub(super) fn leg_of(id: &str, side: &str, step_s: f64) -> RecordingRow {
     let mut r = leg(id, side, step_s);
     r.affected_side = Some(ldh_core::output::AffectedSide::from(ldh_core::Side::Left).into());
     r

@@ -192,11 +192,14 @@ pub fn check_length_variability(l: Option<&mut LegResult>, r: Option<&mut LegRes
 /// what is missing. The two-leg comparison is the only check of SV against the length
 /// measurement's noise, and on real walks it found that noise to dominate (HuGaDB: every
 /// checked leg), so an unchecked SV is not reported.
+/// The reason a page shows names what is missing ("not checked against its noise, as the left
+/// leg reports no stride length variability"): "not checked against its noise" alone left a
+/// clinician asking why.
 pub fn unchecked_warning(sv: f64, why: &str) -> Warning {
     unchecked(
         sv,
-        "not checked against its noise",
-        &format!("its noise is checked against the other leg's strides and {why}"),
+        &format!("not checked against its noise, as {why}"),
+        "its noise is checked against the other leg's strides",
     )
 }
 

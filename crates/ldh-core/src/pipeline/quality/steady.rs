@@ -20,7 +20,7 @@ pub fn apply_steady(
     let span = exclude_unsteady_walk(&mut [(strides, 0.0)], p)
         .pop()
         .flatten();
-    set_warning(warnings, span.as_ref());
+    set_warning(warnings, span.as_ref(), p);
     span
 }
 
@@ -36,13 +36,13 @@ pub fn apply_steady_walk(left: &mut LegResult, right: &mut LegResult, p: &ValidS
     );
     let (r, l) = (spans.pop().flatten(), spans.pop().flatten());
     for (leg, span) in [(left, l), (right, r)] {
-        set_warning(&mut leg.warnings, span.as_ref());
+        set_warning(&mut leg.warnings, span.as_ref(), p);
         leg.steady = span;
     }
 }
 
 /// Put the rule's finding about a leg among its warnings in place of an earlier one.
-fn set_warning(warnings: &mut Vec<Warning>, span: Option<&SteadySpan>) {
+fn set_warning(warnings: &mut Vec<Warning>, span: Option<&SteadySpan>, p: &ValidSteadyParams) {
     warnings.retain(|w| {
         ![
             codes::STEADY_WINDOW,
@@ -51,23 +51,37 @@ fn set_warning(warnings: &mut Vec<Warning>, span: Option<&SteadySpan>) {
         ]
         .contains(&w.code)
     });
-    if let Some(w) = span.and_then(steady_warning) {
+    if let Some(w) = span.and_then(|s| steady_warning(s, p.0.min_steady_share)) {
         warnings.push(w);
         warnings.sort_by_key(|x| std::cmp::Reverse(x.severity));
     }
 }
 
 /// The finding of the steady-state rule on one leg (`None`: every stride steady and enough of
-/// them).
-pub fn steady_warning(s: &SteadySpan) -> Option<Warning> {
+/// them); `min_steady_share` is the rule's (`ValidSteadyParams::min_steady_share`). A walk that
+/// never becomes steady says which of the rule's two causes it is: its longest stretch at one
+/// pace holds fewer strides than that share, or that stretch itself still drifts (a simulated
+/// walker speeding up from 1.95 to 1.55 s read "holds 70 % of the strides, fewer than half").
+pub fn steady_warning(s: &SteadySpan, min_steady_share: f64) -> Option<Warning> {
     if s.never_steady {
+        let why = if s.longest_share < min_steady_share {
+            format!(
+                "its stride time changes throughout (speeding up, slowing down or changing pace; the longest stretch at one pace holds {:.0} % of the strides, fewer than the {:.0} % a steady walk needs)",
+                100.0 * s.longest_share,
+                100.0 * min_steady_share
+            )
+        } else {
+            format!(
+                "its stride time keeps drifting (speeding up or slowing down) even across its longest stretch at one pace ({:.0} % of the strides)",
+                100.0 * s.longest_share
+            )
+        };
         return Some(
             Warning::new(
                 codes::NEVER_STEADY,
                 Severity::Warning,
                 format!(
-                    "the walk never becomes steady: its stride time changes throughout (speeding up, slowing down or changing pace; the longest stretch at one pace holds {:.0} % of the strides, fewer than half), so stride-time and stride-length variability are withheld; the means are of the whole walk",
-                    100.0 * s.longest_share
+                    "the walk never becomes steady: {why}, so stride-time and stride-length variability are withheld; the means are of the whole walk"
                 ),
             )
             .withholding(&params::VARIABILITY),
@@ -136,21 +150,21 @@ mod tests {
 
     #[test]
     fn what_the_rule_says() {
-        assert_eq!(steady_warning(&span(60, 0, 0)), None);
-        let w = steady_warning(&span(60, 7, 0)).unwrap();
+        assert_eq!(steady_warning(&span(60, 0, 0), 0.5), None);
+        let w = steady_warning(&span(60, 7, 0), 0.5).unwrap();
         assert_eq!(w.severity, Severity::Note);
         assert_eq!(
             w.message,
             "steady walking from 12.0 s to 80.0 s (60 strides): 7 stride(s) at the start excluded (speeding up)"
         );
         assert!(w.affects.is_empty());
-        let w = steady_warning(&span(6, 2, 1)).unwrap();
+        let w = steady_warning(&span(6, 2, 1), 0.5).unwrap();
         assert_eq!(w.code, codes::TOO_LITTLE_STEADY);
         assert_eq!(w.message, "fewer than 10 steady strides: 6 (steady walking from 12.0 s to 80.0 s; 2 stride(s) at the start (speeding up) and 1 at the end (slowing down or a change of pace) excluded), so stride-time and stride-length variability (CV) are withheld");
         assert_eq!(w.reason(), "fewer than 10 steady strides");
         assert_eq!(w.affects, params::VARIABILITY);
         assert_eq!(
-            steady_warning(&span(7, 0, 0)).unwrap().message,
+            steady_warning(&span(7, 0, 0), 0.5).unwrap().message,
             "fewer than 10 steady strides: 7 valid (walking from 12.0 s to 80.0 s), so stride-time and stride-length variability (CV) are withheld; a longer straight walk gives more"
         );
         let none = SteadySpan {
@@ -160,13 +174,28 @@ mod tests {
             longest_share: 0.31,
             ..span(0, 0, 0)
         };
-        let w = steady_warning(&none).unwrap();
+        let w = steady_warning(&none, 0.5).unwrap();
         assert_eq!(w.code, codes::NEVER_STEADY);
         assert!(
-            w.message.contains("holds 31 % of the strides"),
+            w.message
+                .contains("holds 31 % of the strides, fewer than the 50 % a steady walk needs"),
             "{}",
             w.message
         );
+        // A longest stretch of 70 % that still drifts is never called "fewer than half".
+        let drifting = SteadySpan {
+            longest_share: 0.7,
+            ..none
+        };
+        let d = steady_warning(&drifting, 0.5).unwrap();
+        assert_eq!(d.code, codes::NEVER_STEADY);
+        assert!(!d.message.contains("fewer than"), "{}", d.message);
+        assert!(
+            d.message.contains("keeps drifting (speeding up or slowing down) even across its longest stretch at one pace (70 % of the strides)"),
+            "{}",
+            d.message
+        );
+        assert_eq!(d.reason(), "the walk never becomes steady");
         assert_eq!(w.reason(), "the walk never becomes steady");
         assert_eq!(w.affects, params::VARIABILITY);
         let empty = SteadySpan {
@@ -174,7 +203,7 @@ mod tests {
             ..none
         };
         assert_eq!(
-            steady_warning(&empty).unwrap().code,
+            steady_warning(&empty, 0.5).unwrap().code,
             codes::TOO_LITTLE_STEADY
         );
     }
