@@ -174,10 +174,16 @@ fn withhold_side_length(out: &mut SideParameters, valid: &[&Stride], with_length
         .max_by_key(|(_, n)| **n)
         .map(|(r, _)| r.clone())
         .unwrap_or_default();
-    let reason = format!(
-        "stride length passed its checks on only {passed} of {} strides (most often: {top})",
-        valid.len()
-    );
+    // One reason for every stride is that reason alone: "not measured: sensor height not
+    // given" on a page, not "passed its checks on only 0 of 99 strides (most often: …)".
+    let reason = if passed == 0 && why.len() == 1 {
+        top
+    } else {
+        format!(
+            "stride length passed its checks on only {passed} of {} strides (most often: {top})",
+            valid.len()
+        )
+    };
     for p in [
         Parameter::StrideLength,
         Parameter::Speed,
