@@ -26,7 +26,8 @@ pub(crate) struct Headline {
     /// The findings, asymmetry first, then the whole walk, then each side (at most
     /// [`MAX_FINDINGS`], then one sentence counting the rest).
     pub findings: Vec<String>,
-    /// A walk without enough steady walking: its variability is not reported, and why.
+    /// A walk without enough steady walking: its variability is not reported, and why (said
+    /// before the findings).
     pub steady: Option<String>,
     /// What could not be measured, one sentence.
     pub not_measured: Option<String>,
@@ -207,23 +208,29 @@ fn findings(v: &Verdicts, reference: &Reference) -> Vec<String> {
     all.into_iter().map(|x| x.0).collect()
 }
 
-/// A walk that was not steady long enough on a leg (`too_little_steady`): its variability is
-/// not reported, and why (the start-up and changes of pace are not variability).
+/// A walk that never became steady (`never_steady`, walk-level) or was not steady long enough
+/// on a leg (`too_little_steady`): its variability is not reported, and why (the start-up and
+/// changes of pace are not variability). Said before the findings, whose means it qualifies.
 fn steady(sides: &[&RecordingRow]) -> Option<String> {
-    let legs: Vec<&str> = sides
+    // A leg with a sensor fault says so itself: its steadiness is not a finding.
+    let sound: Vec<&&RecordingRow> = sides
         .iter()
-        // A leg with a sensor fault says so itself: its steadiness is not a finding.
         .filter(|r| {
             r.warnings
                 .at_least(ldh_core::pipeline::Severity::Fault)
                 .next()
                 .is_none()
         })
-        .filter(|r| {
-            r.warnings
-                .iter()
-                .any(|w| w.code == codes::TOO_LITTLE_STEADY)
-        })
+        .collect();
+    let has = |r: &RecordingRow, code| r.warnings.iter().any(|w| w.code == code);
+    if sound.iter().any(|r| has(r, codes::NEVER_STEADY)) {
+        return Some(
+            "The walk never became steady: its stride time kept changing (speeding up, slowing down or changing pace), so the values below are of the whole walk and its stride time and stride length variability are not reported.".into(),
+        );
+    }
+    let legs: Vec<&str> = sound
+        .iter()
+        .filter(|r| has(r, codes::TOO_LITTLE_STEADY))
         .map(|r| r.side.as_str())
         .collect();
     let who = match legs.as_slice() {
@@ -372,6 +379,7 @@ pub(crate) fn headline(h: &Headline) -> Markup {
             @if let Some(c) = &h.context { p { (c) } "\n" }
             @if let Some(c) = &h.visits { p { (c) } "\n" }
             @if let Some(c) = &h.belt { p { (c) } "\n" }
+            @if let Some(n) = &h.steady { p { (n) } "\n" }
             @if h.nothing_measured {
                 p { b { "Nothing could be judged: " } "no value of this walk was measured (the reasons follow)." } "\n"
             } @else if h.findings.is_empty() {
@@ -380,7 +388,6 @@ pub(crate) fn headline(h: &Headline) -> Markup {
                 b { "Findings" } "\n"
                 ul { @for f in &h.findings { li { (f) } "\n" } } "\n"
             }
-            @if let Some(n) = &h.steady { p { (n) } "\n" }
             @if let Some(n) = &h.not_measured { p { (n) } "\n" }
             @if let Some(t) = &h.to_do { p { b { "To do: " } (t) } "\n" }
         }

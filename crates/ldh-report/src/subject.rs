@@ -133,8 +133,10 @@ fn header(s: &SubjectReport, sides: &[&RecordingRow]) -> Markup {
 /// clinical page, read as the tool's own reasoning (issue 50's reading of a HuGaDB page). The
 /// two clock findings withhold only the timings between the legs, which the headline's "could
 /// not be measured" names and its to-do (synchronise the sensors) answers; their measurement
-/// (milliseconds of double support and swing) is for the technical appendix.
-const NOT_FOR_THE_BOX: [ldh_core::pipeline::WarningCode; 7] = [
+/// (milliseconds of double support and swing) is for the technical appendix. A walk that never
+/// became steady is said first in the headline, before the means it qualifies; the rule's
+/// numbers (the longest stretch at one pace) are the appendix's.
+const NOT_FOR_THE_BOX: [ldh_core::pipeline::WarningCode; 8] = [
     ldh_core::pipeline::codes::CLOCK_OFFSET,
     ldh_core::pipeline::codes::TWO_CLOCKS,
     ldh_core::pipeline::codes::NO_QUIET_STANDING,
@@ -142,6 +144,7 @@ const NOT_FOR_THE_BOX: [ldh_core::pipeline::WarningCode; 7] = [
     ldh_core::pipeline::codes::SV_NOISE,
     ldh_core::pipeline::codes::SV_UNCHECKED,
     ldh_core::pipeline::codes::TOO_LITTLE_STEADY,
+    ldh_core::pipeline::codes::NEVER_STEADY,
 ];
 
 /// The findings of both legs, each once: (severity, code, text, the legs that have it).

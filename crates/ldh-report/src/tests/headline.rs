@@ -487,6 +487,30 @@ fn headline_of_a_walk_that_never_becomes_steady() {
     );
 }
 
+/// Issue 50 item 1: a walk whose pace keeps changing (`never_steady`, e.g. a walker speeding
+/// up from 1.95 to 1.55 s) says so before the findings, whose means are of the whole walk, and
+/// the rule's numbers stay out of "Check before reading" (a simulated hemiparetic walker's page
+/// named its whole-walk stride time as a finding before the box said the walk was not steady).
+#[test]
+fn a_walk_whose_pace_keeps_changing_says_so_before_its_findings() {
+    let cvs = ["stride_time_cv", "stride_length_cv"];
+    let recs = both_warned(leg_of, "N", "never_steady", &cvs);
+    let (html, _, h) = page_parts(recs);
+    assert_eq!(
+        h.steady.as_deref(),
+        Some("The walk never became steady: its stride time kept changing (speeding up, slowing down or changing pace), so the values below are of the whole walk and its stride time and stride length variability are not reported.")
+    );
+    let said = html.find("The walk never became steady").expect("said");
+    let headline = &html[html.find("class=\"headline\"").expect("headline")..];
+    for later in ["No finding", "<b>Findings</b>", "Could not be measured"] {
+        assert!(headline
+            .find(later)
+            .is_none_or(|at| html.len() - headline.len() + at > said));
+    }
+    // Its only finding is said in the headline: no "Check before reading" box.
+    assert!(!html.contains("Check before reading the numbers"), "{html}");
+}
+
 /// Issue 50 item 6: a stride length withheld because left and right disagree does not ask
 /// for the sensor height (given or not, it does not change the disagreement).
 #[test]
